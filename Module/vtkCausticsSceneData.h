@@ -1,0 +1,126 @@
+/**
+ * @file   vtkCausticsSceneData.h
+ * @brief  Plain data shared by the GPU passes and the CPU reference renderer.
+ *
+ * vtkCausticsSceneExtractor turns a vtkRenderer (actors, their vtkProperty and
+ * caustics keys, lights, active camera, medium) into this snapshot once per
+ * frame. The GPU passes upload it, the reference renderer ray-traces it, so both
+ * see exactly the same triangles, materials, lights and camera.
+ *
+ * Units: lengths are scene units, taken as metres. Light "Radiometric" values are
+ * irradiance in W/m^2 (on a surface facing a directional light) or radiant
+ * intensity in W/sr (point and spot lights), per RGB channel.
+ */
+#ifndef vtkCausticsSceneData_h
+#define vtkCausticsSceneData_h
+
+#include <array>   // For std::array
+#include <cstdint> // For std::uint32_t
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+class vtkActor;
+
+namespace caustics
+{
+using Vec3 = std::array<double, 3>;
+
+/** What an actor does to light. Values are shared with the shaders (vtkCausticsCommon.glsl). */
+enum class Role : int
+{
+  None = 0,      ///< drawn by VTK, ignored by caustics (no shadow, no caustic)
+  Receiver = 1,  ///< diffuse (Lambertian) surface that shows caustics
+  Reflector = 2, ///< specular mirror (conductor Fresnel with complex IOR n + ik)
+  Refractor = 3  ///< specular dielectric (Fresnel-weighted reflection + refraction)
+};
+
+const char* RoleName(Role role);
+
+struct Material
+{
+  Role role = Role::Receiver;
+  Vec3 albedo{ { 0.8, 0.8, 0.8 } }; ///< diffuse reflectance of receivers (linear RGB)
+  double ior = 1.5;                 ///< refractors: index of refraction, outside medium = 1
+  double roughness = 0.0;           ///< as in vtkProperty (PBR); > cut-off means diffuse
+  Vec3 metalN{ { 0.155, 0.117, 0.138 } }; ///< reflectors: real part of complex IOR (silver)
+  Vec3 metalK{ { 4.83, 3.12, 2.15 } };    ///< reflectors: imaginary part (extinction)
+  Vec3 attenuation{ { 0, 0, 0 } };        ///< refractors: Beer-Lambert absorption, 1/m
+};
+
+struct Mesh
+{
+  std::string name;                ///< actor's name or "actor <index>" for messages
+  vtkActor* actor = nullptr;       ///< the source actor (not owned)
+  int material = 0;                ///< index into SceneData::Materials
+  std::vector<float> positions;    ///< world-space xyz per vertex
+  std::vector<float> normals;      ///< world-space unit normal per vertex
+  std::vector<std::uint32_t> indices; ///< three per triangle
+  unsigned long version = 0;       ///< changes whenever positions/normals/indices change
+  std::size_t TriangleCount() const { return indices.size() / 3; }
+};
+
+struct Light
+{
+  enum class Type : int
+  {
+    Directional = 0,
+    Point = 1,
+    Spot = 2
+  };
+  Type type = Type::Directional;
+  Vec3 position{ { 0, 0, 0 } };      ///< point/spot: world position
+  Vec3 direction{ { 0, 0, -1 } };    ///< unit vector the light travels along (directional/spot axis)
+  Vec3 radiometric{ { 1, 1, 1 } };   ///< W/m^2 (directional) or W/sr (point/spot), per channel
+  double cosOuter = -1.0;            ///< spot: cos of the outer cone half-angle
+  double cosInner = 1.0;             ///< spot: cos of the inner cone half-angle (full intensity)
+
+  /** Spot falloff of glTF KHR_lights_punctual (1 inside the inner cone, 0 outside the outer). */
+  double SpotFactor(double cosAngle) const;
+};
+
+struct Camera
+{
+  Vec3 position{ { 0, 0, 1 } };
+  Vec3 focalPoint{ { 0, 0, 0 } };
+  Vec3 viewUp{ { 0, 1, 0 } };
+  double viewAngle = 30.0; ///< degrees, vertical
+  bool parallel = false;
+  double parallelScale = 1.0;
+  double clippingRange[2] = { 0.1, 100.0 };
+  int width = 256, height = 256;
+  /** World to clip (OpenGL convention, row-major as vtkMatrix4x4), and its inverse. */
+  double worldToClip[16];
+  double clipToWorld[16];
+
+  /** The primary ray through pixel centre (px+0.5, py+0.5); py counts up from the bottom row. */
+  void PixelRay(double px, double py, Vec3& origin, Vec3& direction) const;
+  /** Projects a world point to pixel coordinates (x right, y up); returns false behind the eye. */
+  bool WorldToPixel(const Vec3& world, double& px, double& py) const;
+};
+
+/** Homogeneous participating medium filling the scene (single scattering). */
+struct Medium
+{
+  bool enabled = false;
+  Vec3 sigmaS{ { 0, 0, 0 } }; ///< scattering coefficient, 1/m
+  Vec3 sigmaA{ { 0, 0, 0 } }; ///< absorption coefficient, 1/m
+  double g = 0.0;             ///< Henyey-Greenstein anisotropy
+};
+
+struct SceneData
+{
+  std::vector<Mesh> Meshes;
+  std::vector<Material> Materials; ///< one per mesh (same index)
+  std::vector<Light> Lights;
+  Camera View;
+  Medium Participating;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };         ///< all participating meshes
+  double SpecularBounds[6] = { 0, 0, 0, 0, 0, 0 }; ///< reflectors and refractors only
+  bool HasSpecular = false;
+
+  /** Length of the bounds' diagonal: the scene's size for relative tolerances. */
+  double Scale() const;
+};
+}
+
+#endif

@@ -1,0 +1,278 @@
+// Scene description: actor classification, built-in scenes, snapshot
+// extraction (transforms, bad geometry), lights and camera.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
+#include "vtkCausticsSceneExtractor.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+vtkSmartPointer<vtkActor> SphereActor()
+{
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+}
+
+TEST(Material, ClassifiesByProperty)
+{
+  auto actor = SphereActor();
+  EXPECT_EQ(vtkCausticsMaterial::Classify(actor), vtkCausticsMaterial::ROLE_RECEIVER);
+
+  actor->GetProperty()->SetInterpolationToPBR();
+  actor->GetProperty()->SetMetallic(1.0);
+  actor->GetProperty()->SetRoughness(0.1);
+  EXPECT_EQ(vtkCausticsMaterial::Classify(actor), vtkCausticsMaterial::ROLE_REFLECTOR);
+  // Rougher than the cut-off: a diffuse receiver.
+  actor->GetProperty()->SetRoughness(0.5);
+  EXPECT_EQ(vtkCausticsMaterial::Classify(actor), vtkCausticsMaterial::ROLE_RECEIVER);
+  EXPECT_EQ(vtkCausticsMaterial::Classify(actor, 0.6), vtkCausticsMaterial::ROLE_REFLECTOR);
+
+  vtkCausticsMaterial::MakeGlass(actor->GetProperty(), 1.7);
+  auto material = vtkCausticsMaterial::Describe(actor);
+  EXPECT_EQ(material.role, caustics::Role::Refractor);
+  EXPECT_DOUBLE_EQ(material.ior, 1.7);
+
+  // The explicit override wins over the property.
+  vtkCausticsMaterial::SetRole(actor, vtkCausticsMaterial::ROLE_NONE);
+  EXPECT_EQ(vtkCausticsMaterial::Classify(actor), vtkCausticsMaterial::ROLE_NONE);
+  vtkCausticsMaterial::ClearRole(actor);
+  EXPECT_EQ(vtkCausticsMaterial::Classify(actor), vtkCausticsMaterial::ROLE_REFRACTOR);
+}
+
+TEST(Material, ComplexIORReproducesNormalReflectance)
+{
+  const double f0[3] = { 0.95, 0.64, 0.04 };
+  double n[3], k[3];
+  vtkCausticsMaterial::ComplexIORFromReflectance(f0, n, k);
+  for (int c = 0; c < 3; ++c)
+  {
+    const double r = ((n[c] - 1) * (n[c] - 1) + k[c] * k[c]) / ((n[c] + 1) * (n[c] + 1) + k[c] * k[c]);
+    EXPECT_NEAR(r, f0[c], 1e-9) << "channel " << c;
+  }
+}
+
+TEST(BuiltinScene, AllScenesPopulate)
+{
+  for (const auto& name : vtkCausticsBuiltinScene::GetSceneNames())
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkCausticsBuiltinScene> scene;
+    scene->SetSceneName(name.c_str());
+    ASSERT_TRUE(scene->Populate(renderer)) << name << ": " << scene->GetLastError();
+    vtkNew<vtkCausticsSceneExtractor> extractor;
+    ASSERT_TRUE(extractor->Update(renderer, 128, 96));
+    EXPECT_GE(extractor->GetNumberOfMeshesWithRole(vtkCausticsMaterial::ROLE_RECEIVER), 1) << name;
+    EXPECT_EQ(extractor->GetNumberOfMeshesWithRole(vtkCausticsMaterial::ROLE_REFLECTOR) +
+        extractor->GetNumberOfMeshesWithRole(vtkCausticsMaterial::ROLE_REFRACTOR),
+      1)
+      << name;
+    EXPECT_EQ(extractor->GetNumberOfLights(), 1) << name;
+    EXPECT_EQ(extractor->GetNumberOfDroppedTriangles(), 0) << name;
+    EXPECT_TRUE(extractor->GetScene().HasSpecular);
+  }
+}
+
+TEST(BuiltinScene, BallLensMatchesItsDefinition)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  ASSERT_TRUE(scene->Populate(renderer));
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 256, 256));
+  const auto& data = extractor->GetScene();
+  // Sphere: radius 1 centred 3 above the floor (y = 0). The y extent runs across
+  // the 128 longitude segments, whose chord sits 1 - cos(pi/128) = 3e-4 inside.
+  const double* sb = data.SpecularBounds;
+  EXPECT_NEAR(0.5 * (sb[2] + sb[3]), 3.0, 1e-6);
+  EXPECT_NEAR(sb[3] - sb[2], 2.0, 2.0 * (1.0 - std::cos(vtkMath::Pi() / 128)) + 1e-6);
+  const auto& light = data.Lights[0];
+  EXPECT_EQ(light.type, caustics::Light::Type::Directional);
+  EXPECT_NEAR(light.direction[1], -1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(light.radiometric[0], 1.0);
+  for (std::size_t m = 0; m < data.Meshes.size(); ++m)
+  {
+    if (data.Materials[m].role == caustics::Role::Refractor)
+    {
+      EXPECT_DOUBLE_EQ(data.Materials[m].ior, 1.5);
+    }
+  }
+  // The centre pixel's ray passes near the camera's focal point.
+  caustics::Vec3 origin, direction;
+  data.View.PixelRay(127.5, 127.5, origin, direction);
+  double toFocal[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    toFocal[i] = data.View.focalPoint[i] - origin[i];
+  }
+  double cross[3];
+  vtkMath::Cross(toFocal, direction.data(), cross);
+  EXPECT_LT(vtkMath::Norm(cross), 1e-6);
+  double px, py;
+  ASSERT_TRUE(data.View.WorldToPixel(data.View.focalPoint, px, py));
+  EXPECT_NEAR(px, 128.0, 1e-6);
+  EXPECT_NEAR(py, 128.0, 1e-6);
+}
+
+TEST(BuiltinScene, RejectsBadInput)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  scene->GlobalWarningDisplayOff();
+  scene->SetSceneName("teapot");
+  EXPECT_FALSE(scene->Populate(renderer));
+  EXPECT_NE(std::string(scene->GetLastError()).find("unknown scene 'teapot'"), std::string::npos);
+  scene->SetSceneName("ball-lens");
+  scene->SetRefractiveIndex(0.5);
+  EXPECT_FALSE(scene->Populate(renderer));
+  EXPECT_NE(std::string(scene->GetLastError()).find("refractive index"), std::string::npos);
+  scene->SetRefractiveIndex(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_FALSE(scene->Populate(renderer));
+  scene->SetRefractiveIndex(0.0);
+  scene->SetSceneName("bunny");
+  scene->SetDataDirectory("/nonexistent");
+  EXPECT_FALSE(scene->Populate(renderer));
+  EXPECT_NE(std::string(scene->GetLastError()).find("/nonexistent/bunny.ply"), std::string::npos);
+}
+
+TEST(BuiltinScene, PoolAnimatesInPlace)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  scene->SetSceneName("pool");
+  ASSERT_TRUE(scene->Populate(renderer));
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 64, 64));
+  auto waterVersion = [&]() {
+    for (const auto& mesh : extractor->GetScene().Meshes)
+    {
+      if (mesh.name == "water")
+      {
+        return std::make_pair(mesh.version, mesh.positions[1]);
+      }
+    }
+    return std::make_pair(0ul, 0.0f);
+  };
+  const auto before = waterVersion();
+  // Unchanged scene: the cached geometry is reused.
+  ASSERT_TRUE(extractor->Update(renderer, 64, 64));
+  EXPECT_EQ(waterVersion().first, before.first);
+  scene->UpdateTime(0.7);
+  ASSERT_TRUE(extractor->Update(renderer, 64, 64));
+  const auto after = waterVersion();
+  EXPECT_NE(after.first, before.first);
+  EXPECT_NE(after.second, before.second);
+}
+
+TEST(Extractor, DropsAndRepairsBadGeometry)
+{
+  vtkNew<vtkPoints> points;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  points->InsertNextPoint(nan, 0, 0); // NaN vertex
+  points->InsertNextPoint(2, 0, 0);   // collinear with 0,1: zero area
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType good[3] = { 0, 1, 2 }, withNaN[3] = { 0, 3, 2 }, flat[3] = { 0, 1, 4 };
+  polys->InsertNextCell(3, good);
+  polys->InsertNextCell(3, withNaN);
+  polys->InsertNextCell(3, flat);
+  vtkNew<vtkPolyData> polyData;
+  polyData->SetPoints(points);
+  polyData->SetPolys(polys);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(polyData);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetPosition(0, 0, 5); // the world transform must be applied
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  extractor->GlobalWarningDisplayOff();
+  ASSERT_TRUE(extractor->Update(renderer, 32, 32));
+  ASSERT_EQ(extractor->GetNumberOfMeshes(), 1);
+  EXPECT_EQ(extractor->GetNumberOfTriangles(), 1);
+  EXPECT_EQ(extractor->GetNumberOfDroppedTriangles(), 2);
+  const auto& mesh = extractor->GetScene().Meshes[0];
+  for (std::uint32_t index : mesh.indices)
+  {
+    EXPECT_FLOAT_EQ(mesh.positions[3 * index + 2], 5.0f);
+    EXPECT_NEAR(std::abs(mesh.normals[3 * index + 2]), 1.0f, 1e-6f);
+  }
+}
+
+TEST(Extractor, LightsFollowPhysicalConventions)
+{
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(SphereActor());
+  vtkNew<vtkLight> spot;
+  spot->SetPositional(true);
+  spot->SetPosition(0, 4, 0);
+  spot->SetFocalPoint(0, 0, 0);
+  spot->SetConeAngle(30);
+  spot->SetIntensity(5.0);
+  spot->SetColor(1, 0.5, 0.25);
+  vtkNew<vtkInformation> info;
+  info->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), 20.0);
+  spot->SetInformation(info);
+  renderer->AddLight(spot);
+  vtkNew<vtkLight> point;
+  point->SetPositional(true);
+  point->SetConeAngle(180);
+  renderer->AddLight(point);
+  vtkNew<vtkLight> off;
+  off->SwitchOff();
+  renderer->AddLight(off);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 32, 32));
+  const auto& lights = extractor->GetScene().Lights;
+  ASSERT_EQ(lights.size(), 2u);
+  EXPECT_EQ(lights[0].type, caustics::Light::Type::Spot);
+  EXPECT_NEAR(lights[0].radiometric[1], 2.5, 1e-12);
+  EXPECT_NEAR(lights[0].cosOuter, std::cos(vtkMath::RadiansFromDegrees(30.0)), 1e-12);
+  EXPECT_DOUBLE_EQ(lights[0].SpotFactor(1.0), 1.0);
+  EXPECT_DOUBLE_EQ(lights[0].SpotFactor(std::cos(vtkMath::RadiansFromDegrees(31.0))), 0.0);
+  EXPECT_EQ(lights[1].type, caustics::Light::Type::Point);
+}
+
+TEST(Medium, RejectsAbsurdCoefficients)
+{
+  vtkNew<vtkCausticsMedium> medium;
+  medium->GlobalWarningDisplayOff();
+  medium->SetScatteringCoefficient(0.1, 0.2, 0.3);
+  medium->SetScatteringCoefficient(-1, 0, 0);
+  EXPECT_DOUBLE_EQ(medium->GetScatteringCoefficient()[0], 0.1);
+  medium->SetAbsorptionCoefficient(std::numeric_limits<double>::infinity(), 0, 0);
+  EXPECT_DOUBLE_EQ(medium->GetAbsorptionCoefficient()[0], 0.0);
+  vtkNew<vtkRenderer> renderer;
+  vtkCausticsMedium::AttachTo(renderer, medium);
+  EXPECT_EQ(vtkCausticsMedium::GetFrom(renderer), medium.GetPointer());
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 8, 8));
+  EXPECT_TRUE(extractor->GetScene().Participating.enabled);
+  EXPECT_DOUBLE_EQ(extractor->GetScene().Participating.sigmaS[2], 0.3);
+}
