@@ -257,7 +257,7 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
 
   if (this->SceneName == "ball-lens")
   {
-    auto floor = MakeActor(Floor(-4, 4, -4, 4, 0.0), "floor");
+    auto floor = MakeActor(Floor(-6, 6, -6, 6, 0.0), "floor");
     MakeDiffuse(floor, 0.8, 0.8, 0.8);
     renderer->AddActor(floor);
 
@@ -274,7 +274,7 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
 
     const double down[3] = { 0, -1, 0 };
     renderer->AddLight(DirectionalLight(down, 1.0));
-    const double eye[3] = { 0.0, 7.5, 8.5 }, focal[3] = { 0.0, 1.2, 0.0 };
+    const double eye[3] = { 0.0, 4.5, 9.0 }, focal[3] = { 0.0, 1.3, 0.0 };
     SetCamera(renderer, eye, focal, 30.0);
   }
   else if (this->SceneName == "pool")

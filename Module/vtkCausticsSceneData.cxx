@@ -89,6 +89,222 @@ bool Camera::WorldToPixel(const Vec3& world, double& px, double& py) const
   return true;
 }
 
+namespace
+{
+double Dot(const Vec3& a, const Vec3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+Vec3 Cross(const Vec3& a, const Vec3& b)
+{
+  return { { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] } };
+}
+
+Vec3 Normalize(const Vec3& v)
+{
+  const double length = std::sqrt(Dot(v, v));
+  return length > 0.0 ? Vec3{ { v[0] / length, v[1] / length, v[2] / length } } : Vec3{ { 0, 0, -1 } };
+}
+
+void BoundingSphere(const double bounds[6], Vec3& center, double& radius)
+{
+  center = { { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) } };
+  const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
+  radius = 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/** Row-major 4x4 inverse by Gauss-Jordan elimination with partial pivoting. */
+bool Invert(const double in[16], double out[16])
+{
+  double a[4][8];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      a[r][c] = in[4 * r + c];
+      a[r][c + 4] = r == c ? 1.0 : 0.0;
+    }
+  }
+  for (int c = 0; c < 4; ++c)
+  {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+    {
+      pivot = std::abs(a[r][c]) > std::abs(a[pivot][c]) ? r : pivot;
+    }
+    if (a[pivot][c] == 0.0)
+    {
+      return false;
+    }
+    std::swap(a[c], a[pivot]);
+    const double scale = 1.0 / a[c][c];
+    for (double& v : a[c])
+    {
+      v *= scale;
+    }
+    for (int r = 0; r < 4; ++r)
+    {
+      if (r != c)
+      {
+        const double factor = a[r][c];
+        for (int k = 0; k < 8; ++k)
+        {
+          a[r][k] -= factor * a[c][k];
+        }
+      }
+    }
+  }
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[4 * r + c] = a[r][c + 4];
+    }
+  }
+  return true;
+}
+}
+
+Vec3 LightView::FrustumPower(const Light& light) const
+{
+  const double measure = this->perspective
+    ? this->FrustumSolidAngle()
+    : 4.0 * this->halfExtent * this->halfExtent;
+  return { { light.radiometric[0] * measure, light.radiometric[1] * measure,
+    light.radiometric[2] * measure } };
+}
+
+double LightView::FrustumSolidAngle() const
+{
+  const double t2 = this->halfExtent * this->halfExtent;
+  return 4.0 * std::atan(t2 / std::sqrt(1.0 + 2.0 * t2));
+}
+
+LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus focus)
+{
+  LightView view;
+  view.light = index;
+  if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
+  {
+    return view;
+  }
+  const Light& light = scene.Lights[index];
+  Vec3 sceneCenter, focusCenter;
+  double sceneRadius, focusRadius;
+  BoundingSphere(scene.Bounds, sceneCenter, sceneRadius);
+  if (focus == LightView::Focus::Specular && scene.HasSpecular)
+  {
+    BoundingSphere(scene.SpecularBounds, focusCenter, focusRadius);
+  }
+  else
+  {
+    focusCenter = sceneCenter;
+    focusRadius = sceneRadius;
+  }
+  // A flat or point-like focus still needs a non-empty frustum.
+  sceneRadius = std::max(sceneRadius, 1e-6 * std::max(1.0, std::abs(sceneCenter[0]) +
+    std::abs(sceneCenter[1]) + std::abs(sceneCenter[2])));
+  focusRadius = std::max(focusRadius, 1e-3 * sceneRadius);
+  const Vec3 offset{ { focusCenter[0] - sceneCenter[0], focusCenter[1] - sceneCenter[1],
+    focusCenter[2] - sceneCenter[2] } };
+  // Radius around the focus centre that holds the whole scene.
+  const double reach = std::sqrt(Dot(offset, offset)) + sceneRadius;
+
+  view.perspective = light.type != Light::Type::Directional;
+  if (!view.perspective)
+  {
+    view.axis = Normalize(light.direction);
+    const double back = 1.01 * reach;
+    for (int i = 0; i < 3; ++i)
+    {
+      view.eye[i] = focusCenter[i] - back * view.axis[i];
+    }
+    view.halfExtent = focusRadius;
+    view.nearPlane = 0.005 * reach;
+    view.farPlane = back + reach;
+  }
+  else
+  {
+    view.eye = light.position;
+    const Vec3 toFocus{ { focusCenter[0] - view.eye[0], focusCenter[1] - view.eye[1],
+      focusCenter[2] - view.eye[2] } };
+    const double distance = std::sqrt(Dot(toFocus, toFocus));
+    // Largest half angle a single frustum covers well (texel solid angles vary by
+    // cos^3; beyond ~75 degrees the texels at the rim become useless).
+    const double maxHalfAngle = 75.0 * 3.14159265358979323846 / 180.0;
+    double halfAngle;
+    if (distance > focusRadius * 1.0001)
+    {
+      view.axis = Normalize(toFocus);
+      halfAngle = std::asin(std::min(1.0, focusRadius / distance));
+    }
+    else
+    {
+      view.axis = light.type == Light::Type::Spot ? Normalize(light.direction) : Normalize(toFocus);
+      halfAngle = maxHalfAngle;
+    }
+    if (light.type == Light::Type::Spot)
+    {
+      const double outer = std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+      if (outer < halfAngle)
+      {
+        // The cone is narrower than the focus: look along the spot axis instead.
+        view.axis = Normalize(light.direction);
+        halfAngle = outer;
+      }
+    }
+    view.clamped = halfAngle > maxHalfAngle;
+    halfAngle = std::min(halfAngle, maxHalfAngle);
+    view.halfExtent = std::tan(halfAngle) * 1.0001;
+    const Vec3 eyeToScene{ { sceneCenter[0] - view.eye[0], sceneCenter[1] - view.eye[1],
+      sceneCenter[2] - view.eye[2] } };
+    view.farPlane = std::sqrt(Dot(eyeToScene, eyeToScene)) + sceneRadius;
+    view.nearPlane = 1e-4 * view.farPlane;
+  }
+  const Vec3 helper = std::abs(view.axis[1]) < 0.9 ? Vec3{ { 0, 1, 0 } } : Vec3{ { 1, 0, 0 } };
+  view.right = Normalize(Cross(view.axis, helper));
+  view.up = Cross(view.right, view.axis);
+
+  // World to eye (right, up, -axis as x, y, z), then the projection.
+  double worldToEye[16] = { view.right[0], view.right[1], view.right[2], -Dot(view.right, view.eye),
+    view.up[0], view.up[1], view.up[2], -Dot(view.up, view.eye), -view.axis[0], -view.axis[1],
+    -view.axis[2], Dot(view.axis, view.eye), 0, 0, 0, 1 };
+  const double n = view.nearPlane, f = view.farPlane, e = view.halfExtent;
+  double projection[16] = { 0 };
+  if (view.perspective)
+  {
+    projection[0] = 1.0 / e;
+    projection[5] = 1.0 / e;
+    projection[10] = -(f + n) / (f - n);
+    projection[11] = -2.0 * f * n / (f - n);
+    projection[14] = -1.0;
+  }
+  else
+  {
+    projection[0] = 1.0 / e;
+    projection[5] = 1.0 / e;
+    projection[10] = -2.0 / (f - n);
+    projection[11] = -(f + n) / (f - n);
+    projection[15] = 1.0;
+  }
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k)
+      {
+        sum += projection[4 * r + k] * worldToEye[4 * k + c];
+      }
+      view.worldToClip[4 * r + c] = sum;
+    }
+  }
+  view.valid = Invert(view.worldToClip, view.clipToWorld);
+  return view;
+}
+
 double SceneData::Scale() const
 {
   const double dx = this->Bounds[1] - this->Bounds[0];

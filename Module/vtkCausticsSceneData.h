@@ -107,6 +107,45 @@ struct Medium
   double g = 0.0;             ///< Henyey-Greenstein anisotropy
 };
 
+struct SceneData;
+
+/**
+ * The frustum a light sees the scene through, for its light-space buffers:
+ * orthographic along a directional light, perspective from a point or spot light.
+ * It is aimed at a focus sphere (the specular objects, where photons must go, or
+ * the whole scene, for shadows) and its depth range holds the whole scene, so
+ * occluders between the light and the focus are rendered too.
+ */
+struct LightView
+{
+  enum class Focus : int
+  {
+    Specular = 0, ///< bounding sphere of reflectors and refractors
+    Scene = 1     ///< bounding sphere of every mesh
+  };
+  int light = 0;            ///< index into SceneData::Lights
+  bool perspective = false; ///< point/spot: true
+  bool valid = false;       ///< false when there is nothing to look at
+  bool clamped = false;     ///< point/spot inside the focus sphere: field of view capped
+  Vec3 eye{ { 0, 0, 0 } }, axis{ { 0, 0, -1 } }, right{ { 1, 0, 0 } }, up{ { 0, 1, 0 } };
+  double halfExtent = 1.0;  ///< orthographic: half width (m); perspective: tan(half angle)
+  double nearPlane = 0.01, farPlane = 1.0;
+  double worldToClip[16];   ///< row-major, OpenGL clip conventions
+  double clipToWorld[16];
+
+  /**
+   * Flux leaving the light through the frustum (W, per channel): irradiance x
+   * cross-section for directional lights, intensity x solid angle for point lights.
+   * Spot falloff is not included (integrate it per texel instead).
+   */
+  Vec3 FrustumPower(const Light& light) const;
+  /** Solid angle (sr) of the perspective frustum: 4 atan(t^2 / sqrt(1 + 2 t^2)). */
+  double FrustumSolidAngle() const;
+};
+
+/** Computes the view of light `index` aimed at `focus`. Invalid if the scene is empty. */
+LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus focus);
+
 struct SceneData
 {
   std::vector<Mesh> Meshes;

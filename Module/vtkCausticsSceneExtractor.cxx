@@ -39,12 +39,13 @@ vtkInformationKeyMacro(vtkCausticsSceneExtractor, INNER_CONE_ANGLE, Double);
 
 namespace
 {
+/** What is known of an actor's geometry; the geometry itself lives in the scene. */
 struct CachedMesh
 {
   vtkMTimeType inputTime = 0;
   vtkMTimeType mapperTime = 0;
   double matrix[16];
-  caustics::Mesh mesh;
+  unsigned long version = 0;
   vtkIdType dropped = 0;
   vtkIdType repaired = 0;
   bool seen = false;
@@ -57,7 +58,8 @@ unsigned long NextVersion()
 }
 
 /** Appends the polygons of one polydata, transformed to world space, to a mesh. */
-void AppendPolyData(vtkPolyData* input, vtkMatrix4x4* matrix, CachedMesh& cache)
+void AppendPolyData(
+  vtkPolyData* input, vtkMatrix4x4* matrix, CachedMesh& cache, caustics::Mesh& mesh)
 {
   if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {
@@ -101,7 +103,6 @@ void AppendPolyData(vtkPolyData* input, vtkMatrix4x4* matrix, CachedMesh& cache)
     vtkMatrix4x4::Transpose(inverse->GetData(), normalMatrix);
   }
 
-  auto& mesh = cache.mesh;
   const std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size() / 3);
   const vtkIdType numPoints = points->GetNumberOfPoints();
   std::vector<char> validNormal(numPoints, 1);
@@ -214,6 +215,7 @@ struct vtkCausticsSceneExtractor::Internals
 {
   caustics::SceneData Scene;
   std::map<vtkActor*, CachedMesh> Cache;
+  std::map<vtkActor*, caustics::Mesh> Empty; // actors with no triangles, kept to skip re-extraction
 };
 
 vtkCausticsSceneExtractor::vtkCausticsSceneExtractor()
@@ -226,6 +228,8 @@ vtkCausticsSceneExtractor::~vtkCausticsSceneExtractor() = default;
 void vtkCausticsSceneExtractor::ClearCache()
 {
   this->Internal->Cache.clear();
+  this->Internal->Empty.clear();
+  this->Internal->Scene.Meshes.clear();
 }
 
 const caustics::SceneData& vtkCausticsSceneExtractor::GetScene() const
@@ -296,6 +300,18 @@ bool vtkCausticsSceneExtractor::Update(vtkRenderer* renderer, int width, int hei
     return false;
   }
   auto& scene = this->Internal->Scene;
+  // Unchanged meshes move from the previous snapshot into the new one (no copy).
+  std::map<vtkActor*, caustics::Mesh> previous;
+  for (auto& mesh : scene.Meshes)
+  {
+    vtkActor* key = mesh.actor;
+    previous.emplace(key, std::move(mesh));
+  }
+  for (auto& entry : this->Internal->Empty)
+  {
+    previous.emplace(entry.first, std::move(entry.second));
+  }
+  this->Internal->Empty.clear();
   scene.Meshes.clear();
   scene.Materials.clear();
   scene.Lights.clear();
@@ -339,27 +355,31 @@ bool vtkCausticsSceneExtractor::Update(vtkRenderer* renderer, int width, int hei
         continue;
       }
       CachedMesh& cache = this->Internal->Cache[actor];
-      const bool changed = cache.mesh.version == 0 || cache.inputTime != input->GetMTime() ||
+      auto reusable = previous.find(actor);
+      const bool changed = cache.version == 0 || reusable == previous.end() ||
+        reusable->second.version != cache.version || cache.inputTime != input->GetMTime() ||
         cache.mapperTime != mapper->GetMTime() ||
         !std::equal(cache.matrix, cache.matrix + 16, matrix->GetData());
-      if (changed)
+      caustics::Mesh mesh;
+      if (!changed)
+      {
+        mesh = std::move(reusable->second);
+      }
+      else
       {
         cache.inputTime = input->GetMTime();
         cache.mapperTime = mapper->GetMTime();
         std::copy(matrix->GetData(), matrix->GetData() + 16, cache.matrix);
-        cache.mesh.positions.clear();
-        cache.mesh.normals.clear();
-        cache.mesh.indices.clear();
         cache.dropped = cache.repaired = 0;
-        cache.mesh.actor = actor;
-        cache.mesh.name = vtkCausticsMaterial::GetName(actor);
-        if (cache.mesh.name.empty())
+        mesh.actor = actor;
+        mesh.name = vtkCausticsMaterial::GetName(actor);
+        if (mesh.name.empty())
         {
-          cache.mesh.name = "actor " + std::to_string(actorIndex);
+          mesh.name = "actor " + std::to_string(actorIndex);
         }
         if (auto* polyData = vtkPolyData::SafeDownCast(input))
         {
-          AppendPolyData(polyData, matrix, cache);
+          AppendPolyData(polyData, matrix, cache, mesh);
         }
         else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
         {
@@ -367,30 +387,32 @@ bool vtkCausticsSceneExtractor::Update(vtkRenderer* renderer, int width, int hei
           it.TakeReference(composite->NewIterator());
           for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
           {
-            AppendPolyData(vtkPolyData::SafeDownCast(it->GetCurrentDataObject()), matrix, cache);
+            AppendPolyData(
+              vtkPolyData::SafeDownCast(it->GetCurrentDataObject()), matrix, cache, mesh);
           }
         }
         else
         {
-          vtkWarningMacro(<< cache.mesh.name << ": mapper input is a "
-                          << input->GetClassName()
+          vtkWarningMacro(<< mesh.name << ": mapper input is a " << input->GetClassName()
                           << ", not polygonal data; it takes no part in caustics");
         }
         if (cache.dropped > 0 || cache.repaired > 0)
         {
-          vtkWarningMacro(<< cache.mesh.name << ": dropped " << cache.dropped
+          vtkWarningMacro(<< mesh.name << ": dropped " << cache.dropped
                           << " triangle(s) with NaN/Inf vertices or zero area, replaced "
                           << cache.repaired << " invalid vertex normal(s) by face normals");
         }
-        cache.mesh.version = NextVersion();
+        mesh.version = cache.version = NextVersion();
       }
       cache.seen = true;
-      if (cache.mesh.indices.empty())
+      if (mesh.indices.empty())
       {
+        // Keep it for the next update so an empty actor is not re-extracted each frame.
+        this->Internal->Empty[actor] = std::move(mesh);
         continue;
       }
-      scene.Meshes.push_back(cache.mesh);
-      scene.Meshes.back().material = static_cast<int>(scene.Materials.size());
+      mesh.material = static_cast<int>(scene.Materials.size());
+      scene.Meshes.push_back(std::move(mesh));
       scene.Materials.push_back(material);
     }
   }

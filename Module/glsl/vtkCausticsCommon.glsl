@@ -1,10 +1,31 @@
 // Shared by every caustics shader (prepended after #version and the defines).
-// Constants and encodings here must match vtkCausticsSceneData.h on the host.
+// Layouts and constants here must match the host side (vtkCausticsSceneGeometry,
+// vtkCausticsSceneData.h).
 
 const float CAUSTICS_PI = 3.14159265358979323846;
 
-// Material roles (vtkCausticsMaterial::Role).
+// Material roles (caustics::Role).
 const int ROLE_NONE = 0;
 const int ROLE_RECEIVER = 1;
 const int ROLE_REFLECTOR = 2;
 const int ROLE_REFRACTOR = 3;
+
+// Shader storage binding points reserved across all caustics stages.
+#define CAUSTICS_MATERIAL_BINDING 0
+
+// One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).
+struct CausticsMaterial
+{
+  vec4 albedoRole;  // rgb: diffuse albedo, a: role
+  vec4 params;      // x: IOR, y: roughness
+  vec4 metalN;      // rgb: real part of the complex IOR (reflectors)
+  vec4 metalK;      // rgb: imaginary part
+  vec4 attenuation; // rgb: Beer-Lambert absorption inside refractors, 1/m
+};
+
+#ifndef CAUSTICS_NO_MATERIALS
+layout(std430, binding = CAUSTICS_MATERIAL_BINDING) readonly buffer CausticsMaterials
+{
+  CausticsMaterial causticsMaterials[];
+};
+#endif

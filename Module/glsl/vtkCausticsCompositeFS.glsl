@@ -1,0 +1,41 @@
+// Adds caustic light to VTK's image. VTK shades a Lambertian surface as
+// albedo x intensity x cos, i.e. pi x radiance for irradiance in W/m^2, so the
+// caustic term in the same display units is albedo x caustic irradiance.
+// It is added only where the caustics G-buffer's receiver is what VTK drew
+// (same depth), so props drawn by VTK alone are never painted over.
+in vec2 texCoord;
+
+uniform sampler2D delegateColor;
+uniform sampler2D delegateDepth;
+uniform sampler2D gNormal;  // w = role
+uniform sampler2D gAlbedo;
+uniform sampler2D gDepth;
+uniform sampler2D causticIrradiance;
+uniform sampler2D volumeRadiance;
+uniform int hasCaustics;
+uniform int hasVolume;
+uniform float depthTolerance;
+
+layout(location = 0) out vec4 outColor;
+
+void main()
+{
+  vec4 color = texture(delegateColor, texCoord);
+  float depth = texture(delegateDepth, texCoord).r;
+  if (hasCaustics != 0)
+  {
+    int role = int(texture(gNormal, texCoord).w + 0.5);
+    float surfaceDepth = texture(gDepth, texCoord).r;
+    if (role == ROLE_RECEIVER && abs(surfaceDepth - depth) <= depthTolerance)
+    {
+      vec3 irradiance = texture(causticIrradiance, texCoord).rgb;
+      color.rgb += texture(gAlbedo, texCoord).rgb * max(irradiance, vec3(0.0));
+    }
+  }
+  if (hasVolume != 0)
+  {
+    color.rgb += CAUSTICS_PI * texture(volumeRadiance, texCoord).rgb;
+  }
+  outColor = color;
+  gl_FragDepth = depth;
+}

@@ -1,0 +1,120 @@
+// Direct irradiance (W/m^2) of one light at each camera pixel's visible receiver,
+// accumulated over lights with additive blending. Visibility comes from the
+// light's shadow map (world positions seen from the light, aimed at the whole
+// scene): a point is lit when no surface lies between it and the light, tested
+// with 2x2 bilinear percentage-closer filtering and a bias of about two texels.
+in vec2 texCoord;
+
+uniform sampler2D gPosition; // camera G-buffer: world position, w = material (-1: none)
+uniform sampler2D gNormal;   // world normal, w = role
+uniform sampler2D shadowPosition; // light view: world position, w = material (-1: none)
+uniform mat4 lightWorldToClip;
+uniform vec3 cameraPosition;
+uniform int cameraParallel;
+uniform vec3 cameraDirection;
+
+uniform int lightType; // 0 directional, 1 point, 2 spot
+uniform vec3 lightPosition;
+uniform vec3 lightDirection;
+uniform vec3 radiometric;
+uniform float cosOuter;
+uniform float cosInner;
+uniform float texelWorldSize; // size of a shadow texel at unit distance (persp) or absolute (ortho)
+
+layout(location = 0) out vec4 outIrradiance;
+
+float SpotFactor(vec3 direction)
+{
+  if (lightType != 2)
+  {
+    return 1.0;
+  }
+  float c = dot(direction, lightDirection);
+  if (c <= cosOuter)
+  {
+    return 0.0;
+  }
+  float range = cosInner - cosOuter;
+  if (range <= 1e-12)
+  {
+    return 1.0;
+  }
+  float t = min(1.0, (c - cosOuter) / range);
+  return t * t;
+}
+
+// Distance from the light along its ray (directional: along the axis).
+float LightDistance(vec3 p)
+{
+  return lightType == 0 ? dot(p - lightPosition, lightDirection) : length(p - lightPosition);
+}
+
+void main()
+{
+  vec4 position = texture(gPosition, texCoord);
+  vec4 normalRole = texture(gNormal, texCoord);
+  if (position.w < 0.0 || int(normalRole.w + 0.5) != ROLE_RECEIVER)
+  {
+    outIrradiance = vec4(0.0);
+    return;
+  }
+  vec3 p = position.xyz;
+  vec3 n = normalRole.xyz;
+  // The side the camera sees is the side whose irradiance counts.
+  vec3 toCamera = cameraParallel != 0 ? -cameraDirection : cameraPosition - p;
+  if (dot(n, toCamera) < 0.0)
+  {
+    n = -n;
+  }
+  vec3 toLight;
+  float falloff = 1.0;
+  if (lightType == 0)
+  {
+    toLight = -lightDirection;
+  }
+  else
+  {
+    vec3 d = lightPosition - p;
+    float distance2 = max(dot(d, d), 1e-20);
+    toLight = d * inversesqrt(distance2);
+    falloff = SpotFactor(-toLight) / distance2;
+  }
+  float cosine = dot(n, toLight);
+  if (cosine <= 0.0 || falloff <= 0.0)
+  {
+    outIrradiance = vec4(0.0);
+    return;
+  }
+
+  vec4 clip = lightWorldToClip * vec4(p, 1.0);
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  float visibility = 0.0;
+  if (clip.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))
+  {
+    float distance = LightDistance(p);
+    // Bias: two texels of lateral size, tilted by the surface, plus float noise.
+    float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
+    float tangent = sqrt(max(1.0 - cosine * cosine, 0.0)) / max(cosine, 0.05);
+    float bias = 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
+    vec2 size = vec2(textureSize(shadowPosition, 0));
+    vec2 st = uv * size - 0.5;
+    vec2 base = floor(st);
+    vec2 f = st - base;
+    for (int j = 0; j < 2; ++j)
+    {
+      for (int i = 0; i < 2; ++i)
+      {
+        ivec2 texelIndex = clamp(ivec2(base) + ivec2(i, j), ivec2(0), ivec2(size) - 1);
+        vec4 occluder = texelFetch(shadowPosition, texelIndex, 0);
+        float lit = (occluder.w < 0.0 || LightDistance(occluder.xyz) >= distance - bias) ? 1.0 : 0.0;
+        visibility += lit * (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      }
+    }
+  }
+  else
+  {
+    // Outside the shadow map's frustum (it holds the whole scene): nothing occludes.
+    visibility = 1.0;
+  }
+  outIrradiance = vec4(radiometric * (cosine * falloff * visibility), 1.0);
+}

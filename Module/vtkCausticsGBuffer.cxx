@@ -1,0 +1,101 @@
+#include "vtkCausticsGBuffer.h"
+
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkCausticsGBufferFS.h"
+#include "vtkCausticsGBufferVS.h"
+
+vtkStandardNewMacro(vtkCausticsGBuffer);
+
+vtkCausticsGBuffer::vtkCausticsGBuffer()
+{
+  this->Program->SetName("G-buffer");
+  this->Program->SetVertexSource(vtkCausticsGBufferVS);
+  this->Program->SetFragmentSource(vtkCausticsGBufferFS);
+}
+
+vtkCausticsGBuffer::~vtkCausticsGBuffer() = default;
+
+bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+  const float worldToClip[16], int width, int height, int roleMask)
+{
+  bool resized = false;
+  resized |= caustics::gl::EnsureTexture(this->PositionTexture, renWin, width, height, GL_RGBA32F);
+  resized |= caustics::gl::EnsureTexture(this->NormalTexture, renWin, width, height, GL_RGBA16F);
+  resized |= caustics::gl::EnsureTexture(this->AlbedoTexture, renWin, width, height, GL_RGBA16F);
+  resized |=
+    caustics::gl::EnsureTexture(this->DepthTexture, renWin, width, height, GL_DEPTH_COMPONENT32F);
+  this->Size[0] = width;
+  this->Size[1] = height;
+
+  vtkOpenGLState* state = renWin->GetState();
+  state->PushFramebufferBindings();
+  this->Framebuffer->SetContext(renWin);
+  this->Framebuffer->Bind();
+  if (resized || this->Framebuffer->GetNumberOfColorAttachments() != 3)
+  {
+    this->Framebuffer->AddColorAttachment(0, this->PositionTexture);
+    this->Framebuffer->AddColorAttachment(1, this->NormalTexture);
+    this->Framebuffer->AddColorAttachment(2, this->AlbedoTexture);
+    this->Framebuffer->AddDepthAttachment(this->DepthTexture);
+  }
+  this->Framebuffer->ActivateDrawBuffers(3);
+
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+  state->vtkglViewport(0, 0, width, height);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglDepthFunc(GL_LESS);
+
+  const float noSurface[4] = { 0.0f, 0.0f, 0.0f, -1.0f };
+  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  const float farDepth = 1.0f;
+  glClearBufferfv(GL_COLOR, 0, noSurface);
+  glClearBufferfv(GL_COLOR, 1, zero);
+  glClearBufferfv(GL_COLOR, 2, zero);
+  glClearBufferfv(GL_DEPTH, 0, &farDepth);
+
+  bool ok = this->Program->Bind(renWin);
+  if (ok)
+  {
+    this->Program->SetUniformMatrix4("worldToClip", worldToClip);
+    geometry->BindMaterials();
+    geometry->Draw(roleMask);
+    this->Program->Unbind(renWin);
+  }
+  state->PopFramebufferBindings();
+  return ok;
+}
+
+void vtkCausticsGBuffer::ReleaseGraphicsResources(vtkWindow* win)
+{
+  this->PositionTexture->ReleaseGraphicsResources(win);
+  this->NormalTexture->ReleaseGraphicsResources(win);
+  this->AlbedoTexture->ReleaseGraphicsResources(win);
+  this->DepthTexture->ReleaseGraphicsResources(win);
+  this->Framebuffer->ReleaseGraphicsResources(win);
+  this->Program->ReleaseGraphicsResources(win);
+  this->Size[0] = this->Size[1] = 0;
+}
+
+void vtkCausticsGBuffer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
+  os << indent << "Program ready: " << this->Program->IsReady() << "\n";
+}

@@ -1,0 +1,75 @@
+/**
+ * @class   vtkCausticsGBuffer
+ * @brief   Geometry buffer of the caustics scene seen through one view (camera or light).
+ *
+ * Rasterizes the vtkCausticsSceneGeometry triangles of chosen roles into:
+ * - Position (RGBA32F): world position, w = material index (-1 where no surface);
+ * - Normal (RGBA16F): interpolated world normal as modelled (not flipped to face
+ *   the viewer), w = role (caustics::Role);
+ * - Albedo (RGBA16F): diffuse albedo, a = IOR;
+ * - Depth (DEPTH_COMPONENT32F): window depth of the view's projection.
+ * The caustics render pass keeps two for the camera (opaque roles: receivers and
+ * reflectors; and refractors) and vtkCausticsLightBuffers one per light.
+ * Textures are allocated on first use and when the size changes, never per frame.
+ */
+#ifndef vtkCausticsGBuffer_h
+#define vtkCausticsGBuffer_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include "vtkNew.h" // For vtkNew members
+
+class vtkCausticsSceneGeometry;
+class vtkCausticsShaderProgram;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsGBuffer : public vtkObject
+{
+public:
+  static vtkCausticsGBuffer* New();
+  vtkTypeMacro(vtkCausticsGBuffer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Renders the geometry of roles in roleMask (vtkCausticsSceneGeometry::RoleBit) with
+   * a world-to-clip matrix (column-major, as GL wants it) into width x height targets.
+   * Returns false if the program or framebuffer could not be made.
+   */
+  bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const float worldToClip[16], int width, int height, int roleMask);
+
+  ///@{
+  /** The targets (valid after the first Render()). */
+  vtkTextureObject* GetPositionTexture() { return this->PositionTexture; }
+  vtkTextureObject* GetNormalTexture() { return this->NormalTexture; }
+  vtkTextureObject* GetAlbedoTexture() { return this->AlbedoTexture; }
+  vtkTextureObject* GetDepthTexture() { return this->DepthTexture; }
+  vtkOpenGLFramebufferObject* GetFramebuffer() { return this->Framebuffer; }
+  ///@}
+
+  vtkGetVector2Macro(Size, int);
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsGBuffer();
+  ~vtkCausticsGBuffer() override;
+
+  vtkNew<vtkTextureObject> PositionTexture;
+  vtkNew<vtkTextureObject> NormalTexture;
+  vtkNew<vtkTextureObject> AlbedoTexture;
+  vtkNew<vtkTextureObject> DepthTexture;
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkNew<vtkCausticsShaderProgram> Program;
+  int Size[2] = { 0, 0 };
+
+private:
+  vtkCausticsGBuffer(const vtkCausticsGBuffer&) = delete;
+  void operator=(const vtkCausticsGBuffer&) = delete;
+};
+
+#endif

@@ -1,0 +1,168 @@
+#include "vtkCausticsGLUtilities.h"
+
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPointData.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <vector>
+
+namespace caustics
+{
+namespace gl
+{
+namespace
+{
+struct FormatInfo
+{
+  unsigned int format;
+  unsigned int type;
+  int components;
+  int vtkType;
+};
+
+FormatInfo Describe(unsigned int internalFormat)
+{
+  switch (internalFormat)
+  {
+    case GL_RGBA32F:
+      return { GL_RGBA, GL_FLOAT, 4, VTK_FLOAT };
+    case GL_RGBA16F:
+      return { GL_RGBA, GL_HALF_FLOAT, 4, VTK_FLOAT };
+    case GL_RG32F:
+      return { GL_RG, GL_FLOAT, 2, VTK_FLOAT };
+    case GL_R32F:
+      return { GL_RED, GL_FLOAT, 1, VTK_FLOAT };
+    case GL_R32UI:
+      return { GL_RED_INTEGER, GL_UNSIGNED_INT, 1, VTK_UNSIGNED_INT };
+    case GL_RGBA32UI:
+      return { GL_RGBA_INTEGER, GL_UNSIGNED_INT, 4, VTK_UNSIGNED_INT };
+    case GL_RGBA8:
+      return { GL_RGBA, GL_UNSIGNED_BYTE, 4, VTK_UNSIGNED_CHAR };
+    case GL_DEPTH_COMPONENT32F:
+      return { GL_DEPTH_COMPONENT, GL_FLOAT, 1, VTK_FLOAT };
+    default:
+      return { GL_RGBA, GL_FLOAT, 4, VTK_FLOAT };
+  }
+}
+}
+
+bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int width,
+  int height, unsigned int internalFormat)
+{
+  width = width < 1 ? 1 : width;
+  height = height < 1 ? 1 : height;
+  if (texture->GetHandle() != 0 && static_cast<int>(texture->GetWidth()) == width &&
+    static_cast<int>(texture->GetHeight()) == height &&
+    texture->GetInternalFormat(VTK_FLOAT, 4, false) == internalFormat)
+  {
+    return false;
+  }
+  texture->SetContext(renWin);
+  const FormatInfo info = Describe(internalFormat);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (internalFormat == GL_DEPTH_COMPONENT32F)
+  {
+    texture->AllocateDepth(width, height, vtkTextureObject::Float32);
+  }
+  else
+  {
+    texture->SetInternalFormat(internalFormat);
+    texture->SetFormat(info.format);
+    texture->SetDataType(info.type);
+    texture->Allocate2D(width, height, info.components, info.vtkType);
+  }
+  return true;
+}
+
+void ToColumnMajor(const double rowMajor[16], float columnMajor[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      columnMajor[4 * c + r] = static_cast<float>(rowMajor[4 * r + c]);
+    }
+  }
+}
+
+vtkSmartPointer<vtkImageData> ReadTexture(
+  vtkTextureObject* texture, const std::string& arrayName, int components)
+{
+  const int width = static_cast<int>(texture->GetWidth());
+  const int height = static_cast<int>(texture->GetHeight());
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(width, height, 1);
+  vtkNew<vtkFloatArray> array;
+  array->SetName(arrayName.c_str());
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  const unsigned int internalFormat = texture->GetInternalFormat(VTK_FLOAT, 4, false);
+  const bool isDepth = internalFormat == GL_DEPTH_COMPONENT32F ||
+    texture->GetFormat(VTK_FLOAT, 1, false) == GL_DEPTH_COMPONENT;
+  const bool isInteger = internalFormat == GL_R32UI || internalFormat == GL_RGBA32UI;
+  const int channels = isDepth ? 1 : (internalFormat == GL_R32F || internalFormat == GL_R32UI ? 1 : (internalFormat == GL_RG32F ? 2 : 4));
+  std::vector<float> pixels(static_cast<std::size_t>(width) * height * channels);
+  const std::size_t bytes = pixels.size() * sizeof(float);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (isDepth)
+  {
+    glGetTextureImage(texture->GetHandle(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+      static_cast<GLsizei>(bytes), pixels.data());
+  }
+  else if (isInteger)
+  {
+    std::vector<unsigned int> raw(pixels.size());
+    glGetTextureImage(texture->GetHandle(), 0, channels == 1 ? GL_RED_INTEGER : GL_RGBA_INTEGER,
+      GL_UNSIGNED_INT, static_cast<GLsizei>(bytes), raw.data());
+    for (std::size_t i = 0; i < raw.size(); ++i)
+    {
+      pixels[i] = static_cast<float>(raw[i]);
+    }
+  }
+  else
+  {
+    const GLenum format = channels == 1 ? GL_RED : (channels == 2 ? GL_RG : GL_RGBA);
+    glGetTextureImage(texture->GetHandle(), 0, format, GL_FLOAT, static_cast<GLsizei>(bytes),
+      pixels.data());
+  }
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(width) * height; ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      array->SetComponent(i, c, c < channels ? pixels[i * channels + c] : 0.0f);
+    }
+  }
+  image->GetPointData()->AddArray(array);
+  return image;
+}
+
+FullScreenTriangle::~FullScreenTriangle() = default;
+
+void FullScreenTriangle::Draw()
+{
+  if (!this->VertexArray)
+  {
+    glCreateVertexArrays(1, &this->VertexArray);
+  }
+  glBindVertexArray(this->VertexArray);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+}
+
+void FullScreenTriangle::Release()
+{
+  if (this->VertexArray)
+  {
+    glDeleteVertexArrays(1, &this->VertexArray);
+    this->VertexArray = 0;
+  }
+}
+}
+}

@@ -1,0 +1,194 @@
+#include "vtkCausticsLightBuffers.h"
+
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsLightFluxFS.h"
+
+#include <vector>
+
+vtkStandardNewMacro(vtkCausticsLightBuffers);
+
+namespace
+{
+struct PerLight
+{
+  vtkSmartPointer<vtkCausticsGBuffer> GBuffer = vtkSmartPointer<vtkCausticsGBuffer>::New();
+  vtkSmartPointer<vtkTextureObject> Flux = vtkSmartPointer<vtkTextureObject>::New();
+  vtkSmartPointer<vtkOpenGLFramebufferObject> FluxFramebuffer =
+    vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+  caustics::LightView View;
+};
+}
+
+struct vtkCausticsLightBuffers::Internals
+{
+  std::vector<PerLight> Lights;
+  int ActiveLights = 0;
+  vtkNew<vtkCausticsShaderProgram> FluxProgram;
+  caustics::gl::FullScreenTriangle Triangle;
+  caustics::LightView Invalid;
+};
+
+vtkCausticsLightBuffers::vtkCausticsLightBuffers()
+  : Internal(new Internals)
+{
+  this->Internal->FluxProgram->SetName("light flux");
+  this->Internal->FluxProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->Internal->FluxProgram->SetVertexSource(vtkCausticsFullScreenVS);
+  this->Internal->FluxProgram->SetFragmentSource(vtkCausticsLightFluxFS);
+}
+
+vtkCausticsLightBuffers::~vtkCausticsLightBuffers() = default;
+
+bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene)
+{
+  auto& in = *this->Internal;
+  const int count = static_cast<int>(scene.Lights.size());
+  if (static_cast<int>(in.Lights.size()) < count)
+  {
+    in.Lights.resize(count);
+  }
+  // Lights that went away give their GL objects back.
+  for (int i = count; i < static_cast<int>(in.Lights.size()); ++i)
+  {
+    in.Lights[i].GBuffer->ReleaseGraphicsResources(renWin);
+    in.Lights[i].Flux->ReleaseGraphicsResources(renWin);
+    in.Lights[i].FluxFramebuffer->ReleaseGraphicsResources(renWin);
+  }
+  in.Lights.resize(count);
+  in.ActiveLights = count;
+
+  const int resolution = this->Resolution;
+  vtkOpenGLState* state = renWin->GetState();
+  bool ok = true;
+  for (int i = 0; i < count; ++i)
+  {
+    PerLight& light = in.Lights[i];
+    light.View = caustics::ComputeLightView(scene, i,
+      this->Focus == FOCUS_SCENE ? caustics::LightView::Focus::Scene
+                                 : caustics::LightView::Focus::Specular);
+    if (light.View.clamped)
+    {
+      vtkWarningMacro(<< "light " << i
+                      << " is inside the bounds it must light; its buffers cover only a "
+                         "150 degree cone around the focus");
+    }
+    float worldToClip[16];
+    caustics::gl::ToColumnMajor(light.View.worldToClip, worldToClip);
+    ok = light.GBuffer->Render(
+           renWin, geometry, worldToClip, resolution, resolution, vtkCausticsSceneGeometry::AllRoles) &&
+      ok;
+
+    const bool resized =
+      caustics::gl::EnsureTexture(light.Flux, renWin, resolution, resolution, GL_RGBA32F);
+    state->PushFramebufferBindings();
+    light.FluxFramebuffer->SetContext(renWin);
+    light.FluxFramebuffer->Bind();
+    if (resized || light.FluxFramebuffer->GetNumberOfColorAttachments() != 1)
+    {
+      light.FluxFramebuffer->AddColorAttachment(0, light.Flux);
+    }
+    light.FluxFramebuffer->ActivateDrawBuffers(1);
+    vtkOpenGLState::ScopedglViewport viewport(state);
+    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+    state->vtkglViewport(0, 0, resolution, resolution);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDisable(GL_BLEND);
+    vtkCausticsShaderProgram* program = in.FluxProgram;
+    if (program->Bind(renWin))
+    {
+      const caustics::Light& source = scene.Lights[i];
+      const caustics::LightView& view = light.View;
+      program->SetUniformi("perspective", view.perspective ? 1 : 0);
+      program->SetUniformf("halfExtent", static_cast<float>(view.halfExtent));
+      program->SetUniform2f("resolution", static_cast<float>(resolution), static_cast<float>(resolution));
+      program->SetUniform3f("radiometric", static_cast<float>(source.radiometric[0]),
+        static_cast<float>(source.radiometric[1]), static_cast<float>(source.radiometric[2]));
+      program->SetUniform3f("viewAxis", static_cast<float>(view.axis[0]),
+        static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
+      program->SetUniform3f("viewRight", static_cast<float>(view.right[0]),
+        static_cast<float>(view.right[1]), static_cast<float>(view.right[2]));
+      program->SetUniform3f("viewUp", static_cast<float>(view.up[0]), static_cast<float>(view.up[1]),
+        static_cast<float>(view.up[2]));
+      program->SetUniformi("isSpot", source.type == caustics::Light::Type::Spot ? 1 : 0);
+      program->SetUniform3f("spotAxis", static_cast<float>(source.direction[0]),
+        static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
+      program->SetUniformf("cosOuter", static_cast<float>(source.cosOuter));
+      program->SetUniformf("cosInner", static_cast<float>(source.cosInner));
+      in.Triangle.Draw();
+      program->Unbind(renWin);
+    }
+    else
+    {
+      ok = false;
+    }
+    state->PopFramebufferBindings();
+  }
+  return ok;
+}
+
+const caustics::LightView& vtkCausticsLightBuffers::GetView(int i) const
+{
+  const auto& in = *this->Internal;
+  return i >= 0 && i < in.ActiveLights ? in.Lights[i].View : in.Invalid;
+}
+
+int vtkCausticsLightBuffers::GetNumberOfLights() const
+{
+  return this->Internal->ActiveLights;
+}
+
+vtkCausticsGBuffer* vtkCausticsLightBuffers::GetGBuffer(int i)
+{
+  auto& in = *this->Internal;
+  return i >= 0 && i < in.ActiveLights ? in.Lights[i].GBuffer.GetPointer() : nullptr;
+}
+
+vtkTextureObject* vtkCausticsLightBuffers::GetFluxTexture(int i)
+{
+  auto& in = *this->Internal;
+  return i >= 0 && i < in.ActiveLights ? in.Lights[i].Flux.GetPointer() : nullptr;
+}
+
+void vtkCausticsLightBuffers::ReleaseGraphicsResources(vtkWindow* win)
+{
+  auto& in = *this->Internal;
+  for (PerLight& light : in.Lights)
+  {
+    light.GBuffer->ReleaseGraphicsResources(win);
+    light.Flux->ReleaseGraphicsResources(win);
+    light.FluxFramebuffer->ReleaseGraphicsResources(win);
+  }
+  in.Lights.clear();
+  in.ActiveLights = 0;
+  in.FluxProgram->ReleaseGraphicsResources(win);
+  in.Triangle.Release();
+}
+
+void vtkCausticsLightBuffers::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "Focus: " << (this->Focus == FOCUS_SCENE ? "scene" : "specular") << "\n";
+  os << indent << "Lights: " << this->Internal->ActiveLights << "\n";
+  for (int i = 0; i < this->Internal->ActiveLights; ++i)
+  {
+    const auto& view = this->Internal->Lights[i].View;
+    os << indent.GetNextIndent() << "light " << i << ": "
+       << (view.perspective ? "perspective, tan(half angle) " : "orthographic, half width ")
+       << view.halfExtent << ", near " << view.nearPlane << ", far " << view.farPlane << "\n";
+  }
+}

@@ -1,0 +1,93 @@
+/**
+ * @class   vtkCausticsLightBuffers
+ * @brief   Per-light reflective shadow maps: what each light sees, and the flux per texel.
+ *
+ * For every light of the scene snapshot:
+ * 1. caustics::ComputeLightView() gives the frustum: orthographic along a
+ *    directional light, perspective from a point or spot light, aimed at the
+ *    focus (the specular objects, where photons are useful, or the whole scene,
+ *    for shadow maps) with a depth range that holds the whole scene;
+ * 2. a vtkCausticsGBuffer renders every role from the light (position, normal,
+ *    material, depth: the first surface each light ray meets);
+ * 3. a full-screen pass writes the flux each texel carries, from the light's
+ *    irradiance times the texel's area (directional) or its intensity times the
+ *    texel's solid angle and the spot falloff (point/spot), so that the sum over
+ *    texels equals the light's power inside the frustum. Flux is written for every
+ *    texel, hit or not (rgb: W; a: the texel's area in m^2 or solid angle in sr).
+ * GL objects are created when a light first appears or the resolution changes.
+ */
+#ifndef vtkCausticsLightBuffers_h
+#define vtkCausticsLightBuffers_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include "vtkCausticsSceneData.h" // For caustics::LightView
+
+#include <memory> // For std::unique_ptr
+
+class vtkCausticsGBuffer;
+class vtkCausticsSceneGeometry;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsLightBuffers : public vtkObject
+{
+public:
+  static vtkCausticsLightBuffers* New();
+  vtkTypeMacro(vtkCausticsLightBuffers, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FocusType
+  {
+    FOCUS_SPECULAR = 0,
+    FOCUS_SCENE = 1
+  };
+
+  ///@{
+  /** Texels per side of each light's buffers, in [1, 8192]. Default 512. */
+  vtkSetClampMacro(Resolution, int, 1, 8192);
+  vtkGetMacro(Resolution, int);
+  ///@}
+
+  ///@{
+  /** What the frusta are aimed at. Default FOCUS_SPECULAR. */
+  vtkSetClampMacro(Focus, int, FOCUS_SPECULAR, FOCUS_SCENE);
+  vtkGetMacro(Focus, int);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /** Renders the buffers of every light. Returns false on a GL/program failure. */
+  bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::SceneData& scene);
+
+  /** The frustum of light i, as used by the last Render(). */
+  const caustics::LightView& GetView(int i) const;
+#endif
+
+  /** Lights rendered by the last Render(). */
+  int GetNumberOfLights() const;
+  /** Position, normal, albedo and depth seen from light i. */
+  vtkCausticsGBuffer* GetGBuffer(int i);
+  /** Flux per texel of light i (rgb: W, a: m^2 or sr). */
+  vtkTextureObject* GetFluxTexture(int i);
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsLightBuffers();
+  ~vtkCausticsLightBuffers() override;
+
+  int Resolution = 512;
+  int Focus = FOCUS_SPECULAR;
+
+private:
+  vtkCausticsLightBuffers(const vtkCausticsLightBuffers&) = delete;
+  void operator=(const vtkCausticsLightBuffers&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif
