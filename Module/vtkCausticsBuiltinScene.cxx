@@ -65,8 +65,8 @@ void MakeDiffuse(vtkActor* actor, double r, double g, double b)
 }
 
 /** A quad from origin spanning the two edge vectors, normals facing `normal`. */
-vtkSmartPointer<vtkPolyData> Quad(const double origin[3], const double p1[3], const double p2[3],
-  int resolution)
+vtkSmartPointer<vtkPolyData> Quad(
+  const double origin[3], const double p1[3], const double p2[3], int resolution)
 {
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(origin[0], origin[1], origin[2]);
@@ -200,8 +200,7 @@ vtkSmartPointer<vtkPolyData> MakeWater(int resolution, double time)
   {
     for (int i = 0; i < resolution; ++i)
     {
-      const vtkIdType a = j * (resolution + 1) + i, b = a + 1, c = a + resolution + 1,
-                      d = c + 1;
+      const vtkIdType a = j * (resolution + 1) + i, b = a + 1, c = a + resolution + 1, d = c + 1;
       const vtkIdType t1[3] = { a, c, b }, t2[3] = { b, c, d };
       triangles->InsertNextCell(3, t1);
       triangles->InsertNextCell(3, t2);
@@ -232,7 +231,8 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
 
   if (!IsSceneName(this->SceneName))
   {
-    this->LastError = "unknown scene '" + this->SceneName + "' (known: ball-lens, pool, ring, bunny)";
+    this->LastError =
+      "unknown scene '" + this->SceneName + "' (known: ball-lens, pool, ring, bunny)";
     vtkErrorMacro(<< this->LastError);
     return false;
   }
@@ -250,9 +250,8 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
     vtkErrorMacro(<< this->LastError);
     return false;
   }
-  auto ior = [this](double sceneDefault) {
-    return this->RefractiveIndex > 0.0 ? this->RefractiveIndex : sceneDefault;
-  };
+  auto ior = [this](double sceneDefault)
+  { return this->RefractiveIndex > 0.0 ? this->RefractiveIndex : sceneDefault; };
   const double tess = this->Tessellation;
 
   if (this->SceneName == "ball-lens")
@@ -399,7 +398,8 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
       const char* name;
       double origin[3], p1[3], p2[3], color[3];
     };
-    const Wall walls[] = { { "floor", { -1, 0, 1 }, { 1, 0, 1 }, { -1, 0, -1 }, { 0.75, 0.75, 0.75 } },
+    const Wall walls[] = { { "floor", { -1, 0, 1 }, { 1, 0, 1 }, { -1, 0, -1 },
+                             { 0.75, 0.75, 0.75 } },
       { "ceiling", { -1, 2, -1 }, { 1, 2, -1 }, { -1, 2, 1 }, { 0.75, 0.75, 0.75 } },
       { "back wall", { -1, 0, -1 }, { 1, 0, -1 }, { -1, 2, -1 }, { 0.75, 0.75, 0.75 } },
       { "red wall", { -1, 0, 1 }, { -1, 0, -1 }, { -1, 2, 1 }, { 0.63, 0.065, 0.05 } },

@@ -53,6 +53,9 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  // Stages draw whole off-screen targets: VTK may leave a scissor box set.
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
   vtkOpenGLState::ScopedglDepthMask depthMask(state);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
   state->vtkglViewport(0, 0, width, height);

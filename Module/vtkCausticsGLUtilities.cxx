@@ -50,8 +50,8 @@ FormatInfo Describe(unsigned int internalFormat)
 }
 }
 
-bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int width,
-  int height, unsigned int internalFormat)
+bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int width, int height,
+  unsigned int internalFormat)
 {
   width = width < 1 ? 1 : width;
   height = height < 1 ? 1 : height;
@@ -107,7 +107,10 @@ vtkSmartPointer<vtkImageData> ReadTexture(
   const bool isDepth = internalFormat == GL_DEPTH_COMPONENT32F ||
     texture->GetFormat(VTK_FLOAT, 1, false) == GL_DEPTH_COMPONENT;
   const bool isInteger = internalFormat == GL_R32UI || internalFormat == GL_RGBA32UI;
-  const int channels = isDepth ? 1 : (internalFormat == GL_R32F || internalFormat == GL_R32UI ? 1 : (internalFormat == GL_RG32F ? 2 : 4));
+  const int channels = isDepth ? 1
+                               : (internalFormat == GL_R32F || internalFormat == GL_R32UI
+                                     ? 1
+                                     : (internalFormat == GL_RG32F ? 2 : 4));
   std::vector<float> pixels(static_cast<std::size_t>(width) * height * channels);
   const std::size_t bytes = pixels.size() * sizeof(float);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -129,8 +132,8 @@ vtkSmartPointer<vtkImageData> ReadTexture(
   else
   {
     const GLenum format = channels == 1 ? GL_RED : (channels == 2 ? GL_RG : GL_RGBA);
-    glGetTextureImage(texture->GetHandle(), 0, format, GL_FLOAT, static_cast<GLsizei>(bytes),
-      pixels.data());
+    glGetTextureImage(
+      texture->GetHandle(), 0, format, GL_FLOAT, static_cast<GLsizei>(bytes), pixels.data());
   }
   for (vtkIdType i = 0; i < static_cast<vtkIdType>(width) * height; ++i)
   {

@@ -67,15 +67,17 @@ bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
     const int components = array->GetNumberOfComponents();
     if (components != 1 && components != 3 && components != 4)
     {
-      SetError(error, "array '" + layer.first + "' has " + std::to_string(components) +
+      SetError(error,
+        "array '" + layer.first + "' has " + std::to_string(components) +
           " components; EXR layers need 1, 3 or 4");
       return false;
     }
     arrays.push_back(array);
     for (int c = 0; c < components; ++c)
     {
-      channelNames.push_back(
-        layer.second.empty() ? ChannelSuffix(components, c) : layer.second + "." + ChannelSuffix(components, c));
+      channelNames.push_back(layer.second.empty()
+          ? ChannelSuffix(components, c)
+          : layer.second + "." + ChannelSuffix(components, c));
     }
   }
   const int channels = static_cast<int>(channelNames.size());
@@ -110,8 +112,8 @@ bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
   spec.channelnames = channelNames;
   spec.attribute("compression", "zip");
-  if (!output->open(path, spec) ||
-    !output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !output->close())
+  if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
+    !output->close())
   {
     SetError(error, "cannot write " + path + ": " + output->geterror());
     return false;
@@ -119,7 +121,8 @@ bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
   return true;
 }
 
-vtkSmartPointer<vtkImageData> vtkCausticsImageIO::ReadEXR(const std::string& path, std::string* error)
+vtkSmartPointer<vtkImageData> vtkCausticsImageIO::ReadEXR(
+  const std::string& path, std::string* error)
 {
   auto input = OIIO::ImageInput::open(path);
   if (!input)
@@ -173,7 +176,8 @@ vtkSmartPointer<vtkImageData> vtkCausticsImageIO::ReadEXR(const std::string& pat
         const float* in = &pixels[(static_cast<std::size_t>(fileRow) * width + x) * channels];
         for (std::size_t c = 0; c < indices.size(); ++c)
         {
-          array->SetComponent(static_cast<vtkIdType>(y) * width + x, static_cast<int>(c), in[indices[c]]);
+          array->SetComponent(
+            static_cast<vtkIdType>(y) * width + x, static_cast<int>(c), in[indices[c]]);
         }
       }
     }
@@ -218,7 +222,8 @@ bool vtkCausticsImageIO::WritePNG(vtkImageData* image, const std::string& arrayN
   if (!output || !output->open(path, spec) ||
     !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close())
   {
-    SetError(error, "cannot write " + path + ": " + (output ? output->geterror() : OIIO::geterror()));
+    SetError(
+      error, "cannot write " + path + ": " + (output ? output->geterror() : OIIO::geterror()));
     return false;
   }
   return true;

@@ -44,7 +44,8 @@ public:
    * Reads an EXR; each layer becomes a float point-data array named after the
    * layer ("" becomes "Default"). Returns nullptr and sets `error` on failure.
    */
-  static vtkSmartPointer<vtkImageData> ReadEXR(const std::string& path, std::string* error = nullptr);
+  static vtkSmartPointer<vtkImageData> ReadEXR(
+    const std::string& path, std::string* error = nullptr);
 
   /**
    * Writes one 3- or 4-component array as an 8-bit PNG: value x exposure, clamped

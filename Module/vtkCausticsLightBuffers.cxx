@@ -87,8 +87,8 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
     }
     float worldToClip[16];
     caustics::gl::ToColumnMajor(light.View.worldToClip, worldToClip);
-    ok = light.GBuffer->Render(
-           renWin, geometry, worldToClip, resolution, resolution, vtkCausticsSceneGeometry::AllRoles) &&
+    ok = light.GBuffer->Render(renWin, geometry, worldToClip, resolution, resolution,
+           vtkCausticsSceneGeometry::AllRoles) &&
       ok;
 
     const bool resized =
@@ -104,6 +104,9 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
     vtkOpenGLState::ScopedglViewport viewport(state);
     vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+    // Stages draw whole off-screen targets: VTK may leave a scissor box set.
+    vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+    state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglViewport(0, 0, resolution, resolution);
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDisable(GL_BLEND);
@@ -114,15 +117,16 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
       const caustics::LightView& view = light.View;
       program->SetUniformi("perspective", view.perspective ? 1 : 0);
       program->SetUniformf("halfExtent", static_cast<float>(view.halfExtent));
-      program->SetUniform2f("resolution", static_cast<float>(resolution), static_cast<float>(resolution));
+      program->SetUniform2f(
+        "resolution", static_cast<float>(resolution), static_cast<float>(resolution));
       program->SetUniform3f("radiometric", static_cast<float>(source.radiometric[0]),
         static_cast<float>(source.radiometric[1]), static_cast<float>(source.radiometric[2]));
       program->SetUniform3f("viewAxis", static_cast<float>(view.axis[0]),
         static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
       program->SetUniform3f("viewRight", static_cast<float>(view.right[0]),
         static_cast<float>(view.right[1]), static_cast<float>(view.right[2]));
-      program->SetUniform3f("viewUp", static_cast<float>(view.up[0]), static_cast<float>(view.up[1]),
-        static_cast<float>(view.up[2]));
+      program->SetUniform3f("viewUp", static_cast<float>(view.up[0]),
+        static_cast<float>(view.up[1]), static_cast<float>(view.up[2]));
       program->SetUniformi("isSpot", source.type == caustics::Light::Type::Spot ? 1 : 0);
       program->SetUniform3f("spotAxis", static_cast<float>(source.direction[0]),
         static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));

@@ -6,8 +6,8 @@
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationIntegerKey.h"
 #include "vtkInformationStringKey.h"
-#include "vtkObjectFactory.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
 #include "vtkProperty.h"
 
 #include <algorithm>
@@ -203,8 +203,9 @@ caustics::Material vtkCausticsMaterial::Describe(vtkActor* actor, double roughne
   if (keys && keys->Has(ROLE()))
   {
     const int role = keys->Get(ROLE());
-    material.role = (role >= ROLE_NONE && role <= ROLE_REFRACTOR) ? static_cast<caustics::Role>(role)
-                                                                 : caustics::Role::Receiver;
+    material.role = (role >= ROLE_NONE && role <= ROLE_REFRACTOR)
+      ? static_cast<caustics::Role>(role)
+      : caustics::Role::Receiver;
   }
   else if (transmission > 0.0)
   {

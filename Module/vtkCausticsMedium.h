@@ -29,14 +29,20 @@ public:
    * non-finite values are refused with an error (the old value stays).
    */
   void SetScatteringCoefficient(double r, double g, double b);
-  void SetScatteringCoefficient(const double rgb[3]) { this->SetScatteringCoefficient(rgb[0], rgb[1], rgb[2]); }
+  void SetScatteringCoefficient(const double rgb[3])
+  {
+    this->SetScatteringCoefficient(rgb[0], rgb[1], rgb[2]);
+  }
   vtkGetVector3Macro(ScatteringCoefficient, double);
   ///@}
 
   ///@{
   /** Absorption coefficient sigma_a, 1/m, per RGB channel. Default 0. Validated likewise. */
   void SetAbsorptionCoefficient(double r, double g, double b);
-  void SetAbsorptionCoefficient(const double rgb[3]) { this->SetAbsorptionCoefficient(rgb[0], rgb[1], rgb[2]); }
+  void SetAbsorptionCoefficient(const double rgb[3])
+  {
+    this->SetAbsorptionCoefficient(rgb[0], rgb[1], rgb[2]);
+  }
   vtkGetVector3Macro(AbsorptionCoefficient, double);
   ///@}
 

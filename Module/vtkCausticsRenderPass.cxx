@@ -114,8 +114,8 @@ bool vtkCausticsRenderPass::NeedsCaustics()
   bool hasPower = false;
   for (const auto& light : scene.Lights)
   {
-    hasPower = hasPower || light.radiometric[0] > 0 || light.radiometric[1] > 0 ||
-      light.radiometric[2] > 0;
+    hasPower =
+      hasPower || light.radiometric[0] > 0 || light.radiometric[1] > 0 || light.radiometric[2] > 0;
   }
   return hasReceiver && hasPower;
 }
@@ -142,7 +142,8 @@ void vtkCausticsRenderPass::RenderDelegate(const vtkRenderState* s)
   auto* renWin = static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
   const int w = this->Width, h = this->Height;
   bool resized = caustics::gl::EnsureTexture(this->DelegateColorTexture, renWin, w, h, GL_RGBA32F);
-  resized |= caustics::gl::EnsureTexture(this->DelegateDepthTexture, renWin, w, h, GL_DEPTH_COMPONENT32F);
+  resized |=
+    caustics::gl::EnsureTexture(this->DelegateDepthTexture, renWin, w, h, GL_DEPTH_COMPONENT32F);
 
   this->PreRender(s);
   this->DelegateFramebuffer->SetContext(renWin);
@@ -183,16 +184,18 @@ bool vtkCausticsRenderPass::RenderLightBuffers(vtkOpenGLRenderWindow* renWin)
 bool vtkCausticsRenderPass::RenderCaustics(vtkOpenGLRenderWindow* renWin)
 {
   vtkOpenGLState* state = renWin->GetState();
-  const bool resized =
-    caustics::gl::EnsureTexture(this->CausticTexture, renWin, this->Width, this->Height, GL_RGBA32F);
+  const bool resized = caustics::gl::EnsureTexture(
+    this->CausticTexture, renWin, this->Width, this->Height, GL_RGBA32F);
   state->PushFramebufferBindings();
   BindAndClear(this->CausticFramebuffer, this->CausticTexture, renWin, resized);
   vtkOpenGLState::ScopedglViewport viewport(state);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
   state->vtkglViewport(0, 0, this->Width, this->Height);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_BLEND);
+  state->vtkglDisable(GL_SCISSOR_TEST);
   const bool ok = this->RenderCausticIrradiance(renWin);
   state->PopFramebufferBindings();
   return ok;
@@ -215,6 +218,8 @@ bool vtkCausticsRenderPass::RenderDirectIrradiance(vtkOpenGLRenderWindow* renWin
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
   state->vtkglViewport(0, 0, this->Width, this->Height);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglEnable(GL_BLEND);
@@ -236,8 +241,8 @@ bool vtkCausticsRenderPass::RenderDirectIrradiance(vtkOpenGLRenderWindow* renWin
     {
       direction[i] = view.focalPoint[i] - view.position[i];
     }
-    const double length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
-      direction[2] * direction[2]);
+    const double length = std::sqrt(
+      direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
     program->SetUniform3f("cameraPosition", static_cast<float>(view.position[0]),
       static_cast<float>(view.position[1]), static_cast<float>(view.position[2]));
     program->SetUniform3f("cameraDirection", static_cast<float>(direction[0] / length),
@@ -255,9 +260,8 @@ bool vtkCausticsRenderPass::RenderDirectIrradiance(vtkOpenGLRenderWindow* renWin
       program->SetUniformMatrix4("lightWorldToClip", matrix);
       program->SetUniformi("lightType", static_cast<int>(light.type));
       // Directional lights measure distance along the axis from the view's eye.
-      const caustics::Vec3& origin = light.type == caustics::Light::Type::Directional
-        ? lightView.eye
-        : light.position;
+      const caustics::Vec3& origin =
+        light.type == caustics::Light::Type::Directional ? lightView.eye : light.position;
       program->SetUniform3f("lightPosition", static_cast<float>(origin[0]),
         static_cast<float>(origin[1]), static_cast<float>(origin[2]));
       program->SetUniform3f("lightDirection", static_cast<float>(light.direction[0]),
@@ -314,11 +318,13 @@ void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFina
   state->vtkglDisable(GL_BLEND);
   if (toFinalTexture)
   {
-    const bool resized =
-      caustics::gl::EnsureTexture(this->FinalTexture, renWin, this->Width, this->Height, GL_RGBA32F);
+    const bool resized = caustics::gl::EnsureTexture(
+      this->FinalTexture, renWin, this->Width, this->Height, GL_RGBA32F);
     state->PushFramebufferBindings();
     BindAndClear(this->FinalFramebuffer, this->FinalTexture, renWin, resized);
     vtkOpenGLState::ScopedglViewport viewport(state);
+    vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+    state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglViewport(0, 0, this->Width, this->Height);
     state->vtkglDisable(GL_DEPTH_TEST);
     this->Triangle->Draw();
@@ -371,8 +377,8 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   renWin->GetOpenGLVersion(major, minor);
   if (buffers && major * 10 + minor < 45)
   {
-    vtkErrorMacro(<< "caustics need OpenGL 4.5 (compute shaders, SSBOs); this context is "
-                  << major << "." << minor << ": rendering without caustics");
+    vtkErrorMacro(<< "caustics need OpenGL 4.5 (compute shaders, SSBOs); this context is " << major
+                  << "." << minor << ": rendering without caustics");
   }
   if (!sceneOk || !buffers || major * 10 + minor < 45)
   {
@@ -532,7 +538,8 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
     output->GetPointData()->AddArray(mask);
     return true;
   }
-  else if (light >= 0 && light < this->LightBuffers->GetNumberOfLights() && this->LastFrameHadCaustics)
+  else if (light >= 0 && light < this->LightBuffers->GetNumberOfLights() &&
+    this->LastFrameHadCaustics)
   {
     vtkCausticsGBuffer* lightBuffer = this->LightBuffers->GetGBuffer(light);
     if (base == "LightPosition")
@@ -580,8 +587,8 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   {
     texture->ReleaseGraphicsResources(w);
   }
-  vtkOpenGLFramebufferObject* framebuffers[] = { this->CausticFramebuffer,
-    this->DirectFramebuffer, this->DelegateFramebuffer, this->FinalFramebuffer };
+  vtkOpenGLFramebufferObject* framebuffers[] = { this->CausticFramebuffer, this->DirectFramebuffer,
+    this->DelegateFramebuffer, this->FinalFramebuffer };
   for (vtkOpenGLFramebufferObject* framebuffer : framebuffers)
   {
     framebuffer->ReleaseGraphicsResources(w);

@@ -173,11 +173,11 @@ protected:
   float WorldToClip[16];
   vtkNew<vtkCausticsSceneExtractor> Extractor;
   vtkNew<vtkCausticsSceneGeometry> Geometry;
-  vtkNew<vtkCausticsGBuffer> CameraGBuffer;     // receivers and reflectors
-  vtkNew<vtkCausticsGBuffer> RefractiveGBuffer; // refractors
-  vtkNew<vtkCausticsLightBuffers> LightBuffers; // photon buffers, aimed at specular actors
+  vtkNew<vtkCausticsGBuffer> CameraGBuffer;      // receivers and reflectors
+  vtkNew<vtkCausticsGBuffer> RefractiveGBuffer;  // refractors
+  vtkNew<vtkCausticsLightBuffers> LightBuffers;  // photon buffers, aimed at specular actors
   vtkNew<vtkCausticsLightBuffers> ShadowBuffers; // shadow maps, aimed at the scene
-  vtkNew<vtkTextureObject> CausticTexture;      // RGBA32F, W/m^2
+  vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> DirectFramebuffer;

@@ -104,7 +104,8 @@ Vec3 Cross(const Vec3& a, const Vec3& b)
 Vec3 Normalize(const Vec3& v)
 {
   const double length = std::sqrt(Dot(v, v));
-  return length > 0.0 ? Vec3{ { v[0] / length, v[1] / length, v[2] / length } } : Vec3{ { 0, 0, -1 } };
+  return length > 0.0 ? Vec3{ { v[0] / length, v[1] / length, v[2] / length } }
+                      : Vec3{ { 0, 0, -1 } };
 }
 
 void BoundingSphere(const double bounds[6], Vec3& center, double& radius)
@@ -169,9 +170,8 @@ bool Invert(const double in[16], double out[16])
 
 Vec3 LightView::FrustumPower(const Light& light) const
 {
-  const double measure = this->perspective
-    ? this->FrustumSolidAngle()
-    : 4.0 * this->halfExtent * this->halfExtent;
+  const double measure =
+    this->perspective ? this->FrustumSolidAngle() : 4.0 * this->halfExtent * this->halfExtent;
   return { { light.radiometric[0] * measure, light.radiometric[1] * measure,
     light.radiometric[2] * measure } };
 }
@@ -204,8 +204,10 @@ LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus f
     focusRadius = sceneRadius;
   }
   // A flat or point-like focus still needs a non-empty frustum.
-  sceneRadius = std::max(sceneRadius, 1e-6 * std::max(1.0, std::abs(sceneCenter[0]) +
-    std::abs(sceneCenter[1]) + std::abs(sceneCenter[2])));
+  sceneRadius = std::max(sceneRadius,
+    1e-6 *
+      std::max(
+        1.0, std::abs(sceneCenter[0]) + std::abs(sceneCenter[1]) + std::abs(sceneCenter[2])));
   focusRadius = std::max(focusRadius, 1e-3 * sceneRadius);
   const Vec3 offset{ { focusCenter[0] - sceneCenter[0], focusCenter[1] - sceneCenter[1],
     focusCenter[2] - sceneCenter[2] } };

@@ -39,9 +39,9 @@ const char* RoleName(Role role);
 struct Material
 {
   Role role = Role::Receiver;
-  Vec3 albedo{ { 0.8, 0.8, 0.8 } }; ///< diffuse reflectance of receivers (linear RGB)
-  double ior = 1.5;                 ///< refractors: index of refraction, outside medium = 1
-  double roughness = 0.0;           ///< as in vtkProperty (PBR); > cut-off means diffuse
+  Vec3 albedo{ { 0.8, 0.8, 0.8 } };       ///< diffuse reflectance of receivers (linear RGB)
+  double ior = 1.5;                       ///< refractors: index of refraction, outside medium = 1
+  double roughness = 0.0;                 ///< as in vtkProperty (PBR); > cut-off means diffuse
   Vec3 metalN{ { 0.155, 0.117, 0.138 } }; ///< reflectors: real part of complex IOR (silver)
   Vec3 metalK{ { 4.83, 3.12, 2.15 } };    ///< reflectors: imaginary part (extinction)
   Vec3 attenuation{ { 0, 0, 0 } };        ///< refractors: Beer-Lambert absorption, 1/m
@@ -49,13 +49,13 @@ struct Material
 
 struct Mesh
 {
-  std::string name;                ///< actor's name or "actor <index>" for messages
-  vtkActor* actor = nullptr;       ///< the source actor (not owned)
-  int material = 0;                ///< index into SceneData::Materials
-  std::vector<float> positions;    ///< world-space xyz per vertex
-  std::vector<float> normals;      ///< world-space unit normal per vertex
+  std::string name;                   ///< actor's name or "actor <index>" for messages
+  vtkActor* actor = nullptr;          ///< the source actor (not owned)
+  int material = 0;                   ///< index into SceneData::Materials
+  std::vector<float> positions;       ///< world-space xyz per vertex
+  std::vector<float> normals;         ///< world-space unit normal per vertex
   std::vector<std::uint32_t> indices; ///< three per triangle
-  unsigned long version = 0;       ///< changes whenever positions/normals/indices change
+  unsigned long version = 0;          ///< changes whenever positions/normals/indices change
   std::size_t TriangleCount() const { return indices.size() / 3; }
 };
 
@@ -68,11 +68,11 @@ struct Light
     Spot = 2
   };
   Type type = Type::Directional;
-  Vec3 position{ { 0, 0, 0 } };      ///< point/spot: world position
-  Vec3 direction{ { 0, 0, -1 } };    ///< unit vector the light travels along (directional/spot axis)
-  Vec3 radiometric{ { 1, 1, 1 } };   ///< W/m^2 (directional) or W/sr (point/spot), per channel
-  double cosOuter = -1.0;            ///< spot: cos of the outer cone half-angle
-  double cosInner = 1.0;             ///< spot: cos of the inner cone half-angle (full intensity)
+  Vec3 position{ { 0, 0, 0 } };    ///< point/spot: world position
+  Vec3 direction{ { 0, 0, -1 } };  ///< unit vector the light travels along (directional/spot axis)
+  Vec3 radiometric{ { 1, 1, 1 } }; ///< W/m^2 (directional) or W/sr (point/spot), per channel
+  double cosOuter = -1.0;          ///< spot: cos of the outer cone half-angle
+  double cosInner = 1.0;           ///< spot: cos of the inner cone half-angle (full intensity)
 
   /** Spot falloff of glTF KHR_lights_punctual (1 inside the inner cone, 0 outside the outer). */
   double SpotFactor(double cosAngle) const;
@@ -128,9 +128,9 @@ struct LightView
   bool valid = false;       ///< false when there is nothing to look at
   bool clamped = false;     ///< point/spot inside the focus sphere: field of view capped
   Vec3 eye{ { 0, 0, 0 } }, axis{ { 0, 0, -1 } }, right{ { 1, 0, 0 } }, up{ { 0, 1, 0 } };
-  double halfExtent = 1.0;  ///< orthographic: half width (m); perspective: tan(half angle)
+  double halfExtent = 1.0; ///< orthographic: half width (m); perspective: tan(half angle)
   double nearPlane = 0.01, farPlane = 1.0;
-  double worldToClip[16];   ///< row-major, OpenGL clip conventions
+  double worldToClip[16]; ///< row-major, OpenGL clip conventions
   double clipToWorld[16];
 
   /**

@@ -540,8 +540,8 @@ bool vtkCausticsSceneExtractor::Update(vtkRenderer* renderer, int width, int hei
   view.parallel = camera->GetParallelProjection() != 0;
   view.parallelScale = camera->GetParallelScale();
   camera->GetClippingRange(view.clippingRange);
-  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(
-    static_cast<double>(width) / height, -1.0, 1.0);
+  vtkMatrix4x4* worldToClip =
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0);
   std::copy(worldToClip->GetData(), worldToClip->GetData() + 16, view.worldToClip);
   vtkMatrix4x4::Invert(view.worldToClip, view.clipToWorld);
 

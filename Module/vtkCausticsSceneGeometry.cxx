@@ -118,10 +118,12 @@ bool vtkCausticsSceneGeometry::Upload(
   // Layout: meshes sorted by role (stable), each a block of vertices and indices.
   std::vector<int> order(scene.Meshes.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return scene.Materials[scene.Meshes[a].material].role <
-      scene.Materials[scene.Meshes[b].material].role;
-  });
+  std::stable_sort(order.begin(), order.end(),
+    [&](int a, int b)
+    {
+      return scene.Materials[scene.Meshes[a].material].role <
+        scene.Materials[scene.Meshes[b].material].role;
+    });
   std::vector<MeshSlot> slots;
   std::size_t vertices = 0, indices = 0;
   for (int m : order)
@@ -227,10 +229,12 @@ bool vtkCausticsSceneGeometry::Upload(
     dst.params[2] = dst.params[3] = 0.0f;
     dst.metalN[3] = dst.metalK[3] = dst.attenuation[3] = 0.0f;
   }
-  const std::size_t materialBytes = std::max<std::size_t>(materials.size(), 1) * sizeof(GPUMaterial);
+  const std::size_t materialBytes =
+    std::max<std::size_t>(materials.size(), 1) * sizeof(GPUMaterial);
   const bool materialsChanged = materials.size() != in.Materials.size() ||
     (!materials.empty() &&
-      std::memcmp(materials.data(), in.Materials.data(), materials.size() * sizeof(GPUMaterial)) != 0);
+      std::memcmp(materials.data(), in.Materials.data(), materials.size() * sizeof(GPUMaterial)) !=
+        0);
   if (materialBytes > in.MaterialCapacity)
   {
     glNamedBufferData(in.MaterialBuffer, materialBytes, nullptr, GL_DYNAMIC_DRAW);

@@ -6,10 +6,10 @@
 #include "vtk_glew.h"
 
 #include <chrono>
-#include <thread>
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 vtkStandardNewMacro(vtkCausticsTimings);

@@ -74,8 +74,8 @@ void main() { uint i = gl_GlobalInvocationID.x; values[i] = SCALE * float(i * i)
   broken->SetComputeSource("layout(local_size_x = 1) in; void main() { this is not glsl; }");
   vtkNew<vtkTest::ErrorObserver> errors;
   broken->AddObserver(vtkCommand::ErrorEvent, errors);
-  if (broken->Bind(glWindow) || std::string(broken->GetLastError()).find("compute") ==
-      std::string::npos)
+  if (broken->Bind(glWindow) ||
+    std::string(broken->GetLastError()).find("compute") == std::string::npos)
   {
     std::cerr << "broken program was not reported: '" << broken->GetLastError() << "'\n";
     return EXIT_FAILURE;

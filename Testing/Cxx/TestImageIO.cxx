@@ -36,7 +36,8 @@ TEST(ImageIO, EXRLayersRoundTrip)
   auto image = MakeImage();
   const std::string path = std::string(CAUSTICS_TEST_OUTPUT_DIR) + "/TestImageIO.exr";
   std::string error;
-  ASSERT_TRUE(vtkCausticsImageIO::WriteEXR(image, { { "Color", "" }, { "Mask", "mask" } }, path, &error))
+  ASSERT_TRUE(
+    vtkCausticsImageIO::WriteEXR(image, { { "Color", "" }, { "Mask", "mask" } }, path, &error))
     << error;
   auto back = vtkCausticsImageIO::ReadEXR(path, &error);
   ASSERT_TRUE(back) << error;
@@ -63,7 +64,8 @@ TEST(ImageIO, ReportsBadInput)
   std::string error;
   EXPECT_FALSE(vtkCausticsImageIO::WriteEXR(image, { { "Nope", "" } }, "x.exr", &error));
   EXPECT_NE(error.find("no array 'Nope'"), std::string::npos) << error;
-  EXPECT_FALSE(vtkCausticsImageIO::WriteEXR(image, { { "Color", "" } }, "/nonexistent/dir/x.exr", &error));
+  EXPECT_FALSE(
+    vtkCausticsImageIO::WriteEXR(image, { { "Color", "" } }, "/nonexistent/dir/x.exr", &error));
   EXPECT_NE(error.find("/nonexistent/dir/x.exr"), std::string::npos) << error;
   EXPECT_FALSE(vtkCausticsImageIO::ReadEXR("/nonexistent.exr", &error));
   EXPECT_NE(error.find("/nonexistent.exr"), std::string::npos) << error;

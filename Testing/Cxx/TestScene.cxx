@@ -70,7 +70,8 @@ TEST(Material, ComplexIORReproducesNormalReflectance)
   vtkCausticsMaterial::ComplexIORFromReflectance(f0, n, k);
   for (int c = 0; c < 3; ++c)
   {
-    const double r = ((n[c] - 1) * (n[c] - 1) + k[c] * k[c]) / ((n[c] + 1) * (n[c] + 1) + k[c] * k[c]);
+    const double r =
+      ((n[c] - 1) * (n[c] - 1) + k[c] * k[c]) / ((n[c] + 1) * (n[c] + 1) + k[c] * k[c]);
     EXPECT_NEAR(r, f0[c], 1e-9) << "channel " << c;
   }
 }
@@ -167,7 +168,8 @@ TEST(BuiltinScene, PoolAnimatesInPlace)
   ASSERT_TRUE(scene->Populate(renderer));
   vtkNew<vtkCausticsSceneExtractor> extractor;
   ASSERT_TRUE(extractor->Update(renderer, 64, 64));
-  auto waterVersion = [&]() {
+  auto waterVersion = [&]()
+  {
     for (const auto& mesh : extractor->GetScene().Meshes)
     {
       if (mesh.name == "water")

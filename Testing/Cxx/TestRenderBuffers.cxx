@@ -1,0 +1,260 @@
+// Numbers in the shared render buffers: camera G-buffer normals, light-buffer
+// flux bookkeeping, direct irradiance, and the skip path of the pass.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsRenderPass.h"
+#include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsTimings.h"
+
+#include "vtkActor.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+/** A window rendering a built-in scene through the caustics pass. */
+struct Fixture
+{
+  vtkNew<vtkOpenGLRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkCausticsRenderPass> Pass;
+  vtkNew<vtkCausticsBuiltinScene> Scene;
+
+  explicit Fixture(const char* scene, int size = 256)
+  {
+    this->Scene->SetSceneName(scene);
+    EXPECT_TRUE(this->Scene->Populate(this->Renderer)) << this->Scene->GetLastError();
+    this->Renderer->SetPass(this->Pass);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->AddRenderer(this->Renderer);
+    this->Pass->GetTimings()->SynchronousOn();
+  }
+  ~Fixture()
+  {
+    this->Renderer->SetPass(nullptr);
+    this->Pass->ReleaseGraphicsResources(this->Window);
+  }
+  vtkSmartPointer<vtkImageData> Read(const char* name)
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    EXPECT_TRUE(this->Pass->ReadBuffer(name, image)) << name;
+    return image;
+  }
+};
+
+double Sum(vtkImageData* image, int component)
+{
+  vtkDataArray* array = image->GetPointData()->GetArray(0);
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    sum += array->GetComponent(i, component);
+  }
+  return sum;
+}
+}
+
+TEST(GBuffer, SphereCentreNormalFacesTheCamera)
+{
+  Fixture f("ball-lens");
+  f.Pass->KeepBuffersOn();
+  f.Window->Render();
+  const caustics::SceneData& scene = f.Pass->GetSceneExtractor()->GetScene();
+  double px, py;
+  ASSERT_TRUE(scene.View.WorldToPixel({ { 0.0, 3.0, 0.0 } }, px, py));
+  const int i = static_cast<int>(px), j = static_cast<int>(py);
+  auto normals = f.Read("RefractiveNormal");
+  vtkDataArray* n = normals->GetPointData()->GetArray(0);
+  const vtkIdType id = static_cast<vtkIdType>(j) * 256 + i;
+  EXPECT_EQ(std::lround(n->GetComponent(id, 3)), 3) << "the ball is a refractor";
+  caustics::Vec3 origin, direction;
+  scene.View.PixelRay(i, j, origin, direction);
+  // Expected: the sphere's normal where this pixel's ray meets it (the pixel centre
+  // is up to half a pixel, ~0.01 rad, off the ball's centre ray). Interpolating
+  // radial vertex normals at a point of a flat facet gives exactly the direction
+  // from the centre to that point, which differs from the true sphere's hit by
+  // the facet's sagitta (< 3e-4 R) times the ray's obliquity (~0.01): negligible.
+  // What remains is RGBA16F storage: 2^-11 relative per component, so 1e-3 in norm.
+  const double centre[3] = { 0.0, 3.0, 0.0 };
+  double oc[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    oc[c] = origin[c] - centre[c];
+  }
+  const double b = vtkMath::Dot(oc, direction.data());
+  const double t = -b - std::sqrt(b * b - (vtkMath::Dot(oc, oc) - 1.0));
+  double error = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double expected = origin[c] + t * direction[c] - centre[c];
+    error += std::pow(n->GetComponent(id, c) - expected, 2);
+  }
+  EXPECT_LT(std::sqrt(error), 1e-3);
+  // And it faces the camera within the half-pixel offset.
+  double facing = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    facing -= n->GetComponent(id, c) * direction[c];
+  }
+  EXPECT_GT(facing, 0.999);
+  // The opaque G-buffer holds no refractor: a floor pixel has the floor's +y
+  // normal and the receiver role; the ball's centre ray misses the floor.
+  auto opaque = f.Read("Normal");
+  auto opaquePosition = f.Read("Position");
+  EXPECT_LT(opaquePosition->GetPointData()->GetArray(0)->GetComponent(id, 3), 0.0);
+  ASSERT_TRUE(scene.View.WorldToPixel({ { 2.0, 0.0, 2.0 } }, px, py));
+  const vtkIdType floorId = static_cast<vtkIdType>(py) * 256 + static_cast<vtkIdType>(px);
+  EXPECT_NEAR(opaque->GetPointData()->GetArray(0)->GetComponent(floorId, 1), 1.0, 1e-3);
+  EXPECT_EQ(std::lround(opaque->GetPointData()->GetArray(0)->GetComponent(floorId, 3)), 1);
+}
+
+TEST(LightBuffers, DirectionalFluxSumsToPowerInFrustum)
+{
+  Fixture f("ball-lens");
+  f.Pass->SetLightBufferResolution(128);
+  f.Window->Render();
+  ASSERT_TRUE(f.Pass->GetLastFrameHadCaustics());
+  const auto& scene = f.Pass->GetSceneExtractor()->GetScene();
+  auto flux = f.Read("LightFlux:0");
+  // Orthographic frustum around the ball's bounding sphere: power = E x (2R)^2.
+  const caustics::LightView view =
+    caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::Specular);
+  const caustics::Vec3 power = view.FrustumPower(scene.Lights[0]);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(Sum(flux, c) / power[c], 1.0, 0.005) << "channel " << c;
+  }
+  // The light sees the top of the ball (a refractor) at the frustum's centre.
+  auto normal = f.Read("LightNormal:0");
+  const vtkIdType centre = 64 * 128 + 64;
+  EXPECT_EQ(std::lround(normal->GetPointData()->GetArray(0)->GetComponent(centre, 3)), 3);
+  EXPECT_GT(normal->GetPointData()->GetArray(0)->GetComponent(centre, 1), 0.99);
+}
+
+TEST(LightBuffers, PointAndSpotFluxSumsToPowerInFrustum)
+{
+  Fixture f("bunny");
+  f.Pass->SetLightBufferResolution(128);
+  f.Window->Render();
+  ASSERT_TRUE(f.Pass->GetLastFrameHadCaustics());
+  const auto& scene = f.Pass->GetSceneExtractor()->GetScene();
+  const caustics::Light& spot = scene.Lights[0];
+  ASSERT_EQ(spot.type, caustics::Light::Type::Spot);
+  const caustics::LightView view =
+    caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::Specular);
+  ASSERT_TRUE(view.perspective);
+  // Expected power: I x integral of the spot falloff over the frustum's solid
+  // angle, by a fine midpoint sum on the image plane (independent of the shader's
+  // per-texel rule: 2048^2 cells).
+  const int cells = 2048;
+  const double t = view.halfExtent, h = 2.0 * t / cells;
+  double expected = 0.0;
+  for (int j = 0; j < cells; ++j)
+  {
+    for (int i = 0; i < cells; ++i)
+    {
+      const double x = -t + (i + 0.5) * h, y = -t + (j + 0.5) * h;
+      double d[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        d[c] = view.axis[c] + x * view.right[c] + y * view.up[c];
+      }
+      const double length = vtkMath::Norm(d);
+      const double cosAngle = vtkMath::Dot(d, spot.direction.data()) / length;
+      expected += h * h / std::pow(1.0 + x * x + y * y, 1.5) * spot.SpotFactor(cosAngle);
+    }
+  }
+  expected *= spot.radiometric[0];
+  auto flux = f.Read("LightFlux:0");
+  EXPECT_NEAR(Sum(flux, 0) / expected, 1.0, 0.005);
+  // Without the falloff, the measure (alpha) sums to the frustum's solid angle.
+  EXPECT_NEAR(Sum(flux, 3) / view.FrustumSolidAngle(), 1.0, 0.005);
+}
+
+TEST(DirectIrradiance, LitFloorAndShadowUnderTheBall)
+{
+  Fixture f("ball-lens");
+  f.Pass->ComputeDirectIrradianceOn();
+  f.Window->Render();
+  const auto& scene = f.Pass->GetSceneExtractor()->GetScene();
+  auto direct = f.Read("DirectIrradiance");
+  vtkDataArray* e = direct->GetPointData()->GetArray(0);
+  // Floor point (3, 0, 2): far from the ball's shadow, light straight down at 1 W/m^2.
+  double px, py;
+  ASSERT_TRUE(scene.View.WorldToPixel({ { 3.0, 0.0, 2.0 } }, px, py));
+  vtkIdType id = static_cast<vtkIdType>(py) * 256 + static_cast<vtkIdType>(px);
+  EXPECT_NEAR(e->GetComponent(id, 0), 1.0, 1e-4);
+  // Under the ball, in its shadow (the light through it is the caustic term).
+  ASSERT_TRUE(scene.View.WorldToPixel({ { 0.0, 0.0, 0.5 } }, px, py));
+  id = static_cast<vtkIdType>(py) * 256 + static_cast<vtkIdType>(px);
+  EXPECT_NEAR(e->GetComponent(id, 0), 0.0, 1e-6);
+  // No caustic technique in the base pass: zero caustic irradiance, exactly.
+  auto caustic = f.Read("CausticIrradiance");
+  EXPECT_EQ(Sum(caustic, 0), 0.0);
+}
+
+TEST(RenderPass, SkipsEverythingWithoutSpecularActors)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  vtkNew<vtkPlaneSource> plane;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  vtkNew<vtkLight> light;
+  renderer->AddLight(light);
+  vtkNew<vtkCausticsRenderPass> pass;
+  renderer->SetPass(pass);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(64, 64);
+  window->AddRenderer(renderer);
+  window->Render();
+  EXPECT_FALSE(pass->GetLastFrameHadCaustics());
+  vtkCausticsTimings* timings = pass->GetTimings();
+  for (int i = 0; i < timings->GetNumberOfStages(); ++i)
+  {
+    const std::string stage = timings->GetStageName(i);
+    EXPECT_TRUE(stage == "scene snapshot" || stage == "vtk delegate") << stage << " ran";
+  }
+  vtkNew<vtkImageData> image;
+  pass->GlobalWarningDisplayOff();
+  EXPECT_FALSE(pass->ReadBuffer("CausticIrradiance", image));
+  // The picture is VTK's own: the plane was drawn.
+  unsigned char* pixels = window->GetPixelData(32, 32, 32, 32, 1);
+  EXPECT_GT(pixels[0] + pixels[1] + pixels[2], 0);
+  delete[] pixels;
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+}
+
+TEST(RenderPass, ReadBufferRejectsUnknownNames)
+{
+  Fixture f("ring", 64);
+  f.Pass->KeepBuffersOn();
+  f.Window->Render();
+  vtkNew<vtkImageData> image;
+  f.Pass->GlobalWarningDisplayOff();
+  EXPECT_FALSE(f.Pass->ReadBuffer("NoSuchBuffer", image));
+  EXPECT_FALSE(f.Pass->ReadBuffer("LightFlux:7", image));
+  EXPECT_FALSE(f.Pass->ReadBuffer("LightFlux:x", image));
+  EXPECT_TRUE(f.Pass->ReadBuffer("FinalColor", image));
+  EXPECT_TRUE(f.Pass->ReadBuffer("ReceiverMask", image));
+}
