@@ -114,6 +114,14 @@ public:
   /** The scene snapshot of the last frame. */
   vtkCausticsSceneExtractor* GetSceneExtractor() { return this->Extractor; }
 
+  ///@{
+  /** Shared stages of the last frame, for techniques built beside this pass and tests. */
+  vtkCausticsSceneGeometry* GetGeometry() { return this->Geometry; }
+  vtkCausticsGBuffer* GetCameraGBuffer() { return this->CameraGBuffer; }
+  vtkCausticsGBuffer* GetRefractiveGBuffer() { return this->RefractiveGBuffer; }
+  vtkCausticsLightBuffers* GetLightBuffers() { return this->LightBuffers; }
+  ///@}
+
   /** True if the last frame ran the caustic stages. */
   vtkGetMacro(LastFrameHadCaustics, bool);
 

@@ -1,0 +1,124 @@
+#include "vtkCausticsPhotonEmitter.h"
+
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsOptics.h"
+#include "vtkCausticsPhotonEmitFS.h"
+
+#include <string>
+
+vtkStandardNewMacro(vtkCausticsPhotonEmitter);
+
+vtkCausticsPhotonEmitter::vtkCausticsPhotonEmitter()
+  : Triangle(new caustics::gl::FullScreenTriangle)
+{
+  this->Program->SetName("photon emission");
+  this->Program->SetVertexSource(vtkCausticsFullScreenVS);
+  this->Program->SetFragmentSource(
+    (std::string(vtkCausticsOptics) + vtkCausticsPhotonEmitFS).c_str());
+}
+
+vtkCausticsPhotonEmitter::~vtkCausticsPhotonEmitter()
+{
+  delete this->Triangle;
+}
+
+bool vtkCausticsPhotonEmitter::Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLightBuffers* lights,
+  int light, vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene)
+{
+  vtkCausticsGBuffer* buffer = lights->GetGBuffer(light);
+  vtkTextureObject* flux = lights->GetFluxTexture(light);
+  if (!buffer || !flux || light >= static_cast<int>(scene.Lights.size()))
+  {
+    vtkErrorMacro(<< "no light buffers for light " << light);
+    return false;
+  }
+  const int n = lights->GetResolution();
+  const int width = n, height = this->SplitFresnel ? 2 * n : n;
+  bool resized = false;
+  resized |= caustics::gl::EnsureTexture(this->PositionTexture, renWin, width, height, GL_RGBA32F);
+  resized |= caustics::gl::EnsureTexture(this->DirectionTexture, renWin, width, height, GL_RGBA32F);
+  resized |= caustics::gl::EnsureTexture(this->FluxTexture, renWin, width, height, GL_RGBA32F);
+  this->GridSize[0] = width;
+  this->GridSize[1] = height;
+
+  vtkOpenGLState* state = renWin->GetState();
+  state->PushFramebufferBindings();
+  this->Framebuffer->SetContext(renWin);
+  this->Framebuffer->Bind();
+  if (resized || this->Framebuffer->GetNumberOfColorAttachments() != 3)
+  {
+    this->Framebuffer->AddColorAttachment(0, this->PositionTexture);
+    this->Framebuffer->AddColorAttachment(1, this->DirectionTexture);
+    this->Framebuffer->AddColorAttachment(2, this->FluxTexture);
+  }
+  this->Framebuffer->ActivateDrawBuffers(3);
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  state->vtkglViewport(0, 0, width, height);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+
+  bool ok = this->Program->Bind(renWin);
+  if (ok)
+  {
+    vtkTextureObject* inputs[] = { buffer->GetPositionTexture(), buffer->GetNormalTexture(), flux };
+    const char* names[] = { "lightPosition", "lightNormal", "lightFlux" };
+    for (int i = 0; i < 3; ++i)
+    {
+      inputs[i]->Activate();
+      this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+    }
+    const caustics::Light& source = scene.Lights[light];
+    const caustics::Vec3& origin = source.position;
+    this->Program->SetUniformi("resolution", n);
+    this->Program->SetUniformi("splitFresnel", this->SplitFresnel ? 1 : 0);
+    this->Program->SetUniformi("lightType", static_cast<int>(source.type));
+    this->Program->SetUniform3f("lightOrigin", static_cast<float>(origin[0]),
+      static_cast<float>(origin[1]), static_cast<float>(origin[2]));
+    this->Program->SetUniform3f("lightDirection", static_cast<float>(source.direction[0]),
+      static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
+    geometry->BindMaterials();
+    this->Triangle->Draw();
+    for (vtkTextureObject* input : inputs)
+    {
+      input->Deactivate();
+    }
+    this->Program->Unbind(renWin);
+  }
+  state->PopFramebufferBindings();
+  return ok;
+}
+
+void vtkCausticsPhotonEmitter::ReleaseGraphicsResources(vtkWindow* win)
+{
+  this->PositionTexture->ReleaseGraphicsResources(win);
+  this->DirectionTexture->ReleaseGraphicsResources(win);
+  this->FluxTexture->ReleaseGraphicsResources(win);
+  this->Framebuffer->ReleaseGraphicsResources(win);
+  this->Program->ReleaseGraphicsResources(win);
+  this->Triangle->Release();
+  this->GridSize[0] = this->GridSize[1] = 0;
+}
+
+void vtkCausticsPhotonEmitter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SplitFresnel: " << this->SplitFresnel << "\n";
+  os << indent << "GridSize: " << this->GridSize[0] << " x " << this->GridSize[1] << "\n";
+}

@@ -1,0 +1,112 @@
+/**
+ * @class   vtkCausticsPhotonEmitter
+ * @brief   Photons after their first specular interaction, one per light-buffer texel.
+ *
+ * The shared first stage of the photon techniques (000_54cf099eeccf42d9.txt §2,
+ * 001_7c07a484f7a872bb.txt §2). For one light of a vtkCausticsLightBuffers:
+ * 1. each texel whose first hit (from the light) is a reflector or a refractor
+ *    becomes a photon carrying the texel's flux (W: the light's power through
+ *    that texel, so photon fluxes sum to the power reaching specular surfaces);
+ * 2. at that hit the photon is reflected (conductor Fresnel with complex IOR) or
+ *    refracted (exact dielectric Fresnel, total internal reflection); with
+ *    SplitFresnel on, a refractor's reflected part becomes a second photon, so
+ *    no energy is dropped;
+ * 3. the result is three RGBA32F textures of width N and height N (or 2N when
+ *    split: rows N..2N-1 hold the reflected branch), N = the light-buffer
+ *    resolution, so photons stay addressable by texel (hierarchical traversal,
+ *    texture-row line tracing):
+ *    - Position: xyz where the photon leaves the surface, w = state
+ *      (0 none, 1 travelling in air, 2 inside a refractor);
+ *    - Direction: xyz unit direction, w = the texel's measure (m^2 for
+ *      directional lights, sr for point/spot lights);
+ *    - Flux: rgb W after the Fresnel weight, a = specular events so far (1).
+ */
+#ifndef vtkCausticsPhotonEmitter_h
+#define vtkCausticsPhotonEmitter_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include "vtkNew.h" // For vtkNew members
+
+class vtkCausticsLightBuffers;
+class vtkCausticsSceneGeometry;
+class vtkCausticsShaderProgram;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace caustics
+{
+struct SceneData;
+namespace gl
+{
+class FullScreenTriangle;
+}
+}
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonEmitter : public vtkObject
+{
+public:
+  static vtkCausticsPhotonEmitter* New();
+  vtkTypeMacro(vtkCausticsPhotonEmitter, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Emit a refractor's Fresnel-reflected part as a second photon. Default on. */
+  vtkSetMacro(SplitFresnel, bool);
+  vtkGetMacro(SplitFresnel, bool);
+  vtkBooleanMacro(SplitFresnel, bool);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * Emits the photons of light `light` of `lights` (rendered this frame for `scene`).
+   * The scene geometry's material table must be current. Returns false on failure.
+   */
+  bool Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLightBuffers* lights, int light,
+    vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene);
+#endif
+
+  ///@{
+  /** Outputs of the last Emit() (see the class description). */
+  vtkTextureObject* GetPositionTexture()
+  {
+    return this->PositionTexture;
+  }
+  vtkTextureObject* GetDirectionTexture()
+  {
+    return this->DirectionTexture;
+  }
+  vtkTextureObject* GetFluxTexture()
+  {
+    return this->FluxTexture;
+  }
+  ///@}
+
+  /** Photon grid of the last Emit(): width N, height N or 2N. */
+  vtkGetVector2Macro(GridSize, int);
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsPhotonEmitter();
+  ~vtkCausticsPhotonEmitter() override;
+
+  bool SplitFresnel = true;
+  int GridSize[2] = { 0, 0 };
+  vtkNew<vtkTextureObject> PositionTexture;
+  vtkNew<vtkTextureObject> DirectionTexture;
+  vtkNew<vtkTextureObject> FluxTexture;
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkNew<vtkCausticsShaderProgram> Program;
+
+private:
+  vtkCausticsPhotonEmitter(const vtkCausticsPhotonEmitter&) = delete;
+  void operator=(const vtkCausticsPhotonEmitter&) = delete;
+
+  caustics::gl::FullScreenTriangle* Triangle;
+};
+
+#endif

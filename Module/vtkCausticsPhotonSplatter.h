@@ -1,0 +1,96 @@
+/**
+ * @class   vtkCausticsPhotonSplatter
+ * @brief   Deposits photon hits on receivers as energy-normalized kernels: irradiance in W/m^2.
+ *
+ * The shared last stage of the photon techniques: receiver-oriented splats
+ * (000_54cf099eeccf42d9.txt §3.1, Eq. 1) into any view that has a G-buffer (the
+ * camera, for screen-space techniques; a light, for caustic maps as in
+ * 001_7c07a484f7a872bb.txt). Unlike the papers' splats, the kernel is normalized:
+ * 1. each hit (position, receiver normal, kernel radius r in m, flux in W) is drawn
+ *    as a point sprite covering its disk as the view sees it; the radius is
+ *    widened or narrowed to stay within [MinimumRadiusPixels, MaximumRadiusPixels]
+ *    of the view, and the kernel is normalized for the radius actually used;
+ * 2. each covered pixel takes its surface point x from the view's G-buffer and,
+ *    if x is a receiver lying on the photon's tangent plane (within
+ *    PlaneTolerance radii) with a normal agreeing within NormalTolerance, adds
+ *    flux x K(d), K the Epanechnikov kernel 2/(pi r^2)(1 - d^2/r^2) of the
+ *    in-plane distance d. K integrates to 1 over the plane, so every fully
+ *    visible photon deposits exactly its flux — no scene-dependent scale factor.
+ * The caller binds the target framebuffer (RGBA32F, same size as the G-buffer);
+ * the splatter blends additively into it (alpha counts contributions).
+ */
+#ifndef vtkCausticsPhotonSplatter_h
+#define vtkCausticsPhotonSplatter_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include "vtkNew.h" // For vtkNew members
+
+class vtkCausticsGBuffer;
+class vtkCausticsShaderProgram;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonSplatter : public vtkObject
+{
+public:
+  static vtkCausticsPhotonSplatter* New();
+  vtkTypeMacro(vtkCausticsPhotonSplatter, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Smallest kernel radius in target pixels. Default 1.5. */
+  vtkSetClampMacro(MinimumRadiusPixels, double, 0.5, 64.0);
+  vtkGetMacro(MinimumRadiusPixels, double);
+  ///@}
+
+  ///@{
+  /** Largest kernel radius in target pixels (bounds the cost). Default 24. */
+  vtkSetClampMacro(MaximumRadiusPixels, double, 1.0, 360.0);
+  vtkGetMacro(MaximumRadiusPixels, double);
+  ///@}
+
+  ///@{
+  /** Largest distance of a receiving point off the photon's tangent plane, in radii. Default 0.5.
+   */
+  vtkSetClampMacro(PlaneTolerance, double, 0.0, 10.0);
+  vtkGetMacro(PlaneTolerance, double);
+  ///@}
+
+  ///@{
+  /** Smallest cosine between the photon's and the pixel's receiver normals. Default 0.8. */
+  vtkSetClampMacro(NormalTolerance, double, -1.0, 1.0);
+  vtkGetMacro(NormalTolerance, double);
+  ///@}
+
+  /**
+   * Splats hitWidth x hitHeight hits read from the three textures (position xyz with
+   * w > 0 for a hit; normal xyz with w = radius in m; flux rgb in W) into the bound
+   * framebuffer, whose pixels' surfaces are in `target` (same size), seen through
+   * worldToClip (column-major). Returns false if the program failed.
+   */
+  bool Splat(vtkOpenGLRenderWindow* renWin, vtkTextureObject* hitPosition,
+    vtkTextureObject* hitNormal, vtkTextureObject* hitFlux, int hitWidth, int hitHeight,
+    vtkCausticsGBuffer* target, const float worldToClip[16]);
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsPhotonSplatter();
+  ~vtkCausticsPhotonSplatter() override;
+
+  double MinimumRadiusPixels = 1.5;
+  double MaximumRadiusPixels = 24.0;
+  double PlaneTolerance = 0.5;
+  double NormalTolerance = 0.8;
+  vtkNew<vtkCausticsShaderProgram> Program;
+  unsigned int VertexArray = 0;
+
+private:
+  vtkCausticsPhotonSplatter(const vtkCausticsPhotonSplatter&) = delete;
+  void operator=(const vtkCausticsPhotonSplatter&) = delete;
+};
+
+#endif
