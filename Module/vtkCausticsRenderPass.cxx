@@ -475,6 +475,7 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
   if (base == "FinalColor" && this->KeepBuffers)
   {
     texture = this->FinalTexture;
+    components = 3;
   }
   else if (base == "CausticIrradiance" && this->LastFrameHadCaustics)
   {

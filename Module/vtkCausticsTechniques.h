@@ -1,0 +1,50 @@
+/**
+ * @class   vtkCausticsTechniques
+ * @brief   Registry of the caustics techniques by name, for the CLI, the benchmark and users.
+ *
+ * Every technique is a vtkCausticsRenderPass subclass. Names:
+ * - "none": vtkCausticsRenderPass itself (VTK shading plus the shared buffers);
+ * further techniques register here as they are added (see docs/architecture.md).
+ * "best" names the technique with the lowest error against the reference on the
+ * built-in scenes (docs/benchmarks.md), the CLI's default.
+ */
+#ifndef vtkCausticsTechniques_h
+#define vtkCausticsTechniques_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkSmartPointer.h"            // For return value
+
+#include <string> // For std::string
+#include <vector> // For std::vector
+
+class vtkCausticsRenderPass;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsTechniques : public vtkObject
+{
+public:
+  static vtkCausticsTechniques* New();
+  vtkTypeMacro(vtkCausticsTechniques, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+#ifndef __VTK_WRAP__
+  /** Registered names, "best" excluded. */
+  static std::vector<std::string> GetNames();
+  /** The name "best" stands for. */
+  static std::string GetBestName();
+  /** A new pass for `name` (or "best"); nullptr for an unknown name. */
+  static vtkSmartPointer<vtkCausticsRenderPass> Create(const std::string& name);
+  /** One line per technique: name and what it is. */
+  static std::string Describe();
+#endif
+
+protected:
+  vtkCausticsTechniques() = default;
+  ~vtkCausticsTechniques() override = default;
+
+private:
+  vtkCausticsTechniques(const vtkCausticsTechniques&) = delete;
+  void operator=(const vtkCausticsTechniques&) = delete;
+};
+
+#endif
