@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the caustics module needs to build, render and
+# test. Idempotent: packages already present are skipped by apt.
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ pkg-config
+  libvtk9-dev mpi-default-dev libjsoncpp-dev   # VTK 9.1 (its CMake config finds MPI, jsoncpp)
+  libglm-dev libopenimageio-dev libembree-dev   # maths, EXR/PNG, CPU reference ray queries
+  libopenvdb-dev libnanovdb-dev                 # heterogeneous media
+  libegl-dev libgl1-mesa-dri                    # headless EGL; Mesa llvmpipe
+  xvfb xauth mesa-utils                         # an X server for tests
+  libgtest-dev libbenchmark-dev                 # tests and micro-benchmarks
+  python3-matplotlib                            # benchmark plots
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
+    missing+=("$package")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
