@@ -1,0 +1,749 @@
+// caustics-render: renders a built-in caustics scene, a glTF 2.0 file or a mesh
+// with one of the module's techniques, to PNG (display) and EXR (physical layers).
+//
+//   caustics-render [options] [SCENE | FILE.gltf | FILE.glb | FILE.ply|obj|stl]
+//
+// Every error is one line on stderr naming the problem, and a non-zero exit:
+// 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsGLTFImporter.h"
+#include "vtkCausticsImageIO.h"
+#include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
+#include "vtkCausticsMeshReader.h"
+#include "vtkCausticsRenderPass.h"
+#include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsTechniques.h"
+#include "vtkCausticsTimings.h"
+#include "vtkCausticsWindowFactory.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkLogger.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOutputWindow.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* Usage =
+  R"(usage: caustics-render [options] [SCENE | FILE.gltf | FILE.glb | MESH.ply|obj|stl]
+
+Renders caustics with a VTK render pass and writes PREFIX.png (display colour)
+and PREFIX.exr (linear HDR layers: R,G,B final colour; direct.*, caustic.*:
+irradiance in W/m^2 at each pixel's visible surface before albedo; volume.*:
+in-scattered radiance in W/(m^2 sr); mask.Y: 1 where a receiver is visible).
+
+Scene (default: ball-lens):
+  SCENE                      built-in: ball-lens, pool, ring, bunny
+  FILE.gltf | FILE.glb       glTF 2.0 with KHR_materials_ior/transmission and
+                             KHR_lights_punctual (directional intensity = W/m^2,
+                             point/spot intensity = W/sr)
+  MESH.ply|obj|stl           a mesh placed on a floor under a sun, camera fit
+  --role ROLE                mesh role: refractor (default), reflector, receiver
+  --ior N                    index of refraction of the scene's refractors (>= 1)
+  --time SECONDS             animation time (pool waves; glTF animations)
+  --camera-index I           glTF camera to use (default 0; -1 = fit the view)
+
+Technique and quality:
+  --technique NAME           )"
+  "%TECHNIQUES%"
+  R"(
+  --photons N                photon grid side per light (light-buffer texels), 1..8192
+  --size W[xH]               image size in pixels (default 512x512)
+  --frames N                 frames rendered; timings are their median (default 1)
+
+Overrides:
+  --light-direction X,Y,Z    direction the first light travels (made directional)
+  --light-intensity V        first light: W/m^2 (directional) or W/sr (point/spot)
+  --camera-position X,Y,Z    --camera-focal X,Y,Z    --camera-up X,Y,Z
+  --view-angle DEGREES       vertical field of view, (0, 180)
+  --medium SS,SA,G           homogeneous medium: scattering and absorption
+                             coefficients in 1/m, Henyey-Greenstein g
+
+Output:
+  --output PREFIX            output file prefix (default: caustics)
+  --exposure E               multiplier applied before the PNG's 8-bit clamp (default 1)
+  --timings                  print per-stage GPU and CPU times
+  --help                     this text
+)";
+
+struct Options
+{
+  std::string Scene = "ball-lens";
+  std::string Role = "refractor";
+  std::string Technique = "best";
+  std::string Output = "caustics";
+  double Time = 0.0;
+  double IOR = 0.0;
+  int CameraIndex = 0;
+  int Photons = 0;
+  int Width = 512, Height = 512;
+  int Frames = 1;
+  double Exposure = 1.0;
+  bool Timings = false;
+  bool HasLightDirection = false, HasLightIntensity = false;
+  std::array<double, 3> LightDirection{ { 0, -1, 0 } };
+  double LightIntensity = 1.0;
+  bool HasCameraPosition = false, HasCameraFocal = false, HasCameraUp = false;
+  std::array<double, 3> CameraPosition{}, CameraFocal{}, CameraUp{};
+  double ViewAngle = 0.0;
+  bool HasMedium = false;
+  std::array<double, 3> Medium{};
+};
+
+/** A user mistake: reported as one line, exit code 2. */
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/** No OpenGL window can be made here (no display, no EGL): exit code 3. */
+struct NoWindowError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+double ParseNumber(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
+  {
+    throw UsageError(option + " expects a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+int ParseInteger(const std::string& option, const std::string& text, int low, int high)
+{
+  const double value = ParseNumber(option, text);
+  if (value != std::floor(value) || value < low || value > high)
+  {
+    throw UsageError(option + " expects an integer in [" + std::to_string(low) + ", " +
+      std::to_string(high) + "], got '" + text + "'");
+  }
+  return static_cast<int>(value);
+}
+
+std::array<double, 3> ParseVector(const std::string& option, const std::string& text)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ','))
+  {
+    parts.push_back(part);
+  }
+  if (parts.size() != 3)
+  {
+    throw UsageError(option + " expects three comma-separated numbers, got '" + text + "'");
+  }
+  return { { ParseNumber(option, parts[0]), ParseNumber(option, parts[1]),
+    ParseNumber(option, parts[2]) } };
+}
+
+std::string Lower(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(), ::tolower);
+  return text;
+}
+
+Options Parse(int argc, char* argv[], bool& help)
+{
+  Options options;
+  help = false;
+  bool sceneGiven = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string
+    {
+      if (i + 1 >= argc)
+      {
+        throw UsageError(arg + " needs a value");
+      }
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h")
+    {
+      help = true;
+    }
+    else if (arg == "--scene")
+    {
+      options.Scene = value();
+      sceneGiven = true;
+    }
+    else if (arg == "--role")
+    {
+      options.Role = value();
+    }
+    else if (arg == "--ior")
+    {
+      options.IOR = ParseNumber(arg, value());
+      if (options.IOR < 1.0)
+      {
+        throw UsageError("--ior must be >= 1 (vacuum), got " + std::string(argv[i]));
+      }
+    }
+    else if (arg == "--time")
+    {
+      options.Time = ParseNumber(arg, value());
+    }
+    else if (arg == "--camera-index")
+    {
+      options.CameraIndex = ParseInteger(arg, value(), -1, 1 << 20);
+    }
+    else if (arg == "--technique")
+    {
+      options.Technique = value();
+    }
+    else if (arg == "--photons")
+    {
+      options.Photons = ParseInteger(arg, value(), 1, 8192);
+    }
+    else if (arg == "--size")
+    {
+      const std::string text = value();
+      const auto x = text.find('x');
+      options.Width = ParseInteger(arg, text.substr(0, x), 1, 16384);
+      options.Height =
+        x == std::string::npos ? options.Width : ParseInteger(arg, text.substr(x + 1), 1, 16384);
+    }
+    else if (arg == "--frames")
+    {
+      options.Frames = ParseInteger(arg, value(), 1, 10000);
+    }
+    else if (arg == "--light-direction")
+    {
+      options.LightDirection = ParseVector(arg, value());
+      if (vtkMath::Norm(options.LightDirection.data()) == 0.0)
+      {
+        throw UsageError("--light-direction must not be the zero vector");
+      }
+      options.HasLightDirection = true;
+    }
+    else if (arg == "--light-intensity")
+    {
+      options.LightIntensity = ParseNumber(arg, value());
+      if (options.LightIntensity < 0.0)
+      {
+        throw UsageError("--light-intensity must be >= 0");
+      }
+      options.HasLightIntensity = true;
+    }
+    else if (arg == "--camera-position")
+    {
+      options.CameraPosition = ParseVector(arg, value());
+      options.HasCameraPosition = true;
+    }
+    else if (arg == "--camera-focal")
+    {
+      options.CameraFocal = ParseVector(arg, value());
+      options.HasCameraFocal = true;
+    }
+    else if (arg == "--camera-up")
+    {
+      options.CameraUp = ParseVector(arg, value());
+      if (vtkMath::Norm(options.CameraUp.data()) == 0.0)
+      {
+        throw UsageError("--camera-up must not be the zero vector");
+      }
+      options.HasCameraUp = true;
+    }
+    else if (arg == "--view-angle")
+    {
+      options.ViewAngle = ParseNumber(arg, value());
+      if (!(options.ViewAngle > 0.0 && options.ViewAngle < 180.0))
+      {
+        throw UsageError("--view-angle must lie in (0, 180) degrees");
+      }
+    }
+    else if (arg == "--medium")
+    {
+      options.Medium = ParseVector(arg, value());
+      if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
+      {
+        throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
+      }
+      options.HasMedium = true;
+    }
+    else if (arg == "--output")
+    {
+      options.Output = value();
+    }
+    else if (arg == "--exposure")
+    {
+      options.Exposure = ParseNumber(arg, value());
+      if (options.Exposure <= 0.0)
+      {
+        throw UsageError("--exposure must be > 0");
+      }
+    }
+    else if (arg == "--timings")
+    {
+      options.Timings = true;
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      throw UsageError("unknown option '" + arg + "' (see --help)");
+    }
+    else if (sceneGiven)
+    {
+      throw UsageError("more than one scene given ('" + options.Scene + "' and '" + arg + "')");
+    }
+    else
+    {
+      options.Scene = arg;
+      sceneGiven = true;
+    }
+  }
+  if (!vtkCausticsTechniques::Create(options.Technique))
+  {
+    std::string known;
+    for (const auto& name : vtkCausticsTechniques::GetNames())
+    {
+      known += name + ", ";
+    }
+    throw UsageError("unknown technique '" + options.Technique + "' (known: " + known + "best)");
+  }
+  return options;
+}
+
+/** Places a loaded mesh on a floor under a sun, with a camera that frames both. */
+void StageMesh(vtkRenderer* renderer, vtkActor* mesh)
+{
+  renderer->AddActor(mesh);
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  const double size =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double cx = 0.5 * (bounds[0] + bounds[1]), cz = 0.5 * (bounds[4] + bounds[5]);
+  // The floor sits one object-size below the mesh, so a lens focuses onto it.
+  const double floorY = bounds[2] - size;
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(cx - 4 * size, floorY, cz + 4 * size);
+  plane->SetPoint1(cx + 4 * size, floorY, cz + 4 * size);
+  plane->SetPoint2(cx - 4 * size, floorY, cz - 4 * size);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> floor;
+  floor->SetMapper(mapper);
+  floor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  floor->GetProperty()->SetSpecular(0.0);
+  vtkCausticsMaterial::SetName(floor, "floor");
+  renderer->AddActor(floor);
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(cx, bounds[3] + size, cz);
+  sun->SetFocalPoint(cx, floorY, cz);
+  sun->SetIntensity(1.0);
+  renderer->AddLight(sun);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(cx, 0.5 * (floorY + bounds[3]), cz);
+  camera->SetPosition(cx, bounds[3] + 1.5 * size, cz + 4.5 * size);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(30.0);
+  renderer->ResetCameraClippingRange();
+}
+
+void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* renderer,
+  vtkCausticsBuiltinScene* builtin)
+{
+  const std::string extension = Lower(vtksys::SystemTools::GetFilenameLastExtension(options.Scene));
+  if (vtkCausticsBuiltinScene::IsSceneName(options.Scene))
+  {
+    builtin->SetSceneName(options.Scene.c_str());
+    builtin->SetTime(options.Time);
+    builtin->SetRefractiveIndex(options.IOR);
+    if (!builtin->Populate(renderer))
+    {
+      throw std::runtime_error(builtin->GetLastError());
+    }
+  }
+  else if (extension == ".gltf" || extension == ".glb")
+  {
+    vtkNew<vtkCausticsGLTFImporter> importer;
+    importer->SetFileName(options.Scene.c_str());
+    importer->SetRenderWindow(window); // imports into the window's first renderer
+    importer->SetCamera(options.CameraIndex);
+    if (!importer->Read())
+    {
+      throw std::runtime_error(importer->GetLastError());
+    }
+    if (options.Time != 0.0)
+    {
+      importer->UpdateTimeStep(options.Time);
+    }
+    if (options.CameraIndex < 0 || importer->GetNumberOfCameras() == 0)
+    {
+      renderer->ResetCamera();
+    }
+  }
+  else if (vtkCausticsMeshReader::IsSupportedExtension(options.Scene))
+  {
+    vtkNew<vtkCausticsMeshReader> reader;
+    reader->SetFileName(options.Scene.c_str());
+    if (!reader->SetRoleFromName(options.Role.c_str()))
+    {
+      throw UsageError("unknown --role '" + options.Role + "' (refractor, reflector, receiver)");
+    }
+    if (options.IOR > 0.0)
+    {
+      reader->SetRefractiveIndex(options.IOR);
+    }
+    auto actor = reader->CreateActor();
+    if (!actor)
+    {
+      throw std::runtime_error(reader->GetLastError());
+    }
+    renderer->AutomaticLightCreationOff();
+    StageMesh(renderer, actor);
+  }
+  else if (extension.empty())
+  {
+    throw UsageError("unknown scene '" + options.Scene +
+      "' (built-in: ball-lens, pool, ring, bunny; or a .gltf/.glb/.ply/.obj/.stl file)");
+  }
+  else
+  {
+    throw UsageError("cannot read '" + options.Scene + "': unsupported file type '" + extension +
+      "' (use .gltf, .glb, .ply, .obj or .stl)");
+  }
+  if (options.IOR > 0.0)
+  {
+    // Applies to glTF refractors too (built-ins and meshes took it above).
+    vtkActorCollection* actors = renderer->GetActors();
+    vtkCollectionSimpleIterator it;
+    actors->InitTraversal(it);
+    while (vtkActor* actor = actors->GetNextActor(it))
+    {
+      if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
+      {
+        actor->GetProperty()->SetBaseIOR(options.IOR);
+      }
+    }
+  }
+}
+
+void ApplyOverrides(const Options& options, vtkRenderer* renderer)
+{
+  vtkLight* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  if ((options.HasLightDirection || options.HasLightIntensity) && !light)
+  {
+    throw UsageError("the scene has no light to override");
+  }
+  if (options.HasLightDirection)
+  {
+    const auto& d = options.LightDirection;
+    double focal[3];
+    light->GetFocalPoint(focal);
+    light->SetPositional(false);
+    light->SetTransformMatrix(nullptr);
+    light->SetPosition(focal[0] - d[0], focal[1] - d[1], focal[2] - d[2]);
+  }
+  if (options.HasLightIntensity)
+  {
+    light->SetIntensity(options.LightIntensity);
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (options.HasCameraPosition)
+  {
+    camera->SetPosition(options.CameraPosition.data());
+  }
+  if (options.HasCameraFocal)
+  {
+    camera->SetFocalPoint(options.CameraFocal.data());
+  }
+  if (options.HasCameraUp)
+  {
+    camera->SetViewUp(options.CameraUp.data());
+  }
+  if (options.ViewAngle > 0.0)
+  {
+    camera->SetViewAngle(options.ViewAngle);
+  }
+  double position[3], focal[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  if (vtkMath::Distance2BetweenPoints(position, focal) == 0.0)
+  {
+    throw UsageError("the camera position and focal point coincide");
+  }
+  camera->OrthogonalizeViewUp();
+  renderer->ResetCameraClippingRange();
+  if (options.HasMedium)
+  {
+    vtkNew<vtkCausticsMedium> medium;
+    medium->SetScatteringCoefficient(options.Medium[0], options.Medium[0], options.Medium[0]);
+    medium->SetAbsorptionCoefficient(options.Medium[1], options.Medium[1], options.Medium[1]);
+    medium->SetAnisotropy(options.Medium[2]);
+    vtkCausticsMedium::AttachTo(renderer, medium);
+  }
+}
+
+/** Copies buffer `name` of the pass into `output` as array `as`, if the frame made it. */
+bool CopyBuffer(vtkCausticsRenderPass* pass, const char* name, const char* as, vtkImageData* output)
+{
+  vtkNew<vtkImageData> buffer;
+  pass->GlobalWarningDisplayOff();
+  const bool ok = pass->ReadBuffer(name, buffer);
+  pass->GlobalWarningDisplayOn();
+  if (!ok)
+  {
+    return false;
+  }
+  vtkDataArray* array = buffer->GetPointData()->GetArray(0);
+  array->SetName(as);
+  output->GetPointData()->AddArray(array);
+  return true;
+}
+
+double Median(std::vector<double> values)
+{
+  if (values.empty())
+  {
+    return -1.0;
+  }
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/**
+ * VTK's messages, kept to one line each: errors are remembered (the run then fails
+ * naming the first one), warnings are printed as "caustics-render: warning: ...".
+ */
+class OneLineOutputWindow : public vtkOutputWindow
+{
+public:
+  static OneLineOutputWindow* New() { return new OneLineOutputWindow; }
+  void DisplayErrorText(const char* text) override
+  {
+    if (this->FirstError.empty())
+    {
+      this->FirstError = LastLine(text);
+    }
+  }
+  void DisplayWarningText(const char* text) override
+  {
+    std::cerr << "caustics-render: warning: " << LastLine(text) << "\n";
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+  void DisplayText(const char* text) override { std::cerr << text; }
+  std::string FirstError;
+
+private:
+  /** VTK formats "ERROR: In file, line N\nvtkClass (0x...): message\n\n": keep the message. */
+  static std::string LastLine(const char* text)
+  {
+    std::string message = text ? text : "";
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+    {
+      message.pop_back();
+    }
+    const auto newline = message.rfind('\n');
+    message = newline == std::string::npos ? message : message.substr(newline + 1);
+    const auto colon = message.find("): ");
+    return colon == std::string::npos ? message : message.substr(colon + 3);
+  }
+};
+
+int Run(const Options& options)
+{
+  std::string how;
+  vtkSmartPointer<vtkRenderWindow> window = vtkCausticsWindowFactory::Create(true, &how);
+  if (!window)
+  {
+    throw NoWindowError(how);
+  }
+  vtkNew<vtkOpenGLRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  LoadScene(options, window, renderer, builtin);
+  ApplyOverrides(options, renderer);
+
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(options.Technique);
+  pass->KeepBuffersOn();
+  pass->ComputeDirectIrradianceOn();
+  pass->GetTimings()->SynchronousOn();
+  if (options.Photons > 0)
+  {
+    pass->SetLightBufferResolution(options.Photons);
+  }
+  renderer->SetPass(pass);
+  window->SetMultiSamples(0);
+  window->SetSize(options.Width, options.Height);
+
+  std::map<std::string, std::vector<double>> gpu, cpu;
+  std::vector<std::string> order;
+  std::vector<double> frameTimes;
+  for (int frame = 0; frame < options.Frames; ++frame)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    frameTimes.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    vtkCausticsTimings* timings = pass->GetTimings();
+    for (int s = 0; s < timings->GetNumberOfStages(); ++s)
+    {
+      const std::string name = timings->GetStageName(s);
+      if (!timings->GetStageRan(s))
+      {
+        continue;
+      }
+      if (!gpu.count(name))
+      {
+        order.push_back(name);
+      }
+      gpu[name].push_back(timings->GetStageGPUMilliseconds(s));
+      cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
+    }
+  }
+
+  const auto& scene = pass->GetSceneExtractor()->GetScene();
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(options.Width, options.Height, 1);
+  if (!CopyBuffer(pass, "FinalColor", "FinalColor", image))
+  {
+    throw std::runtime_error("the frame produced no image (see the errors above)");
+  }
+  std::vector<std::pair<std::string, std::string>> layers = { { "FinalColor", "" } };
+  if (CopyBuffer(pass, "DirectIrradiance", "DirectIrradiance", image))
+  {
+    layers.emplace_back("DirectIrradiance", "direct");
+  }
+  if (!CopyBuffer(pass, "CausticIrradiance", "CausticIrradiance", image))
+  {
+    // No caustic stage ran (no specular actor or light): the caustic term is zero.
+    vtkNew<vtkFloatArray> zero;
+    zero->SetName("CausticIrradiance");
+    zero->SetNumberOfComponents(3);
+    zero->SetNumberOfTuples(static_cast<vtkIdType>(options.Width) * options.Height);
+    zero->Fill(0.0);
+    image->GetPointData()->AddArray(zero);
+  }
+  layers.emplace_back("CausticIrradiance", "caustic");
+  if (CopyBuffer(pass, "VolumeRadiance", "VolumeRadiance", image))
+  {
+    layers.emplace_back("VolumeRadiance", "volume");
+  }
+  if (CopyBuffer(pass, "ReceiverMask", "ReceiverMask", image))
+  {
+    layers.emplace_back("ReceiverMask", "mask");
+  }
+
+  std::string error;
+  const std::string png = options.Output + ".png", exr = options.Output + ".exr";
+  if (!vtkCausticsImageIO::WritePNG(image, "FinalColor", png, options.Exposure, false, &error) ||
+    !vtkCausticsImageIO::WriteEXR(image, layers, exr, &error))
+  {
+    throw std::runtime_error(error);
+  }
+
+  std::cout << "caustics-render: " << options.Scene << ", technique "
+            << (options.Technique == "best" ? vtkCausticsTechniques::GetBestName()
+                                            : options.Technique)
+            << ", " << options.Width << "x" << options.Height << ", window " << how << ", "
+            << scene.Meshes.size() << " meshes, " << scene.Lights.size() << " light(s)"
+            << (pass->GetLastFrameHadCaustics() ? "" : " (no caustic stage needed)") << "\n";
+  std::cout << "wrote " << png << " and " << exr << "\n";
+  if (options.Timings)
+  {
+    std::cout << std::fixed << std::setprecision(3) << "per-stage time, median of "
+              << options.Frames << " frame(s):\n";
+    for (const auto& name : order)
+    {
+      std::cout << "  " << std::left << std::setw(28) << name << "gpu " << std::right
+                << std::setw(9) << Median(gpu[name]) << " ms   cpu " << std::setw(9)
+                << Median(cpu[name]) << " ms\n";
+    }
+    std::cout << "  " << std::left << std::setw(28) << "whole frame (wall)"
+              << "    " << std::right << std::setw(9) << Median(frameTimes) << " ms\n";
+  }
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  vtkNew<OneLineOutputWindow> messages;
+  vtkOutputWindow::SetInstance(messages);
+  // VTK 9.1 also logs every error through loguru on stderr: one line is enough.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  try
+  {
+    bool help = false;
+    const Options options = Parse(argc, argv, help);
+    if (help)
+    {
+      std::string text = Usage;
+      const std::string techniques = "technique: " +
+        []
+      {
+        std::string names;
+        for (const auto& name : vtkCausticsTechniques::GetNames())
+        {
+          names += name + ", ";
+        }
+        return names + "best (default: " + vtkCausticsTechniques::GetBestName() + ")";
+      }();
+      text.replace(text.find("%TECHNIQUES%"), 12, techniques);
+      std::cout << text;
+      return 0;
+    }
+    const int status = Run(options);
+    if (!messages->FirstError.empty())
+    {
+      throw std::runtime_error(messages->FirstError);
+    }
+    return status;
+  }
+  catch (const UsageError& e)
+  {
+    std::cerr << "caustics-render: error: " << e.what() << "\n";
+    return 2;
+  }
+  catch (const NoWindowError& e)
+  {
+    std::cerr << "caustics-render: error: " << e.what() << "\n";
+    return 3;
+  }
+  catch (const std::exception& e)
+  {
+    // A VTK error seen first is usually the cause of what failed later.
+    const std::string cause = messages->FirstError;
+    std::cerr << "caustics-render: error: "
+              << (cause.empty() || cause == e.what() ? std::string(e.what()) : cause) << "\n";
+    return 1;
+  }
+}

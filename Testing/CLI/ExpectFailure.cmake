@@ -1,0 +1,20 @@
+# Runs the CLI with ARGS; passes if it exits non-zero (but not by a signal) with
+# exactly one line on stderr, starting "caustics-render: error:" and matching EXPECTED.
+execute_process(COMMAND ${CLI} ${ARGS}
+  RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if (result EQUAL 0)
+  message(FATAL_ERROR "expected a failure, got exit 0; stdout: ${out}")
+endif ()
+if (NOT result MATCHES "^[0-9]+$")
+  message(FATAL_ERROR "the CLI crashed: ${result}; stderr: ${err}")
+endif ()
+string(STRIP "${err}" err)
+string(FIND "${err}" "\n" newline)
+if (NOT newline EQUAL -1)
+  message(FATAL_ERROR "expected one line on stderr, got:\n${err}")
+endif ()
+string(FIND "${err}" "caustics-render: error: " prefix)
+string(FIND "${err}" "${EXPECTED}" found)
+if (NOT prefix EQUAL 0 OR found EQUAL -1)
+  message(FATAL_ERROR "expected 'caustics-render: error: ...${EXPECTED}...', got: ${err}")
+endif ()
