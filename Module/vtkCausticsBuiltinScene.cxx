@@ -4,6 +4,7 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsMeshReader.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCellArray.h"
 #include "vtkCylinderSource.h"
@@ -14,7 +15,6 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPLYReader.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -362,13 +362,15 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
       vtkErrorMacro(<< this->LastError);
       return false;
     }
-    vtkNew<vtkPLYReader> reader;
+    // The validating reader: vtkPLYReader alone crashes on a truncated file.
+    vtkNew<vtkCausticsMeshReader> reader;
     reader->SetFileName(path.c_str());
     reader->Update();
     vtkPolyData* raw = reader->GetOutput();
     if (raw->GetNumberOfPolys() == 0)
     {
-      this->LastError = path + " holds no triangles";
+      this->LastError = *reader->GetLastError() ? std::string(reader->GetLastError())
+                                                : path + " holds no triangles";
       vtkErrorMacro(<< this->LastError);
       return false;
     }
