@@ -10,6 +10,24 @@ const int ROLE_RECEIVER = 1;
 const int ROLE_REFLECTOR = 2;
 const int ROLE_REFRACTOR = 3;
 
+// Spot falloff of glTF KHR_lights_punctual, as caustics::Light::SpotFactor: 1
+// inside the inner cone, 0 outside the outer cone, a squared linear ramp in
+// cos(angle) between.
+float CausticsSpotFactor(float cosAngle, float cosOuter, float cosInner)
+{
+  if (cosAngle <= cosOuter)
+  {
+    return 0.0;
+  }
+  float range = cosInner - cosOuter;
+  if (range <= 1e-12)
+  {
+    return 1.0;
+  }
+  float t = min(1.0, (cosAngle - cosOuter) / range);
+  return t * t;
+}
+
 // Shader storage binding points reserved across all caustics stages.
 #define CAUSTICS_MATERIAL_BINDING 0
 

@@ -25,22 +25,7 @@ layout(location = 0) out vec4 outIrradiance;
 
 float SpotFactor(vec3 direction)
 {
-  if (lightType != 2)
-  {
-    return 1.0;
-  }
-  float c = dot(direction, lightDirection);
-  if (c <= cosOuter)
-  {
-    return 0.0;
-  }
-  float range = cosInner - cosOuter;
-  if (range <= 1e-12)
-  {
-    return 1.0;
-  }
-  float t = min(1.0, (c - cosOuter) / range);
-  return t * t;
+  return lightType != 2 ? 1.0 : CausticsSpotFactor(dot(direction, lightDirection), cosOuter, cosInner);
 }
 
 // Distance from the light along its ray (directional: along the axis).

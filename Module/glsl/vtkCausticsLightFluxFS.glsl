@@ -18,22 +18,7 @@ layout(location = 0) out vec4 outFlux;
 
 float SpotFactor(vec3 direction)
 {
-  if (isSpot == 0)
-  {
-    return 1.0;
-  }
-  float c = dot(direction, spotAxis);
-  if (c <= cosOuter)
-  {
-    return 0.0;
-  }
-  float range = cosInner - cosOuter;
-  if (range <= 1e-12)
-  {
-    return 1.0;
-  }
-  float t = min(1.0, (c - cosOuter) / range);
-  return t * t; // KHR_lights_punctual falloff, as caustics::Light::SpotFactor
+  return isSpot == 0 ? 1.0 : CausticsSpotFactor(dot(direction, spotAxis), cosOuter, cosInner);
 }
 
 void main()
