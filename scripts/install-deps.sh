@@ -12,6 +12,7 @@ packages=(
   xvfb xauth mesa-utils                         # an X server for tests
   libgtest-dev libbenchmark-dev                 # tests and micro-benchmarks
   python3-matplotlib                            # benchmark plots
+  python3-dev python3-vtk9                      # Python wrapping (vtkcaustics)
 )
 
 missing=()

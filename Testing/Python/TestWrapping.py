@@ -1,0 +1,57 @@
+"""The Python wrapping: a built-in scene renders through the caustics pass from
+Python, buffers read back, and bad input is refused as in C++."""
+import sys
+
+import vtkmodules.vtkInteractionStyle  # noqa: F401
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkRenderingCore import vtkRenderWindow
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
+
+import vtkcaustics
+
+
+def main():
+    renderer = vtkOpenGLRenderer()
+    scene = vtkcaustics.vtkCausticsBuiltinScene()
+    scene.SetSceneName("ball-lens")
+    if not scene.Populate(renderer):
+        return "ball-lens did not populate: " + scene.GetLastError()
+    bad = vtkcaustics.vtkCausticsBuiltinScene()
+    bad.GlobalWarningDisplayOff()
+    bad.SetSceneName("teapot")
+    if bad.Populate(vtkOpenGLRenderer()) or "teapot" not in bad.GetLastError():
+        return "an unknown scene was not refused"
+
+    caustics = vtkcaustics.vtkCausticsRenderPass()
+    caustics.KeepBuffersOn()
+    caustics.ComputeDirectIrradianceOn()
+    renderer.SetPass(caustics)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(64, 64)
+    window.AddRenderer(renderer)
+    window.Render()
+
+    direct = vtkImageData()
+    if not caustics.ReadBuffer("DirectIrradiance", direct):
+        return "no DirectIrradiance buffer"
+    values = direct.GetPointData().GetArray(0)
+    peak = max(values.GetComponent(i, 0) for i in range(values.GetNumberOfTuples()))
+    # The floor faces the 1 W/m^2 light: the brightest pixel receives 1 W/m^2.
+    if abs(peak - 1.0) > 1e-4:
+        return "peak direct irradiance %g W/m^2, expected 1" % peak
+    if vtkcaustics.vtkCausticsMaterial.GetRoleName(3) != "refractor":
+        return "role names are wrong"
+    renderer.SetPass(None)
+    caustics.ReleaseGraphicsResources(window)
+    return None
+
+
+if __name__ == "__main__":
+    problem = main()
+    if problem:
+        print("TestWrapping: " + problem)
+        sys.exit(1)
+    print("TestWrapping: ok")

@@ -1,0 +1,6 @@
+"""VTK caustics module: physically based surface and volume caustics as VTK render passes.
+
+Import after VTK's OpenGL2 rendering module, whose classes the passes derive from.
+"""
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (base classes, OpenGL factory)
+from .vtkRenderingCaustics import *  # noqa: F401,F403
