@@ -1652,7 +1652,16 @@ struct ReferenceTracer::Internals
           const double far = this->FarDistance(i, j, o);
           Hit& hit = hits[id];
           hit.mesh = -1;
-          const bool found = this->HasGeometry && this->Intersect(o, v, far, hit);
+          bool found = this->HasGeometry && this->Intersect(o, v, far, hit);
+          // Optionally look through refractors, unbent, as the GPU's opaque G-buffer does.
+          while (found && !this->Settings.cameraSeesRefractors &&
+            this->MaterialOf(hit.mesh).role == Role::Refractor)
+          {
+            const V3 next = this->Offset(hit.position, hit.geometricNormal, v);
+            const double skipped = Length(next - o);
+            found = this->Intersect(next, v, far - skipped, hit);
+            hit.t += found ? skipped : 0.0;
+          }
           const double end = found ? hit.t : far;
           if (found)
           {

@@ -93,6 +93,7 @@ struct ReferenceSettings
   double rouletteThreshold = 0.1;        ///< branch weight below which Russian roulette is used
   double rayMarchStep = 0.0;             ///< m; 0: scene size / 256
   double volumeKernelRadiusPixels = 1.5; ///< beam kernel radius in pixel footprints
+  bool cameraSeesRefractors = true;      ///< false: camera rays pass refractors unbent
 };
 
 /** A photon that reached a receiver after at least one specular event. */

@@ -250,6 +250,7 @@ caustics::ReferenceSettings vtkCausticsReferenceRenderer::GetSettings() const
   settings.rouletteThreshold = this->RouletteThreshold;
   settings.rayMarchStep = this->RayMarchStep;
   settings.volumeKernelRadiusPixels = this->VolumeKernelRadiusPixels;
+  settings.cameraSeesRefractors = this->CameraSeesRefractors;
   return settings;
 }
 
@@ -270,6 +271,7 @@ std::string vtkCausticsReferenceRenderer::ComputeCacheKey(
   hash.Value(settings.rouletteThreshold);
   hash.Value(settings.rayMarchStep);
   hash.Value(settings.volumeKernelRadiusPixels);
+  hash.Value(settings.cameraSeesRefractors ? 1 : 0);
   hash.Value(scene.Meshes.size());
   for (const auto& mesh : scene.Meshes)
   {
@@ -649,6 +651,7 @@ void vtkCausticsReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "RayMarchStep: " << this->RayMarchStep << " m (0 = scene size / 256)\n";
   os << indent << "VolumeKernelRadiusPixels: " << this->VolumeKernelRadiusPixels << "\n";
+  os << indent << "CameraSeesRefractors: " << this->CameraSeesRefractors << "\n";
   os << indent << "UseCache: " << (this->UseCache ? "on" : "off") << "\n";
   os << indent << "CacheDirectory: " << this->CacheDirectory << "\n";
   os << indent << "Version: " << ReferenceVersion << "\n";

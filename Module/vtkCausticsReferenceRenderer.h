@@ -194,6 +194,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Whether camera rays stop at refractors (default on: the first visible surface).
+   * Off, they pass through refractors in a straight line to the first reflector or
+   * receiver, the surface the GPU passes' opaque G-buffer holds: the caustic
+   * irradiance under a water surface (the pool's floor) can then be compared.
+   * Photons are unaffected.
+   */
+  vtkSetMacro(CameraSeesRefractors, bool);
+  vtkGetMacro(CameraSeesRefractors, bool);
+  vtkBooleanMacro(CameraSeesRefractors, bool);
+  ///@}
+
+  ///@{
   /** Load and store results in CacheDirectory. Default on. */
   vtkSetMacro(UseCache, bool);
   vtkGetMacro(UseCache, bool);
@@ -283,6 +296,7 @@ protected:
   double RouletteThreshold = 0.1;
   double RayMarchStep = 0.0;
   double VolumeKernelRadiusPixels = 1.5;
+  bool CameraSeesRefractors = true;
   bool UseCache = true;
   std::string CacheDirectory;
 

@@ -459,3 +459,43 @@ TEST(ReferenceRenderer, EmptyScenesGiveCorrectZeroImages)
     EXPECT_TRUE(std::isfinite(Sum(odd->GetOutput(), name))) << name;
   }
 }
+
+TEST(ReferenceRenderer, CameraCanLookThroughRefractors)
+{
+  // The pool's floor is seen through the water. By default the water is the
+  // visible surface (no receiver there); with CameraSeesRefractors off, camera
+  // rays pass the water unbent and the floor under it becomes comparable with the
+  // GPU passes' opaque G-buffer, caustics included.
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> pool;
+  pool->SetSceneName("pool");
+  ASSERT_TRUE(pool->Populate(renderer));
+  auto countMask = [](vtkImageData* image, double* caustic) {
+    vtkDataArray* mask = image->GetPointData()->GetArray("ReceiverMask");
+    vtkDataArray* e = image->GetPointData()->GetArray("CausticIrradiance");
+    int count = 0;
+    *caustic = 0.0;
+    for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
+    {
+      count += mask->GetComponent(i, 0) > 0.5 ? 1 : 0;
+      *caustic += mask->GetComponent(i, 0) > 0.5 ? e->GetComponent(i, 0) : 0.0;
+    }
+    return count;
+  };
+  auto surface = reftest::MakeReference(renderer, 48, 48, 20000);
+  surface->UseCacheOff();
+  ASSERT_TRUE(surface->Update()) << surface->GetLastError();
+  double causticSurface = 0.0, causticFloor = 0.0;
+  const int seenFromAbove = countMask(surface->GetOutput(), &causticSurface);
+  auto floor = reftest::MakeReference(renderer, 48, 48, 20000);
+  floor->UseCacheOff();
+  floor->CameraSeesRefractorsOff();
+  ASSERT_TRUE(floor->Update()) << floor->GetLastError();
+  const int seenThroughWater = countMask(floor->GetOutput(), &causticFloor);
+  // From above only the walls above the water show (671 of 48^2 pixels here);
+  // through the water the floor adds more than as many again (1816).
+  EXPECT_GT(seenThroughWater, 2 * seenFromAbove);
+  // Sunlight refracted by the waves reaches the floor: caustic light there.
+  EXPECT_GT(causticFloor, 0.0);
+  EXPECT_GT(causticFloor, causticSurface);
+}
