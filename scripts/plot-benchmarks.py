@@ -107,6 +107,12 @@ def pareto_front(points):
     return front
 
 
+def photons_label(knobs):
+    """"photons=9998243" as "1.0e7 photons"."""
+    mantissa, exponent = f"{float(knobs.split('=')[-1]):.1e}".split("e")
+    return f"{mantissa}e{int(exponent)} photons"
+
+
 def plot(path, output):
     try:
         import matplotlib
@@ -146,7 +152,7 @@ def plot(path, output):
             panel.plot([p[0] for p in dominated], [p[1] for p in dominated], "o",
                        color=colours[technique], alpha=0.3, markersize=3)
             for p in front:
-                text = p[2].replace("photons=", "") if technique == "reference" else p[2]
+                text = photons_label(p[2]) if technique == "reference" else p[2]
                 panel.annotate(text, (p[0], p[1]), fontsize=5.5, xytext=(3, 3),
                                textcoords="offset points", color=colours[technique])
         overall = pareto_front(everything)
@@ -159,7 +165,7 @@ def plot(path, output):
         panel.set_ylabel("relative L2 error, caustic irradiance", fontsize=8)
         panel.tick_params(labelsize=7)
         panel.grid(True, which="both", alpha=0.2)
-        panel.legend(fontsize=6.5, loc="best")
+        panel.legend(fontsize=6.5, loc="lower left")
     for panel in list(axes.flat)[len(scenes):]:
         panel.axis("off")
     width, height = rows[0]["width"], rows[0]["height"]

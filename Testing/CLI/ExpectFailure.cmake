@@ -1,5 +1,9 @@
 # Runs the CLI with ARGS; passes if it exits non-zero (but not by a signal) with
-# exactly one line on stderr, starting "caustics-render: error:" and matching EXPECTED.
+# exactly one line on stderr, starting with PREFIX (default "caustics-render: error: ")
+# and containing EXPECTED.
+if (NOT DEFINED PREFIX)
+  set(PREFIX "caustics-render: error: ")
+endif ()
 execute_process(COMMAND ${CLI} ${ARGS}
   RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if (result EQUAL 0)
@@ -13,8 +17,8 @@ string(FIND "${err}" "\n" newline)
 if (NOT newline EQUAL -1)
   message(FATAL_ERROR "expected one line on stderr, got:\n${err}")
 endif ()
-string(FIND "${err}" "caustics-render: error: " prefix)
+string(FIND "${err}" "${PREFIX}" prefix)
 string(FIND "${err}" "${EXPECTED}" found)
 if (NOT prefix EQUAL 0 OR found EQUAL -1)
-  message(FATAL_ERROR "expected 'caustics-render: error: ...${EXPECTED}...', got: ${err}")
+  message(FATAL_ERROR "expected '${PREFIX}...${EXPECTED}...', got: ${err}")
 endif ()

@@ -1,0 +1,1386 @@
+// caustics-bench: run time against error of the caustics techniques, measured on the
+// built-in scenes against the CPU reference renderer.
+//
+//   caustics-bench [options]
+//
+// For each scene x technique x configuration (a quality knob setting), it renders
+// warm-up frames, then timed frames, and records the median wall time per frame, the
+// median GPU time of each stage (timer queries) and the error of the caustic
+// irradiance against a cached high-photon-count reference. It also times the
+// reference itself at several photon counts: what the same error costs offline.
+// Results: benchmarks.csv (one row per configuration), benchmark-stages.csv (one row
+// per stage), benchmarks.png (via scripts/plot-benchmarks.py) in the output folder;
+// --update-docs rewrites the generated section of docs/benchmarks.md.
+//
+// Every error is one line on stderr naming the problem, and a non-zero exit:
+// 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsRenderPass.h"
+#include "vtkCausticsTechniques.h"
+#include "vtkCausticsTimings.h"
+#include "vtkCausticsWindowFactory.h"
+
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOutputWindow.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkSmartPointer.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <sys/wait.h> // For WIFEXITED / WEXITSTATUS of std::system
+
+namespace
+{
+const double NaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------
+// The quality sweeps: every technique's configurations, declared here and only here.
+// ---------------------------------------------------------------------------
+
+/**
+ * One configuration of one technique. Knobs are "name=value" pairs separated by
+ * spaces (the CSV's knobs column and the docs' table); Apply sets them on a new pass
+ * of the technique and returns false when the pass is not of the class the entry
+ * was written for (the registry and this table disagree).
+ */
+struct Configuration
+{
+  std::string Technique;
+  std::string Knobs;
+  std::function<bool(vtkCausticsRenderPass*)> Apply;
+};
+
+/** An Apply function that downcasts the pass to PassType (SafeDownCast) and calls `set`. */
+template <typename PassType>
+std::function<bool(vtkCausticsRenderPass*)> Set(std::function<void(PassType*)> set)
+{
+  return [set](vtkCausticsRenderPass* pass)
+  {
+    PassType* typed = PassType::SafeDownCast(pass);
+    if (!typed)
+    {
+      return false;
+    }
+    set(typed);
+    return true;
+  };
+}
+
+/**
+ * The sweep of every technique, in the order the CSV and the docs list them. A
+ * technique registered in vtkCausticsTechniques without entries here runs once with
+ * its defaults (knobs "default").
+ */
+std::vector<Configuration> MakeConfigurations()
+{
+  std::vector<Configuration> table;
+  // "none": the shared stages (snapshot, VTK delegate, G-buffers, light buffers,
+  // composite) with no technique. Its cost at each photon-grid size the techniques
+  // use is their cost floor; its error (1: no caustic light) is the ceiling.
+  for (int grid : { 64, 128, 256, 512 })
+  {
+    table.push_back({ "none", "grid=" + std::to_string(grid),
+      Set<vtkCausticsRenderPass>(
+        [grid](vtkCausticsRenderPass* pass) { pass->SetLightBufferResolution(grid); }) });
+  }
+  return table;
+}
+
+// ---------------------------------------------------------------------------
+// Command line.
+// ---------------------------------------------------------------------------
+
+const char* Usage = R"(usage: caustics-bench [options]
+
+Measures run time against error of the caustics techniques on the built-in scenes.
+For each scene x technique x configuration: median wall time per frame, median GPU
+time per stage (timer queries), and the error of the caustic irradiance (W/m^2) on
+receiver pixels against a high-photon-count CPU reference (cached). Also times the
+reference at several photon counts (its error against the high-count one), i.e.
+what the same error costs offline. Writes benchmarks.csv, benchmark-stages.csv and
+benchmarks.png (scripts/plot-benchmarks.py, needs matplotlib) to the output folder.
+
+Selection:
+  --scenes A,B,...           built-in scenes (default: ball-lens,pool,ring,bunny)
+  --techniques A,B,...       techniques (default: every registered one, then none)
+  --list                     print the scenes, techniques and configurations, and exit
+
+Measurement:
+  --size N                   image size N x N pixels, 16..4096 (default 256)
+  --frames N                 timed frames per configuration, 5..1000 (default 7)
+  --warmup N                 untimed frames first, 2..100 (default 2)
+  --reference-photons N      photons per light of the ground truth (default 2e7);
+                             cached in $CAUSTICS_REFERENCE_CACHE or the build tree
+  --reference-ladder A,B,... photon counts at which the reference is timed, each
+                             below --reference-photons (default 1e5,1e6,1e7)
+  --reference-repeats N      renders per ladder count, 1..20; the median time is
+                             kept; a count stops repeating once its runs took 30 s
+                             (default 3)
+
+Output:
+  --output DIR               output folder, created if needed (default: caustics-bench-results)
+  --no-plot                  do not run scripts/plot-benchmarks.py
+  --python PATH              Python with matplotlib for the plot (default:
+                             $CAUSTICS_PYTHON, else /usr/bin/python3, else python3)
+  --update-docs              rewrite the generated section of docs/benchmarks.md and
+                             copy the plot to docs/benchmarks.png
+  --docs FILE                the Markdown file --update-docs rewrites
+
+  --smoke                    tiny run for CI: the first scene at 64 x 64, the first
+                             configuration of each technique, 1 warm-up + 2 timed
+                             frames, reference 1e5 photons, ladder 1e4,3e4 run once
+  --help                     this text
+)";
+
+struct Options
+{
+  std::vector<std::string> Scenes;
+  std::vector<std::string> Techniques;
+  int Size = 256;
+  int Frames = 7;
+  int Warmup = 2;
+  double ReferencePhotons = 2e7;
+  std::vector<double> Ladder = { 1e5, 1e6, 1e7 };
+  int ReferenceRepeats = 3;
+  std::string Output = "caustics-bench-results";
+  bool Plot = true;
+  std::string Python;
+  bool UpdateDocs = false;
+  std::string Docs;
+  bool Smoke = false;
+  bool List = false;
+  bool Help = false;
+  std::string CommandLine;
+};
+
+/** A user mistake: reported as one line, exit code 2. */
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/** No OpenGL window can be made here (no display, no EGL): exit code 3. */
+struct NoWindowError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+double ParseNumber(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
+  {
+    throw UsageError(option + " expects a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+/** An integer in [low, high]; accepts 1e6-style notation for photon counts. */
+double ParseCount(const std::string& option, const std::string& text, double low, double high)
+{
+  const double value = ParseNumber(option, text);
+  if (value != std::floor(value) || value < low || value > high)
+  {
+    std::ostringstream message;
+    message << option << " expects an integer in [" << low << ", " << high << "], got '" << text
+            << "'";
+    throw UsageError(message.str());
+  }
+  return value;
+}
+
+std::vector<std::string> SplitList(const std::string& option, const std::string& text)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ','))
+  {
+    if (part.empty())
+    {
+      throw UsageError(option + " expects a comma-separated list, got '" + text + "'");
+    }
+    if (std::find(parts.begin(), parts.end(), part) != parts.end())
+    {
+      throw UsageError(option + " lists '" + part + "' twice");
+    }
+    parts.push_back(part);
+  }
+  if (parts.empty())
+  {
+    throw UsageError(option + " expects a comma-separated list, got '" + text + "'");
+  }
+  return parts;
+}
+
+std::string Join(const std::vector<std::string>& items, const char* separator = ", ")
+{
+  std::string text;
+  for (const auto& item : items)
+  {
+    text += (text.empty() ? "" : separator) + item;
+  }
+  return text;
+}
+
+/** Quotes an argument for a POSIX shell when it needs it. */
+std::string ShellQuote(const std::string& text)
+{
+  const char* safe = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=/.,:@%";
+  if (!text.empty() && text.find_first_not_of(safe) == std::string::npos)
+  {
+    return text;
+  }
+  std::string quoted = "'";
+  for (char c : text)
+  {
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return quoted + "'";
+}
+
+/** Techniques by default: every registered one except "none", then "none" (the floor). */
+std::vector<std::string> DefaultTechniques()
+{
+  std::vector<std::string> names;
+  for (const auto& name : vtkCausticsTechniques::GetNames())
+  {
+    if (name != "none")
+    {
+      names.push_back(name);
+    }
+  }
+  names.emplace_back("none");
+  return names;
+}
+
+Options Parse(int argc, char* argv[])
+{
+  Options options;
+  options.Scenes = vtkCausticsBuiltinScene::GetSceneNames();
+  options.Techniques = DefaultTechniques();
+  bool ladderGiven = false;
+  for (int i = 0; i < argc; ++i)
+  {
+    options.CommandLine += (i ? " " : "") + ShellQuote(argv[i]);
+  }
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string
+    {
+      if (i + 1 >= argc)
+      {
+        throw UsageError(arg + " needs a value");
+      }
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h")
+    {
+      options.Help = true;
+    }
+    else if (arg == "--list")
+    {
+      options.List = true;
+    }
+    else if (arg == "--scenes")
+    {
+      options.Scenes = SplitList(arg, value());
+      for (const auto& scene : options.Scenes)
+      {
+        if (!vtkCausticsBuiltinScene::IsSceneName(scene))
+        {
+          throw UsageError("unknown scene '" + scene +
+            "' (built-in: " + Join(vtkCausticsBuiltinScene::GetSceneNames()) + ")");
+        }
+      }
+    }
+    else if (arg == "--techniques")
+    {
+      options.Techniques = SplitList(arg, value());
+      for (auto& technique : options.Techniques)
+      {
+        if (technique == "best")
+        {
+          technique = vtkCausticsTechniques::GetBestName();
+        }
+        if (!vtkCausticsTechniques::Create(technique))
+        {
+          throw UsageError("unknown technique '" + technique +
+            "' (known: " + Join(vtkCausticsTechniques::GetNames()) + ", best)");
+        }
+      }
+    }
+    else if (arg == "--size")
+    {
+      options.Size = static_cast<int>(ParseCount(arg, value(), 16, 4096));
+    }
+    else if (arg == "--frames")
+    {
+      options.Frames = static_cast<int>(ParseCount(arg, value(), 5, 1000));
+    }
+    else if (arg == "--warmup")
+    {
+      options.Warmup = static_cast<int>(ParseCount(arg, value(), 2, 100));
+    }
+    else if (arg == "--reference-photons")
+    {
+      options.ReferencePhotons = ParseCount(arg, value(), 1000, 1e10);
+    }
+    else if (arg == "--reference-ladder")
+    {
+      options.Ladder.clear();
+      for (const auto& count : SplitList(arg, value()))
+      {
+        options.Ladder.push_back(ParseCount(arg, count, 100, 1e10));
+      }
+      std::sort(options.Ladder.begin(), options.Ladder.end());
+      ladderGiven = true;
+    }
+    else if (arg == "--reference-repeats")
+    {
+      options.ReferenceRepeats = static_cast<int>(ParseCount(arg, value(), 1, 20));
+    }
+    else if (arg == "--output")
+    {
+      options.Output = value();
+      if (options.Output.empty())
+      {
+        throw UsageError("--output needs a folder name");
+      }
+    }
+    else if (arg == "--no-plot")
+    {
+      options.Plot = false;
+    }
+    else if (arg == "--python")
+    {
+      options.Python = value();
+    }
+    else if (arg == "--update-docs")
+    {
+      options.UpdateDocs = true;
+    }
+    else if (arg == "--docs")
+    {
+      options.Docs = value();
+    }
+    else if (arg == "--smoke")
+    {
+      options.Smoke = true;
+    }
+    else
+    {
+      throw UsageError("unknown option '" + arg + "' (see --help)");
+    }
+  }
+  if (options.Smoke)
+  {
+    if (options.UpdateDocs)
+    {
+      throw UsageError("--update-docs cannot be combined with --smoke (the docs show full runs)");
+    }
+    options.Scenes.resize(1);
+    options.Size = 64;
+    options.Warmup = 1;
+    options.Frames = 2;
+    options.ReferencePhotons = 1e5;
+    if (!ladderGiven)
+    {
+      options.Ladder = { 1e4, 3e4 };
+    }
+    options.ReferenceRepeats = 1;
+  }
+  for (double count : options.Ladder)
+  {
+    if (count >= options.ReferencePhotons)
+    {
+      std::ostringstream message;
+      message << "--reference-ladder count " << static_cast<long long>(count)
+              << " must be below --reference-photons ("
+              << static_cast<long long>(options.ReferencePhotons)
+              << "): the ladder is measured against that reference";
+      throw UsageError(message.str());
+    }
+  }
+  if (options.Python.empty())
+  {
+    // Debian's python3 has python3-matplotlib; a python3 earlier on PATH may not.
+    const char* fromEnvironment = std::getenv("CAUSTICS_PYTHON");
+    if (fromEnvironment && *fromEnvironment)
+    {
+      options.Python = fromEnvironment;
+    }
+    else
+    {
+      const bool debian = vtksys::SystemTools::FileExists("/usr/bin/python3");
+      options.Python = debian ? "/usr/bin/python3" : "python3";
+    }
+  }
+  if (options.Docs.empty())
+  {
+    options.Docs = std::string(CAUSTICS_SOURCE_DIR) + "/docs/benchmarks.md";
+  }
+  return options;
+}
+
+/** The configurations of `technique`: its table entries, or its defaults. */
+std::vector<Configuration> ConfigurationsOf(
+  const std::string& technique, const std::vector<Configuration>& table)
+{
+  std::vector<Configuration> selected;
+  for (const auto& configuration : table)
+  {
+    if (configuration.Technique == technique)
+    {
+      selected.push_back(configuration);
+    }
+  }
+  if (selected.empty())
+  {
+    selected.push_back({ technique, "default", [](vtkCausticsRenderPass*) { return true; } });
+  }
+  return selected;
+}
+
+// ---------------------------------------------------------------------------
+// Statistics and the machine.
+// ---------------------------------------------------------------------------
+
+/** Median; NaN for no values or when one is NaN (a time that was not measured). */
+double Median(std::vector<double> values)
+{
+  if (values.empty() ||
+    std::any_of(values.begin(), values.end(), [](double v) { return std::isnan(v); }))
+  {
+    return NaN;
+  }
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double Milliseconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+    .count();
+}
+
+struct Machine
+{
+  std::string CPU = "unknown CPU";
+  unsigned int Threads = 0;
+  std::string Window;
+  std::string GLRenderer = "unknown";
+  std::string GLVersion = "unknown";
+  std::string Date;
+  std::string LoadAverage = "unknown"; // 1-minute load average when the run started
+};
+
+std::string AfterColon(const std::string& line)
+{
+  const auto colon = line.find(':');
+  const std::string value = colon == std::string::npos ? line : line.substr(colon + 1);
+  const auto first = value.find_first_not_of(" \t");
+  const auto last = value.find_last_not_of(" \t\r");
+  return first == std::string::npos ? std::string() : value.substr(first, last - first + 1);
+}
+
+/** CPU model, hardware threads and the date; the GL strings come after the first frame. */
+Machine DescribeMachine()
+{
+  Machine machine;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line))
+  {
+    if (line.rfind("model name", 0) == 0)
+    {
+      machine.CPU = AfterColon(line);
+      break;
+    }
+  }
+  machine.Threads = std::thread::hardware_concurrency();
+  // Other work on the machine slows both the GPU (llvmpipe) and the reference down.
+  std::ifstream loadavg("/proc/loadavg");
+  loadavg >> machine.LoadAverage;
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  machine.Date = date;
+  return machine;
+}
+
+void DescribeGL(vtkRenderWindow* window, Machine& machine)
+{
+  std::istringstream capabilities(window->ReportCapabilities());
+  std::string line;
+  while (std::getline(capabilities, line))
+  {
+    if (line.rfind("OpenGL renderer string", 0) == 0)
+    {
+      machine.GLRenderer = AfterColon(line);
+    }
+    else if (line.rfind("OpenGL version string", 0) == 0)
+    {
+      machine.GLVersion = AfterColon(line);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Measurements.
+// ---------------------------------------------------------------------------
+
+/** Median times of one stage. GPU is NaN for CPU-only stages (the reference). */
+struct Stage
+{
+  std::string Name;
+  double GPUMilliseconds = NaN;
+  double CPUMilliseconds = NaN;
+};
+
+/** One row of benchmarks.csv: a configuration of a technique, or a reference run. */
+struct Row
+{
+  std::string Scene;
+  std::string Technique; // a registered name, or "reference"
+  std::string Knobs;
+  int Frames = 0;                // timed frames (reference: timed renders)
+  double WallMilliseconds = NaN; // median per frame (reference: per render)
+  double GPUMilliseconds = NaN;  // median of the per-frame sum of stage GPU times
+  vtkCausticsErrorMetrics::Result Error;
+  std::vector<Stage> Stages;
+  std::string Status = "ok";
+  bool IsReference() const { return this->Technique == "reference"; }
+};
+
+/**
+ * VTK's messages, kept to one line each: errors are remembered (the configuration
+ * being measured then fails, naming the first one), warnings are printed as
+ * "caustics-bench: warning: ...".
+ */
+class OneLineOutputWindow : public vtkOutputWindow
+{
+public:
+  static OneLineOutputWindow* New() { return new OneLineOutputWindow; }
+  void DisplayErrorText(const char* text) override
+  {
+    if (this->FirstError.empty())
+    {
+      this->FirstError = LastLine(text);
+    }
+  }
+  void DisplayWarningText(const char* text) override
+  {
+    std::cerr << "caustics-bench: warning: " << LastLine(text) << "\n";
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+  void DisplayText(const char* text) override { std::cerr << text; }
+  /** The first error since the last call, cleared. */
+  std::string TakeError()
+  {
+    std::string error;
+    error.swap(this->FirstError);
+    return error;
+  }
+
+private:
+  /** VTK formats "ERROR: In file, line N\nvtkClass (0x...): message\n\n": keep the message. */
+  static std::string LastLine(const char* text)
+  {
+    std::string message = text ? text : "";
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+    {
+      message.pop_back();
+    }
+    const auto newline = message.rfind('\n');
+    message = newline == std::string::npos ? message : message.substr(newline + 1);
+    const auto colon = message.find("): ");
+    return colon == std::string::npos ? message : message.substr(colon + 3);
+  }
+  std::string FirstError;
+};
+
+/** Error of `test`'s CausticIrradiance against the reference image, on its receiver pixels. */
+vtkCausticsErrorMetrics::Result CompareWithReference(vtkImageData* test, vtkImageData* truth)
+{
+  vtkNew<vtkCausticsErrorMetrics> metrics;
+  metrics->SetArrayName("CausticIrradiance");
+  metrics->SetMaskArrayName("ReceiverMask");
+  metrics->SetAreaArrayName("PixelArea");
+  if (!metrics->Compute(test, truth))
+  {
+    throw std::runtime_error(std::string("comparison failed: ") + metrics->GetLastError());
+  }
+  return metrics->GetResult();
+}
+
+/** The renderer's scene at size x size, rendered by the reference with `photons` per light. */
+vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(
+  vtkRenderer* renderer, int size, double photons, unsigned int seed, bool cache)
+{
+  auto reference = vtkSmartPointer<vtkCausticsReferenceRenderer>::New();
+  reference->SetInputRenderer(renderer);
+  reference->SetImageSize(size, size);
+  reference->SetPhotonsPerLight(static_cast<vtkIdType>(photons));
+  reference->SetSeed(seed);
+  reference->SetUseCache(cache);
+  return reference;
+}
+
+/** What the run did to make its ground truths: one line per scene for the docs. */
+struct TruthRecord
+{
+  std::string Scene;
+  vtkIdType Photons = 0;
+  bool FromCache = false;
+  double Seconds = 0.0;
+  std::string CacheFile; // name of the cached EXR (a hash of every input)
+};
+
+/**
+ * The reference at each ladder count (seed 2, cache off, so it is really rendered
+ * and independent of the ground truth's seed 1): median wall time over repeats and
+ * error against the ground truth. Repeats stop once a count has used 30 s.
+ */
+std::vector<Row> TimeReferenceLadder(const Options& options, const std::string& scene,
+  vtkRenderer* renderer, vtkImageData* truth, OneLineOutputWindow* messages)
+{
+  std::vector<Row> rows;
+  for (double photons : options.Ladder)
+  {
+    Row row;
+    row.Scene = scene;
+    row.Technique = "reference";
+    std::vector<double> wall, tracing, view, volume;
+    double spent = 0.0;
+    vtkSmartPointer<vtkCausticsReferenceRenderer> reference;
+    for (int repeat = 0; repeat < options.ReferenceRepeats && (repeat == 0 || spent < 30.0);
+         ++repeat)
+    {
+      reference = MakeReference(renderer, options.Size, photons, 2, false);
+      if (!reference->Update())
+      {
+        throw std::runtime_error(
+          "the reference failed on scene '" + scene + "': " + reference->GetLastError());
+      }
+      wall.push_back(1000.0 * reference->GetWallTime());
+      const auto& statistics = reference->GetStatistics();
+      tracing.push_back(1000.0 * statistics.photonSeconds);
+      view.push_back(1000.0 * statistics.viewSeconds);
+      volume.push_back(1000.0 * statistics.volumeSeconds);
+      spent += reference->GetWallTime();
+    }
+    row.Knobs = "photons=" + std::to_string(reference->GetNumberOfPhotonsEmitted());
+    row.Frames = static_cast<int>(wall.size());
+    row.WallMilliseconds = Median(wall);
+    row.Stages = { { "photon tracing", NaN, Median(tracing) },
+      { "camera rays and gather", NaN, Median(view) }, { "volume", NaN, Median(volume) } };
+    row.Error = CompareWithReference(reference->GetOutput(), truth);
+    const std::string error = messages->TakeError();
+    if (!error.empty())
+    {
+      throw std::runtime_error(error);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/** The pass's caustic irradiance of the last frame, or zeros when it ran no caustic stage. */
+vtkSmartPointer<vtkImageData> ReadCausticIrradiance(vtkCausticsRenderPass* pass, int size)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  if (pass->GetLastFrameHadCaustics())
+  {
+    if (!pass->ReadBuffer("CausticIrradiance", image))
+    {
+      throw std::runtime_error("the caustic irradiance could not be read back");
+    }
+    return image;
+  }
+  image->SetDimensions(size, size, 1);
+  vtkNew<vtkFloatArray> zero;
+  zero->SetName("CausticIrradiance");
+  zero->SetNumberOfComponents(3);
+  zero->SetNumberOfTuples(static_cast<vtkIdType>(size) * size);
+  zero->Fill(0.0);
+  image->GetPointData()->AddArray(zero);
+  return image;
+}
+
+/**
+ * One configuration: a new pass of the technique with the configuration applied;
+ * Warmup untimed frames, then Frames timed ones (each: Render and wait for the GPU to
+ * finish; stage GPU times from synchronous timer queries); the last frame's caustic
+ * irradiance against the ground truth.
+ */
+Row MeasureConfiguration(const Options& options, const std::string& scene,
+  const Configuration& configuration, vtkRenderWindow* window, vtkOpenGLRenderer* renderer,
+  vtkImageData* truth, OneLineOutputWindow* messages)
+{
+  Row row;
+  row.Scene = scene;
+  row.Technique = configuration.Technique;
+  row.Knobs = configuration.Knobs;
+  vtkSmartPointer<vtkCausticsRenderPass> pass =
+    vtkCausticsTechniques::Create(configuration.Technique);
+  if (!configuration.Apply(pass))
+  {
+    throw std::runtime_error("the configuration table expects another class for technique '" +
+      configuration.Technique + "' than " + pass->GetClassName());
+  }
+  pass->GetTimings()->SynchronousOn();
+  renderer->SetPass(pass);
+
+  std::vector<double> wall, gpuTotal;
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> gpu, cpu;
+  for (int frame = 0; frame < options.Warmup + options.Frames; ++frame)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    window->WaitForCompletion();
+    const double elapsed = Milliseconds(start);
+    if (frame < options.Warmup)
+    {
+      continue;
+    }
+    wall.push_back(elapsed);
+    vtkCausticsTimings* timings = pass->GetTimings();
+    double total = 0.0;
+    for (int s = 0; s < timings->GetNumberOfStages(); ++s)
+    {
+      if (!timings->GetStageRan(s))
+      {
+        continue;
+      }
+      const std::string name = timings->GetStageName(s);
+      if (!gpu.count(name))
+      {
+        order.push_back(name);
+      }
+      const double milliseconds = timings->GetStageGPUMilliseconds(s);
+      // -1: the timer query had no result (it would wrongly lower the total).
+      gpu[name].push_back(milliseconds >= 0.0 ? milliseconds : NaN);
+      cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
+      total += gpu[name].back();
+    }
+    gpuTotal.push_back(total);
+  }
+  row.Frames = options.Frames;
+  row.WallMilliseconds = Median(wall);
+  row.GPUMilliseconds = Median(gpuTotal);
+  for (const auto& name : order)
+  {
+    row.Stages.push_back({ name, Median(gpu[name]), Median(cpu[name]) });
+  }
+  std::string error = messages->TakeError();
+  if (error.empty())
+  {
+    try
+    {
+      row.Error = CompareWithReference(ReadCausticIrradiance(pass, options.Size), truth);
+      if (!pass->GetLastFrameHadCaustics())
+      {
+        row.Status = "no caustic stage ran";
+      }
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+    }
+  }
+  const std::string late = messages->TakeError();
+  if (!error.empty() || !late.empty())
+  {
+    row.Status = "error: " + (error.empty() ? late : error);
+    row.Error = vtkCausticsErrorMetrics::Result();
+  }
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  messages->TakeError();
+  return row;
+}
+
+// ---------------------------------------------------------------------------
+// Output: CSV, plot, docs.
+// ---------------------------------------------------------------------------
+
+std::string Number(double value, int precision = 6)
+{
+  if (std::isnan(value))
+  {
+    return "nan";
+  }
+  if (std::isinf(value))
+  {
+    return value > 0 ? "inf" : "-inf";
+  }
+  std::ostringstream text;
+  text << std::setprecision(precision) << value;
+  return text.str();
+}
+
+std::string CSVField(const std::string& text)
+{
+  if (text.find_first_of(",\"\n") == std::string::npos)
+  {
+    return text;
+  }
+  std::string quoted = "\"";
+  for (char c : text)
+  {
+    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  }
+  return quoted + "\"";
+}
+
+/** Both CSV files, written row by row so that an interrupted run keeps what it measured. */
+class CSVWriter
+{
+public:
+  void Open(const std::string& folder)
+  {
+    auto open = [](std::ofstream& file, const std::string& path)
+    {
+      file.open(path, std::ios::out | std::ios::trunc);
+      if (!file)
+      {
+        throw std::runtime_error("cannot write " + path);
+      }
+    };
+    this->RowsPath = folder + "/benchmarks.csv";
+    this->StagesPath = folder + "/benchmark-stages.csv";
+    open(this->Rows, this->RowsPath);
+    open(this->Stages, this->StagesPath);
+    // Units: ms per frame (reference: per render), error columns as in docs/accuracy.md.
+    this->Rows << "scene,technique,knobs,width,height,frames,wall_ms,gpu_ms,rel_l2,flux_ratio,"
+                  "peak_error_px,psnr_db,rmse,nonfinite_px,compared_px,status\n";
+    this->Stages << "scene,technique,knobs,stage,gpu_ms,cpu_ms\n";
+  }
+  void Write(const Row& row, int size)
+  {
+    const auto& e = row.Error;
+    this->Rows << CSVField(row.Scene) << ',' << CSVField(row.Technique) << ','
+               << CSVField(row.Knobs) << ',' << size << ',' << size << ',' << row.Frames << ','
+               << Number(row.WallMilliseconds) << ','
+               << (row.IsReference() ? "" : Number(row.GPUMilliseconds)) << ','
+               << Number(e.RelativeL2Error) << ',' << Number(e.FluxRatio) << ','
+               << Number(e.PeakPositionError) << ',' << Number(e.PSNR) << ',' << Number(e.RMSE)
+               << ',' << e.NonFinitePixels << ',' << e.ComparedPixels << ',' << CSVField(row.Status)
+               << '\n';
+    for (const auto& stage : row.Stages)
+    {
+      this->Stages << CSVField(row.Scene) << ',' << CSVField(row.Technique) << ','
+                   << CSVField(row.Knobs) << ',' << CSVField(stage.Name) << ','
+                   << (std::isnan(stage.GPUMilliseconds) ? "" : Number(stage.GPUMilliseconds))
+                   << ',' << Number(stage.CPUMilliseconds) << '\n';
+    }
+    this->Rows.flush();
+    this->Stages.flush();
+    if (!this->Rows || !this->Stages)
+    {
+      throw std::runtime_error("cannot write " + this->RowsPath + " (disk full?)");
+    }
+  }
+  std::string RowsPath, StagesPath;
+
+private:
+  std::ofstream Rows, Stages;
+};
+
+/**
+ * Runs scripts/plot-benchmarks.py on the CSV. Returns the PNG's path, or "" with
+ * `why` set when the plot was skipped (no Python, no matplotlib) or failed.
+ */
+std::string Plot(const Options& options, const std::string& csv, std::string& why)
+{
+  const std::string script = std::string(CAUSTICS_SOURCE_DIR) + "/scripts/plot-benchmarks.py";
+  const std::string png = options.Output + "/benchmarks.png";
+  if (!vtksys::SystemTools::FileExists(script))
+  {
+    why = "no " + script;
+    return "";
+  }
+  vtksys::SystemTools::RemoveFile(png); // a plot of an earlier run must not pass for this one
+  const std::string command = ShellQuote(options.Python) + " " + ShellQuote(script) + " " +
+    ShellQuote(csv) + " --output " + ShellQuote(png);
+  std::cout << std::flush;
+  const int status = std::system(command.c_str());
+  const int code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == 0 && vtksys::SystemTools::FileExists(png))
+  {
+    return png;
+  }
+  why = code == 127 ? "cannot run " + options.Python
+    : code == 3     ? options.Python + " has no matplotlib"
+                    : "plot-benchmarks.py failed (exit " + std::to_string(code) + ")";
+  return "";
+}
+
+std::string FormatTime(double milliseconds)
+{
+  std::ostringstream text;
+  text << std::fixed;
+  if (std::isnan(milliseconds))
+  {
+    return "–";
+  }
+  if (milliseconds >= 1000.0)
+  {
+    text << std::setprecision(milliseconds >= 10000.0 ? 1 : 2) << milliseconds / 1000.0 << " s";
+  }
+  else
+  {
+    text << std::setprecision(milliseconds >= 100.0 ? 0 : 1) << milliseconds << " ms";
+  }
+  return text.str();
+}
+
+std::string Fixed(double value, int precision)
+{
+  if (!std::isfinite(value))
+  {
+    return Number(value);
+  }
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(precision) << value;
+  return text.str();
+}
+
+/**
+ * The rows no cheaper row beats in error (relative L2), by rising wall time: the
+ * Pareto front of time against error. Rows without a finite positive error are left out.
+ */
+std::vector<const Row*> ParetoFront(std::vector<const Row*> rows)
+{
+  std::sort(rows.begin(), rows.end(),
+    [](const Row* a, const Row* b) { return a->WallMilliseconds < b->WallMilliseconds; });
+  std::vector<const Row*> front;
+  for (const Row* row : rows)
+  {
+    const double error = row->Error.RelativeL2Error;
+    if (std::isfinite(error) && error > 0.0 && std::isfinite(row->WallMilliseconds) &&
+      (front.empty() || error < front.back()->Error.RelativeL2Error))
+    {
+      front.push_back(row);
+    }
+  }
+  return front;
+}
+
+/**
+ * Time the reference needs for `error`, from the scene's ladder: its Pareto front,
+ * interpolated linearly in log(time) against log(error). Outside the ladder's range,
+ * a bound: "< t" when even the cheapest run is more accurate, "> t" when the most
+ * accurate is not enough. `speedUp` receives reference time / wall (NaN for a bound).
+ */
+std::string OfflineEquivalent(
+  const std::vector<const Row*>& ladder, double error, double wall, double& speedUp)
+{
+  speedUp = NaN;
+  const std::vector<const Row*> front = ParetoFront(ladder);
+  if (front.empty() || !std::isfinite(error) || error <= 0.0)
+  {
+    return "–";
+  }
+  if (error >= front.front()->Error.RelativeL2Error)
+  {
+    return "< " + FormatTime(front.front()->WallMilliseconds);
+  }
+  if (error < front.back()->Error.RelativeL2Error)
+  {
+    return "> " + FormatTime(front.back()->WallMilliseconds);
+  }
+  for (std::size_t i = 0; i + 1 < front.size(); ++i)
+  {
+    const double e0 = front[i]->Error.RelativeL2Error, e1 = front[i + 1]->Error.RelativeL2Error;
+    if (error <= e0 && error >= e1)
+    {
+      const double t0 = front[i]->WallMilliseconds, t1 = front[i + 1]->WallMilliseconds;
+      const double u = (std::log(error) - std::log(e0)) / (std::log(e1) - std::log(e0));
+      const double milliseconds = std::exp(std::log(t0) + u * (std::log(t1) - std::log(t0)));
+      speedUp = milliseconds / wall;
+      return FormatTime(milliseconds);
+    }
+  }
+  return "–";
+}
+
+/** The generated section of docs/benchmarks.md. */
+std::string MakeDocsSection(const Options& options, const Machine& machine,
+  const std::vector<TruthRecord>& truths, const std::vector<Row>& rows, const std::string& plot,
+  const std::string& plotSkipped, double runSeconds)
+{
+  std::ostringstream md;
+  std::string cwd = vtksys::SystemTools::GetCurrentWorkingDirectory();
+  std::string relative = vtksys::SystemTools::RelativePath(
+    vtksys::SystemTools::GetRealPath(CAUSTICS_SOURCE_DIR), vtksys::SystemTools::GetRealPath(cwd));
+  md << "Command (from " << (relative.empty() ? "the repository root" : "`" + relative + "`")
+     << ", under `xvfb-run -a` where there is no display):\n\n```sh\n"
+     << options.CommandLine << "\n```\n\n";
+  md << "| | |\n|---|---|\n";
+  md << "| date | " << machine.Date << " |\n";
+  md << "| CPU | " << machine.CPU << ", " << machine.Threads << " hardware threads; load average "
+     << machine.LoadAverage << " at the start |\n";
+  md << "| OpenGL | " << machine.GLRenderer << "; " << machine.GLVersion << " (window "
+     << machine.Window << ") |\n";
+  md << "| image | " << options.Size << " x " << options.Size << " pixels |\n";
+  md << "| frames | median of " << options.Frames << " timed frames after " << options.Warmup
+     << " warm-up frames |\n";
+  for (const auto& truth : truths)
+  {
+    md << "| ground truth, " << truth.Scene << " | reference, " << truth.Photons
+       << " photons per light, seed 1, `" << truth.CacheFile << "` ("
+       << (truth.FromCache ? "from the cache" : "rendered in " + Fixed(truth.Seconds, 0) + " s")
+       << ") |\n";
+  }
+  md << "| reference ladder | seed 2, cache off, median of up to " << options.ReferenceRepeats
+     << " renders per count (fewer once a count took 30 s) |\n";
+  md << "| run time | " << Fixed(runSeconds, 0) << " s in all |\n\n";
+
+  for (const auto& scene : options.Scenes)
+  {
+    std::vector<const Row*> sceneRows, ladder;
+    for (const auto& row : rows)
+    {
+      if (row.Scene == scene)
+      {
+        sceneRows.push_back(&row);
+        if (row.IsReference())
+        {
+          ladder.push_back(&row);
+        }
+      }
+    }
+    const std::vector<const Row*> front = ParetoFront(sceneRows);
+    md << "### " << scene << "\n\n";
+    md << "| technique | knobs | wall / frame | GPU / frame | rel. L2 | flux ratio | peak err "
+          "(px) | PSNR (dB) | non-finite px | reference time for this error | speed-up | Pareto "
+          "front |\n";
+    md << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|:-:|\n";
+    std::vector<std::string> stageNames;
+    for (const Row* row : sceneRows)
+    {
+      const auto& e = row->Error;
+      double speedUp = NaN;
+      const std::string offline = row->IsReference()
+        ? "–"
+        : OfflineEquivalent(ladder, e.RelativeL2Error, row->WallMilliseconds, speedUp);
+      md << "| " << row->Technique << (row->Status == "ok" ? "" : " (" + row->Status + ")") << " | "
+         << row->Knobs << " | " << FormatTime(row->WallMilliseconds) << " | "
+         << FormatTime(row->GPUMilliseconds) << " | " << Fixed(e.RelativeL2Error, 4) << " | "
+         << Fixed(e.FluxRatio, 3) << " | "
+         << (e.TestFlux == 0.0 ? "–" : Fixed(e.PeakPositionError, 1)) << " | " << Fixed(e.PSNR, 1)
+         << " | " << e.NonFinitePixels << " | " << offline << " | "
+         << (std::isnan(speedUp) ? "–" : Fixed(speedUp, 1) + "x") << " | "
+         << (std::count(front.begin(), front.end(), row) ? "◆" : "") << " |\n";
+      for (const auto& stage : row->Stages)
+      {
+        if (!row->IsReference() &&
+          std::find(stageNames.begin(), stageNames.end(), stage.Name) == stageNames.end())
+        {
+          stageNames.push_back(stage.Name);
+        }
+      }
+    }
+    if (!stageNames.empty())
+    {
+      md << "\nGPU time per stage (ms, median):\n\n| technique | knobs |";
+      for (const auto& name : stageNames)
+      {
+        md << " " << name << " |";
+      }
+      md << "\n|---|---|";
+      for (std::size_t i = 0; i < stageNames.size(); ++i)
+      {
+        md << "--:|";
+      }
+      md << "\n";
+      for (const Row* row : sceneRows)
+      {
+        if (row->IsReference())
+        {
+          continue;
+        }
+        md << "| " << row->Technique << " | " << row->Knobs << " |";
+        for (const auto& name : stageNames)
+        {
+          auto stage = std::find_if(
+            row->Stages.begin(), row->Stages.end(), [&](const Stage& s) { return s.Name == name; });
+          md << " " << (stage == row->Stages.end() ? "–" : Fixed(stage->GPUMilliseconds, 2))
+             << " |";
+        }
+        md << "\n";
+      }
+    }
+    md << "\n";
+  }
+  if (!plot.empty())
+  {
+    md << "![Run time against relative L2 error, per scene](benchmarks.png)\n";
+  }
+  else
+  {
+    md << "(No plot: " << plotSkipped << ".)\n";
+  }
+  return md.str();
+}
+
+const char* BeginMarker = "<!-- BEGIN caustics-bench --update-docs: generated, do not edit -->";
+const char* EndMarker = "<!-- END caustics-bench --update-docs -->";
+
+/**
+ * The docs file's text and where its generated section lies (between the end of
+ * the begin marker and the start of the end marker). Throws, naming the problem, when
+ * the file cannot be read or lacks one begin marker followed by one end marker.
+ */
+std::string ReadDocs(const std::string& path, std::size_t& from, std::size_t& to)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw std::runtime_error("cannot read " + path + " (--docs names the file to update)");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const auto begin = text.find(BeginMarker);
+  to = text.find(EndMarker);
+  if (begin == std::string::npos || to == std::string::npos || to < begin ||
+    text.find(BeginMarker, begin + 1) != std::string::npos ||
+    text.find(EndMarker, to + 1) != std::string::npos)
+  {
+    throw std::runtime_error(path + ": needs one line '" + BeginMarker + "' followed by one '" +
+      EndMarker + "' around the generated section");
+  }
+  from = begin + std::string(BeginMarker).size();
+  return text;
+}
+
+/** Replaces the generated section of the docs file with `section`; the rest is kept. */
+void UpdateDocs(const std::string& path, const std::string& section)
+{
+  std::size_t from = 0, to = 0;
+  const std::string text = ReadDocs(path, from, to);
+  std::ofstream out(path, std::ios::out | std::ios::trunc);
+  out << text.substr(0, from) << "\n" << section << text.substr(to);
+  if (!out)
+  {
+    throw std::runtime_error("cannot write " + path);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The run.
+// ---------------------------------------------------------------------------
+
+void PrintRow(const Row& row)
+{
+  std::cout << "  " << std::left << std::setw(11) << row.Technique << std::setw(20) << row.Knobs
+            << std::right << " wall " << std::setw(9) << FormatTime(row.WallMilliseconds)
+            << "  gpu " << std::setw(9) << FormatTime(row.GPUMilliseconds) << "  relL2 "
+            << Fixed(row.Error.RelativeL2Error, 4) << "  flux " << Fixed(row.Error.FluxRatio, 3)
+            << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
+}
+
+int Run(const Options& options, OneLineOutputWindow* messages)
+{
+  const auto runStart = std::chrono::steady_clock::now();
+  const std::vector<Configuration> table = MakeConfigurations();
+  if (options.List)
+  {
+    std::cout << "scenes: " << Join(vtkCausticsBuiltinScene::GetSceneNames()) << "\n"
+              << "techniques:\n"
+              << vtkCausticsTechniques::Describe() << "configurations:\n";
+    for (const auto& technique : DefaultTechniques())
+    {
+      for (const auto& configuration : ConfigurationsOf(technique, table))
+      {
+        std::cout << "  " << technique << ": " << configuration.Knobs << "\n";
+      }
+    }
+    return 0;
+  }
+
+  // Fail on unwritable output or docs without markers before any work.
+  if (options.UpdateDocs)
+  {
+    std::size_t from = 0, to = 0;
+    ReadDocs(options.Docs, from, to); // its markers are checked before the long run
+  }
+  if (!vtksys::SystemTools::MakeDirectory(options.Output) ||
+    !vtksys::SystemTools::FileIsDirectory(options.Output))
+  {
+    throw std::runtime_error("cannot create the output folder " + options.Output);
+  }
+  CSVWriter csv;
+  csv.Open(options.Output);
+
+  Machine machine = DescribeMachine();
+  std::string how;
+  vtkSmartPointer<vtkRenderWindow> window = vtkCausticsWindowFactory::Create(true, &how);
+  if (!window)
+  {
+    throw NoWindowError(how);
+  }
+  machine.Window = how;
+  window->SetMultiSamples(0);
+  window->SetSize(options.Size, options.Size);
+
+  std::cout << "caustics-bench: " << Join(options.Scenes) << " x " << Join(options.Techniques)
+            << ", " << options.Size << "x" << options.Size << ", " << options.Frames
+            << " frames after " << options.Warmup << " warm-up, " << machine.CPU << " ("
+            << machine.Threads << " threads), window " << how << std::endl;
+
+  std::vector<Row> rows;
+  std::vector<TruthRecord> truths;
+  int failed = 0;
+  for (const auto& scene : options.Scenes)
+  {
+    vtkNew<vtkOpenGLRenderer> renderer;
+    window->AddRenderer(renderer);
+    vtkNew<vtkCausticsBuiltinScene> builtin;
+    builtin->SetSceneName(scene.c_str());
+    if (!builtin->Populate(renderer))
+    {
+      throw std::runtime_error(builtin->GetLastError());
+    }
+    // The GPU frames and the reference see the same camera, clipping range included.
+    renderer->ResetCameraClippingRange();
+
+    auto truth = MakeReference(renderer, options.Size, options.ReferencePhotons, 1, true);
+    std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
+              << " photons per light" << std::flush;
+    if (!truth->Update())
+    {
+      throw std::runtime_error(
+        "the reference failed on scene '" + scene + "': " + truth->GetLastError());
+    }
+    messages->TakeError();
+    truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
+      truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
+    std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
+              << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
+
+    for (Row& row : TimeReferenceLadder(options, scene, renderer, truth->GetOutput(), messages))
+    {
+      PrintRow(row);
+      csv.Write(row, options.Size);
+      rows.push_back(row);
+    }
+    for (const auto& technique : options.Techniques)
+    {
+      std::vector<Configuration> configurations = ConfigurationsOf(technique, table);
+      if (options.Smoke)
+      {
+        configurations.resize(1);
+      }
+      for (const auto& configuration : configurations)
+      {
+        Row row = MeasureConfiguration(
+          options, scene, configuration, window, renderer, truth->GetOutput(), messages);
+        if (machine.GLRenderer == "unknown")
+        {
+          DescribeGL(window, machine);
+        }
+        failed += row.Status.rfind("error", 0) == 0 ? 1 : 0;
+        PrintRow(row);
+        csv.Write(row, options.Size);
+        rows.push_back(row);
+      }
+    }
+    window->RemoveRenderer(renderer);
+  }
+  std::cout << "wrote " << csv.RowsPath << " and " << csv.StagesPath << std::endl;
+
+  std::string plot, plotSkipped = "--no-plot";
+  if (options.Plot)
+  {
+    plot = Plot(options, csv.RowsPath, plotSkipped);
+    std::cout << (plot.empty() ? "plot skipped: " + plotSkipped : "wrote " + plot) << std::endl;
+  }
+  if (options.UpdateDocs)
+  {
+    const std::string docsFolder = vtksys::SystemTools::GetFilenamePath(options.Docs);
+    if (!plot.empty() && !vtksys::SystemTools::CopyFileAlways(plot, docsFolder + "/benchmarks.png"))
+    {
+      throw std::runtime_error("cannot write " + docsFolder + "/benchmarks.png");
+    }
+    const double runSeconds = Milliseconds(runStart) / 1000.0;
+    UpdateDocs(
+      options.Docs, MakeDocsSection(options, machine, truths, rows, plot, plotSkipped, runSeconds));
+    std::cout << "updated " << options.Docs << (plot.empty() ? "" : " and benchmarks.png")
+              << std::endl;
+  }
+  if (failed > 0)
+  {
+    throw std::runtime_error(std::to_string(failed) + " configuration(s) failed; their rows in " +
+      csv.RowsPath + " say why");
+  }
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  vtkNew<OneLineOutputWindow> messages;
+  vtkOutputWindow::SetInstance(messages);
+  // VTK 9.1 also logs every error through loguru on stderr: one line is enough.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  try
+  {
+    const Options options = Parse(argc, argv);
+    if (options.Help)
+    {
+      std::cout << Usage;
+      return 0;
+    }
+    return Run(options, messages);
+  }
+  catch (const UsageError& e)
+  {
+    std::cerr << "caustics-bench: error: " << e.what() << "\n";
+    return 2;
+  }
+  catch (const NoWindowError& e)
+  {
+    std::cerr << "caustics-bench: error: " << e.what() << "\n";
+    return 3;
+  }
+  catch (const std::exception& e)
+  {
+    // A VTK error seen first is usually the cause of what failed later.
+    const std::string cause = messages->TakeError();
+    std::cerr << "caustics-bench: error: "
+              << (cause.empty() || cause == e.what() ? std::string(e.what()) : cause) << "\n";
+    return 1;
+  }
+}
