@@ -63,11 +63,11 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   state->vtkglDisable(GL_BLEND);
   state->vtkglDisable(GL_CULL_FACE);
   state->vtkglDepthMask(GL_TRUE);
-  state->vtkglDepthFunc(GL_LESS);
+  state->vtkglDepthFunc(this->KeepFarthest ? GL_GREATER : GL_LESS);
 
   const float noSurface[4] = { 0.0f, 0.0f, 0.0f, -1.0f };
   const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-  const float farDepth = 1.0f;
+  const float farDepth = this->KeepFarthest ? 0.0f : 1.0f;
   glClearBufferfv(GL_COLOR, 0, noSurface);
   glClearBufferfv(GL_COLOR, 1, zero);
   glClearBufferfv(GL_COLOR, 2, zero);
@@ -101,4 +101,5 @@ void vtkCausticsGBuffer::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
   os << indent << "Program ready: " << this->Program->IsReady() << "\n";
+  os << indent << "KeepFarthest: " << this->KeepFarthest << "\n";
 }

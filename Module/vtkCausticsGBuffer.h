@@ -53,6 +53,17 @@ public:
 
   vtkGetVector2Macro(Size, int);
 
+  ///@{
+  /**
+   * Keep the farthest surface of each pixel instead of the nearest (depth test
+   * GREATER, depth cleared to 0): e.g. the back faces of convex refractors seen
+   * from a light, without relying on triangle winding. Default off.
+   */
+  vtkSetMacro(KeepFarthest, bool);
+  vtkGetMacro(KeepFarthest, bool);
+  vtkBooleanMacro(KeepFarthest, bool);
+  ///@}
+
   void ReleaseGraphicsResources(vtkWindow* win);
 
 protected:
@@ -66,6 +77,7 @@ protected:
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   vtkNew<vtkCausticsShaderProgram> Program;
   int Size[2] = { 0, 0 };
+  bool KeepFarthest = false;
 
 private:
   vtkCausticsGBuffer(const vtkCausticsGBuffer&) = delete;

@@ -1,0 +1,570 @@
+// The photon buffer (001_7c07a484f7a872bb.txt §2, Fig. 2): every emitted photon
+// (vtkCausticsPhotonEmitter: after its first specular interaction) is followed to
+// the diffuse receiver it lands on. Three phases, three programs (PHASE):
+// 0. sort, one thread per texel: photons are counted; those in air are handed
+//    over to phase 2, those inside a refractor listed for phase 1;
+// 1. inside, one thread per listed photon: the exit is found on the refractor's
+//    back faces (or front faces, for a photon heading back towards the light) as
+//    the light sees them, Beer-Lambert absorption applies on the way, and the
+//    photon refracts out with exact Fresnel; total internal reflection continues
+//    inside, up to maximumInternalEvents interfaces. The part reflected back
+//    inside at a partial exit is not followed (counted);
+// 2. in air, one thread per listed photon: the hit is found on the receivers as
+//    the caustic map's view sees them (a receiver-only depth layer).
+// Lists keep every thread of a work group busy: Mesa's llvmpipe runs the
+// instructions of branches no lane takes, so a texel-wide dispatch would pay
+// for the tracing code at every empty texel.
+// Each layer crossing: plane steps (the ray is intersected with the plane of the
+// surface seen where the estimate projects, until the estimate stops moving;
+// exact in one step on a plane), with a march + bisection fallback.
+// Output per photon: hit position (w = path length from the light, > 0 marks a
+// hit), receiver normal (as modelled; w = |N.D|), flux (rgb W; a = the texel's
+// measure omega_i, m^2 or sr).
+#if PHASE == 0
+layout(local_size_x = 8, local_size_y = 8) in;
+#else
+layout(local_size_x = 64) in;
+#endif
+
+uniform sampler2D photonPosition;   // xyz, w = 0 none, 1 in air, 2 inside a refractor
+uniform sampler2D photonDirection;  // xyz unit, w = texel measure
+uniform sampler2D photonFlux;       // rgb W
+uniform sampler2D frontPosition;    // refractors' nearest surfaces seen from the light
+uniform sampler2D frontNormal;
+uniform sampler2D backPosition;     // refractors' farthest surfaces seen from the light
+uniform sampler2D backNormal;
+uniform sampler2D receiverPosition; // receivers seen by the caustic map's view
+uniform sampler2D receiverNormal;
+uniform CausticsView photonView;    // the view the emitter's texels come from
+uniform CausticsView mapView;
+uniform ivec2 gridSize;
+uniform int lightType; // 0 directional, 1 point, 2 spot
+uniform vec3 lightOrigin;
+uniform int maximumInternalEvents;
+uniform int marchSteps;
+uniform float chordLength; // longest straight path inside the refractors (m)
+uniform float airLength;   // longest straight path through the scene (m)
+uniform vec3 receiverLow;  // the receivers' bounds, slightly enlarged
+uniform vec3 receiverHigh;
+uniform float fluxUnit;    // W per statistics unit
+
+// The photon buffer, also the hand-over between the two phases (PHASE 0 inside
+// refractors, PHASE 1 in air; two programs, so that each stays small): after
+// phase 0 a texel holds the photon leaving into air (position, path length;
+// direction, 1 = in air; flux, measure), after phase 1 its hit.
+layout(rgba32f, binding = 0) uniform image2D outPosition;
+layout(rgba32f, binding = 1) uniform image2D outNormal;
+layout(rgba32f, binding = 2) uniform image2D outFlux;
+
+layout(std430, binding = CAUSTICS_PHOTON_STATISTICS_BINDING) buffer PhotonStatistics
+{
+  uint statistics[];
+};
+// Work lists: control words as the hierarchy's (list lengths at
+// CONTROL_LIST_COUNT + 0 (inside) and + 1 (in air), their dispatch arguments at
+// CONTROL_DISPATCH + 0 and + 3), then the two lists of packed texels.
+layout(std430, binding = CAUSTICS_HIERARCHY_CONTROL_BINDING) buffer PhotonLists
+{
+  uint lists[];
+};
+uniform uint listCapacity; // entries per list
+
+void Append(int list, ivec2 texel)
+{
+  uint slot = atomicAdd(lists[CONTROL_LIST_COUNT + list], 1u);
+  lists[uint(CONTROL_SIZE) + uint(list) * listCapacity + slot] =
+    uint(texel.x) | (uint(texel.y) << 16);
+}
+
+// The texel of this thread's list entry (false past the list's end).
+bool Listed(int list, out ivec2 texel)
+{
+  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  uint item = group * 64u + gl_LocalInvocationIndex;
+  texel = ivec2(0);
+  if (item >= lists[CONTROL_LIST_COUNT + list])
+  {
+    return false;
+  }
+  uint code = lists[uint(CONTROL_SIZE) + uint(list) * listCapacity + item];
+  texel = ivec2(int(code & 0xFFFFu), int(code >> 16));
+  return true;
+}
+
+
+// The surface a layer shows at the texel of x; false where it shows none.
+bool LayerAt(CausticsView v, sampler2D lp, sampler2D ln, vec3 x, out vec3 s, out vec3 n,
+  out float material)
+{
+  vec2 pixel;
+  s = vec3(0.0);
+  n = vec3(0.0, 0.0, 1.0);
+  material = -1.0;
+  if (!ViewProject(v, x, pixel))
+  {
+    return false;
+  }
+  ivec2 texel = ViewTexel(v, pixel);
+  vec4 p = texelFetch(lp, texel, 0);
+  if (p.w < 0.0)
+  {
+    return false;
+  }
+  s = p.xyz;
+  n = texelFetch(ln, texel, 0).xyz;
+  material = p.w;
+  return true;
+}
+
+// True if x lies on the surface the layer shows at x's texel (within the texel's
+// footprint on that surface).
+bool OnLayer(CausticsView v, sampler2D lp, sampler2D ln, vec3 x)
+{
+  vec3 s, n;
+  float material;
+  if (!LayerAt(v, lp, ln, x, s, n, material))
+  {
+    return false;
+  }
+  float facing = abs(dot(n, ViewAway(v, x)));
+  return distance(x, s) <= 2.0 * ViewTexelSize(v, x) / max(facing, 0.05);
+}
+
+// Plane step: where the ray meets the plane of the surface the layer shows at x.
+bool PlaneStep(CausticsView v, sampler2D lp, sampler2D ln, vec3 o, vec3 d, vec3 x, out float t)
+{
+  vec3 s, n;
+  float material;
+  t = -1.0;
+  if (!LayerAt(v, lp, ln, x, s, n, material))
+  {
+    return false;
+  }
+  float dn = dot(d, n);
+  if (abs(dn) < 1e-6)
+  {
+    return false;
+  }
+  t = dot(s - o, n) / dn;
+  return true;
+}
+
+// Side of the layer x is on: -1 in front (towards the light), +1 behind, 0 where
+// the layer shows nothing.
+float LayerSide(CausticsView v, sampler2D lp, sampler2D ln, vec3 x)
+{
+  vec3 s, n;
+  float material;
+  if (!LayerAt(v, lp, ln, x, s, n, material))
+  {
+    return 0.0;
+  }
+  return ViewDepth(v, x) >= ViewDepth(v, s) ? 1.0 : -1.0;
+}
+
+// Plane steps: the ray is intersected with the plane of the surface the layer
+// shows where the estimate projects, until the estimate stops moving (exact in
+// one step on a plane, fast on smooth surfaces); true if it converges onto the layer.
+bool PlaneSteps(CausticsView v, sampler2D lp, sampler2D ln, vec3 o, vec3 d, float tMin,
+  float tMax, out float tHit)
+{
+  tHit = -1.0;
+  float t = tMin;
+  for (int k = 0; k < 8; ++k)
+  {
+    vec3 x = o + t * d;
+    float next;
+    if (!PlaneStep(v, lp, ln, o, d, x, next) || !(next > tMin) || next > tMax)
+    {
+      return false;
+    }
+    if (abs(next - t) <= 0.01 * ViewTexelSize(v, x) + 1e-6 * next)
+    {
+      tHit = next;
+      return OnLayer(v, lp, ln, o + next * d);
+    }
+    t = next;
+  }
+  return false;
+}
+
+// First crossing of the ray o + t d, t in (tMin, tMax], with the layer's surface,
+// coming from side `from` (-1: from in front, +1: from behind): plane steps, else
+// a march that brackets the first change of side, bisection and a plane step.
+bool LayerHit(CausticsView v, sampler2D lp, sampler2D ln, vec3 o, vec3 d, float tMin, float tMax,
+  float from, out float tHit)
+{
+  if (PlaneSteps(v, lp, ln, o, d, tMin, tMax, tHit))
+  {
+    return true;
+  }
+  tHit = -1.0;
+  float previousT = tMin;
+  float previousSide = LayerSide(v, lp, ln, o + tMin * d);
+  for (int i = 1; i <= marchSteps; ++i)
+  {
+    float ti = tMin + (tMax - tMin) * float(i) / float(marchSteps);
+    float side = LayerSide(v, lp, ln, o + ti * d);
+    if (previousSide == from && side == -from)
+    {
+      float a = previousT, b = ti;
+      for (int j = 0; j < 12; ++j)
+      {
+        float c = 0.5 * (a + b);
+        if (LayerSide(v, lp, ln, o + c * d) == from)
+        {
+          a = c;
+        }
+        else
+        {
+          b = c;
+        }
+      }
+      float planeT;
+      if (PlaneStep(v, lp, ln, o, d, o + b * d, planeT) && planeT > tMin &&
+        abs(planeT - b) <= 2.0 * (ti - previousT) && OnLayer(v, lp, ln, o + planeT * d))
+      {
+        tHit = planeT;
+        return true;
+      }
+    }
+    previousSide = side;
+    previousT = ti;
+  }
+  return false;
+}
+
+// Normal of the layer at x, bilinear between the texels showing the same surface
+// (the layer holds one normal per texel centre; exits need a smooth normal).
+vec3 LayerNormal(CausticsView v, sampler2D lp, sampler2D ln, vec3 x, vec3 nearest)
+{
+  vec2 pixel;
+  ViewProject(v, x, pixel);
+  vec2 f = pixel - 0.5;
+  ivec2 base = ivec2(floor(f));
+  vec2 w = f - floor(f);
+  vec3 sum = vec3(0.0);
+  for (int j = 0; j < 2; ++j)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      ivec2 texel = clamp(base + ivec2(i, j), ivec2(0), ivec2(v.size) - 1);
+      if (texelFetch(lp, texel, 0).w < 0.0)
+      {
+        continue;
+      }
+      vec3 n = texelFetch(ln, texel, 0).xyz;
+      if (dot(n, nearest) < 0.5)
+      {
+        continue;
+      }
+      sum += (i == 0 ? 1.0 - w.x : w.x) * (j == 0 ? 1.0 - w.y : w.y) * n;
+    }
+  }
+  float length2 = dot(sum, sum);
+  return length2 > 1e-12 ? sum * inversesqrt(length2) : nearest;
+}
+
+// Where x is relative to the refractor as the light sees it, a slab between its
+// nearest and farthest surfaces: 0 inside, 1 beyond the back faces, 2 in front of
+// the front faces, 3 outside its silhouette.
+int SlabState(vec3 x)
+{
+  vec3 sf, nf, sb, nb;
+  float mf, mb;
+  if (!LayerAt(photonView, frontPosition, frontNormal, x, sf, nf, mf) ||
+    !LayerAt(photonView, backPosition, backNormal, x, sb, nb, mb))
+  {
+    return 3;
+  }
+  float depth = ViewDepth(photonView, x);
+  float slack = 0.5 * ViewTexelSize(photonView, x); // the layers are sampled per texel
+  if (depth > ViewDepth(photonView, sb) + slack)
+  {
+    return 1;
+  }
+  if (depth < ViewDepth(photonView, sf) - slack)
+  {
+    return 2;
+  }
+  return 0;
+}
+
+// Exit of a photon inside a refractor at o heading along d. The exact answer for a
+// convex refractor is on the layer it heads to (plane steps); otherwise the
+// refractor is taken as the slab between its front and back faces (what two
+// interfaces can describe), marched until the photon leaves it, and the exit is
+// refined by bisection. Returns the distance, and the layer whose normal applies
+// (1 back, 2 front; 3: through the silhouette, the normal of the last texel inside).
+bool SlabExit(vec3 o, vec3 d, out float tExit, out int kind, out vec3 normal)
+{
+  bool away = dot(d, ViewAway(photonView, o)) >= 0.0;
+  vec3 s, nearest;
+  float material;
+  kind = away ? 1 : 2;
+  // Not the surface the photon stands on: a quarter texel on.
+  float tMin = 0.25 * ViewTexelSize(photonView, o);
+  bool found = away
+    ? PlaneSteps(photonView, backPosition, backNormal, o, d, tMin, chordLength, tExit)
+    : PlaneSteps(photonView, frontPosition, frontNormal, o, d, tMin, chordLength, tExit);
+  if (!found)
+  {
+    float previousT = tMin;
+    int state = 0;
+    for (int i = 1; i <= marchSteps && state == 0; ++i)
+    {
+      float ti = tMin + (chordLength - tMin) * float(i) / float(marchSteps);
+      state = SlabState(o + ti * d);
+      if (state == 0)
+      {
+        previousT = ti;
+        continue;
+      }
+      float a = previousT, b = ti;
+      for (int j = 0; j < 12; ++j)
+      {
+        float c = 0.5 * (a + b);
+        int middle = SlabState(o + c * d);
+        if (middle == 0)
+        {
+          a = c;
+        }
+        else
+        {
+          b = c;
+          state = middle;
+        }
+      }
+      kind = state == 3 ? 3 : state;
+      tExit = state == 3 ? a : b;
+      if (state == 1 || state == 2)
+      {
+        // Finish on the crossed layer's plane when it is close.
+        float planeT;
+        bool onBack = state == 1;
+        if ((onBack ? PlaneStep(photonView, backPosition, backNormal, o, d, o + b * d, planeT)
+                    : PlaneStep(photonView, frontPosition, frontNormal, o, d, o + b * d, planeT)) &&
+          abs(planeT - b) <= 2.0 * chordLength / float(marchSteps))
+        {
+          tExit = planeT;
+        }
+      }
+    }
+    if (state == 0)
+    {
+      return false; // still inside after the refractors' extent
+    }
+  }
+  vec3 x = o + tExit * d;
+  if (kind == 1)
+  {
+    LayerAt(photonView, backPosition, backNormal, x, s, nearest, material);
+    normal = LayerNormal(photonView, backPosition, backNormal, x, nearest);
+  }
+  else if (kind == 2)
+  {
+    LayerAt(photonView, frontPosition, frontNormal, x, s, nearest, material);
+    normal = LayerNormal(photonView, frontPosition, frontNormal, x, nearest);
+  }
+  else
+  {
+    // Through the silhouette: of the two layers' normals at the last texel inside,
+    // the one facing along the photon.
+    vec3 last = o + max(tExit - 0.5 * ViewTexelSize(photonView, o), 0.0) * d;
+    vec3 nf = vec3(0.0), nb = vec3(0.0);
+    LayerAt(photonView, frontPosition, frontNormal, last, s, nf, material);
+    LayerAt(photonView, backPosition, backNormal, last, s, nb, material);
+    normal = dot(nf, d) >= dot(nb, d) ? nf : nb;
+  }
+  float length2 = dot(normal, normal);
+  normal = length2 > 1e-12 ? normal * inversesqrt(length2) : -d;
+  return true;
+}
+
+float Power(vec3 flux)
+{
+  return flux.r + flux.g + flux.b;
+}
+
+// Adds a flux (W) to a 64-bit fixed-point counter, rounded to the unit.
+void AddFlux(int slot, float watts)
+{
+  float units = floor(watts / fluxUnit + 0.5); // rounded: no bias over many photons
+  if (units > 0.0 && !isinf(units))
+  {
+    uint high = uint(units / 4294967296.0);
+    uint low = uint(units - float(high) * 4294967296.0);
+    uint old = atomicAdd(statistics[slot], low);
+    if (high > 0u || old + low < old)
+    {
+      atomicAdd(statistics[slot + 1], high + (old + low < old ? 1u : 0u));
+    }
+  }
+}
+
+#if PHASE == 0
+// Phase 0: every photon the emitter made is counted; photons in air are handed
+// over to phase 2 (position, path length; direction, 1; flux, measure), photons
+// inside a refractor listed for phase 1.
+void main()
+{
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, gridSize)))
+  {
+    return;
+  }
+  vec4 photon = texelFetch(photonPosition, texel, 0);
+  vec4 direction = texelFetch(photonDirection, texel, 0);
+  vec3 flux = texelFetch(photonFlux, texel, 0).rgb;
+  int state = int(photon.w + 0.5);
+  // No hit until a later phase writes one (no stale texel from the last frame).
+  imageStore(outPosition, texel, vec4(0.0));
+  imageStore(outNormal, texel, vec4(0.0));
+  imageStore(outFlux, texel, vec4(0.0));
+  if (state == 0 || !AllFinite(photon.xyz) || !AllFinite(direction.xyz) || !AllFinite(flux) ||
+    !(dot(direction.xyz, direction.xyz) > 0.0))
+  {
+    return;
+  }
+  atomicAdd(statistics[STAT_PHOTONS], 1u);
+  AddFlux(STAT_FLUX_IN, Power(flux));
+  if (state == 2)
+  {
+    Append(0, texel);
+    return;
+  }
+  vec3 p = photon.xyz;
+  float path = lightType == 0 ? ViewDepth(photonView, p) : length(p - lightOrigin);
+  imageStore(outPosition, texel, vec4(p, path));
+  imageStore(outNormal, texel, vec4(normalize(direction.xyz), 1.0));
+  imageStore(outFlux, texel, vec4(flux, direction.w));
+  Append(1, texel);
+}
+#elif PHASE == 1
+// Phase 1: photons inside a refractor go from interface to interface until they
+// leave it; those that do are listed for phase 2.
+void main()
+{
+  ivec2 texel;
+  if (!Listed(0, texel))
+  {
+    return;
+  }
+  vec4 photon = texelFetch(photonPosition, texel, 0);
+  vec4 direction = texelFetch(photonDirection, texel, 0);
+  vec3 flux = texelFetch(photonFlux, texel, 0).rgb;
+  int state = 2;
+  vec3 p = photon.xyz;
+  vec3 d = normalize(direction.xyz);
+  float path = lightType == 0 ? ViewDepth(photonView, p) : length(p - lightOrigin);
+  float absorbed = 0.0, reflected = 0.0;
+  for (int event = 0; event < maximumInternalEvents && state == 2; ++event)
+  {
+    float t;
+    int kind;
+    vec3 n;
+    if (!SlabExit(p, d, t, kind, n))
+    {
+      break;
+    }
+    vec3 x = p + t * d;
+    vec3 s, nearest;
+    float material;
+    bool onLayer = kind == 2
+      ? LayerAt(photonView, frontPosition, frontNormal, x, s, nearest, material)
+      : LayerAt(photonView, backPosition, backNormal, x, s, nearest, material);
+    if (!onLayer)
+    {
+      // The silhouette: the material of the last texel inside.
+      LayerAt(photonView, backPosition, backNormal,
+        p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
+    }
+    CausticsMaterial medium = causticsMaterials[max(int(material + 0.5), 0)];
+    vec3 transmitted = flux * exp(-medium.attenuation.rgb * t); // Beer-Lambert
+    absorbed += Power(flux - transmitted);
+    flux = transmitted;
+    path += t;
+    p = x;
+    // Leaving the medium: the normal facing the photon is the inward one. A normal
+    // that faces the photon already belongs to a surface the slab model puts on the
+    // wrong side (a concavity between the two layers): the photon leaves through it.
+    n = dot(d, n) < 0.0 ? -n : n;
+    vec3 facing = -n;
+    float ior = max(medium.params.x, 1.0);
+    vec3 refracted;
+    if (dot(d, n) > 1e-4 && RefractDirection(d, facing, ior, refracted))
+    {
+      float reflectance = FresnelDielectric(dot(d, n), ior, 1.0);
+      reflected += Power(flux) * reflectance;
+      flux *= 1.0 - reflectance;
+      d = refracted;
+      state = 1;
+    }
+    else
+    {
+      d = reflect(d, facing); // total internal reflection (or a grazing exit)
+    }
+  }
+  AddFlux(STAT_FLUX_ABSORBED, absorbed);
+  AddFlux(STAT_FLUX_INTERNAL_REFLECTION, reflected);
+  if (state == 2 || !AllFinite(p) || !AllFinite(d))
+  {
+    atomicAdd(statistics[STAT_LOST_INSIDE], 1u);
+    AddFlux(STAT_FLUX_LOST_INSIDE, Power(flux));
+    return;
+  }
+  imageStore(outPosition, texel, vec4(p, path));
+  imageStore(outNormal, texel, vec4(d, 1.0));
+  imageStore(outFlux, texel, vec4(flux, direction.w));
+  Append(1, texel);
+}
+#else
+// Phase 2: photons in air find the receiver they land on, as the caustic map sees
+// receivers, searched only where the ray is inside the receivers' bounds (slab
+// test; 1 / d is +-Inf on axis-parallel rays, which the test handles).
+void main()
+{
+  ivec2 texel;
+  if (!Listed(1, texel))
+  {
+    return;
+  }
+  vec4 leaving = imageLoad(outNormal, texel);
+  vec4 start4 = imageLoad(outPosition, texel);
+  vec4 flux4 = imageLoad(outFlux, texel);
+  vec3 p = start4.xyz;
+  vec3 d = leaving.xyz;
+  float power = Power(flux4.rgb);
+  vec3 inverse = 1.0 / d;
+  vec3 near = (receiverLow - p) * inverse, far = (receiverHigh - p) * inverse;
+  vec3 entries = min(near, far), exits = max(near, far);
+  float enter = max(max(entries.x, entries.y), entries.z);
+  float leave = min(min(exits.x, exits.y), exits.z);
+  float t;
+  float start = max(1e-4 * airLength, enter);
+  float end = min(airLength, leave);
+  vec3 s, n;
+  float material;
+  bool landed = end > start &&
+    LayerHit(mapView, receiverPosition, receiverNormal, p, d, start, end, -1.0, t) &&
+    LayerAt(mapView, receiverPosition, receiverNormal, p + t * d, s, n, material) &&
+    dot(d, n) < 0.0; // a receiver reached from behind shows nothing
+  vec3 hit = p + t * d;
+  float path = start4.w + t;
+  if (!landed || !AllFinite(hit) || !(path > 0.0) || isinf(path))
+  {
+    // Left the caustic map's view or the receivers' bounds.
+    atomicAdd(statistics[STAT_ESCAPED], 1u);
+    AddFlux(STAT_FLUX_ESCAPED, power);
+    imageStore(outPosition, texel, vec4(0.0));
+    imageStore(outNormal, texel, vec4(0.0));
+    imageStore(outFlux, texel, vec4(0.0));
+    return;
+  }
+  atomicAdd(statistics[STAT_HITS], 1u);
+  AddFlux(STAT_FLUX_HITS, power);
+  imageStore(outPosition, texel, vec4(hit, path));
+  imageStore(outNormal, texel, vec4(n, abs(dot(n, d))));
+  imageStore(outFlux, texel, flux4);
+}
+#endif

@@ -1,0 +1,285 @@
+#include "vtkCausticsCausticMap.h"
+
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsPhotonBuffer.h"
+#include "vtkCausticsPhotonBufferHierarchy.h"
+#include "vtkCausticsPhotonBufferUtilities.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkCausticsCausticMapApplyFS.h"
+#include "vtkCausticsCausticMapSplatVS.h"
+#include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsPhotonBufferCommon.h"
+#include "vtkCausticsPhotonSplatFS.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkCausticsCausticMap);
+
+struct vtkCausticsCausticMap::Internals
+{
+  caustics::LightView View;
+  bool HasView = false;
+};
+
+vtkCausticsCausticMap::vtkCausticsCausticMap()
+  : Internal(new Internals)
+  , Triangle(new caustics::gl::FullScreenTriangle)
+{
+  for (int j = 0; j < 4; ++j)
+  {
+    this->Receivers[j] = vtkSmartPointer<vtkCausticsGBuffer>::New();
+    this->Irradiance[j] = vtkSmartPointer<vtkTextureObject>::New();
+    this->Framebuffers[j] = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+  }
+  const std::string common = vtkCausticsPhotonBufferCommon;
+  this->SplatProgram->SetName("caustic map splat");
+  this->SplatProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->SplatProgram->SetVertexSource((common + vtkCausticsCausticMapSplatVS).c_str());
+  this->SplatProgram->SetFragmentSource(vtkCausticsPhotonSplatFS);
+  this->ApplyProgram->SetName("caustic map final render");
+  this->ApplyProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->ApplyProgram->SetVertexSource(vtkCausticsFullScreenVS);
+  this->ApplyProgram->SetFragmentSource((common + vtkCausticsCausticMapApplyFS).c_str());
+}
+
+vtkCausticsCausticMap::~vtkCausticsCausticMap()
+{
+  delete this->Triangle;
+  if (this->VertexArray)
+  {
+    vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): vertex array leaked");
+  }
+}
+
+int vtkCausticsCausticMap::GetLevelResolution(int j) const
+{
+  return std::max(1, this->Resolution >> std::max(0, std::min(j, 3)));
+}
+
+vtkTextureObject* vtkCausticsCausticMap::GetIrradianceTexture(int j)
+{
+  return j >= 0 && j < 4 ? this->Irradiance[j].GetPointer() : nullptr;
+}
+
+vtkCausticsGBuffer* vtkCausticsCausticMap::GetReceivers(int j)
+{
+  return j >= 0 && j < 4 ? this->Receivers[j].GetPointer() : nullptr;
+}
+
+bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const caustics::LightView& view)
+{
+  this->Internal->View = view;
+  this->Internal->HasView = true;
+  float matrix[16];
+  caustics::gl::ToColumnMajor(view.worldToClip, matrix);
+  bool ok = true;
+  for (int j = 0; j < this->NumberOfLevels; ++j)
+  {
+    const int size = this->GetLevelResolution(j);
+    ok = this->Receivers[j]->Render(
+           renWin, geometry, matrix, size, size, vtkCausticsSceneGeometry::RoleBit(1)) &&
+      ok;
+  }
+  return ok;
+}
+
+bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
+  vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels)
+{
+  if (!this->Internal->HasView || !photons || !hierarchy)
+  {
+    vtkErrorMacro(<< "Splat needs RenderReceivers() first, a photon buffer and its hierarchy");
+    return false;
+  }
+  vtkOpenGLState* state = renWin->GetState();
+  state->PushFramebufferBindings();
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglEnableDisable pointSize(state, GL_PROGRAM_POINT_SIZE);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_DEPTH_TEST);
+
+  // Clear every level first (levels left out this frame must read zero).
+  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  for (int j = 0; j < 4; ++j)
+  {
+    const int size = j < this->NumberOfLevels ? this->GetLevelResolution(j) : 1;
+    const bool resized =
+      caustics::gl::EnsureTexture(this->Irradiance[j], renWin, size, size, GL_RGBA32F);
+    vtkOpenGLFramebufferObject* framebuffer = this->Framebuffers[j];
+    framebuffer->SetContext(renWin);
+    framebuffer->Bind();
+    if (resized || framebuffer->GetNumberOfColorAttachments() != 1)
+    {
+      framebuffer->AddColorAttachment(0, this->Irradiance[j]);
+    }
+    framebuffer->ActivateDrawBuffers(1);
+    glClearBufferfv(GL_COLOR, 0, zero);
+  }
+
+  vtkCausticsShaderProgram* program = this->SplatProgram;
+  bool ok = program->Bind(renWin);
+  if (ok)
+  {
+    if (!this->VertexArray)
+    {
+      glCreateVertexArrays(1, &this->VertexArray);
+    }
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    state->vtkglEnable(GL_PROGRAM_POINT_SIZE);
+    vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
+      photons->GetHitFluxTexture(), hierarchy->GetSplatRadiusTexture() };
+    const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "splatRadiusTexture" };
+    for (int i = 0; i < 4; ++i)
+    {
+      inputs[i]->Activate();
+      program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+    }
+    program->SetUniformi("gridWidth", photons->GetGridSize()[0]);
+    for (int k = 0; k < caustics::hcm::MaxTraversalLevels; ++k)
+    {
+      const std::string index = "[" + std::to_string(k) + "]";
+      program->SetUniformu(("nodeOffsets" + index).c_str(), hierarchy->GetNodeOffset(k));
+      program->SetUniformi(("nodeRowLength" + index).c_str(), hierarchy->GetNodeRowLength(k));
+    }
+    program->SetUniformf("minimumRadiusPixels", static_cast<float>(this->MinimumSplatRadius));
+    program->SetUniformf("maximumRadiusPixels", static_cast<float>(this->MaximumSplatRadius));
+    program->SetUniformf("clusterRadiusPixels",
+      static_cast<float>(std::max(clusterRadiusPixels, this->MinimumSplatRadius)));
+    program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
+    program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+    glBindBufferBase(
+      GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, hierarchy->GetNodeBuffer());
+    glBindBufferBase(
+      GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, hierarchy->GetSplatBuffer());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer());
+    glBindVertexArray(this->VertexArray);
+    for (int j = 0; j < this->NumberOfLevels; ++j)
+    {
+      const int size = this->GetLevelResolution(j);
+      vtkCausticsGBuffer* target = this->Receivers[j];
+      vtkTextureObject* targetPosition = target->GetPositionTexture();
+      vtkTextureObject* targetNormal = target->GetNormalTexture();
+      targetPosition->Activate();
+      targetNormal->Activate();
+      program->SetUniformi("targetPosition", targetPosition->GetTextureUnit());
+      program->SetUniformi("targetNormal", targetNormal->GetTextureUnit());
+      caustics::hcm::SetViewUniforms(program, "targetView", this->Internal->View, size, size);
+      program->SetUniformu(
+        "listOffset", static_cast<unsigned int>(j) * hierarchy->GetSplatRegion());
+      this->Framebuffers[j]->Bind();
+      this->Framebuffers[j]->ActivateDrawBuffers(1);
+      state->vtkglViewport(0, 0, size, size);
+      glDrawArraysIndirect(GL_POINTS,
+        reinterpret_cast<const void*>(
+          static_cast<std::size_t>(vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(j))));
+      targetPosition->Deactivate();
+      targetNormal->Deactivate();
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    for (vtkTextureObject* input : inputs)
+    {
+      input->Deactivate();
+    }
+    program->Unbind(renWin);
+  }
+  state->PopFramebufferBindings();
+  return ok;
+}
+
+bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera)
+{
+  if (!this->Internal->HasView || !camera)
+  {
+    vtkErrorMacro(<< "Apply needs RenderReceivers() and Splat() first, and a camera G-buffer");
+    return false;
+  }
+  vtkCausticsShaderProgram* program = this->ApplyProgram;
+  if (!program->Bind(renWin))
+  {
+    return false;
+  }
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+
+  std::vector<vtkTextureObject*> bound;
+  auto bind = [&](vtkTextureObject* texture, const std::string& name)
+  {
+    texture->Activate();
+    program->SetUniformi(name.c_str(), texture->GetTextureUnit());
+    bound.push_back(texture);
+  };
+  bind(camera->GetPositionTexture(), "gPosition");
+  bind(camera->GetNormalTexture(), "gNormal");
+  for (int j = 0; j < this->NumberOfLevels; ++j)
+  {
+    const std::string index = "[" + std::to_string(j) + "]";
+    bind(this->Irradiance[j], "irradiance" + index);
+    bind(this->Receivers[j]->GetPositionTexture(), "receiverPosition" + index);
+    bind(this->Receivers[j]->GetNormalTexture(), "receiverNormal" + index);
+    const int size = this->GetLevelResolution(j);
+    caustics::hcm::SetViewUniforms(program, "mapViews" + index, this->Internal->View, size, size);
+  }
+  program->SetUniformi("levels", this->NumberOfLevels);
+  this->Triangle->Draw();
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+  program->Unbind(renWin);
+  return true;
+}
+
+void vtkCausticsCausticMap::ReleaseGraphicsResources(vtkWindow* win)
+{
+  for (int j = 0; j < 4; ++j)
+  {
+    this->Receivers[j]->ReleaseGraphicsResources(win);
+    this->Irradiance[j]->ReleaseGraphicsResources(win);
+    this->Framebuffers[j]->ReleaseGraphicsResources(win);
+  }
+  this->SplatProgram->ReleaseGraphicsResources(win);
+  this->ApplyProgram->ReleaseGraphicsResources(win);
+  this->Triangle->Release();
+  if (this->VertexArray)
+  {
+    glDeleteVertexArrays(1, &this->VertexArray);
+    this->VertexArray = 0;
+  }
+  this->Internal->HasView = false;
+}
+
+void vtkCausticsCausticMap::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
+  os << indent << "MinimumSplatRadius: " << this->MinimumSplatRadius << " px\n";
+  os << indent << "MaximumSplatRadius: " << this->MaximumSplatRadius << " px\n";
+  os << indent << "PlaneTolerance: " << this->PlaneTolerance << " radii\n";
+  os << indent << "NormalTolerance: " << this->NormalTolerance << "\n";
+  os << indent << "HasView: " << this->Internal->HasView << "\n";
+}

@@ -1,0 +1,146 @@
+/**
+ * @class   vtkCausticsCausticMap
+ * @brief   A light's multi-resolution caustic map: splatted, then projected onto the scene.
+ *
+ * The caustic map of 001_7c07a484f7a872bb.txt (§2 and §3.3, Fig. 6): a light-space
+ * image of caustic irradiance, projected onto the receivers like a shadow map.
+ * 1. RenderReceivers: for each of NumberOfLevels levels (level j has Resolution /
+ *    2^j texels per side), a vtkCausticsGBuffer of the receivers alone seen from
+ *    the light (the view of caustics::ComputeLightView aimed at the whole scene):
+ *    where splats land, and the depth test of the final render. Specular actors
+ *    are left out so that caustics can land where they hide the floor.
+ * 2. Splat: for each level, one glDrawArraysIndirect of point sprites over the
+ *    level's splat list made by vtkCausticsPhotonBufferHierarchy (count written on
+ *    the GPU); each splat fetches its photon from the photon buffer by index and is
+ *    drawn with the shared receiver-oriented, energy-normalized kernel of
+ *    vtkCausticsPhotonSplatter's fragment shader, so each level holds irradiance in
+ *    W/m^2 and every splat deposits exactly its flux.
+ * 3. Apply: a full-screen pass over the camera's G-buffer adds, at every receiver
+ *    pixel the finest level sees, the sum over the levels of their bilinear
+ *    irradiance (taps that show another surface are left out). Eq. 3's (1/4)^i
+ *    weights renormalize energy counted per texel; per unit area, as stored here,
+ *    they are already applied, and the sum of the levels is the irradiance.
+ * Textures are allocated when the resolution changes, never per frame.
+ */
+#ifndef vtkCausticsCausticMap_h
+#define vtkCausticsCausticMap_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include "vtkNew.h"          // For vtkNew members
+#include "vtkSmartPointer.h" // For the per-level objects
+
+#include <memory> // For std::unique_ptr
+
+class vtkCausticsGBuffer;
+class vtkCausticsPhotonBuffer;
+class vtkCausticsPhotonBufferHierarchy;
+class vtkCausticsSceneGeometry;
+class vtkCausticsShaderProgram;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace caustics
+{
+struct LightView;
+namespace gl
+{
+class FullScreenTriangle;
+}
+}
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsCausticMap : public vtkObject
+{
+public:
+  static vtkCausticsCausticMap* New();
+  vtkTypeMacro(vtkCausticsCausticMap, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Texels per side of the finest level, in [16, 8192]. Default 512. */
+  vtkSetClampMacro(Resolution, int, 16, 8192);
+  vtkGetMacro(Resolution, int);
+  ///@}
+
+  ///@{
+  /** Levels of the pyramid, in [1, 4] (4 for the multi-resolution map). Default 4. */
+  vtkSetClampMacro(NumberOfLevels, int, 1, 4);
+  vtkGetMacro(NumberOfLevels, int);
+  ///@}
+
+  ///@{
+  /**
+   * Smallest splat radius in pixels of its level, in [1, 16]: a narrower kernel
+   * falls between pixel centres and loses energy. Default 1.5.
+   */
+  vtkSetClampMacro(MinimumSplatRadius, double, 1.0, 16.0);
+  vtkGetMacro(MinimumSplatRadius, double);
+  ///@}
+
+  ///@{
+  /** Largest splat radius in pixels of its level (bounds the cost), in [2, 360]. Default 32. */
+  vtkSetClampMacro(MaximumSplatRadius, double, 2.0, 360.0);
+  vtkGetMacro(MaximumSplatRadius, double);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /** Renders the receivers of every level as `view` sees them. */
+  bool RenderReceivers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::LightView& view);
+
+  /**
+   * Clears the levels and draws the splat lists of `hierarchy` (gathered from
+   * `photons`) into them. Clusters get clusterRadiusPixels. False if a program failed.
+   */
+  bool Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
+    vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels);
+
+  /**
+   * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of
+   * the opaque roles) into the bound framebuffer, additively. False on failure.
+   */
+  bool Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera);
+#endif
+
+  /** Irradiance (W/m^2, RGBA32F) of level j after Splat(). */
+  vtkTextureObject* GetIrradianceTexture(int j);
+  /** Receivers of level j as the map's view sees them. */
+  vtkCausticsGBuffer* GetReceivers(int j);
+  /** Texels per side of level j. */
+  int GetLevelResolution(int j) const;
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsCausticMap();
+  ~vtkCausticsCausticMap() override;
+
+  int Resolution = 512;
+  int NumberOfLevels = 4;
+  double MinimumSplatRadius = 1.5;
+  double MaximumSplatRadius = 32.0;
+  // The splat kernel's receiver tests, as vtkCausticsPhotonSplatter's defaults:
+  // within half a radius of the photon's tangent plane, normals within ~37 degrees.
+  double PlaneTolerance = 0.5;
+  double NormalTolerance = 0.8;
+
+  vtkSmartPointer<vtkCausticsGBuffer> Receivers[4];
+  vtkSmartPointer<vtkTextureObject> Irradiance[4];
+  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffers[4];
+  vtkNew<vtkCausticsShaderProgram> SplatProgram;
+  vtkNew<vtkCausticsShaderProgram> ApplyProgram;
+  unsigned int VertexArray = 0;
+
+private:
+  vtkCausticsCausticMap(const vtkCausticsCausticMap&) = delete;
+  void operator=(const vtkCausticsCausticMap&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal; // the view of the last RenderReceivers()
+  caustics::gl::FullScreenTriangle* Triangle;
+};
+
+#endif

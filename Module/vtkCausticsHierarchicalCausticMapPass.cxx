@@ -1,0 +1,454 @@
+#include "vtkCausticsHierarchicalCausticMapPass.h"
+
+#include "vtkCausticsCausticMap.h"
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsPhotonBuffer.h"
+#include "vtkCausticsPhotonBufferHierarchy.h"
+#include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsTimings.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkCausticsHierarchicalCausticMapPass);
+
+namespace
+{
+/** Everything one light owns: its photon buffer, its gather lists, its caustic map. */
+struct PerLight
+{
+  vtkNew<vtkCausticsPhotonEmitter> Emitter;
+  vtkNew<vtkCausticsPhotonBuffer> Photons;
+  vtkNew<vtkCausticsPhotonBufferHierarchy> Hierarchy;
+  vtkNew<vtkCausticsCausticMap> Map;
+  caustics::LightView MapView;
+  bool Traced = false;
+
+  void Release(vtkWindow* w)
+  {
+    this->Emitter->ReleaseGraphicsResources(w);
+    this->Photons->ReleaseGraphicsResources(w);
+    this->Hierarchy->ReleaseGraphicsResources(w);
+    this->Map->ReleaseGraphicsResources(w);
+    this->Traced = false;
+  }
+};
+
+/**
+ * Whether a light can send photons to a specular actor: it has power, and a spot
+ * light's outer cone meets the specular actors' bounding sphere.
+ */
+bool LightReachesSpecular(const caustics::SceneData& scene, const caustics::Light& light)
+{
+  const double power =
+    std::max({ light.radiometric[0], light.radiometric[1], light.radiometric[2] });
+  if (!scene.HasSpecular || !(power > 0.0))
+  {
+    return false;
+  }
+  if (light.type != caustics::Light::Type::Spot)
+  {
+    return true;
+  }
+  const double* b = scene.SpecularBounds;
+  double toCentre[3], radius2 = 0.0, distance2 = 0.0, along = 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    const double half = 0.5 * (b[2 * i + 1] - b[2 * i]);
+    radius2 += half * half;
+    toCentre[i] = 0.5 * (b[2 * i] + b[2 * i + 1]) - light.position[i];
+    distance2 += toCentre[i] * toCentre[i];
+    along += toCentre[i] * light.direction[i];
+  }
+  if (distance2 <= radius2)
+  {
+    return true; // the light is inside the specular actors' bounds
+  }
+  const double distance = std::sqrt(distance2);
+  const double toAxis = std::acos(std::max(-1.0, std::min(1.0, along / distance)));
+  const double angularRadius = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
+  const double outer = std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+  return toAxis - angularRadius < outer;
+}
+}
+
+struct vtkCausticsHierarchicalCausticMapPass::Internals
+{
+  std::vector<std::unique_ptr<PerLight>> Lights;
+};
+
+vtkCausticsHierarchicalCausticMapPass::vtkCausticsHierarchicalCausticMapPass()
+  : Internal(new Internals)
+{
+}
+
+vtkCausticsHierarchicalCausticMapPass::~vtkCausticsHierarchicalCausticMapPass() = default;
+
+int vtkCausticsHierarchicalCausticMapPass::GetNumberOfLights() const
+{
+  return static_cast<int>(this->Internal->Lights.size());
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::GetLightTraced(int i) const
+{
+  return this->LastFrameHadCaustics && i >= 0 && i < this->GetNumberOfLights() &&
+    this->Internal->Lights[i]->Traced;
+}
+
+vtkCausticsPhotonBuffer* vtkCausticsHierarchicalCausticMapPass::GetPhotonBuffer(int i)
+{
+  return i >= 0 && i < this->GetNumberOfLights() ? this->Internal->Lights[i]->Photons.GetPointer()
+                                                 : nullptr;
+}
+
+vtkCausticsPhotonBufferHierarchy* vtkCausticsHierarchicalCausticMapPass::GetHierarchy(int i)
+{
+  return i >= 0 && i < this->GetNumberOfLights() ? this->Internal->Lights[i]->Hierarchy.GetPointer()
+                                                 : nullptr;
+}
+
+vtkCausticsCausticMap* vtkCausticsHierarchicalCausticMapPass::GetCausticMap(int i)
+{
+  return i >= 0 && i < this->GetNumberOfLights() ? this->Internal->Lights[i]->Map.GetPointer()
+                                                 : nullptr;
+}
+
+void vtkCausticsHierarchicalCausticMapPass::BeginStage(const char* name)
+{
+  // With synchronous timings (benchmarks, tests) every stage starts on an idle GPU
+  // and ends when its work is done, so that the CPU time of the stage is its wall
+  // time on any implementation (Mesa's llvmpipe runs compute dispatches at once
+  // but timestamps them only when it flushes its rasterizer).
+  if (this->Timings->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StartStage(name);
+}
+
+void vtkCausticsHierarchicalCausticMapPass::EndStage(const char* name)
+{
+  if (this->Timings->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StopStage(name);
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::NeedsCaustics()
+{
+  // Nothing of the last frame stays "traced" if this frame runs no photon stage.
+  for (auto& light : this->Internal->Lights)
+  {
+    light->Traced = false;
+  }
+  if (!this->Superclass::NeedsCaustics())
+  {
+    return false;
+  }
+  const caustics::SceneData& scene = this->Extractor->GetScene();
+  for (const caustics::Light& light : scene.Lights)
+  {
+    if (LightReachesSpecular(scene, light))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow* renWin)
+{
+  const caustics::SceneData& scene = this->Extractor->GetScene();
+  auto& lights = this->Internal->Lights;
+  const std::size_t count = scene.Lights.size();
+  // Lights that went away give their GL objects back.
+  for (std::size_t i = count; i < lights.size(); ++i)
+  {
+    lights[i]->Release(renWin);
+  }
+  lights.resize(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!lights[i])
+    {
+      lights[i].reset(new PerLight);
+    }
+    PerLight& light = *lights[i];
+    const int index = static_cast<int>(i);
+    light.MapView = caustics::ComputeLightView(scene, index, caustics::LightView::Focus::Scene);
+    light.Traced = index < this->LightBuffers->GetNumberOfLights() &&
+      this->LightBuffers->GetView(index).valid && light.MapView.valid &&
+      LightReachesSpecular(scene, scene.Lights[i]);
+
+    light.Emitter->SetSplitFresnel(this->SplitFresnel);
+    light.Photons->SetMaximumInternalEvents(this->MaximumInternalEvents);
+    vtkCausticsPhotonBufferHierarchy* hierarchy = light.Hierarchy;
+    hierarchy->SetGatherMode(this->GatherMode);
+    hierarchy->SetClusterMode(this->ClusterMode);
+    hierarchy->SetSplatMode(this->SplatMode);
+    hierarchy->SetStartResolution(this->TraversalStartResolution);
+    hierarchy->SetSplatScale(this->SplatScale);
+    hierarchy->SetConstantSplatRadius(this->ConstantSplatRadius);
+    hierarchy->SetSplatSizeThreshold(this->SplatSizeThreshold);
+    hierarchy->SetDropCoarseSplats(this->DropCoarseSplats);
+    vtkCausticsCausticMap* map = light.Map;
+    map->SetResolution(this->CausticMapResolution);
+    map->SetNumberOfLevels(this->SplatMode == SPLAT_VARYING_MULTIRES ? 4 : 1);
+    map->SetMinimumSplatRadius(this->MinimumSplatRadius);
+    map->SetMaximumSplatRadius(this->MaximumSplatRadius);
+  }
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin)
+{
+  const caustics::SceneData& scene = this->Extractor->GetScene();
+  bool ok = true;
+  for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
+  {
+    PerLight& light = *this->Internal->Lights[i];
+    if (!light.Traced)
+    {
+      continue;
+    }
+    const int index = static_cast<int>(i);
+    const caustics::LightView& photonView = this->LightBuffers->GetView(index);
+    // Photons after the first specular interaction (the shared stage).
+    this->BeginStage("hcm emit");
+    light.Traced = light.Emitter->Emit(renWin, this->LightBuffers, index, this->Geometry, scene);
+    this->EndStage("hcm emit");
+    // The receivers the caustic map sees, and the refractors' faces from the light.
+    this->BeginStage("hcm light layers");
+    light.Traced = light.Traced &&
+      light.Map->RenderReceivers(renWin, this->Geometry, light.MapView) &&
+      light.Photons->RenderLayers(
+        renWin, this->Geometry, photonView, light.Emitter->GetGridSize()[0]);
+    this->EndStage("hcm light layers");
+    // Where each photon lands.
+    this->BeginStage("hcm trace");
+    light.Traced = light.Traced &&
+      light.Photons->Trace(renWin, this->Geometry, scene, index, light.Emitter, photonView,
+        light.MapView, light.Map->GetReceivers(0));
+    this->EndStage("hcm trace");
+    ok = ok && light.Traced;
+  }
+  return ok;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWindow* renWin)
+{
+  const caustics::SceneData& scene = this->Extractor->GetScene();
+  // Clusters land in one texel: the smallest splat (or the constant one).
+  const double clusterRadius =
+    this->SplatMode == SPLAT_CONSTANT ? this->ConstantSplatRadius : this->MinimumSplatRadius;
+  bool ok = true;
+  for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
+  {
+    PerLight& light = *this->Internal->Lights[i];
+    if (!light.Traced)
+    {
+      continue;
+    }
+    this->BeginStage("hcm traversal");
+    const bool gathered = light.Hierarchy->Gather(renWin, light.Photons, light.MapView,
+      this->CausticMapResolution, static_cast<int>(scene.Lights[i].type));
+    this->EndStage("hcm traversal");
+    this->BeginStage("hcm splat");
+    light.Traced =
+      gathered && light.Map->Splat(renWin, light.Photons, light.Hierarchy, clusterRadius);
+    this->EndStage("hcm splat");
+    ok = ok && light.Traced;
+  }
+  return ok;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::RenderFinal(vtkOpenGLRenderWindow* renWin)
+{
+  bool ok = true;
+  for (auto& light : this->Internal->Lights)
+  {
+    if (light->Traced)
+    {
+      ok = light->Map->Apply(renWin, this->CameraGBuffer) && ok;
+    }
+  }
+  return ok;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin)
+{
+  this->PrepareLights(renWin);
+
+  this->BeginStage("hcm photon buffer");
+  bool ok = this->RenderPhotonBuffers(renWin);
+  this->EndStage("hcm photon buffer");
+
+  this->BeginStage("hcm gather");
+  ok = this->GatherCausticMaps(renWin) && ok;
+  this->EndStage("hcm gather");
+
+  this->BeginStage("hcm final render");
+  ok = this->RenderFinal(renWin) && ok;
+  this->EndStage("hcm final render");
+  vtkOpenGLCheckErrorMacro("failed after the hierarchical caustic map stages");
+  return ok;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::GetCounters(int i, Counters& counters)
+{
+  counters = Counters();
+  if (!this->GetLightTraced(i) || !this->LastWindow)
+  {
+    vtkErrorMacro(<< "GetCounters: light " << i << " ran no photon stage in the last frame");
+    return false;
+  }
+  this->LastWindow->MakeCurrent();
+  PerLight& light = *this->Internal->Lights[i];
+  vtkCausticsPhotonBuffer::Statistics statistics;
+  vtkCausticsPhotonBufferHierarchy::Counters gather;
+  if (!light.Photons->GetStatistics(statistics) || !light.Hierarchy->GetCounters(gather))
+  {
+    return false;
+  }
+  counters.Photons = statistics.Photons;
+  counters.Hits = statistics.Hits;
+  counters.LostInside = statistics.LostInside;
+  counters.Escaped = statistics.Escaped;
+  counters.FluxIn = statistics.FluxIn;
+  counters.FluxHits = statistics.FluxHits;
+  counters.FluxLostInside = statistics.FluxLostInside;
+  counters.FluxEscaped = statistics.FluxEscaped;
+  counters.FluxInternalReflection = statistics.FluxInternalReflection;
+  counters.FluxAbsorbed = statistics.FluxAbsorbed;
+  counters.StartLevel = gather.StartLevel;
+  std::copy(gather.Processed, gather.Processed + 16, counters.Processed);
+  counters.TotalProcessed = gather.TotalProcessed;
+  counters.Valid = gather.Valid;
+  counters.Clusters = gather.Clusters;
+  counters.ClusteredPhotons = gather.ClusteredPhotons;
+  std::copy(gather.Splats, gather.Splats + 4, counters.Splats);
+  counters.CoarseSplats = gather.CoarseSplats;
+  std::copy(gather.SplatFlux, gather.SplatFlux + 4, counters.SplatFlux);
+  counters.CoarseFlux = gather.CoarseFlux;
+  counters.CoarseFluxFraction = gather.CoarseFluxFraction;
+  counters.DroppedFluxFraction = gather.DroppedFluxFraction;
+  return true;
+}
+
+vtkIdType vtkCausticsHierarchicalCausticMapPass::GetNumberOfProcessedPhotons(int light)
+{
+  Counters counters;
+  return this->GetCounters(light, counters) ? counters.TotalProcessed : 0;
+}
+
+vtkIdType vtkCausticsHierarchicalCausticMapPass::GetNumberOfValidPhotons(int light)
+{
+  Counters counters;
+  return this->GetCounters(light, counters) ? counters.Valid : 0;
+}
+
+vtkIdType vtkCausticsHierarchicalCausticMapPass::GetNumberOfClusters(int light)
+{
+  Counters counters;
+  return this->GetCounters(light, counters) ? counters.Clusters : 0;
+}
+
+vtkIdType vtkCausticsHierarchicalCausticMapPass::GetNumberOfSplats(int light, int level)
+{
+  Counters counters;
+  return this->GetCounters(light, counters) && level >= 0 && level < 4 ? counters.Splats[level] : 0;
+}
+
+double vtkCausticsHierarchicalCausticMapPass::GetDroppedFluxFraction(int light)
+{
+  Counters counters;
+  return this->GetCounters(light, counters) ? counters.DroppedFluxFraction : 0.0;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::ReadCausticMap(
+  int light, int level, vtkImageData* output)
+{
+  if (!output || !this->GetLightTraced(light) || !this->LastWindow || level < 0 ||
+    level >= this->Internal->Lights[light]->Map->GetNumberOfLevels())
+  {
+    vtkErrorMacro(<< "ReadCausticMap: no level " << level << " of light " << light
+                  << " in the last frame");
+    return false;
+  }
+  this->LastWindow->MakeCurrent();
+  auto image = caustics::gl::ReadTexture(
+    this->Internal->Lights[light]->Map->GetIrradianceTexture(level), "CausticMap", 3);
+  output->ShallowCopy(image);
+  return true;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::ReadPhotonBuffer(int light, vtkImageData* output)
+{
+  if (!output || !this->GetLightTraced(light) || !this->LastWindow)
+  {
+    vtkErrorMacro(<< "ReadPhotonBuffer: light " << light << " has no photon buffer this frame");
+    return false;
+  }
+  this->LastWindow->MakeCurrent();
+  vtkCausticsPhotonBuffer* photons = this->Internal->Lights[light]->Photons;
+  auto position = caustics::gl::ReadTexture(photons->GetHitPositionTexture(), "HitPosition", 4);
+  auto normal = caustics::gl::ReadTexture(photons->GetHitNormalTexture(), "HitNormal", 4);
+  auto flux = caustics::gl::ReadTexture(photons->GetHitFluxTexture(), "HitFlux", 4);
+  output->ShallowCopy(position);
+  output->GetPointData()->AddArray(normal->GetPointData()->GetArray(0));
+  output->GetPointData()->AddArray(flux->GetPointData()->GetArray(0));
+  return true;
+}
+
+void vtkCausticsHierarchicalCausticMapPass::ReleaseTechniqueResources(vtkWindow* w)
+{
+  for (auto& light : this->Internal->Lights)
+  {
+    light->Release(w);
+  }
+  this->Internal->Lights.clear();
+}
+
+void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const char* gathers[] = { "flat (Wyman & Davis 2006)", "hierarchical (3.1)" };
+  const char* clusters[] = { "none", "last level (3.2)", "all levels (3.2)" };
+  const char* splats[] = { "constant", "varying, single map", "varying, multi-resolution (3.3)" };
+  os << indent << "GatherMode: " << gathers[this->GatherMode] << "\n";
+  os << indent << "ClusterMode: " << clusters[this->ClusterMode] << "\n";
+  os << indent << "SplatMode: " << splats[this->SplatMode] << "\n";
+  os << indent << "PhotonBufferResolution (LightBufferResolution): " << this->LightBufferResolution
+     << "\n";
+  os << indent << "CausticMapResolution: " << this->CausticMapResolution << "\n";
+  os << indent << "TraversalStartResolution: " << this->TraversalStartResolution << "\n";
+  os << indent << "SplatScale: " << this->SplatScale << "\n";
+  os << indent << "ConstantSplatRadius: " << this->ConstantSplatRadius << " px\n";
+  os << indent << "SplatSizeThreshold: " << this->SplatSizeThreshold << " px\n";
+  os << indent << "MinimumSplatRadius: " << this->MinimumSplatRadius << " px\n";
+  os << indent << "MaximumSplatRadius: " << this->MaximumSplatRadius << " px\n";
+  os << indent << "DropCoarseSplats: " << this->DropCoarseSplats << "\n";
+  os << indent << "MaximumInternalEvents: " << this->MaximumInternalEvents << "\n";
+  os << indent << "SplitFresnel: " << this->SplitFresnel << "\n";
+  os << indent << "Lights: " << this->Internal->Lights.size() << "\n";
+  for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
+  {
+    os << indent.GetNextIndent() << "light " << i << ": "
+       << (this->Internal->Lights[i]->Traced ? "traced" : "no photon stage") << "\n";
+  }
+}

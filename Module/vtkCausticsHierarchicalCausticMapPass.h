@@ -1,0 +1,279 @@
+/**
+ * @class   vtkCausticsHierarchicalCausticMapPass
+ * @brief   Caustics by hierarchical caustic maps (Wyman 2008), one multi-resolution map per light.
+ *
+ * Implements 001_7c07a484f7a872bb.txt on the frame of vtkCausticsRenderPass,
+ * which renders the light buffers (reflective shadow maps aimed at the specular
+ * actors, LightBufferResolution texels per side: the photon buffer's size N).
+ * For every light whose view holds a specular actor (others run no photon stage):
+ * 1. Photon buffer (§2, Fig. 2): vtkCausticsPhotonEmitter makes one photon per
+ *    light-buffer texel after its first specular interaction (N x 2N with the
+ *    Fresnel-reflected branch); vtkCausticsPhotonBuffer follows refracted photons
+ *    to the refractor's back faces as the light sees them and out, and finds where
+ *    every photon lands on a receiver: its hit, flux, and the texel's measure
+ *    omega_i.
+ * 2. Gather (§3, vtkCausticsPhotonBufferHierarchy): the validity mipmap of the
+ *    photon buffer is traversed from 16^2 down, discarding subtrees without a valid
+ *    photon (GATHER_HIERARCHICAL) or every photon is visited (GATHER_FLAT, the
+ *    Wyman & Davis 2006 baseline); converging photons are clustered at the last
+ *    level or at all levels (§3.2, intensity modifier 4^k); each splat gets its
+ *    radius from the beam's divergence (Eq. 2, max-distance approximation) and the
+ *    level of the multi-resolution map its size calls for (§3.3), or the constant
+ *    baseline size. All on the GPU with compute shaders and indirect dispatch.
+ * 3. Caustic map (vtkCausticsCausticMap): the splat lists are drawn with indirect
+ *    draws, photons fetched by index (§4), with energy-normalized kernels into the
+ *    levels of the light's map (irradiance, W/m^2).
+ * 4. Final render: each light's map is projected onto the camera's receivers like
+ *    a shadow map, with a visibility test against the map's own receivers, and the
+ *    levels summed (Eq. 3); the lights add up in CausticFramebuffer.
+ * Stages are timed as "hcm photon buffer" (with "hcm emit", "hcm light layers" and
+ * "hcm trace" inside), "hcm gather" (with "hcm traversal" and "hcm splat" inside)
+ * and "hcm final render"; with synchronous timings each stage ends with glFinish,
+ * so that its CPU time is its wall time. GPU counters (photons processed per
+ * level, valid photons, clusters, splats per level, flux of the splats needing
+ * level 4+) are read only on request (GetCounters). See docs/technique-caustic-maps.md.
+ */
+#ifndef vtkCausticsHierarchicalCausticMapPass_h
+#define vtkCausticsHierarchicalCausticMapPass_h
+
+#include "vtkCausticsRenderPass.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+
+class vtkCausticsCausticMap;
+class vtkCausticsPhotonBuffer;
+class vtkCausticsPhotonBufferHierarchy;
+class vtkImageData;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsHierarchicalCausticMapPass
+  : public vtkCausticsRenderPass
+{
+public:
+  static vtkCausticsHierarchicalCausticMapPass* New();
+  vtkTypeMacro(vtkCausticsHierarchicalCausticMapPass, vtkCausticsRenderPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  // Values as vtkCausticsPhotonBufferHierarchy's GatherModes, ClusterModes, SplatModes.
+  enum GatherModes
+  {
+    GATHER_FLAT = 0,        ///< every photon: Wyman & Davis 2006 (with §4's improvements)
+    GATHER_HIERARCHICAL = 1 ///< validity mipmap traversal (§3.1)
+  };
+  enum ClusterModes
+  {
+    CLUSTER_NONE = 0,
+    CLUSTER_LAST_LEVEL = 1, ///< convergence tested at mipmap level 1 only (§3.2)
+    CLUSTER_ALL_LEVELS = 2  ///< convergence tested at every level (§3.2)
+  };
+  enum SplatModes
+  {
+    SPLAT_CONSTANT = 0,        ///< baseline: ConstantSplatRadius pixels, one map
+    SPLAT_VARYING_SINGLE = 1,  ///< Eq. 2 radius, one map
+    SPLAT_VARYING_MULTIRES = 2 ///< Eq. 2 radius, multi-resolution map (§3.3)
+  };
+
+  ///@{
+  /** How the photon buffer is gathered. Default GATHER_HIERARCHICAL. */
+  vtkSetClampMacro(GatherMode, int, GATHER_FLAT, GATHER_HIERARCHICAL);
+  vtkGetMacro(GatherMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * Clustering of converging photons (hierarchical gather only). Default
+   * CLUSTER_LAST_LEVEL (the paper's fastest).
+   */
+  vtkSetClampMacro(ClusterMode, int, CLUSTER_NONE, CLUSTER_ALL_LEVELS);
+  vtkGetMacro(ClusterMode, int);
+  ///@}
+
+  ///@{
+  /** Splat sizes. Default SPLAT_VARYING_MULTIRES. */
+  vtkSetClampMacro(SplatMode, int, SPLAT_CONSTANT, SPLAT_VARYING_MULTIRES);
+  vtkGetMacro(SplatMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * Texels per side of each light's caustic map (its finest level), in [16, 8192].
+   * The map looks at the whole scene from the light. Default 512.
+   */
+  vtkSetClampMacro(CausticMapResolution, int, 16, 8192);
+  vtkGetMacro(CausticMapResolution, int);
+  ///@}
+
+  ///@{
+  /** Nodes per side of the mipmap level the traversal starts from, in [1, 4096]. Default 16. */
+  vtkSetClampMacro(TraversalStartResolution, int, 1, 4096);
+  vtkGetMacro(TraversalStartResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Kernel radius over the photon spacing on the receiver (Eq. 2), in [0.25, 16].
+   * Default 2: on a regular photon grid the summed kernels then ripple by 8 % peak
+   * to peak (1.5: 17 %, 1: 66 %), see docs/technique-caustic-maps.md.
+   */
+  vtkSetClampMacro(SplatScale, double, 0.25, 16.0);
+  vtkGetMacro(SplatScale, double);
+  ///@}
+
+  ///@{
+  /** Kernel radius of SPLAT_CONSTANT, in caustic map pixels, in [0.5, 64]. Default 1.5. */
+  vtkSetClampMacro(ConstantSplatRadius, double, 0.5, 64.0);
+  vtkGetMacro(ConstantSplatRadius, double);
+  ///@}
+
+  ///@{
+  /** Largest splat diameter in pixels of a map level before the next (§3.3), in [1, 64]. Default 5.
+   */
+  vtkSetClampMacro(SplatSizeThreshold, double, 1.0, 64.0);
+  vtkGetMacro(SplatSizeThreshold, double);
+  ///@}
+
+  ///@{
+  /** Smallest splat radius in pixels of its map level, in [1, 16]. Default 1.5. */
+  vtkSetClampMacro(MinimumSplatRadius, double, 1.0, 16.0);
+  vtkGetMacro(MinimumSplatRadius, double);
+  ///@}
+
+  ///@{
+  /** Largest splat radius in pixels of its map level, in [2, 360]. Default 32. */
+  vtkSetClampMacro(MaximumSplatRadius, double, 2.0, 360.0);
+  vtkGetMacro(MaximumSplatRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Drop splats that need map level 4 or coarser, as the paper does, instead of
+   * splatting them into level 3; GetCounters reports their flux. Default off.
+   */
+  vtkSetMacro(DropCoarseSplats, bool);
+  vtkGetMacro(DropCoarseSplats, bool);
+  vtkBooleanMacro(DropCoarseSplats, bool);
+  ///@}
+
+  ///@{
+  /** Refractive interfaces a photon may meet inside a refractor, in [1, 32]. Default 8. */
+  vtkSetClampMacro(MaximumInternalEvents, int, 1, 32);
+  vtkGetMacro(MaximumInternalEvents, int);
+  ///@}
+
+  ///@{
+  /** Emit a refractor's Fresnel-reflected part as a second photon branch. Default on. */
+  vtkSetMacro(SplitFresnel, bool);
+  vtkGetMacro(SplitFresnel, bool);
+  vtkBooleanMacro(SplitFresnel, bool);
+  ///@}
+
+  /** Lights of the last frame (traced or not). */
+  int GetNumberOfLights() const;
+
+  /** True when light i ran the photon stages in the last frame (its view holds a specular actor).
+   */
+  bool GetLightTraced(int i) const;
+
+#ifndef __VTK_WRAP__
+  /** Per-frame GPU counters of one light: the photon buffer's and the gather's. */
+  struct Counters
+  {
+    long long Photons = 0;    ///< photons emitted
+    long long Hits = 0;       ///< photons that landed on a receiver (valid photons)
+    long long LostInside = 0; ///< no exit found inside a refractor
+    long long Escaped = 0;    ///< left the caustic map's view
+    double FluxIn = 0.0;      ///< W emitted (summed over RGB)
+    double FluxHits = 0.0;    ///< W that landed on receivers
+    double FluxLostInside = 0.0;
+    double FluxEscaped = 0.0;
+    double FluxInternalReflection = 0.0; ///< reflected back inside at exits, not followed
+    double FluxAbsorbed = 0.0;
+    int StartLevel = 0;              ///< first traversal level (0: flat)
+    long long Processed[16] = { 0 }; ///< items processed per level (0 = photons)
+    long long TotalProcessed = 0;
+    long long Valid = 0; ///< valid photons counted by the gather
+    long long Clusters = 0;
+    long long ClusteredPhotons = 0;
+    long long Splats[4] = { 0, 0, 0, 0 };
+    long long CoarseSplats = 0;
+    double SplatFlux[4] = { 0.0, 0.0, 0.0, 0.0 };
+    double CoarseFlux = 0.0;
+    double CoarseFluxFraction = 0.0;  ///< flux of splats needing level 4+ / gathered flux
+    double DroppedFluxFraction = 0.0; ///< flux dropped (DropCoarseSplats) / gathered flux
+  };
+
+  /**
+   * Reads light i's counters of the last frame (stalls the GPU: for tests and
+   * benchmarks, never in a render loop). False if the light ran no photon stage.
+   */
+  bool GetCounters(int i, Counters& counters);
+#endif
+
+  ///@{
+  /** Convenience readers of GetCounters() (each stalls the GPU). */
+  vtkIdType GetNumberOfProcessedPhotons(int light);
+  vtkIdType GetNumberOfValidPhotons(int light);
+  vtkIdType GetNumberOfClusters(int light);
+  vtkIdType GetNumberOfSplats(int light, int level);
+  double GetDroppedFluxFraction(int light);
+  ///@}
+
+  /**
+   * Reads level `level` of light `light`'s caustic map (irradiance, W/m^2, array
+   * "CausticMap", 3 components) into `output`. For tests; stalls the GPU.
+   */
+  bool ReadCausticMap(int light, int level, vtkImageData* output);
+
+  /**
+   * Reads light `light`'s photon buffer into `output`: arrays "HitPosition" (xyz, w
+   * = path length, > 0 for a valid photon), "HitNormal" and "HitFlux" (rgb W, w =
+   * omega_i). For tests; stalls the GPU.
+   */
+  bool ReadPhotonBuffer(int light, vtkImageData* output);
+
+  /** Stage objects of light i (for tests and tools), null when out of range. */
+  vtkCausticsPhotonBuffer* GetPhotonBuffer(int i);
+  vtkCausticsPhotonBufferHierarchy* GetHierarchy(int i);
+  vtkCausticsCausticMap* GetCausticMap(int i);
+
+protected:
+  vtkCausticsHierarchicalCausticMapPass();
+  ~vtkCausticsHierarchicalCausticMapPass() override;
+
+  bool NeedsCaustics() override;
+  bool RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin) override;
+  void ReleaseTechniqueResources(vtkWindow* w) override;
+
+  /** StartStage/StopStage that wait for the GPU when the timings are synchronous. */
+  void BeginStage(const char* name);
+  void EndStage(const char* name);
+
+  // The frame's steps (see the class description).
+  void PrepareLights(vtkOpenGLRenderWindow* renWin);
+  bool RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin);
+  bool GatherCausticMaps(vtkOpenGLRenderWindow* renWin);
+  bool RenderFinal(vtkOpenGLRenderWindow* renWin);
+
+  int GatherMode = GATHER_HIERARCHICAL;
+  int ClusterMode = CLUSTER_LAST_LEVEL;
+  int SplatMode = SPLAT_VARYING_MULTIRES;
+  int CausticMapResolution = 512;
+  int TraversalStartResolution = 16;
+  double SplatScale = 2.0;
+  double ConstantSplatRadius = 1.5;
+  double SplatSizeThreshold = 5.0;
+  double MinimumSplatRadius = 1.5;
+  double MaximumSplatRadius = 32.0;
+  bool DropCoarseSplats = false;
+  int MaximumInternalEvents = 8;
+  bool SplitFresnel = true;
+
+private:
+  vtkCausticsHierarchicalCausticMapPass(const vtkCausticsHierarchicalCausticMapPass&) = delete;
+  void operator=(const vtkCausticsHierarchicalCausticMapPass&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

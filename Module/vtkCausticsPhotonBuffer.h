@@ -1,0 +1,200 @@
+/**
+ * @class   vtkCausticsPhotonBuffer
+ * @brief   A light's photon buffer: where each emitted photon lands on a diffuse receiver.
+ *
+ * The first pass of caustic mapping (001_7c07a484f7a872bb.txt §2, Fig. 2), after
+ * the shared vtkCausticsPhotonEmitter has made every light-buffer texel that meets
+ * a reflector or a refractor into a photon (one per texel, N x N or N x 2N with
+ * the Fresnel-reflected branch):
+ * 1. RenderLayers: the refractors' nearest and farthest surfaces as the light sees
+ *    them (two vtkCausticsGBuffer of refractors only, in the emitter's view, the
+ *    second with KeepFarthest): the front and back faces the paper uses for two
+ *    refractive interfaces;
+ * 2. Trace, three compute passes: a sort over every texel counts the photons and
+ *    lists those inside a refractor and those in air; one indirect dispatch per
+ *    list then follows them (lists keep every SIMD lane busy: Mesa's llvmpipe pays
+ *    for untaken branches);
+ * 3. a photon inside a refractor finds its exit on the back faces (front faces if
+ *    it heads back towards the light), loses Beer-Lambert absorption on the way,
+ *    and refracts out with exact Fresnel; the part reflected back inside is not
+ *    followed (its flux is counted), total internal reflection continues inside
+ *    up to MaximumInternalEvents interfaces. Where neither layer holds the exit (a
+ *    concave refractor), the refractor is the slab between the two layers and the
+ *    photon leaves it where the march finds it outside;
+ * 4. in air, the photon finds the receiver it lands on in `receivers`, a G-buffer
+ *    of the receivers alone as the caustic map's view sees them (the finest level
+ *    of vtkCausticsCausticMap), so that caustics can land where the specular
+ *    object itself hides the floor from the light; the search is clipped to the
+ *    receivers' bounding box;
+ * 5. each layer crossing: plane steps (the ray meets the plane of the surface the
+ *    layer shows where the estimate projects, until the estimate stops moving:
+ *    exact in one step on planar receivers), else a march of MarchSteps samples
+ *    that brackets the first change of side, bisection and a last plane step.
+ * Outputs, textures of the emitter's grid size (RGBA32F), one texel per photon:
+ * - HitPosition: xyz of the hit, w = path length from the light d_i (m; for a
+ *   directional light, from the view's eye plane); w > 0 marks a valid photon;
+ * - HitNormal: receiver normal as modelled, w = |N.D_i| (cosine of incidence);
+ * - HitFlux: rgb flux (W), a = the texel's measure omega_i (m^2 directional,
+ *   sr point/spot), as Eq. 2 of §3.3 needs.
+ * GPU counters (photons and flux in, landed, lost inside, escaped, internally
+ * reflected, absorbed) are kept every frame and read only on request
+ * (GetStatistics, which stalls). Limits: photons are not occluded by specular
+ * objects after their last interface, a refractor is one slab between its nearest
+ * and farthest surfaces seen from the light (nested or overlapping refractors need
+ * layered depth images), and only receivers the caustic map's view sees can be hit.
+ */
+#ifndef vtkCausticsPhotonBuffer_h
+#define vtkCausticsPhotonBuffer_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include "vtkNew.h" // For vtkNew members
+
+#include <cstddef> // For std::size_t
+#include <memory>  // For std::unique_ptr
+
+class vtkCausticsGBuffer;
+class vtkCausticsPhotonEmitter;
+class vtkCausticsSceneGeometry;
+class vtkCausticsShaderProgram;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace caustics
+{
+struct LightView;
+struct SceneData;
+}
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonBuffer : public vtkObject
+{
+public:
+  static vtkCausticsPhotonBuffer* New();
+  vtkTypeMacro(vtkCausticsPhotonBuffer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Refractive interfaces a photon may meet inside a refractor after entering it
+   * (total internal reflections + the exit), in [1, 32]. Default 8.
+   */
+  vtkSetClampMacro(MaximumInternalEvents, int, 1, 32);
+  vtkGetMacro(MaximumInternalEvents, int);
+  ///@}
+
+  ///@{
+  /** Samples of the fallback march along a photon's path, in [4, 1024]. Default 64. */
+  vtkSetClampMacro(MarchSteps, int, 4, 1024);
+  vtkGetMacro(MarchSteps, int);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * Renders the refractor layers in `photonView` (the view the emitter's texels come
+   * from) and traces the photons of `emitter` (emitted for light `light` of `scene`)
+   * to the receivers of `receivers`, a receiver-only G-buffer seen through
+   * `mapView`. The geometry's material table must be current. Returns false if a
+   * program failed.
+   */
+  bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::SceneData& scene, int light, vtkCausticsPhotonEmitter* emitter,
+    const caustics::LightView& photonView, const caustics::LightView& mapView,
+    vtkCausticsGBuffer* receivers);
+
+  ///@{
+  /** Render() in its two steps: the refractor layers (N x N), then the trace. */
+  bool RenderLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::LightView& photonView, int resolution);
+  bool Trace(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::SceneData& scene, int light, vtkCausticsPhotonEmitter* emitter,
+    const caustics::LightView& photonView, const caustics::LightView& mapView,
+    vtkCausticsGBuffer* receivers);
+  ///@}
+
+  /** GPU counters of the last Render(); flux in W summed over RGB. */
+  struct Statistics
+  {
+    long long Photons = 0;    ///< photons the emitter made
+    long long Hits = 0;       ///< photons that landed on a receiver (valid photons)
+    long long LostInside = 0; ///< exit not found within MaximumInternalEvents
+    long long Escaped = 0;    ///< left the caustic map's view or hit a receiver's back
+    double FluxIn = 0.0;
+    double FluxHits = 0.0;
+    double FluxLostInside = 0.0;
+    double FluxEscaped = 0.0;
+    double FluxInternalReflection = 0.0; ///< reflected back inside at exits, not followed
+    double FluxAbsorbed = 0.0;           ///< Beer-Lambert inside refractors
+  };
+
+  /** Reads the counters of the last Render() (stalls the GPU). False if none. */
+  bool GetStatistics(Statistics& statistics);
+#endif
+
+  ///@{
+  /** Outputs of the last Render() (see the class description). */
+  vtkTextureObject* GetHitPositionTexture()
+  {
+    return this->HitPosition;
+  }
+  vtkTextureObject* GetHitNormalTexture()
+  {
+    return this->HitNormal;
+  }
+  vtkTextureObject* GetHitFluxTexture()
+  {
+    return this->HitFlux;
+  }
+  vtkCausticsGBuffer* GetFrontLayer()
+  {
+    return this->FrontLayer;
+  }
+  vtkCausticsGBuffer* GetBackLayer()
+  {
+    return this->BackLayer;
+  }
+  ///@}
+
+  /** Photon grid of the last Render() (the emitter's): width N, height N or 2N. */
+  vtkGetVector2Macro(GridSize, int);
+
+  /** Rows per emission branch (N): neighbours in the grid never cross a branch. */
+  vtkGetMacro(BranchRows, int);
+
+  /** W per unit of the GPU flux counters (set by the last Render()). */
+  vtkGetMacro(FluxUnit, double);
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsPhotonBuffer();
+  ~vtkCausticsPhotonBuffer() override;
+
+  int MaximumInternalEvents = 8;
+  int MarchSteps = 64;
+  int GridSize[2] = { 0, 0 };
+  int BranchRows = 0;
+  double FluxUnit = 1.0;
+  unsigned int StatisticsBuffer = 0;
+  vtkNew<vtkCausticsGBuffer> FrontLayer;
+  vtkNew<vtkCausticsGBuffer> BackLayer;
+  vtkNew<vtkTextureObject> HitPosition;
+  vtkNew<vtkTextureObject> HitNormal;
+  vtkNew<vtkTextureObject> HitFlux;
+  unsigned int ListBuffer = 0;
+  std::size_t ListCapacity = 0; // bytes
+  vtkNew<vtkCausticsShaderProgram> SortProgram;
+  vtkNew<vtkCausticsShaderProgram> InsideProgram;
+  vtkNew<vtkCausticsShaderProgram> AirProgram;
+  vtkNew<vtkCausticsShaderProgram> ArgumentsProgram;
+
+private:
+  vtkCausticsPhotonBuffer(const vtkCausticsPhotonBuffer&) = delete;
+  void operator=(const vtkCausticsPhotonBuffer&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

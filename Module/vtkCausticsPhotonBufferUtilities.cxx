@@ -1,0 +1,97 @@
+#include "vtkCausticsPhotonBufferUtilities.h"
+
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsShaderProgram.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace caustics
+{
+namespace hcm
+{
+void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
+  const caustics::LightView& view, int width, int height)
+{
+  float matrix[16];
+  caustics::gl::ToColumnMajor(view.worldToClip, matrix);
+  program->SetUniformMatrix4((name + ".worldToClip").c_str(), matrix);
+  caustics::gl::ToColumnMajor(view.clipToWorld, matrix);
+  program->SetUniformMatrix4((name + ".clipToWorld").c_str(), matrix);
+  program->SetUniform3f((name + ".eye").c_str(), static_cast<float>(view.eye[0]),
+    static_cast<float>(view.eye[1]), static_cast<float>(view.eye[2]));
+  program->SetUniform3f((name + ".axis").c_str(), static_cast<float>(view.axis[0]),
+    static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
+  program->SetUniform2f(
+    (name + ".size").c_str(), static_cast<float>(width), static_cast<float>(height));
+  // Square frusta: one texel width for both axes (at unit depth when perspective).
+  program->SetUniformf(
+    (name + ".texel").c_str(), static_cast<float>(2.0 * view.halfExtent / std::max(width, 1)));
+  program->SetUniformi((name + ".perspective").c_str(), view.perspective ? 1 : 0);
+}
+
+double TexelFluxBound(const caustics::Light& light, const caustics::LightView& view, int resolution)
+{
+  const double power = std::max(0.0, light.radiometric[0]) + std::max(0.0, light.radiometric[1]) +
+    std::max(0.0, light.radiometric[2]);
+  const double texel = 2.0 * view.halfExtent / std::max(resolution, 1);
+  // Directional: W/m^2 x texel area. Point/spot: W/sr x the largest texel solid
+  // angle, at the frustum's centre (texel^2 on the unit image plane); spot falloff <= 1.
+  const double bound = power * texel * texel;
+  return bound > 0.0 ? bound : 1.0;
+}
+
+bool ReceiverBoundsCache::Compute(const caustics::SceneData& scene, double bounds[6])
+{
+  this->Entries.resize(scene.Meshes.size());
+  bool any = false;
+  double result[6] = { 1.0, -1.0, 1.0, -1.0, 1.0, -1.0 };
+  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  {
+    const caustics::Mesh& mesh = scene.Meshes[m];
+    if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.Materials.size()) ||
+      scene.Materials[mesh.material].role != caustics::Role::Receiver)
+    {
+      continue;
+    }
+    Entry& entry = this->Entries[m];
+    if (entry.Actor != mesh.actor || entry.Version != mesh.version || !entry.Valid)
+    {
+      entry.Actor = mesh.actor;
+      entry.Version = mesh.version;
+      entry.Valid = false;
+      for (std::size_t k = 0; k + 2 < mesh.positions.size(); k += 3)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          const double v = mesh.positions[k + c];
+          if (!std::isfinite(v))
+          {
+            continue;
+          }
+          entry.Bounds[2 * c] = entry.Valid ? std::min(entry.Bounds[2 * c], v) : v;
+          entry.Bounds[2 * c + 1] = entry.Valid ? std::max(entry.Bounds[2 * c + 1], v) : v;
+        }
+        entry.Valid = true;
+      }
+    }
+    if (!entry.Valid)
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      result[2 * c] = any ? std::min(result[2 * c], entry.Bounds[2 * c]) : entry.Bounds[2 * c];
+      result[2 * c + 1] =
+        any ? std::max(result[2 * c + 1], entry.Bounds[2 * c + 1]) : entry.Bounds[2 * c + 1];
+    }
+    any = true;
+  }
+  if (any)
+  {
+    std::copy(result, result + 6, bounds);
+  }
+  return any;
+}
+}
+}

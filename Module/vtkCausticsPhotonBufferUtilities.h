@@ -1,0 +1,109 @@
+/**
+ * @file   vtkCausticsPhotonBufferUtilities.h
+ * @brief  Host-side helpers of the hierarchical caustic map stages (not wrapped).
+ *
+ * The buffer layouts of glsl/vtkCausticsPhotonBufferCommon.glsl mirrored for the
+ * host, a light view's shader uniforms, and the flux unit of the GPU statistics.
+ * Used by vtkCausticsPhotonBuffer, vtkCausticsPhotonBufferHierarchy,
+ * vtkCausticsCausticMap and vtkCausticsHierarchicalCausticMapPass.
+ */
+#ifndef vtkCausticsPhotonBufferUtilities_h
+#define vtkCausticsPhotonBufferUtilities_h
+
+#include "vtkCausticsSceneData.h" // For caustics::LightView
+
+#include <cstdint> // For std::uint32_t
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+class vtkCausticsShaderProgram;
+
+namespace caustics
+{
+namespace hcm
+{
+// Shader storage binding points (vtkCausticsPhotonBufferCommon.glsl).
+constexpr unsigned int StatisticsBinding = 1;
+constexpr unsigned int NodesBinding = 2;
+constexpr unsigned int ControlBinding = 3;
+constexpr unsigned int WorkBinding = 4;
+constexpr unsigned int SplatsBinding = 5;
+
+// Photon-buffer statistics words (STAT_*).
+constexpr int StatPhotons = 0;
+constexpr int StatHits = 1;
+constexpr int StatLostInside = 2;
+constexpr int StatEscaped = 3;
+constexpr int StatFluxIn = 4;
+constexpr int StatFluxHits = 6;
+constexpr int StatFluxLostInside = 8;
+constexpr int StatFluxEscaped = 10;
+constexpr int StatFluxInternalReflection = 12;
+constexpr int StatFluxAbsorbed = 14;
+constexpr int StatSize = 16;
+
+// Hierarchy control block words (CONTROL_*).
+constexpr int ControlDispatch = 0;
+constexpr int ControlDraw = 48;
+constexpr int ControlListCount = 64;
+constexpr int ControlValid = 80;
+constexpr int ControlClusters = 81;
+constexpr int ControlClusteredPhotons = 82;
+constexpr int ControlCoarseSplats = 83;
+constexpr int ControlSplatFlux = 84;
+constexpr int ControlCoarseFlux = 92;
+constexpr int ControlSize = 96;
+constexpr int MaxTraversalLevels = 16;
+constexpr int MapLevels = 4;
+
+/**
+ * Sets the CausticsView uniform struct `name` (e.g. "mapView" or "mapViews[2]") of
+ * the bound program: the view's matrices, eye, axis, pixel size and texel width.
+ */
+void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
+  const caustics::LightView& view, int width, int height);
+
+/**
+ * Upper bound of the flux (W, summed over RGB) one texel of a light view of the
+ * given resolution carries: the unit of the GPU flux statistics is this / 2^20,
+ * so a photon is rounded to within 5e-7 of that bound (a float holds its units
+ * exactly) and 64-bit sums never overflow (2^23 photons x 2^20 units x 4^9 for
+ * the largest clusters < 2^64).
+ */
+double TexelFluxBound(
+  const caustics::Light& light, const caustics::LightView& view, int resolution);
+
+/**
+ * Axis-aligned bounds of the meshes whose role is receiver (xmin, xmax, ymin, ...),
+ * with a cache of each mesh's bounds keyed by its actor and version, so that an
+ * unchanged scene costs no pass over its vertices. False (bounds untouched) when
+ * there is no receiver vertex.
+ */
+class ReceiverBoundsCache
+{
+public:
+  bool Compute(const caustics::SceneData& scene, double bounds[6]);
+
+private:
+  struct Entry
+  {
+    const void* Actor = nullptr;
+    unsigned long Version = 0;
+    bool Valid = false;
+    double Bounds[6];
+  };
+  std::vector<Entry> Entries;
+};
+
+/** Units per bound texel flux in the statistics (see TexelFluxBound). */
+constexpr double UnitsPerTexelFlux = 1048576.0;
+
+/** 64-bit fixed-point flux (two words, low first) in W, given the unit in W. */
+inline double FluxFromWords(const std::uint32_t* words, double unit)
+{
+  return (static_cast<double>(words[0]) + 4294967296.0 * static_cast<double>(words[1])) * unit;
+}
+}
+}
+
+#endif

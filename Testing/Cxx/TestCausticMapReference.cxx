@@ -1,0 +1,111 @@
+// Hierarchical caustic maps against the CPU reference renderer
+// (vtkCausticsReferenceRenderer, docs/reference.md) with the metrics of
+// docs/accuracy.md: 256^2 images, 1024^2 photons per light on the GPU (default
+// settings otherwise), 10^6 reference photons, receiver pixels only (the
+// reference's ReceiverMask), fluxes weighted by the reference's PixelArea.
+//
+// Bounds are set just above what the technique reaches here (printed by the
+// tests, listed in docs/technique-caustic-maps.md), so that they fail if it
+// regresses. The reference is noisy itself: each test also prints the relative L2
+// between two reference renders with different seeds (ball lens 0.88 %, ring
+// 0.78 %, bunny 4.5 %), i.e. each render carries 1/sqrt(2) of that; the bounds
+// leave room for that and for float differences between GPUs, nothing more.
+#include "TestHierarchicalCausticMapUtilities.h"
+
+#include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsReferenceRenderer.h"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+namespace
+{
+/** Renders `scene` on the GPU and with the reference; returns the metrics. */
+bool Compare(const char* scene, vtkCausticsErrorMetrics* metrics)
+{
+  hcmtest::Frame f(scene, 1024, 256);
+  if (!f.Populated)
+  {
+    return false;
+  }
+  f.Render();
+  auto caustic = f.Buffer("CausticIrradiance");
+  if (!caustic)
+  {
+    return false;
+  }
+  vtkNew<vtkCausticsReferenceRenderer> reference;
+  reference->SetInputRenderer(f.Renderer);
+  reference->SetImageSize(256, 256);
+  reference->SetPhotonsPerLight(1000000);
+  reference->UseCacheOff(); // 2 s on two cores: always this code's answer
+  if (!reference->Update())
+  {
+    std::cerr << reference->GetLastError() << "\n";
+    return false;
+  }
+  metrics->SetArrayName("CausticIrradiance");
+  metrics->SetMaskArrayName("ReceiverMask");
+  metrics->SetAreaArrayName("PixelArea");
+  const bool ok = metrics->Compute(caustic, reference->GetOutput());
+  std::cout << scene << ": " << metrics->GetSummary() << "\n";
+  // The reference's own noise: the same render with another seed.
+  vtkNew<vtkCausticsReferenceRenderer> other;
+  other->SetInputRenderer(f.Renderer);
+  other->SetImageSize(256, 256);
+  other->SetPhotonsPerLight(1000000);
+  other->SetSeed(2);
+  other->UseCacheOff();
+  vtkNew<vtkCausticsErrorMetrics> noise;
+  noise->SetMaskArrayName("ReceiverMask");
+  noise->SetAreaArrayName("PixelArea");
+  if (other->Update() && noise->Compute(other->GetOutput(), reference->GetOutput()))
+  {
+    std::cout << scene << " reference, seed 2 against seed 1: " << noise->GetSummary() << "\n";
+  }
+  return ok;
+}
+}
+
+TEST(CausticMapReference, BallLens)
+{
+  vtkNew<vtkCausticsErrorMetrics> metrics;
+  ASSERT_TRUE(Compare("ball-lens", metrics));
+  EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
+  // Measured: relative L2 1.10 %, flux ratio 0.9971, peak 1 px off (the issue asks
+  // for at most 15 % and 3 %).
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.015);
+  EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.01);
+  EXPECT_LE(metrics->GetPeakPositionError(), 2.0);
+}
+
+TEST(CausticMapReference, Ring)
+{
+  // The nephroid of a silver ring: one reflection per photon here, where the
+  // reference also follows the grazing multiple reflections along the far wall
+  // (a bright crescent the caustic map lacks) and blocks photons that the ring
+  // itself shadows after their reflection. Measured: relative L2 24.0 %, flux
+  // ratio 1.0038, peak on the same pixel.
+  vtkNew<vtkCausticsErrorMetrics> metrics;
+  ASSERT_TRUE(Compare("ring", metrics));
+  EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.25);
+  EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.01);
+  EXPECT_LE(metrics->GetPeakPositionError(), 2.0);
+}
+
+TEST(CausticMapReference, Bunny)
+{
+  // A glass bunny under a spot light in a Cornell box: the refractor is taken as
+  // the slab between its front and back faces seen from the light, the caustic
+  // map sees only the spot's cone (the light reflected onto the ceiling and the
+  // upper walls is lost), and photons trapped inside after 8 interfaces are
+  // dropped. Measured: relative L2 59.8 %, flux ratio 0.650, peak 1 px off.
+  vtkNew<vtkCausticsErrorMetrics> metrics;
+  ASSERT_TRUE(Compare("bunny", metrics));
+  EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.62);
+  EXPECT_GT(metrics->GetFluxRatio(), 0.63);
+  EXPECT_LT(metrics->GetFluxRatio(), 1.0);
+}
