@@ -127,6 +127,11 @@ bool vtkCausticsRenderPass::RenderCausticIrradiance(vtkOpenGLRenderWindow*)
 
 void vtkCausticsRenderPass::ReleaseTechniqueResources(vtkWindow*) {}
 
+bool vtkCausticsRenderPass::RenderTechniqueColor(vtkOpenGLRenderWindow*)
+{
+  return false; // no technique: VTK's colour everywhere
+}
+
 bool vtkCausticsRenderPass::PrepareScene(vtkRenderer* renderer, vtkOpenGLRenderWindow*)
 {
   if (!this->Extractor->Update(renderer, this->Width, this->Height))
@@ -293,14 +298,17 @@ void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFina
   }
   vtkTextureObject* textures[] = { this->DelegateColorTexture, this->DelegateDepthTexture,
     this->CameraGBuffer->GetNormalTexture(), this->CameraGBuffer->GetAlbedoTexture(),
-    this->CameraGBuffer->GetDepthTexture(), this->CausticTexture, this->VolumeTexture };
+    this->CameraGBuffer->GetDepthTexture(), this->CausticTexture, this->VolumeTexture,
+    this->TechniqueColorTexture };
   const char* names[] = { "delegateColor", "delegateDepth", "gNormal", "gAlbedo", "gDepth",
-    "causticIrradiance", "volumeRadiance" };
+    "causticIrradiance", "volumeRadiance", "techniqueColor" };
   const bool hasCaustics = this->LastFrameHadCaustics;
-  const bool hasVolume = false; // set by volume techniques
-  for (int i = 0; i < 7; ++i)
+  const bool hasVolume = hasCaustics && this->TechniqueWroteVolume;
+  const bool hasTechniqueColor = hasCaustics && this->LastFrameHadTechniqueColor;
+  for (int i = 0; i < 8; ++i)
   {
-    const bool used = i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6);
+    const bool used =
+      i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6) || (hasTechniqueColor && i == 7);
     if (used)
     {
       textures[i]->Activate();
@@ -309,6 +317,7 @@ void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFina
   }
   program->SetUniformi("hasCaustics", hasCaustics ? 1 : 0);
   program->SetUniformi("hasVolume", hasVolume ? 1 : 0);
+  program->SetUniformi("hasTechniqueColor", hasTechniqueColor ? 1 : 0);
   // The two depth buffers come from the same triangles and matrix; allow float noise.
   program->SetUniformf("depthTolerance", 2e-6f);
 
@@ -339,7 +348,7 @@ void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFina
     state->vtkglDepthMask(GL_TRUE);
     this->Triangle->Draw();
   }
-  for (int i = 0; i < 7; ++i)
+  for (int i = 0; i < 8; ++i)
   {
     if (textures[i]->GetHandle() && textures[i]->IsBound())
     {
@@ -365,6 +374,7 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   int x, y;
   renderer->GetTiledSizeAndOrigin(&this->Width, &this->Height, &x, &y);
   this->LastFrameHadCaustics = this->LastFrameHadDirect = this->LastFrameHadBuffers = false;
+  this->LastFrameHadTechniqueColor = this->TechniqueWroteVolume = false;
   this->Timings->BeginFrame();
 
   this->StartStage("scene snapshot");
@@ -423,6 +433,10 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
     this->StartStage("direct irradiance");
     this->LastFrameHadDirect = this->RenderDirectIrradiance(renWin);
     this->StopStage("direct irradiance");
+  }
+  if (this->LastFrameHadCaustics)
+  {
+    this->LastFrameHadTechniqueColor = this->RenderTechniqueColor(renWin);
   }
 
   this->StartStage("composite");
@@ -486,6 +500,16 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
   {
     texture = this->DirectTexture;
     components = 3;
+  }
+  else if (base == "VolumeRadiance" && this->LastFrameHadCaustics && this->TechniqueWroteVolume)
+  {
+    texture = this->VolumeTexture;
+    components = 3;
+  }
+  else if (base == "TechniqueColor" && this->LastFrameHadCaustics &&
+    this->LastFrameHadTechniqueColor)
+  {
+    texture = this->TechniqueColorTexture;
   }
   else if (base == "Position")
   {
@@ -583,7 +607,8 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   this->LightBuffers->ReleaseGraphicsResources(w);
   this->ShadowBuffers->ReleaseGraphicsResources(w);
   vtkTextureObject* textures[] = { this->CausticTexture, this->DirectTexture, this->VolumeTexture,
-    this->DelegateColorTexture, this->DelegateDepthTexture, this->FinalTexture };
+    this->DelegateColorTexture, this->DelegateDepthTexture, this->FinalTexture,
+    this->TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
   {
     texture->ReleaseGraphicsResources(w);
@@ -599,6 +624,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Triangle->Release();
   this->Timings->ReleaseGraphicsResources();
   this->LastFrameHadBuffers = this->LastFrameHadCaustics = this->LastFrameHadDirect = false;
+  this->LastFrameHadTechniqueColor = this->TechniqueWroteVolume = false;
 }
 
 void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)

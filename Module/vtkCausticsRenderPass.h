@@ -19,17 +19,24 @@
  *    albedo, into CausticTexture. This base class has no technique: zero.
  * 7. RenderDirectIrradiance (on request): direct irradiance, W/m^2, with shadow
  *    maps aimed at the whole scene.
- * 8. Composite: VTK's colour + albedo x caustic irradiance on receivers, in VTK's
- *    display convention (VTK shades a Lambertian surface as albedo x light
- *    intensity x cos, i.e. pi x radiance for irradiance in W/m^2), written with
- *    VTK's depth into the framebuffer the pass was called with.
+ * 8. RenderTechniqueColor (techniques that change what refractors look like): an
+ *    optional display colour per pixel into TechniqueColorTexture; where its alpha
+ *    is 1 it replaces VTK's colour (e.g. refraction traced through glass).
+ * 9. Composite: VTK's colour (or the technique's) + albedo x caustic irradiance on
+ *    receivers, in VTK's display convention (VTK shades a Lambertian surface as
+ *    albedo x light intensity x cos, i.e. pi x radiance for irradiance in W/m^2),
+ *    + pi x the volume radiance when the technique wrote VolumeTexture this frame
+ *    (TechniqueWroteVolume), written with VTK's depth into the framebuffer the
+ *    pass was called with.
  * Each stage is timed (GetTimings()). Intermediate buffers can be read back as
  * vtkImageData with ReadBuffer(), for tests and debugging only.
  *
  * Adding a technique: subclass, override RenderCausticIrradiance() (and
  * NeedsCaustics() if it can tell more cheaply that there is nothing to do),
  * use the protected scene, geometry, G-buffers and light buffers, and draw
- * additively into CausticFramebuffer. See docs/architecture.md.
+ * additively into CausticFramebuffer. A technique with volume light writes
+ * VolumeTexture (RGBA32F, W/(m^2 sr)) and sets TechniqueWroteVolume; one that
+ * recolours refractors overrides RenderTechniqueColor(). See docs/architecture.md.
  */
 #ifndef vtkCausticsRenderPass_h
 #define vtkCausticsRenderPass_h
@@ -128,7 +135,7 @@ public:
   /**
    * Reads an intermediate buffer of the last frame into `output` (point-data array
    * named `name`). Names: FinalColor, CausticIrradiance, DirectIrradiance,
-   * VolumeRadiance, Position, Normal, Albedo, Depth, ReceiverMask,
+   * VolumeRadiance, TechniqueColor, Position, Normal, Albedo, Depth, ReceiverMask,
    * RefractivePosition, RefractiveNormal, RefractiveDepth, and per light i
    * LightPosition:i, LightNormal:i, LightFlux:i, LightDepth:i. Returns false (with
    * an error) for an unknown name or a buffer the last frame did not make.
@@ -154,6 +161,15 @@ protected:
   /** Frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
 
+  /**
+   * Optional, after the caustic and direct irradiance of a frame with caustics: the
+   * technique writes display colours (VTK's units, linear) into
+   * TechniqueColorTexture (RGBA32F, Width x Height); the composite shows them
+   * instead of VTK's colour where alpha is 1. Returns true if it wrote the texture
+   * this frame. The base class writes nothing.
+   */
+  virtual bool RenderTechniqueColor(vtkOpenGLRenderWindow* renWin);
+
   // Stages (see the class description).
   bool PrepareScene(vtkRenderer* renderer, vtkOpenGLRenderWindow* renWin);
   void RenderDelegate(const vtkRenderState* s);
@@ -174,6 +190,8 @@ protected:
   bool LastFrameHadCaustics = false;
   bool LastFrameHadDirect = false;
   bool LastFrameHadBuffers = false;
+  bool LastFrameHadTechniqueColor = false;
+  bool TechniqueWroteVolume = false; // set by a technique that wrote VolumeTexture this frame
 
   // Frame state shared with techniques.
   int Width = 0;
@@ -189,7 +207,8 @@ protected:
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> DirectFramebuffer;
-  vtkNew<vtkTextureObject> VolumeTexture; // RGBA32F, W/(m^2 sr)
+  vtkNew<vtkTextureObject> VolumeTexture;         // RGBA32F, W/(m^2 sr)
+  vtkNew<vtkTextureObject> TechniqueColorTexture; // RGBA32F, display colour, a = 1: replace
   vtkNew<vtkTextureObject> DelegateColorTexture;
   vtkNew<vtkTextureObject> DelegateDepthTexture;
   vtkNew<vtkOpenGLFramebufferObject> DelegateFramebuffer;

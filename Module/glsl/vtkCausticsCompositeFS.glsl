@@ -2,7 +2,9 @@
 // albedo x intensity x cos, i.e. pi x radiance for irradiance in W/m^2, so the
 // caustic term in the same display units is albedo x caustic irradiance.
 // It is added only where the caustics G-buffer's receiver is what VTK drew
-// (same depth), so props drawn by VTK alone are never painted over.
+// (same depth), so props drawn by VTK alone are never painted over. A technique
+// may replace VTK's colour where its own colour has alpha 1 (e.g. refractors
+// seen through traced refraction), and add volume radiance (pi x, like surfaces).
 in vec2 texCoord;
 
 uniform sampler2D delegateColor;
@@ -12,8 +14,10 @@ uniform sampler2D gAlbedo;
 uniform sampler2D gDepth;
 uniform sampler2D causticIrradiance;
 uniform sampler2D volumeRadiance;
+uniform sampler2D techniqueColor;
 uniform int hasCaustics;
 uniform int hasVolume;
+uniform int hasTechniqueColor;
 uniform float depthTolerance;
 
 layout(location = 0) out vec4 outColor;
@@ -22,6 +26,14 @@ void main()
 {
   vec4 color = texture(delegateColor, texCoord);
   float depth = texture(delegateDepth, texCoord).r;
+  if (hasTechniqueColor != 0)
+  {
+    vec4 replacement = texture(techniqueColor, texCoord);
+    if (replacement.a >= 1.0)
+    {
+      color.rgb = replacement.rgb;
+    }
+  }
   if (hasCaustics != 0)
   {
     int role = int(texture(gNormal, texCoord).w + 0.5);

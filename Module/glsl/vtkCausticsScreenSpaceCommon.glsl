@@ -1,0 +1,253 @@
+// Shared by the screen-space photon tracing stages (vtkCausticsLayeredDepth,
+// vtkCausticsScreenSpaceLineTracer, vtkCausticsScreenSpacePhotonPass and its
+// helpers; 000_54cf099eeccf42d9.txt). Host-side layouts must match
+// (vtkCausticsLayeredDepth.h, vtkCausticsScreenSpaceLineTracer.h).
+
+// Shader storage binding points of these stages (0 is the material table).
+#define SSP_LDI_TABLE_BINDING 1
+#define SSP_LDI_OBJECT_MAP_BINDING 2
+#define SSP_LDI_COMMAND_INFO_BINDING 3
+#define SSP_LDI_DRAW_COMMAND_BINDING 4
+#define SSP_LDI_CLEAR_COMMAND_BINDING 5
+#define SSP_RAY_BINDING 6
+#define SSP_PAYLOAD_BINDING 7
+#define SSP_LINE_BINDING 8
+#define SSP_HIT_BINDING 9
+#define SSP_COUNTER_BINDING 10
+#define SSP_NEXT_RAY_BINDING 11
+#define SSP_NEXT_PAYLOAD_BINDING 12
+#define SSP_NEXT_COUNTER_BINDING 13
+#define SSP_SECOND_LDI_TABLE_BINDING 14
+#define SSP_ARGUMENT_BINDING 15
+
+// A ray to trace: origin.xyz (m), origin.w = state (0 none, 1 in air, 2 inside a
+// refractor); direction.xyz unit, direction.w = material index of the surface the
+// ray leaves (-1: none), used to ignore its own surface near the origin.
+struct SspRay
+{
+  vec4 origin;
+  vec4 direction;
+};
+
+// The ray's line on screen (window pixels), clipped to the scene bounds and the
+// view frustum: start/end = (x, y, 1 / clip w, ray parameter t in m);
+// info.x = fragment count n_f of its row (0: nothing to trace), info.y = the ray
+// parameter below which hits on the origin's own surface are ignored.
+struct SspLine
+{
+  vec4 start;
+  vec4 end;
+  vec4 info;
+};
+
+// First hit of a ray: position.xyz (m), position.w = t (m, -1: no hit);
+// normal.xyz as modelled, normal.w = material index.
+struct SspHit
+{
+  vec4 position;
+  vec4 normal;
+};
+
+// Ray parameter at the screen-linear parameter u in [0, 1] of a projected segment:
+// t is perspective-correct, interpolated with 1/w as the rasterizer would.
+float SspLineT(SspLine line, float u)
+{
+  float a = (1.0 - u) * line.start.z;
+  float b = u * line.end.z;
+  float denominator = a + b;
+  return denominator > 0.0 ? (a * line.start.w + b * line.end.w) / denominator
+                           : mix(line.start.w, line.end.w, u);
+}
+
+// Pixel sampled by fragment `column` of the line's row (its centre on the line).
+ivec2 SspLinePixel(SspLine line, int column, ivec2 viewport)
+{
+  float u = (float(column) + 0.5) / line.info.x;
+  vec2 s = mix(line.start.xy, line.end.xy, u);
+  return clamp(ivec2(floor(s)), ivec2(0), viewport - 1);
+}
+
+// Clips o + t d, t in [t0, t1], to an axis-aligned box; false if it misses.
+bool SspClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0, inout float t1)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (abs(d[a]) < 1e-20)
+    {
+      if (o[a] < boxMin[a] || o[a] > boxMax[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    float ta = (boxMin[a] - o[a]) / d[a];
+    float tb = (boxMax[a] - o[a]) / d[a];
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  return t0 < t1;
+}
+
+// Clips o + t d to the clip volume of worldToClip (Liang-Barsky on -w <= x, y, z <= w).
+bool SspClipToFrustum(mat4 worldToClip, vec3 o, vec3 d, inout float t0, inout float t1)
+{
+  vec4 c0 = worldToClip * vec4(o, 1.0);
+  vec4 cd = worldToClip * vec4(d, 0.0);
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int s = -1; s <= 1; s += 2)
+    {
+      // Inside: w + s * c[a] >= 0.
+      float p = c0.w + float(s) * c0[a];
+      float q = cd.w + float(s) * cd[a];
+      if (abs(q) < 1e-20)
+      {
+        if (p < 0.0)
+        {
+          return false;
+        }
+        continue;
+      }
+      float t = -p / q;
+      if (q > 0.0)
+      {
+        t0 = max(t0, t);
+      }
+      else
+      {
+        t1 = min(t1, t);
+      }
+    }
+  }
+  return t0 < t1;
+}
+
+// Henyey-Greenstein phase function (1/sr), cosTheta between the propagation
+// directions before and after scattering (as caustics::HenyeyGreenstein).
+float SspHenyeyGreenstein(float cosTheta, float g)
+{
+  float denominator = 1.0 + g * g - 2.0 * g * cosTheta;
+  return (1.0 - g * g) / (4.0 * CAUSTICS_PI * denominator * sqrt(max(denominator, 1e-12)));
+}
+
+// What a photon carries besides its ray: flux.rgb (W), flux.a = specular events
+// so far; info.x = a stable photon id (deterministic Russian roulette).
+struct SspPayload
+{
+  vec4 flux;
+  uvec4 info;
+};
+
+// The normal at the hit point x. Normals constant per pixel would bend photons in
+// pixel-sized steps (printing the pixel grid into the caustic), and where the
+// camera sees the surface at a grazing angle a pixel's sample lies far from x.
+// So the normal is extrapolated to first order from the layer's sample nearest to
+// x (within 3 x 3 pixels, same material): its neighbours' positions and normals
+// give dn/dp along two directions, and n(x) = n(p) + alpha dn_a + beta dn_b with
+// x - p ~ alpha a + beta b (least squares, |alpha|, |beta| <= 1.5).
+bool SspSameSurface(sampler2DArray positions, sampler2DArray normals, vec2 viewport, ivec2 q,
+  int layer, float material, out vec4 p, out vec3 n)
+{
+  p = vec4(0.0);
+  n = vec3(0.0);
+  if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(viewport))))
+  {
+    return false;
+  }
+  p = texelFetch(positions, ivec3(q, layer), 0);
+  n = texelFetch(normals, ivec3(q, layer), 0).xyz;
+  return p.w == material;
+}
+
+// Central (or one-sided) difference of position and normal along one screen axis.
+bool SspDifference(sampler2DArray positions, sampler2DArray normals, vec2 viewport, ivec2 q,
+  ivec2 axis, int layer, float material, vec4 p, vec3 n, float reach, out vec3 dp, out vec3 dn)
+{
+  vec4 pa, pb;
+  vec3 na, nb;
+  bool hasA = SspSameSurface(positions, normals, viewport, q - axis, layer, material, pa, na) &&
+    distance(pa.xyz, p.xyz) < reach && dot(na, n) > 0.5;
+  bool hasB = SspSameSurface(positions, normals, viewport, q + axis, layer, material, pb, nb) &&
+    distance(pb.xyz, p.xyz) < reach && dot(nb, n) > 0.5;
+  if (hasA && hasB)
+  {
+    dp = pb.xyz - pa.xyz;
+    dn = nb - na;
+  }
+  else if (hasB)
+  {
+    dp = pb.xyz - p.xyz;
+    dn = nb - n;
+  }
+  else if (hasA)
+  {
+    dp = p.xyz - pa.xyz;
+    dn = n - na;
+  }
+  else
+  {
+    dp = vec3(0.0);
+    dn = vec3(0.0);
+  }
+  return hasA || hasB;
+}
+
+vec3 SspSmoothNormal(sampler2DArray positions, sampler2DArray normals, mat4 worldToClip,
+  vec2 viewport, float pixelScale, vec3 x, ivec2 pixel, int layer, float material, vec3 fallback)
+{
+  // The nearest sample of the same surface around the hit's pixel.
+  ivec2 best = pixel;
+  float bestDistance = 3.0e38;
+  vec4 p;
+  vec3 n;
+  for (int j = -1; j <= 1; ++j)
+  {
+    for (int i = -1; i <= 1; ++i)
+    {
+      vec4 pq;
+      vec3 nq;
+      if (SspSameSurface(
+            positions, normals, viewport, pixel + ivec2(i, j), layer, material, pq, nq) &&
+        dot(nq, fallback) > 0.5 && distance(pq.xyz, x) < bestDistance)
+      {
+        bestDistance = distance(pq.xyz, x);
+        best = pixel + ivec2(i, j);
+      }
+    }
+  }
+  if (!SspSameSurface(positions, normals, viewport, best, layer, material, p, n))
+  {
+    return fallback;
+  }
+  vec4 clip = worldToClip * vec4(p.xyz, 1.0);
+  float reach = 8.0 * abs(clip.w) * pixelScale / 0.33; // a few stretched footprints
+  vec3 a, na, b, nb;
+  bool hasA = SspDifference(
+    positions, normals, viewport, best, ivec2(1, 0), layer, material, p, n, reach, a, na);
+  bool hasB = SspDifference(
+    positions, normals, viewport, best, ivec2(0, 1), layer, material, p, n, reach, b, nb);
+  vec3 offset = x - p.xyz;
+  float alpha = 0.0;
+  float beta = 0.0;
+  float aa = dot(a, a);
+  float bb = dot(b, b);
+  float ab = dot(a, b);
+  float determinant = aa * bb - ab * ab;
+  if (hasA && hasB && determinant > 1e-6 * aa * bb)
+  {
+    alpha = (bb * dot(a, offset) - ab * dot(b, offset)) / determinant;
+    beta = (aa * dot(b, offset) - ab * dot(a, offset)) / determinant;
+  }
+  else if (hasA && aa > 0.0)
+  {
+    alpha = dot(a, offset) / aa;
+  }
+  else if (hasB && bb > 0.0)
+  {
+    beta = dot(b, offset) / bb;
+  }
+  alpha = clamp(alpha, -1.5, 1.5);
+  beta = clamp(beta, -1.5, 1.5);
+  vec3 result = n + alpha * na + beta * nb;
+  return dot(result, result) > 1e-12 ? normalize(result) : fallback;
+}

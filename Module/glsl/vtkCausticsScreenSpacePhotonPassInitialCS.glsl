@@ -1,0 +1,67 @@
+// The first transfer map (000_54cf099eeccf42d9.txt §2): the photons that
+// vtkCausticsPhotonEmitter left after their first specular interaction, appended
+// to a compact list (only texels holding a photon), with the medium's extinction
+// along the way from the light into the scene.
+layout(local_size_x = 16, local_size_y = 16) in;
+
+layout(std430, binding = SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
+{
+  SspRay nextRays[];
+};
+layout(std430, binding = SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
+{
+  SspPayload nextPayloads[];
+};
+layout(std430, binding = SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
+{
+  uint nextCount;
+};
+
+uniform sampler2D emitPosition;  // xyz, w = state (0: no photon)
+uniform sampler2D emitDirection; // xyz unit
+uniform sampler2D emitFlux;      // rgb W, a = specular events (1)
+uniform sampler2D lightPosition; // light G-buffer: w = material index of the first hit
+uniform ivec2 grid;              // emitter grid: N x N or N x 2N
+uniform int resolution;          // N
+uniform int lightType;           // 0 directional, 1 point, 2 spot
+uniform vec3 lightOrigin;
+uniform vec3 lightDirection;
+uniform int mediumOn;
+uniform vec3 sigmaT; // 1/m
+uniform vec3 boundsMin;
+uniform vec3 boundsMax;
+
+void main()
+{
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, grid)))
+  {
+    return;
+  }
+  vec4 position = texelFetch(emitPosition, texel, 0);
+  vec4 flux = texelFetch(emitFlux, texel, 0);
+  if (!(position.w > 0.0) || !(dot(flux.rgb, vec3(1.0)) > 0.0))
+  {
+    return;
+  }
+  vec3 p = position.xyz;
+  if (mediumOn != 0)
+  {
+    // The medium fills the scene's bounds: extinction from where the light ray
+    // enters them (or from a point light inside them) to the first surface.
+    vec3 incoming = lightType == 0 ? lightDirection : normalize(p - lightOrigin);
+    float t0 = 0.0;
+    float t1 = lightType == 0 ? 3.0e38 : distance(p, lightOrigin);
+    if (SspClipToBox(p, -incoming, boundsMin, boundsMax, t0, t1))
+    {
+      flux.rgb *= exp(-sigmaT * (t1 - t0));
+    }
+  }
+  float material = texelFetch(lightPosition, ivec2(texel.x, texel.y % resolution), 0).w;
+  uint index = atomicAdd(nextCount, 1u);
+  nextRays[index].origin = position;
+  nextRays[index].direction = vec4(texelFetch(emitDirection, texel, 0).xyz, material);
+  nextPayloads[index].flux = vec4(flux.rgb, 1.0);
+  // Its id is its texel: splats find their neighbours in the grid by it.
+  nextPayloads[index].info = uvec4(uint(texel.y * grid.x + texel.x), 0u, 0u, 0u);
+}

@@ -1,0 +1,225 @@
+// What each photon does at its first hit (000_54cf099eeccf42d9.txt §2.3, §3.1):
+// 1. its flux loses what the segment absorbed: Beer-Lambert inside a refractor,
+//    the medium's extinction (within the scene's bounds) in air;
+// 2. on a receiver it ends (caustic shadowing falls out of first-hit termination,
+//    §1.2): a splat record (position, normal + kernel radius, flux) for
+//    vtkCausticsPhotonSplatter at its texel of the emitter grid, if the camera
+//    sees the side the photon lit (the radius pass widens the radius later);
+// 3. on a reflector or refractor, below the bounce limit, it is reflected or
+//    refracted with the exact Fresnel weight: conductors scale the flux; at a
+//    dielectric one branch is chosen with probability R (reflection) or 1 - R, so
+//    the flux is kept and energy is conserved on average (total internal
+//    reflection: always reflected). The result goes to the next transfer map.
+layout(local_size_x = 64) in;
+
+layout(std430, binding = SSP_COUNTER_BINDING) readonly buffer SspCounter
+{
+  uint rayCount;
+};
+layout(std430, binding = SSP_RAY_BINDING) readonly buffer SspRays
+{
+  SspRay rays[];
+};
+layout(std430, binding = SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
+{
+  SspPayload payloads[];
+};
+layout(std430, binding = SSP_HIT_BINDING) readonly buffer SspHits
+{
+  SspHit hits[];
+};
+layout(std430, binding = SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
+{
+  SspRay nextRays[];
+};
+layout(std430, binding = SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
+{
+  SspPayload nextPayloads[];
+};
+layout(std430, binding = SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
+{
+  uint nextCount;
+};
+layout(rgba32f, binding = 0) uniform writeonly image2D splatPosition;
+layout(rgba32f, binding = 1) uniform writeonly image2D splatNormal;
+layout(rgba32f, binding = 2) uniform writeonly image2D splatFlux;
+
+uniform int capacity;
+uniform int gridWidth;
+uniform int maxEvents;
+uniform mat4 worldToClip;
+uniform mat4 clipToWorld;
+uniform vec2 viewport;
+uniform vec4 viewOrigin;   // camera position (w = 1) or view direction (w = 0)
+uniform float splatRadius; // m; 0: splatRadiusPixels pixel footprints
+uniform float splatRadiusPixels;
+uniform int mediumOn;
+uniform vec3 sigmaT;
+uniform vec3 boundsMin;
+uniform vec3 boundsMax;
+uniform uint seed;
+
+uint Hash(uint x)
+{
+  // PCG output permutation (O'Neill 2014): deterministic per photon and event.
+  uint state = x * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+vec3 Unproject(vec2 window, float ndcZ)
+{
+  vec4 p = clipToWorld * vec4(window / viewport * 2.0 - 1.0, ndcZ, 1.0);
+  return p.xyz / p.w;
+}
+
+// Area (m^2) of the receiver's tangent plane at x seen by one pixel around x's
+// projection, from the four corner rays (as the reference's PixelArea).
+float PixelArea(vec3 x, vec3 n)
+{
+  vec4 clip = worldToClip * vec4(x, 1.0);
+  vec2 centre = (clip.xy / clip.w * 0.5 + 0.5) * viewport;
+  vec3 corners[4];
+  const vec2 offsets[4] =
+    vec2[4](vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(0.5, 0.5), vec2(-0.5, 0.5));
+  bool valid = true;
+  for (int c = 0; c < 4; ++c)
+  {
+    vec3 o = Unproject(centre + offsets[c], -1.0);
+    vec3 d = normalize(Unproject(centre + offsets[c], 1.0) - o);
+    float denominator = dot(d, n);
+    float t = abs(denominator) > 1e-9 ? dot(x - o, n) / denominator : -1.0;
+    valid = valid && t > 0.0;
+    corners[c] = o + t * d;
+  }
+  float area = valid ? 0.5 * length(cross(corners[2] - corners[0], corners[3] - corners[1])) : 0.0;
+  if (!(area > 0.0))
+  {
+    // Grazing view: the pixel's spread at this distance over the obliquity.
+    vec3 o0 = Unproject(centre, -1.0);
+    vec3 d0 = normalize(Unproject(centre, 1.0) - o0);
+    vec3 o1 = Unproject(centre + vec2(1.0, 0.0), -1.0);
+    vec3 d1 = normalize(Unproject(centre + vec2(1.0, 0.0), 1.0) - o1);
+    float distance0 = dot(x - o0, d0);
+    float spread = length((o1 - o0) + (d1 - d0) * distance0);
+    area = spread * spread / max(abs(dot(d0, n)), 1e-3);
+  }
+  return area;
+}
+
+void main()
+{
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= min(rayCount, uint(capacity)))
+  {
+    return;
+  }
+  SspHit hit = hits[i];
+  float t = hit.position.w;
+  if (!(t >= 0.0))
+  {
+    return; // left the scene or the view: lost
+  }
+  SspRay ray = rays[i];
+  SspPayload payload = payloads[i];
+  vec3 d = ray.direction.xyz;
+  vec3 x = hit.position.xyz;
+  vec3 n = hit.normal.xyz;
+  int materialIndex = int(hit.normal.w + 0.5);
+  CausticsMaterial material = causticsMaterials[materialIndex];
+  int role = int(material.albedoRole.a + 0.5);
+  vec3 flux = payload.flux.rgb;
+  int events = int(payload.flux.a + 0.5);
+  bool inside = ray.origin.w > 1.5;
+
+  // 1. Absorption along the segment.
+  if (inside && ray.direction.w >= 0.0)
+  {
+    // Inside the refractor the photon last entered or reflected in: its surface.
+    flux *= exp(-causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb * t);
+  }
+  else if (mediumOn != 0)
+  {
+    float t0 = 0.0;
+    float t1 = t;
+    if (SspClipToBox(ray.origin.xyz, d, boundsMin, boundsMax, t0, t1))
+    {
+      flux *= exp(-sigmaT * (t1 - t0));
+    }
+  }
+  if (!(dot(n, n) > 0.25) || !(dot(flux, vec3(1.0)) > 0.0))
+  {
+    return;
+  }
+  n = normalize(n);
+
+  // 2. Receivers end the photon.
+  if (role == ROLE_RECEIVER)
+  {
+    vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - x : -viewOrigin.xyz;
+    if (dot(-d, n) * dot(toCamera, n) <= 0.0)
+    {
+      return; // lit the side the camera does not see
+    }
+    float radius = splatRadius > 0.0 ? splatRadius : splatRadiusPixels * sqrt(PixelArea(x, n));
+    if (!(radius > 0.0) || isinf(radius))
+    {
+      return;
+    }
+    // At the photon's texel of the emitter grid, where its neighbours are found.
+    uint id = payload.info.x;
+    ivec2 texel = ivec2(int(id % uint(gridWidth)), int(id / uint(gridWidth)));
+    imageStore(splatPosition, texel, vec4(x, 1.0));
+    imageStore(splatNormal, texel, vec4(n, radius));
+    imageStore(splatFlux, texel, vec4(flux, 0.0));
+    return;
+  }
+
+  // 3. Specular surfaces send it on, up to the bounce limit.
+  if ((role != ROLE_REFLECTOR && role != ROLE_REFRACTOR) || events >= maxEvents)
+  {
+    return;
+  }
+  bool entering = dot(d, n) < 0.0;
+  vec3 facing = entering ? n : -n;
+  float cosI = clamp(-dot(d, facing), 0.0, 1.0);
+  vec3 direction;
+  float state = ray.origin.w;
+  if (role == ROLE_REFLECTOR)
+  {
+    direction = reflect(d, facing);
+    flux *= FresnelConductor(cosI, material.metalN.rgb, material.metalK.rgb);
+  }
+  else
+  {
+    float ior = max(material.params.x, 1.0);
+    float n1 = entering ? 1.0 : ior;
+    float n2 = entering ? ior : 1.0;
+    float reflectance = FresnelDielectric(cosI, n1, n2);
+    vec3 refracted;
+    bool transmits = RefractDirection(d, facing, n1 / n2, refracted);
+    float u = float(Hash(payload.info.x ^ Hash(uint(events) + seed)) >> 8) / 16777216.0;
+    if (!transmits || u < reflectance)
+    {
+      direction = reflect(d, facing);
+    }
+    else
+    {
+      direction = refracted;
+      state = entering ? 2.0 : 1.0;
+    }
+  }
+  if (!(dot(flux, vec3(1.0)) > 0.0))
+  {
+    return;
+  }
+  uint index = atomicAdd(nextCount, 1u);
+  if (index >= uint(capacity))
+  {
+    return;
+  }
+  nextRays[index].origin = vec4(x, state);
+  nextRays[index].direction = vec4(normalize(direction), float(materialIndex));
+  nextPayloads[index].flux = vec4(flux, float(events + 1));
+  nextPayloads[index].info = payload.info;
+}

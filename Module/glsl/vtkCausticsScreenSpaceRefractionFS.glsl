@@ -1,0 +1,320 @@
+// Screen-space refraction tracing (000_54cf099eeccf42d9.txt §4). For a pixel that
+// sees a refractor, the viewing ray is refracted at the refractor's first layer
+// and marched in screen space, one pixel per step, with one lookup per layer: it
+// leaves the object where its depth passes the next layer's (or falls below the
+// current one's), the "monotonic" assumption that the n-th intersection is in the
+// (n+1)-th layer. There it is refracted out (Fresnel-weighted; total internal
+// reflection keeps it inside) and marched on through the scene: the first opaque
+// surface of the camera's opaque G-buffer it passes gives the colour (the paper's
+// approximation: only what the camera would see without the refractor, Fig. 10),
+// another layer of the refractor takes it back in, and leaving the view or the
+// scene gives the background. The Fresnel-reflected part at the entry is traced
+// the same way outside. Colours are in VTK's display units: VTK's own colour where
+// VTK shows that surface, else albedo x (direct + caustic irradiance).
+in vec2 texCoord;
+
+layout(std430, binding = SSP_LDI_TABLE_BINDING) readonly buffer SspLayerTable
+{
+  uvec4 ldiHeader;
+  uvec4 ldiObjects[];
+};
+
+uniform sampler2DArray refractorPosition; // xyz, w = material (-1: none)
+uniform sampler2DArray refractorNormal;   // xyz as modelled, w = role
+uniform sampler2D gPosition;              // opaque G-buffer
+uniform sampler2D gNormal;
+uniform sampler2D gAlbedo;
+uniform sampler2D gDepth;
+uniform sampler2D delegateColor;
+uniform sampler2D delegateDepth;
+uniform sampler2D causticIrradiance;
+uniform sampler2D directIrradiance;
+uniform int hasDirect;
+uniform mat4 worldToClip;
+uniform vec2 viewport;
+uniform vec4 viewOrigin; // camera position (w = 1) or view direction (w = 0)
+uniform vec3 boundsMin;
+uniform vec3 boundsMax;
+uniform vec3 background;
+uniform int maxEvents;
+uniform float tolerance;      // m
+uniform float pixelScale;     // world size of one pixel at clip w = 1, m
+uniform float depthTolerance; // window depth: VTK's image and the G-buffers agree
+
+layout(location = 0) out vec4 outColor;
+
+const int MISS = 0;
+const int OPAQUE = 1;
+const int REFRACTOR = 2;
+
+struct March
+{
+  int kind;
+  float t;      // along the ray, m
+  ivec2 pixel;  // where it was found
+  int layer;    // REFRACTOR: the layer
+  vec3 normal;  // REFRACTOR: as modelled
+  int material; // REFRACTOR: material index
+};
+
+// Distance along the view: clip w (perspective) or clip z (parallel), both growing away.
+float ViewDepth(vec3 p)
+{
+  vec4 clip = worldToClip * vec4(p, 1.0);
+  return viewOrigin.w > 0.0 ? clip.w : clip.z;
+}
+
+// True when x lies beyond the surface sample (p, n) of its pixel as the camera
+// sees it: deeper along the view, or, within a few pixel footprints of p, on the
+// far side of its tangent plane (at grazing views the surface's depth varies more
+// across one pixel than a step of the ray).
+bool Beyond(vec3 x, float depth, vec3 p, vec3 n)
+{
+  if (depth >= ViewDepth(p))
+  {
+    return true;
+  }
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  float facing = dot(toCamera, n);
+  float footprint = abs((worldToClip * vec4(p, 1.0)).w) * pixelScale;
+  float cosine = abs(facing) / max(length(toCamera), 1e-20);
+  float reach = tolerance + 2.0 * footprint / max(cosine, 0.1);
+  return dot(x - p, n) * facing <= 0.0 && distance(x, p) < reach;
+}
+
+// In front of the surface sample (p, n): the converse, for leaving through it.
+bool InFront(vec3 x, float depth, vec3 p, vec3 n)
+{
+  if (depth <= ViewDepth(p))
+  {
+    return true;
+  }
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  float facing = dot(toCamera, n);
+  float footprint = abs((worldToClip * vec4(p, 1.0)).w) * pixelScale;
+  float cosine = abs(facing) / max(length(toCamera), 1e-20);
+  float reach = tolerance + 2.0 * footprint / max(cosine, 0.1);
+  return dot(x - p, n) * facing >= 0.0 && distance(x, p) < reach;
+}
+
+// Refines a crossing of the surface (p, n) near parameter t: the tangent-plane hit.
+float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
+{
+  float denominator = dot(d, n);
+  float refined = abs(denominator) > 1e-4 ? dot(p - o, n) / denominator : t;
+  return refined > 0.0 ? refined : t;
+}
+
+// Marches o + t d across the screen. next/current: refractor layers whose
+// surfaces end the march when the ray's depth passes beyond (next) or comes in
+// front of (current) them; -1 to ignore.
+March MarchRay(vec3 o, vec3 d, int next, int current)
+{
+  March result;
+  result.kind = MISS;
+  result.t = 0.0;
+  result.pixel = ivec2(0);
+  result.layer = -1;
+  result.normal = vec3(0.0);
+  result.material = -1;
+  float t0 = 0.0;
+  float t1 = 3.0e38;
+  if (!SspClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) ||
+    !SspClipToFrustum(worldToClip, o, d, t0, t1))
+  {
+    return result;
+  }
+  vec4 c0 = worldToClip * vec4(o + t0 * d, 1.0);
+  vec4 c1 = worldToClip * vec4(o + t1 * d, 1.0);
+  SspLine line;
+  line.start = vec4((c0.xy / c0.w * 0.5 + 0.5) * viewport, 1.0 / c0.w, t0);
+  line.end = vec4((c1.xy / c1.w * 0.5 + 0.5) * viewport, 1.0 / c1.w, t1);
+  vec2 span = abs(line.end.xy - line.start.xy);
+  int steps = int(clamp(ceil(max(span.x, span.y)), 1.0, max(viewport.x, viewport.y) + 1.0));
+  line.info = vec4(float(steps), 0.0, 0.0, 0.0);
+  int layers = int(ldiObjects[0].y);
+  // One sample per pixel step, at the step's centre, and one at the segment's end;
+  // each is compared with the surfaces of the pixel it projects to.
+  for (int j = 0; j <= steps; ++j)
+  {
+    float u = min(1.0, (float(j) + 0.5) / float(steps));
+    vec2 s = mix(line.start.xy, line.end.xy, u);
+    ivec2 q = clamp(ivec2(floor(s)), ivec2(0), ivec2(viewport) - 1);
+    float t = SspLineT(line, u);
+    if (t <= tolerance)
+    {
+      continue;
+    }
+    vec3 x = o + t * d;
+    float depth = ViewDepth(x);
+    vec4 opaque = texelFetch(gPosition, q, 0);
+    if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, texelFetch(gNormal, q, 0).xyz))
+    {
+      // Refine on the surface's tangent plane and look up the pixel the exact
+      // crossing projects to (the step's sample can be a pixel beyond it).
+      result.kind = OPAQUE;
+      result.t = PlaneHit(o, d, opaque.xyz, texelFetch(gNormal, q, 0).xyz, t);
+      vec4 clip = worldToClip * vec4(o + result.t * d, 1.0);
+      ivec2 exact = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * viewport));
+      bool inside = clip.w > 0.0 && all(greaterThanEqual(exact, ivec2(0))) &&
+        all(lessThan(exact, ivec2(viewport)));
+      vec4 there = inside ? texelFetch(gPosition, exact, 0) : vec4(0.0, 0.0, 0.0, -1.0);
+      bool same = there.w >= 0.0 &&
+        distance(there.xyz, o + result.t * d) < 4.0 * abs(clip.w) * pixelScale + tolerance;
+      result.pixel = same ? exact : q;
+      return result;
+    }
+    if (next >= 0 && next < layers)
+    {
+      vec4 p = texelFetch(refractorPosition, ivec3(q, next), 0);
+      vec3 n = texelFetch(refractorNormal, ivec3(q, next), 0).xyz;
+      if (p.w >= 0.0 && Beyond(x, depth, p.xyz, n))
+      {
+        result.kind = REFRACTOR;
+        result.t = PlaneHit(o, d, p.xyz, n, t);
+        result.pixel = q;
+        result.layer = next;
+        // Smooth across pixels, or the refracted image shows the pixel grid.
+        result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
+          pixelScale, o + result.t * d, q, next, p.w, n);
+        result.material = int(p.w + 0.5);
+        return result;
+      }
+    }
+    if (current >= 0 && current < layers && j > 1)
+    {
+      vec4 p = texelFetch(refractorPosition, ivec3(q, current), 0);
+      vec3 n = texelFetch(refractorNormal, ivec3(q, current), 0).xyz;
+      if (p.w >= 0.0 && InFront(x, depth, p.xyz, n))
+      {
+        result.kind = REFRACTOR;
+        result.t = PlaneHit(o, d, p.xyz, n, t);
+        result.pixel = q;
+        result.layer = current;
+        // Smooth across pixels, or the refracted image shows the pixel grid.
+        result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
+          pixelScale, o + result.t * d, q, current, p.w, n);
+        result.material = int(p.w + 0.5);
+        return result;
+      }
+    }
+  }
+  return result;
+}
+
+// Display colour of the opaque surface at pixel q.
+vec3 Shade(ivec2 q)
+{
+  int role = int(texelFetch(gNormal, q, 0).w + 0.5);
+  vec3 albedo = texelFetch(gAlbedo, q, 0).rgb;
+  vec3 caustic =
+    role == ROLE_RECEIVER ? max(texelFetch(causticIrradiance, q, 0).rgb, vec3(0.0)) : vec3(0.0);
+  if (abs(texelFetch(delegateDepth, q, 0).r - texelFetch(gDepth, q, 0).r) <= depthTolerance)
+  {
+    return texelFetch(delegateColor, q, 0).rgb + albedo * caustic; // as the composite shows it
+  }
+  if (role == ROLE_RECEIVER)
+  {
+    vec3 direct = hasDirect != 0 ? texelFetch(directIrradiance, q, 0).rgb : vec3(0.0);
+    return albedo * (direct + caustic);
+  }
+  return background; // a mirror hidden by the refractor: not in any image
+}
+
+vec3 Outcome(March m)
+{
+  return m.kind == OPAQUE ? Shade(m.pixel) : background;
+}
+
+void main()
+{
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  outColor = vec4(0.0);
+  if (ldiObjects[0].y == 0u)
+  {
+    return;
+  }
+  vec4 front = texelFetch(refractorPosition, ivec3(pixel, 0), 0);
+  if (front.w < 0.0)
+  {
+    return;
+  }
+  // Only where the refractor is what the camera sees and what VTK drew.
+  vec4 opaque = texelFetch(gPosition, pixel, 0);
+  if (opaque.w >= 0.0 && ViewDepth(opaque.xyz) < ViewDepth(front.xyz))
+  {
+    return;
+  }
+  vec4 frontClip = worldToClip * vec4(front.xyz, 1.0);
+  float frontDepth = frontClip.z / frontClip.w * 0.5 + 0.5;
+  if (abs(texelFetch(delegateDepth, pixel, 0).r - frontDepth) > 1e-4)
+  {
+    return;
+  }
+  vec3 v = viewOrigin.w > 0.0 ? normalize(front.xyz - viewOrigin.xyz) : viewOrigin.xyz;
+  vec3 n = texelFetch(refractorNormal, ivec3(pixel, 0), 0).xyz;
+  CausticsMaterial material = causticsMaterials[int(front.w + 0.5)];
+  float ior = max(material.params.x, 1.0);
+  vec3 facing = dot(v, n) < 0.0 ? n : -n;
+  float cosI = clamp(-dot(v, facing), 0.0, 1.0);
+  float reflectance = FresnelDielectric(cosI, 1.0, ior);
+
+  // The reflected part, outside.
+  vec3 color = reflectance * Outcome(MarchRay(front.xyz, reflect(v, facing), -1, -1));
+
+  // The refracted part, through the object's layers.
+  vec3 d;
+  if (!RefractDirection(v, facing, 1.0 / ior, d))
+  {
+    outColor = vec4(color, 1.0);
+    return;
+  }
+  vec3 throughput = vec3(1.0 - reflectance);
+  vec3 o = front.xyz;
+  bool inside = true;
+  int current = 0;
+  vec3 absorption = material.attenuation.rgb;
+  bool done = false;
+  for (int event = 0; event < maxEvents && !done; ++event)
+  {
+    March m = inside ? MarchRay(o, d, current + 1, current) : MarchRay(o, d, current + 1, -1);
+    if (inside)
+    {
+      throughput *= exp(-absorption * m.t);
+    }
+    if (m.kind != REFRACTOR)
+    {
+      color += throughput * Outcome(m);
+      done = true;
+      break;
+    }
+    vec3 x = o + m.t * d;
+    CausticsMaterial hitMaterial = causticsMaterials[m.material];
+    float hitIor = max(hitMaterial.params.x, 1.0);
+    bool towardsOutside = dot(d, m.normal) > 0.0;
+    vec3 f = towardsOutside ? -m.normal : m.normal;
+    float c = clamp(-dot(d, f), 0.0, 1.0);
+    float n1 = inside ? hitIor : 1.0;
+    float n2 = inside ? 1.0 : hitIor;
+    float r = FresnelDielectric(c, n1, n2);
+    vec3 refracted;
+    if (RefractDirection(d, f, n1 / n2, refracted))
+    {
+      throughput *= 1.0 - r;
+      d = refracted;
+      inside = !inside;
+      absorption = hitMaterial.attenuation.rgb;
+      current = m.layer;
+    }
+    else
+    {
+      d = reflect(d, f); // total internal reflection: still between the same layers
+    }
+    o = x;
+  }
+  if (!done)
+  {
+    color += throughput * background;
+  }
+  outColor = vec4(color, 1.0);
+}

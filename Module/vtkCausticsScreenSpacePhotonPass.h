@@ -1,0 +1,248 @@
+/**
+ * @class   vtkCausticsScreenSpacePhotonPass
+ * @brief   Caustics by screen-space photon tracing with layered depth images.
+ *
+ * The technique of Krüger, Bürger and Westermann, "Interactive Screen-Space
+ * Accurate Photon Tracing on GPUs" (EGSR 2006; 000_54cf099eeccf42d9.txt), on the
+ * frame of vtkCausticsRenderPass. Per frame, after the base pass's G-buffers and
+ * light buffers:
+ * 1. layered depth image (§2.2): vtkCausticsLayeredDepth peels the scene from the
+ *    camera, as many layers as its depth complexity (counted on the GPU), at most
+ *    MaximumNumberOfLayers;
+ * 2. per light, first transfer map (§2): vtkCausticsPhotonEmitter turns the light
+ *    buffer (N x N texels, N = LightBufferResolution) into photons after their
+ *    first specular interaction; they are compacted into a list on the GPU;
+ * 3. line tracing (§2.1): vtkCausticsScreenSpaceLineTracer rasterizes every
+ *    photon ray as a line in its own texture row and finds its first hit in any
+ *    layer (within IntersectionTolerance), with a log-step reduction per row;
+ * 4. specular transfer (§2.3): photons that hit reflectors or refractors are
+ *    reflected or refracted (exact Fresnel, total internal reflection) into the
+ *    next transfer map; steps 3-4 repeat for up to MaximumBounces specular events.
+ *    Photons end at the first receiver they meet, so caustics are shadowed (§1.2);
+ * 5. splatting (§3.1): photons on receivers are splatted by
+ *    vtkCausticsPhotonSplatter, receiver-oriented and energy-normalized: each
+ *    deposits exactly its flux, so the result is irradiance in W/m^2;
+ * 6. god-rays (§3.2): with a vtkCausticsMedium on the renderer, every photon
+ *    segment in the medium is drawn as a line of in-scattered radiance, W/(m^2 sr)
+ *    (vtkCausticsScreenSpaceGodRays), Gaussian-blurred, into VolumeTexture;
+ * 7. screen-space refraction (§4, after the direct irradiance): pixels that see a
+ *    refractor are traced through its own layers, refracted at the exit and looked
+ *    up in the scene (vtkCausticsScreenSpaceRefraction); the composite shows that
+ *    colour instead of VTK's.
+ * Nothing runs (plain VTK cost) when no light reaches a specular actor or, with
+ * SkipOffscreenSpecular, when none is inside the camera's view. Every step is a
+ * timed stage ("ssp ..."); nothing is read back during a frame.
+ *
+ * Limits (the paper's, §1.2): surfaces outside the view frustum, seen edge-on or
+ * smaller than a pixel are not hit; refraction tracing sees only what the opaque
+ * G-buffer shows (§4).
+ */
+#ifndef vtkCausticsScreenSpacePhotonPass_h
+#define vtkCausticsScreenSpacePhotonPass_h
+
+#include "vtkCausticsRenderPass.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+
+class vtkCausticsLayeredDepth;
+class vtkCausticsPhotonEmitter;
+class vtkCausticsPhotonSplatter;
+class vtkCausticsScreenSpaceGodRays;
+class vtkCausticsScreenSpaceLineTracer;
+class vtkCausticsScreenSpaceRefraction;
+class vtkImageData;
+class vtkRenderer;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsScreenSpacePhotonPass : public vtkCausticsRenderPass
+{
+public:
+  static vtkCausticsScreenSpacePhotonPass* New();
+  vtkTypeMacro(vtkCausticsScreenSpacePhotonPass, vtkCausticsRenderPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Remembers the renderer's background (the refraction's environment), then
+   * renders; when the scene cannot need caustics (CannotNeedCaustics()), VTK
+   * renders alone without the base pass's scene snapshot.
+   */
+  void Render(const vtkRenderState* s) override;
+
+  ///@{
+  /** Most depth layers peeled from the camera, in [1, 16]. Default 8 (§2.2). */
+  vtkSetClampMacro(MaximumNumberOfLayers, int, 1, 16);
+  vtkGetMacro(MaximumNumberOfLayers, int);
+  ///@}
+
+  ///@{
+  /** One layered depth image per object instead of one for the scene (§2.2). Default off. */
+  vtkSetMacro(PerObjectLayers, bool);
+  vtkGetMacro(PerObjectLayers, bool);
+  vtkBooleanMacro(PerObjectLayers, bool);
+  ///@}
+
+  ///@{
+  /** Most specular events (reflections, refractions) of a photon path, in [1, 8]. Default 3. */
+  vtkSetClampMacro(MaximumBounces, int, 1, 8);
+  vtkGetMacro(MaximumBounces, int);
+  ///@}
+
+  ///@{
+  /**
+   * Intersection tolerance in metres (the paper's world-space epsilon, §5); 0 uses
+   * RelativeIntersectionTolerance x the scene's diagonal. Default 0.
+   */
+  vtkSetClampMacro(IntersectionTolerance, double, 0.0, 1.0e6);
+  vtkGetMacro(IntersectionTolerance, double);
+  ///@}
+
+  ///@{
+  /** Intersection tolerance as a fraction of the scene's diagonal. Default 0.001. */
+  vtkSetClampMacro(RelativeIntersectionTolerance, double, 1.0e-6, 0.1);
+  vtkGetMacro(RelativeIntersectionTolerance, double);
+  ///@}
+
+  ///@{
+  /** Fewest fragments per traced line (§2.1). Default 8. */
+  vtkSetClampMacro(MinimumLineLength, int, 1, 256);
+  vtkGetMacro(MinimumLineLength, int);
+  ///@}
+
+  ///@{
+  /** Rows of the line-tracing target: photons per batch (§2.1). Default 8192. */
+  vtkSetClampMacro(RowsPerBatch, int, 16, 16384);
+  vtkGetMacro(RowsPerBatch, int);
+  ///@}
+
+  ///@{
+  /**
+   * Splat kernel radius in metres; 0 (default) uses SplatRadiusPixels pixel
+   * footprints on the receiver, the reference renderer's rule.
+   */
+  vtkSetClampMacro(SplatRadius, double, 0.0, 1.0e6);
+  vtkGetMacro(SplatRadius, double);
+  ///@}
+
+  ///@{
+  /** Splat kernel radius in pixel footprints when SplatRadius is 0. Default 2. */
+  vtkSetClampMacro(SplatRadiusPixels, double, 0.5, 64.0);
+  vtkGetMacro(SplatRadiusPixels, double);
+  ///@}
+
+  ///@{
+  /**
+   * With SplatRadius 0, the radius is also at least this many times the spacing of
+   * the photon's neighbours in the light grid that reached the same receiver in the
+   * same bounce, so that sparse photons do not print the grid (0: pixel rule only).
+   * Default 2.
+   */
+  vtkSetClampMacro(SplatRadiusSpacings, double, 0.0, 16.0);
+  vtkGetMacro(SplatRadiusSpacings, double);
+  ///@}
+
+  ///@{
+  /** Draw god-rays when the renderer has a scattering medium (§3.2). Default on. */
+  vtkSetMacro(GodRays, bool);
+  vtkGetMacro(GodRays, bool);
+  vtkBooleanMacro(GodRays, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Standard deviation of the god-rays' Gaussian blur in pixels (§3.2: constant
+   * screen-space support); 0 turns the blur off. Default 1.5.
+   */
+  vtkSetClampMacro(GodRayBlurPixels, double, 0.0, 16.0);
+  vtkGetMacro(GodRayBlurPixels, double);
+  ///@}
+
+  ///@{
+  /** Trace the refraction of viewing rays through refractors (§4). Default on. */
+  vtkSetMacro(RefractionTracing, bool);
+  vtkGetMacro(RefractionTracing, bool);
+  vtkBooleanMacro(RefractionTracing, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Skip the caustic stages when no specular actor is inside the camera's view
+   * frustum (their screen-space traces would find none of them in the layered
+   * depth image). Off, specular actors outside the view still send their first
+   * bounce from the light buffers. Default on.
+   */
+  vtkSetMacro(SkipOffscreenSpecular, bool);
+  vtkGetMacro(SkipOffscreenSpecular, bool);
+  vtkBooleanMacro(SkipOffscreenSpecular, bool);
+  ///@}
+
+  ///@{
+  /** The stages, for tests and the benchmark (configured by this pass each frame). */
+  vtkCausticsLayeredDepth* GetLayeredDepth();
+  vtkCausticsLayeredDepth* GetRefractorLayeredDepth();
+  vtkCausticsScreenSpaceLineTracer* GetLineTracer();
+  vtkCausticsPhotonEmitter* GetEmitter();
+  vtkCausticsPhotonSplatter* GetSplatter();
+  ///@}
+
+  /** The intersection tolerance (m) the last frame used. */
+  vtkGetMacro(LastTolerance, double);
+
+  /**
+   * Shadow rays traced in screen space (§5, Fig. 11), for accuracy studies: from
+   * every receiver pixel of the last frame's camera G-buffer towards light `light`,
+   * through the last frame's layered depth image. `output` gets the point-data
+   * array "Shadow": 1 shadowed, 0 lit, -1 no receiver. Stalls the GPU (read-back):
+   * never in a render loop. Returns false, with an error, when the last frame made
+   * no layered depth image or the light does not exist.
+   */
+  bool TraceShadowRays(int light, vtkImageData* output);
+
+protected:
+  vtkCausticsScreenSpacePhotonPass();
+  ~vtkCausticsScreenSpacePhotonPass() override;
+
+  bool NeedsCaustics() override;
+
+  /**
+   * A cheap test before the scene snapshot, from VTK's own actor bounds and lights:
+   * true when no specular actor is visible, no light reaches one, or (with
+   * SkipOffscreenSpecular) none is in the camera's view. False when in doubt.
+   */
+  bool CannotNeedCaustics(vtkRenderer* renderer);
+  bool RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin) override;
+  bool RenderTechniqueColor(vtkOpenGLRenderWindow* renWin) override;
+  void ReleaseTechniqueResources(vtkWindow* w) override;
+
+  // Steps (see the class description).
+  bool RenderLayers(vtkOpenGLRenderWindow* renWin);
+  bool EmitPhotons(vtkOpenGLRenderWindow* renWin, int light);
+  bool TracePhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);
+  bool TransferPhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);
+  bool SplatPhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);
+  bool DrawGodRays(vtkOpenGLRenderWindow* renWin, int light, int bounce);
+
+  int MaximumNumberOfLayers = 8;
+  bool PerObjectLayers = false;
+  int MaximumBounces = 3;
+  double IntersectionTolerance = 0.0;
+  double RelativeIntersectionTolerance = 0.001;
+  int MinimumLineLength = 8;
+  int RowsPerBatch = 8192;
+  double SplatRadius = 0.0;
+  double SplatRadiusPixels = 2.0;
+  double SplatRadiusSpacings = 2.0;
+  bool GodRays = true;
+  double GodRayBlurPixels = 1.5;
+  bool RefractionTracing = true;
+  bool SkipOffscreenSpecular = true;
+  double LastTolerance = 0.0;
+
+private:
+  vtkCausticsScreenSpacePhotonPass(const vtkCausticsScreenSpacePhotonPass&) = delete;
+  void operator=(const vtkCausticsScreenSpacePhotonPass&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

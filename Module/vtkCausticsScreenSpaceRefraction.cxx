@@ -1,0 +1,134 @@
+#include "vtkCausticsScreenSpaceRefraction.h"
+
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLayeredDepth.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsScreenSpaceUtilities.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsOptics.h"
+#include "vtkCausticsScreenSpaceCommon.h"
+#include "vtkCausticsScreenSpaceRefractionFS.h"
+
+#include <string>
+
+vtkStandardNewMacro(vtkCausticsScreenSpaceRefraction);
+
+struct vtkCausticsScreenSpaceRefraction::Internals
+{
+  caustics::ssp::Framebuffer Framebuffer;
+  caustics::gl::FullScreenTriangle Triangle;
+  vtkNew<vtkCausticsShaderProgram> Program;
+};
+
+vtkCausticsScreenSpaceRefraction::vtkCausticsScreenSpaceRefraction()
+  : Internal(new Internals)
+{
+  this->Internal->Program->SetName("screen-space refraction");
+  this->Internal->Program->SetVertexSource(vtkCausticsFullScreenVS);
+  this->Internal->Program->SetFragmentSource((std::string(vtkCausticsOptics) +
+    vtkCausticsScreenSpaceCommon + vtkCausticsScreenSpaceRefractionFS)
+                                               .c_str());
+}
+
+vtkCausticsScreenSpaceRefraction::~vtkCausticsScreenSpaceRefraction()
+{
+  if (this->Internal->Framebuffer.Handle)
+  {
+    vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL objects leaked");
+  }
+}
+
+bool vtkCausticsScreenSpaceRefraction::Render(
+  vtkOpenGLRenderWindow* renWin, const Inputs& inputs, vtkTextureObject* target)
+{
+  auto& in = *this->Internal;
+  if (!inputs.RefractorLayers || !inputs.Opaque || !inputs.Geometry || !inputs.DelegateColor ||
+    !inputs.DelegateDepth || !inputs.CausticIrradiance || !inputs.WorldToClip || !target)
+  {
+    vtkErrorMacro(<< "refraction tracing needs the refractor layers, the opaque G-buffer, "
+                     "VTK's image and the caustic irradiance");
+    return false;
+  }
+  caustics::gl::EnsureTexture(target, renWin, inputs.Width, inputs.Height, GL_RGBA32F);
+  vtkOpenGLState* state = renWin->GetState();
+  state->PushFramebufferBindings();
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  const GLuint framebuffer = in.Framebuffer.Get();
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
+  glNamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
+  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  state->vtkglViewport(0, 0, inputs.Width, inputs.Height);
+  vtkCausticsShaderProgram* p = in.Program;
+  const bool ok = p->Bind(renWin);
+  if (ok)
+  {
+    caustics::ssp::TextureUnits units(renWin);
+    vtkCausticsLayeredDepth* layers = inputs.RefractorLayers;
+    p->SetUniformi("refractorPosition", units.Bind(layers->GetPositionTexture()));
+    p->SetUniformi("refractorNormal", units.Bind(layers->GetNormalTexture()));
+    p->SetUniformi("gPosition", units.Bind(inputs.Opaque->GetPositionTexture()));
+    p->SetUniformi("gNormal", units.Bind(inputs.Opaque->GetNormalTexture()));
+    p->SetUniformi("gAlbedo", units.Bind(inputs.Opaque->GetAlbedoTexture()));
+    p->SetUniformi("gDepth", units.Bind(inputs.Opaque->GetDepthTexture()));
+    p->SetUniformi("delegateColor", units.Bind(inputs.DelegateColor));
+    p->SetUniformi("delegateDepth", units.Bind(inputs.DelegateDepth));
+    p->SetUniformi("causticIrradiance", units.Bind(inputs.CausticIrradiance));
+    const bool direct = inputs.DirectIrradiance && inputs.DirectIrradiance->GetHandle();
+    p->SetUniformi(
+      "directIrradiance", units.Bind(direct ? inputs.DirectIrradiance : inputs.CausticIrradiance));
+    p->SetUniformi("hasDirect", direct ? 1 : 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, layers->GetTableBuffer());
+    inputs.Geometry->BindMaterials();
+    p->SetUniformMatrix4("worldToClip", inputs.WorldToClip);
+    p->SetUniform2f(
+      "viewport", static_cast<float>(inputs.Width), static_cast<float>(inputs.Height));
+    const float origin[4] = { static_cast<float>(inputs.ViewOrigin[0]),
+      static_cast<float>(inputs.ViewOrigin[1]), static_cast<float>(inputs.ViewOrigin[2]),
+      static_cast<float>(inputs.ViewOrigin[3]) };
+    p->SetUniform4f("viewOrigin", origin);
+    p->SetUniform3f("boundsMin", static_cast<float>(inputs.Bounds[0]),
+      static_cast<float>(inputs.Bounds[2]), static_cast<float>(inputs.Bounds[4]));
+    p->SetUniform3f("boundsMax", static_cast<float>(inputs.Bounds[1]),
+      static_cast<float>(inputs.Bounds[3]), static_cast<float>(inputs.Bounds[5]));
+    p->SetUniform3f("background", static_cast<float>(inputs.Background[0]),
+      static_cast<float>(inputs.Background[1]), static_cast<float>(inputs.Background[2]));
+    p->SetUniformi("maxEvents", this->MaximumEvents);
+    p->SetUniformf("tolerance", static_cast<float>(inputs.Tolerance));
+    p->SetUniformf(
+      "pixelScale", caustics::ssp::PixelScale(inputs.WorldToClip, inputs.Width, inputs.Height));
+    // VTK's depth and the G-buffer's come from the same triangles and matrix (as
+    // the composite's test).
+    p->SetUniformf("depthTolerance", 2e-6f);
+    in.Triangle.Draw();
+    p->Unbind(renWin);
+  }
+  state->PopFramebufferBindings();
+  return ok;
+}
+
+void vtkCausticsScreenSpaceRefraction::ReleaseGraphicsResources(vtkWindow* win)
+{
+  this->Internal->Framebuffer.Release();
+  this->Internal->Triangle.Release();
+  this->Internal->Program->ReleaseGraphicsResources(win);
+}
+
+void vtkCausticsScreenSpaceRefraction::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MaximumEvents: " << this->MaximumEvents << "\n";
+}

@@ -1,0 +1,91 @@
+/**
+ * @class   vtkCausticsScreenSpaceRefraction
+ * @brief   Refraction of viewing rays through refractors, traced in screen space.
+ *
+ * 000_54cf099eeccf42d9.txt §4, for vtkCausticsScreenSpacePhotonPass. One
+ * full-screen pass over the pixels whose visible surface is a refractor (and that
+ * VTK drew there):
+ * 1. the viewing ray is split at the refractor's first layer with the exact
+ *    dielectric Fresnel reflectance; the reflected part is marched outside;
+ * 2. the refracted part is marched through the refractor's own layered depth image
+ *    one pixel per step, with one lookup per layer (the paper's monotonic-layer
+ *    assumption: the n-th intersection lies in the (n+1)-th layer) until it passes
+ *    the next layer (or comes in front of the current one), where it is refracted
+ *    out (Fresnel-weighted; total internal reflection keeps it inside), up to
+ *    MaximumEvents interfaces, with Beer-Lambert absorption inside;
+ * 3. outside, the ray ends at the first surface of the camera's opaque G-buffer it
+ *    passes (what the camera would see without the refractor, the paper's Fig. 10
+ *    approximation), re-enters a further layer of the refractor, or leaves the
+ *    scene or the view: the background colour (the environment);
+ * 4. a surface's colour is the one the composite gives it where VTK shows it,
+ *    else albedo x (direct + caustic irradiance), VTK's display units.
+ * The output colour has alpha 1 where it replaces VTK's colour, 0 elsewhere.
+ */
+#ifndef vtkCausticsScreenSpaceRefraction_h
+#define vtkCausticsScreenSpaceRefraction_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+
+class vtkCausticsGBuffer;
+class vtkCausticsLayeredDepth;
+class vtkCausticsSceneGeometry;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsScreenSpaceRefraction : public vtkObject
+{
+public:
+  static vtkCausticsScreenSpaceRefraction* New();
+  vtkTypeMacro(vtkCausticsScreenSpaceRefraction, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Most refractor interfaces a viewing ray crosses after its entry, in [1, 16]. Default 4. */
+  vtkSetClampMacro(MaximumEvents, int, 1, 16);
+  vtkGetMacro(MaximumEvents, int);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /** Everything the pass reads. */
+  struct Inputs
+  {
+    vtkCausticsLayeredDepth* RefractorLayers = nullptr; ///< refractors only, one object
+    vtkCausticsGBuffer* Opaque = nullptr;               ///< the camera's opaque G-buffer
+    vtkCausticsSceneGeometry* Geometry = nullptr;       ///< for the material table
+    vtkTextureObject* DelegateColor = nullptr;
+    vtkTextureObject* DelegateDepth = nullptr;
+    vtkTextureObject* CausticIrradiance = nullptr;
+    vtkTextureObject* DirectIrradiance = nullptr; ///< may be nullptr (taken as 0)
+    const float* WorldToClip = nullptr;           ///< column-major
+    int Width = 0, Height = 0;
+    double ViewOrigin[4] = { 0, 0, 0, 1 }; ///< eye (w = 1) or view direction (w = 0)
+    double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+    double Background[3] = { 0, 0, 0 };
+    double Tolerance = 0.0; ///< m
+  };
+
+  /** Writes the colours into `target` (made RGBA32F, Width x Height). */
+  bool Render(vtkOpenGLRenderWindow* renWin, const Inputs& inputs, vtkTextureObject* target);
+#endif
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsScreenSpaceRefraction();
+  ~vtkCausticsScreenSpaceRefraction() override;
+
+  int MaximumEvents = 4;
+
+private:
+  vtkCausticsScreenSpaceRefraction(const vtkCausticsScreenSpaceRefraction&) = delete;
+  void operator=(const vtkCausticsScreenSpaceRefraction&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

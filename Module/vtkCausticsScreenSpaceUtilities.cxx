@@ -1,0 +1,196 @@
+#include "vtkCausticsScreenSpaceUtilities.h"
+
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace caustics
+{
+namespace ssp
+{
+namespace
+{
+void ReportLeak(const char* what)
+{
+  std::cerr << "vtkCausticsScreenSpaceUtilities: " << what
+            << " destroyed before Release(): GL object leaked\n";
+}
+}
+
+Texture::~Texture()
+{
+  if (this->Handle)
+  {
+    ReportLeak("texture");
+  }
+}
+
+bool Texture::Ensure(int width, int height, int layers, unsigned int internalFormat)
+{
+  width = width < 1 ? 1 : width;
+  height = height < 1 ? 1 : height;
+  layers = layers < 0 ? 0 : layers;
+  if (this->Handle && this->Width == width && this->Height == height && this->Layers == layers &&
+    this->Format == internalFormat)
+  {
+    return false;
+  }
+  this->Release();
+  glCreateTextures(layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, 1, &this->Handle);
+  if (layers > 0)
+  {
+    glTextureStorage3D(this->Handle, 1, internalFormat, width, height, layers);
+  }
+  else
+  {
+    glTextureStorage2D(this->Handle, 1, internalFormat, width, height);
+  }
+  glTextureParameteri(this->Handle, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(this->Handle, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(this->Handle, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(this->Handle, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  this->Width = width;
+  this->Height = height;
+  this->Layers = layers;
+  this->Format = internalFormat;
+  return true;
+}
+
+void Texture::Release()
+{
+  if (this->Handle)
+  {
+    glDeleteTextures(1, &this->Handle);
+  }
+  this->Handle = 0;
+  this->Width = this->Height = this->Layers = 0;
+  this->Format = 0;
+}
+
+Buffer::~Buffer()
+{
+  if (this->Handle)
+  {
+    ReportLeak("buffer");
+  }
+}
+
+bool Buffer::Ensure(std::size_t bytes)
+{
+  bytes = bytes < 16 ? 16 : bytes;
+  if (!this->Handle)
+  {
+    glCreateBuffers(1, &this->Handle);
+  }
+  else if (this->Size >= bytes)
+  {
+    return false;
+  }
+  glNamedBufferData(this->Handle, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
+  this->Size = bytes;
+  return true;
+}
+
+void Buffer::BindStorage(unsigned int binding) const
+{
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, this->Handle);
+}
+
+void Buffer::Release()
+{
+  if (this->Handle)
+  {
+    glDeleteBuffers(1, &this->Handle);
+  }
+  this->Handle = 0;
+  this->Size = 0;
+}
+
+Framebuffer::~Framebuffer()
+{
+  if (this->Handle)
+  {
+    ReportLeak("framebuffer");
+  }
+}
+
+unsigned int Framebuffer::Get()
+{
+  if (!this->Handle)
+  {
+    glCreateFramebuffers(1, &this->Handle);
+  }
+  return this->Handle;
+}
+
+void Framebuffer::Release()
+{
+  if (this->Handle)
+  {
+    glDeleteFramebuffers(1, &this->Handle);
+  }
+  this->Handle = 0;
+}
+
+TextureUnits::TextureUnits(vtkOpenGLRenderWindow* renWin)
+  : Window(renWin)
+{
+}
+
+TextureUnits::~TextureUnits()
+{
+  vtkTextureUnitManager* manager = this->Window->GetTextureUnitManager();
+  for (int unit : this->Units)
+  {
+    glBindTextureUnit(unit, 0);
+    manager->Free(unit);
+  }
+  for (vtkTextureObject* texture : this->Objects)
+  {
+    texture->Deactivate();
+  }
+}
+
+int TextureUnits::Bind(unsigned int texture)
+{
+  const int unit = this->Window->GetTextureUnitManager()->Allocate();
+  if (unit < 0)
+  {
+    return -1;
+  }
+  glBindTextureUnit(unit, texture);
+  this->Units.push_back(unit);
+  return unit;
+}
+
+int TextureUnits::Bind(vtkTextureObject* texture)
+{
+  texture->Activate();
+  this->Objects.push_back(texture);
+  return texture->GetTextureUnit();
+}
+
+float PixelScale(const float worldToClip[16], int width, int height)
+{
+  // Column-major: the clip x row is (m[0], m[4], m[8]), the clip y row (m[1], m[5], m[9]).
+  const double sx = std::sqrt(worldToClip[0] * worldToClip[0] + worldToClip[4] * worldToClip[4] +
+    worldToClip[8] * worldToClip[8]);
+  const double sy = std::sqrt(worldToClip[1] * worldToClip[1] + worldToClip[5] * worldToClip[5] +
+    worldToClip[9] * worldToClip[9]);
+  const double finest = std::max(width * sx, height * sy);
+  return finest > 0.0 ? static_cast<float>(2.0 / finest) : 0.0f;
+}
+
+int MaxTextureSize()
+{
+  GLint size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &size);
+  return size;
+}
+}
+}

@@ -1,0 +1,191 @@
+// Screen-space photon tracing (vtkCausticsScreenSpacePhotonPass) against the CPU
+// reference renderer (vtkCausticsReferenceRenderer, docs/reference.md) with the
+// metrics of docs/accuracy.md, at 256^2 pixels and the pass's default settings
+// (256^2 light-buffer texels per light, 8 layers, 3 bounces):
+// - ball lens: total caustic flux, relative L2 error of the caustic irradiance,
+//   caustic peak position;
+// - pool: relative L2 error of the floor's caustic irradiance under the water (the
+//   reference's camera rays pass through the water, as the opaque G-buffer does);
+// - shadow rays traced in screen space (§5, Fig. 11) against the reference's
+//   shadows: fraction of receiver pixels classified differently.
+// The figures reached are printed; each bound is the figure reached plus a margin
+// for the reference's noise and for rasterization differences between GPUs.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsScreenSpacePhotonPass.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+/** A built-in scene, its screen-space caustics and its reference. */
+struct Comparison
+{
+  vtkNew<vtkOpenGLRenderer> Renderer;
+  vtkNew<vtkCausticsBuiltinScene> Scene;
+  vtkNew<vtkCausticsScreenSpacePhotonPass> Pass;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkImageData> Caustic;
+  vtkNew<vtkCausticsReferenceRenderer> Reference;
+  vtkNew<vtkCausticsErrorMetrics> Metrics;
+
+  Comparison(const char* scene, vtkIdType photons, bool throughRefractors)
+  {
+    this->Scene->SetSceneName(scene);
+    EXPECT_TRUE(this->Scene->Populate(this->Renderer)) << this->Scene->GetLastError();
+    this->Renderer->SetPass(this->Pass);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(256, 256);
+    this->Window->AddRenderer(this->Renderer);
+    this->Window->Render();
+    EXPECT_TRUE(this->Pass->GetLastFrameHadCaustics());
+    EXPECT_TRUE(this->Pass->ReadBuffer("CausticIrradiance", this->Caustic));
+    this->Reference->SetInputRenderer(this->Renderer);
+    this->Reference->SetImageSize(256, 256);
+    this->Reference->SetPhotonsPerLight(photons);
+    this->Reference->SetCameraSeesRefractors(!throughRefractors);
+    EXPECT_TRUE(this->Reference->Update()) << this->Reference->GetLastError();
+    this->Metrics->SetMaskArrayName("ReceiverMask");
+    this->Metrics->SetAreaArrayName("PixelArea");
+  }
+  ~Comparison()
+  {
+    this->Renderer->SetPass(nullptr);
+    this->Pass->ReleaseGraphicsResources(this->Window);
+  }
+  bool Compare()
+  {
+    const bool ok = this->Metrics->Compute(this->Caustic, this->Reference->GetOutput());
+    std::cout << this->Scene->GetSceneName() << ": " << this->Metrics->GetSummary() << "\n";
+    return ok;
+  }
+};
+}
+
+// Reached (this machine, llvmpipe): flux ratio 0.995, relative L2 0.050, peak 2 px.
+// The reference's own noise at 4 M photons is ~0.3% in relative L2 (docs/reference.md:
+// 0.62% at 1 M, falling as 1/sqrt(N)). Bounds: flux within 1.5% (the 3% of the issue
+// tightened: 0.5% reached + 1% for GPU differences), relative L2 0.07 (0.05 + 0.02),
+// peak 2 px (the issue's bound; reached 2 px: one pixel of quantization on each axis).
+TEST(ScreenSpaceAccuracy, BallLensMatchesReference)
+{
+  Comparison c("ball-lens", 4000000, false);
+  ASSERT_TRUE(c.Compare());
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.015);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.07);
+  EXPECT_LE(c.Metrics->GetPeakPositionError(), 2.0);
+}
+
+// Reached: relative L2 0.023 on the floor under the water (flux ratio 0.998). The
+// reference at 4 M photons has ~4% noise there (docs/benchmarks.md: 8.4% at 1 M,
+// 2.4% at 10 M photons against 20 M), which the bound must absorb: 0.023 and 0.04
+// in quadrature is 0.046; with a margin, 0.07 (the issue asked for 0.20).
+TEST(ScreenSpaceAccuracy, PoolFloorMatchesReference)
+{
+  Comparison c("pool", 4000000, true);
+  ASSERT_TRUE(c.Compare());
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.07);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+}
+
+// §5, Fig. 11: for every receiver pixel, a shadow ray towards the light traced in
+// screen space through the layered depth image, against the reference's direct
+// irradiance (every mesh, glass included, casts shadows there): a pixel is in the
+// reference's shadow when it gets less than half of the irradiance the light would
+// give it unshadowed.
+TEST(ScreenSpaceAccuracy, ShadowRaysMatchReferenceShadows)
+{
+  // Reached: ball lens 0.11%, ring 0.75%, bunny 0.40% (errors sit on the shadows'
+  // edges, one pixel wide). Bounds: about 1.5x the figure reached, at least 0.3%.
+  struct Case
+  {
+    const char* Scene;
+    double Bound;
+  };
+  for (const Case& test :
+    { Case{ "ball-lens", 0.003 }, Case{ "ring", 0.012 }, Case{ "bunny", 0.006 } })
+  {
+    const char* scene = test.Scene;
+    Comparison c(scene, 10000, false);
+    vtkNew<vtkImageData> shadow;
+    ASSERT_TRUE(c.Pass->TraceShadowRays(0, shadow));
+    vtkDataArray* traced = shadow->GetPointData()->GetArray("Shadow");
+    vtkImageData* reference = c.Reference->GetOutput();
+    vtkDataArray* direct = reference->GetPointData()->GetArray("DirectIrradiance");
+    vtkDataArray* mask = reference->GetPointData()->GetArray("ReceiverMask");
+    vtkDataArray* position = reference->GetPointData()->GetArray("Position");
+    vtkDataArray* normal = reference->GetPointData()->GetArray("Normal");
+    const caustics::Light& light = c.Reference->GetScene().Lights[0];
+    // The irradiance the light would give each pixel unshadowed (cosine, 1/r^2,
+    // spot falloff): pixels it cannot light (outside the spot's cone, facing away)
+    // are not judged, nor those lit at less than 1% of the brightest (grazing).
+    std::vector<double> unshadowed(direct->GetNumberOfTuples(), 0.0);
+    double brightest = 0.0;
+    for (vtkIdType i = 0; i < direct->GetNumberOfTuples(); ++i)
+    {
+      double p[3], n[3], towards[3], distance2 = 1.0;
+      position->GetTuple(i, p);
+      normal->GetTuple(i, n);
+      for (int k = 0; k < 3; ++k)
+      {
+        towards[k] = light.type == caustics::Light::Type::Directional ? -light.direction[k]
+                                                                      : light.position[k] - p[k];
+      }
+      if (light.type != caustics::Light::Type::Directional)
+      {
+        distance2 = towards[0] * towards[0] + towards[1] * towards[1] + towards[2] * towards[2];
+        for (double& v : towards)
+        {
+          v /= std::sqrt(distance2);
+        }
+      }
+      const double cosine = n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2];
+      double spot = 1.0;
+      if (light.type == caustics::Light::Type::Spot)
+      {
+        spot = light.SpotFactor(-(towards[0] * light.direction[0] +
+          towards[1] * light.direction[1] + towards[2] * light.direction[2]));
+      }
+      unshadowed[i] = std::max(0.0, cosine) * spot / distance2;
+      brightest = std::max(brightest, unshadowed[i]);
+    }
+    int judged = 0, wrong = 0, shadowed = 0;
+    for (vtkIdType i = 0; i < direct->GetNumberOfTuples(); ++i)
+    {
+      if (mask->GetComponent(i, 0) == 0.0 || traced->GetComponent(i, 0) < 0.0 ||
+        unshadowed[i] < 0.01 * brightest)
+      {
+        continue;
+      }
+      // Shadowed: less than half of the unshadowed irradiance reaches the pixel.
+      const double scale = light.radiometric[0];
+      const bool referenceShadowed = direct->GetComponent(i, 0) < 0.5 * scale * unshadowed[i];
+      ++judged;
+      shadowed += referenceShadowed ? 1 : 0;
+      wrong += referenceShadowed != (traced->GetComponent(i, 0) > 0.5) ? 1 : 0;
+    }
+    const double fraction = static_cast<double>(wrong) / std::max(judged, 1);
+    std::cout << scene << ": shadow rays misclassify " << wrong << " of " << judged
+              << " receiver pixels (" << 100.0 * fraction << " %), " << shadowed
+              << " in the reference's shadow\n";
+    ASSERT_GT(judged, 10000);
+    EXPECT_GT(shadowed, 100) << "the scene must cast a shadow for the test to mean anything";
+    EXPECT_LT(fraction, test.Bound) << scene;
+  }
+}
