@@ -377,7 +377,7 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   this->LastFrameHadTechniqueColor = this->TechniqueWroteVolume = false;
   this->Timings->BeginFrame();
 
-  this->StartStage("scene snapshot");
+  this->Timings->StartStage("scene snapshot", false); // CPU work: no timer queries
   const bool sceneOk = this->PrepareScene(renderer, renWin);
   this->StopStage("scene snapshot");
   const bool caustics = sceneOk && this->NeedsCaustics();
@@ -392,8 +392,9 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   }
   if (!sceneOk || !buffers || major * 10 + minor < 45)
   {
-    // Nothing to add: VTK renders as if the pass were not there.
-    this->StartStage("vtk delegate");
+    // Nothing to add: VTK renders as if the pass were not there (timed on the CPU
+    // only: timer queries would cost more than the rest of the pass here).
+    this->Timings->StartStage("vtk delegate", false);
     this->DelegatePass->Render(s);
     this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
     this->StopStage("vtk delegate");

@@ -281,7 +281,7 @@ void vtkCausticsScreenSpacePhotonPass::Render(const vtkRenderState* s)
     steps->Delete();
   }
   this->Timings->BeginFrame();
-  this->StartStage("vtk delegate");
+  this->Timings->StartStage("vtk delegate", false); // CPU only, as the base pass's skip path
   this->DelegatePass->Render(s);
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
   this->StopStage("vtk delegate");

@@ -26,6 +26,7 @@ struct Stage
   bool Pending[2] = { false, false };
   int Current = 0;
   bool Ran = false;
+  bool CPUOnly = false; // started without timer queries this frame
   double GPU = -1.0;
   double CPU = 0.0;
   Clock::time_point CPUStart;
@@ -94,7 +95,7 @@ void vtkCausticsTimings::BeginFrame()
   }
 }
 
-void vtkCausticsTimings::StartStage(const char* name)
+void vtkCausticsTimings::StartStage(const char* name, bool gpu)
 {
   if (!this->Enabled)
   {
@@ -102,7 +103,13 @@ void vtkCausticsTimings::StartStage(const char* name)
   }
   Stage& stage = this->Internal->Find(name);
   stage.Ran = true;
+  stage.CPUOnly = !gpu;
   stage.CPUStart = Clock::now();
+  if (!gpu)
+  {
+    stage.GPU = -1.0; // no GPU time for this frame
+    return;
+  }
   // Reuse the pair whose result was collected; if both are pending, drop the older.
   int slot = stage.Pending[stage.Current] ? 1 - stage.Current : stage.Current;
   if (stage.Pending[slot])
@@ -121,8 +128,11 @@ void vtkCausticsTimings::StopStage(const char* name)
     return;
   }
   Stage& stage = this->Internal->Find(name);
-  stage.Timers[stage.Current]->Stop();
-  stage.Pending[stage.Current] = true;
+  if (!stage.CPUOnly)
+  {
+    stage.Timers[stage.Current]->Stop();
+    stage.Pending[stage.Current] = true;
+  }
   stage.CPU = std::chrono::duration<double, std::milli>(Clock::now() - stage.CPUStart).count();
 }
 
@@ -162,6 +172,11 @@ bool vtkCausticsTimings::GetStageRan(int i) const
   return i >= 0 && i < this->GetNumberOfStages() && this->Internal->Stages[i].Ran;
 }
 
+bool vtkCausticsTimings::GetStageTimedOnGPU(int i) const
+{
+  return this->GetStageRan(i) && !this->Internal->Stages[i].CPUOnly;
+}
+
 double vtkCausticsTimings::GetGPUMilliseconds(const char* name) const
 {
   for (const Stage& stage : this->Internal->Stages)
@@ -194,6 +209,10 @@ std::string vtkCausticsTimings::GetReport() const
     if (!stage.Ran)
     {
       report << "skipped\n";
+    }
+    else if (stage.CPUOnly)
+    {
+      report << "gpu not timed cpu " << stage.CPU << " ms\n";
     }
     else if (stage.GPU < 0.0)
     {

@@ -41,7 +41,13 @@ public:
 
   /** Marks the start of a frame: stages not started this frame report "skipped". */
   void BeginFrame();
-  void StartStage(const char* name);
+  /**
+   * Starts the named stage. With gpu false only its CPU time is taken (no timer
+   * queries: they cost tens of microseconds per frame on some drivers), e.g. for
+   * the VTK delegate of a frame that skips every caustics stage; its GPU time is
+   * then -1 for this frame.
+   */
+  void StartStage(const char* name, bool gpu = true);
   void StopStage(const char* name);
   /** Ends the frame; collects finished queries (waits for them when Synchronous). */
   void EndFrame();
@@ -54,6 +60,8 @@ public:
   double GetStageCPUMilliseconds(int i) const;
   /** True when stage i ran in the last frame. */
   bool GetStageRan(int i) const;
+  /** True when stage i ran in the last frame with timer queries (not CPU only). */
+  bool GetStageTimedOnGPU(int i) const;
   /** GPU time in ms of the named stage, -1 if unknown or skipped. */
   double GetGPUMilliseconds(const char* name) const;
   /** Sum of the GPU times of the stages that ran in the last frame. */
