@@ -89,6 +89,7 @@ void vtkCausticsSceneGeometry::ReleaseGraphicsResources(vtkWindow*)
   in.VertexCapacity = in.IndexCapacity = in.MaterialCapacity = 0;
   in.Slots.clear();
   in.Ranges.clear();
+  in.Materials.clear(); // the material buffer is gone: the next Upload() must resend them
 }
 
 bool vtkCausticsSceneGeometry::Upload(
