@@ -458,6 +458,18 @@ void main()
   vec3 d = normalize(direction.xyz);
   float path = lightType == 0 ? ViewDepth(photonView, p) : length(p - lightOrigin);
   float absorbed = 0.0, reflected = 0.0;
+  // An open refractor (a water surface: one sheet) has no back face behind the
+  // entry: the farthest refractor surface the light sees there is the entry itself,
+  // facing the light. The photon stays in that medium and goes on to the receivers
+  // (without absorption on the way: the slab model has no exit to measure it to).
+  vec3 backSample, backNormalHere;
+  float backMaterial;
+  if (LayerAt(photonView, backPosition, backNormal, p, backSample, backNormalHere, backMaterial) &&
+    distance(backSample, p) <= 2.0 * ViewTexelSize(photonView, p) &&
+    dot(backNormalHere, ViewAway(photonView, p)) < -0.1)
+  {
+    state = 1;
+  }
   for (int event = 0; event < maximumInternalEvents && state == 2; ++event)
   {
     float t;
