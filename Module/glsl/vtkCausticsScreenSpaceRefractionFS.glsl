@@ -105,6 +105,30 @@ float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
   return refined > 0.0 ? refined : t;
 }
 
+// Whether the march's sample o + t d (view depth `depth`, pixel q) has passed
+// beyond (beyond = true) or come in front of the refractor's layer `layer`; if
+// so, fills `result` with the crossing refined on the layer's tangent plane.
+bool RefractorLayerHit(
+  vec3 o, vec3 d, float t, float depth, ivec2 q, int layer, bool beyond, inout March result)
+{
+  vec4 p = texelFetch(refractorPosition, ivec3(q, layer), 0);
+  vec3 n = texelFetch(refractorNormal, ivec3(q, layer), 0).xyz;
+  vec3 x = o + t * d;
+  if (p.w < 0.0 || !(beyond ? Beyond(x, depth, p.xyz, n) : InFront(x, depth, p.xyz, n)))
+  {
+    return false;
+  }
+  result.kind = REFRACTOR;
+  result.t = PlaneHit(o, d, p.xyz, n, t);
+  result.pixel = q;
+  result.layer = layer;
+  // Smooth across pixels, or the refracted image shows the pixel grid.
+  result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
+    pixelScale, o + result.t * d, q, layer, p.w, n);
+  result.material = int(p.w + 0.5);
+  return true;
+}
+
 // Marches o + t d across the screen. next/current: refractor layers whose
 // surfaces end the march when the ray's depth passes beyond (next) or comes in
 // front of (current) them; -1 to ignore.
@@ -164,39 +188,14 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
       result.pixel = same ? exact : q;
       return result;
     }
-    if (next >= 0 && next < layers)
+    if (next >= 0 && next < layers && RefractorLayerHit(o, d, t, depth, q, next, true, result))
     {
-      vec4 p = texelFetch(refractorPosition, ivec3(q, next), 0);
-      vec3 n = texelFetch(refractorNormal, ivec3(q, next), 0).xyz;
-      if (p.w >= 0.0 && Beyond(x, depth, p.xyz, n))
-      {
-        result.kind = REFRACTOR;
-        result.t = PlaneHit(o, d, p.xyz, n, t);
-        result.pixel = q;
-        result.layer = next;
-        // Smooth across pixels, or the refracted image shows the pixel grid.
-        result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
-          pixelScale, o + result.t * d, q, next, p.w, n);
-        result.material = int(p.w + 0.5);
-        return result;
-      }
+      return result;
     }
-    if (current >= 0 && current < layers && j > 1)
+    if (current >= 0 && current < layers && j > 1 &&
+      RefractorLayerHit(o, d, t, depth, q, current, false, result))
     {
-      vec4 p = texelFetch(refractorPosition, ivec3(q, current), 0);
-      vec3 n = texelFetch(refractorNormal, ivec3(q, current), 0).xyz;
-      if (p.w >= 0.0 && InFront(x, depth, p.xyz, n))
-      {
-        result.kind = REFRACTOR;
-        result.t = PlaneHit(o, d, p.xyz, n, t);
-        result.pixel = q;
-        result.layer = current;
-        // Smooth across pixels, or the refracted image shows the pixel grid.
-        result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
-          pixelScale, o + result.t * d, q, current, p.w, n);
-        result.material = int(p.w + 0.5);
-        return result;
-      }
+      return result;
     }
   }
   return result;
