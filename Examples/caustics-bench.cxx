@@ -16,8 +16,10 @@
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
+#include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTechniques.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsWindowFactory.h"
@@ -98,6 +100,73 @@ std::function<bool(vtkCausticsRenderPass*)> Set(std::function<void(PassType*)> s
 std::vector<Configuration> MakeConfigurations()
 {
   std::vector<Configuration> table;
+
+  // Screen-space photon tracing (docs/technique-screen-space.md): the photon grid
+  // N x N per light at the default layer cap, then the layer cap at N = 256.
+  for (int grid : { 64, 128, 256, 512 })
+  {
+    table.push_back({ "screen-space", "grid=" + std::to_string(grid) + " layers=8",
+      Set<vtkCausticsScreenSpacePhotonPass>(
+        [grid](vtkCausticsScreenSpacePhotonPass* pass)
+        {
+          pass->SetLightBufferResolution(grid);
+          pass->SetMaximumNumberOfLayers(8);
+        }) });
+  }
+  for (int layers : { 1, 2, 4 })
+  {
+    table.push_back({ "screen-space", "grid=256 layers=" + std::to_string(layers),
+      Set<vtkCausticsScreenSpacePhotonPass>(
+        [layers](vtkCausticsScreenSpacePhotonPass* pass)
+        {
+          pass->SetLightBufferResolution(256);
+          pass->SetMaximumNumberOfLayers(layers);
+        }) });
+  }
+
+  // Hierarchical caustic maps (docs/technique-caustic-maps.md): the variants of the
+  // paper's Table 3. The default (hierarchical gather, clustering at the last level,
+  // Eq. 2 splats into the multi-resolution map) over photon buffers 256^2..2048^2;
+  // the baselines and the other clustering variants at 256^2 and 1024^2.
+  using HCM = vtkCausticsHierarchicalCausticMapPass;
+  struct Variant
+  {
+    const char* Name;
+    int Gather, Cluster, Splat;
+  };
+  const Variant defaultVariant = { "varying-multires", HCM::GATHER_HIERARCHICAL,
+    HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_VARYING_MULTIRES };
+  const Variant variants[] = {
+    { "flat", HCM::GATHER_FLAT, HCM::CLUSTER_NONE, HCM::SPLAT_CONSTANT },
+    { "hierarchical", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_NONE, HCM::SPLAT_CONSTANT },
+    { "combine-last", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_CONSTANT },
+    { "combine-all", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_ALL_LEVELS, HCM::SPLAT_CONSTANT },
+  };
+  auto addCausticMap = [&table](int grid, const Variant& variant)
+  {
+    table.push_back({ "caustic-maps",
+      "grid=" + std::to_string(grid) + " variant=" + variant.Name,
+      Set<HCM>(
+        [grid, variant](HCM* pass)
+        {
+          pass->SetLightBufferResolution(grid);
+          pass->SetGatherMode(variant.Gather);
+          pass->SetClusterMode(variant.Cluster);
+          pass->SetSplatMode(variant.Splat);
+        }) });
+  };
+  for (int grid : { 256, 512, 1024, 2048 })
+  {
+    addCausticMap(grid, defaultVariant);
+  }
+  for (int grid : { 256, 1024 })
+  {
+    for (const Variant& variant : variants)
+    {
+      addCausticMap(grid, variant);
+    }
+  }
+
   // "none": the shared stages (snapshot, VTK delegate, G-buffers, light buffers,
   // composite) with no technique. Its cost at each photon-grid size the techniques
   // use is their cost floor; its error (1: no caustic light) is the ceiling.
@@ -651,6 +720,10 @@ vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(
   reference->SetPhotonsPerLight(static_cast<vtkIdType>(photons));
   reference->SetSeed(seed);
   reference->SetUseCache(cache);
+  // The techniques output the irradiance at each pixel's nearest opaque surface
+  // (the pool's floor under the water, the floor behind the ball): compare with
+  // the reference's irradiance at the same points.
+  reference->CameraSeesRefractorsOff();
   return reference;
 }
 
@@ -786,10 +859,15 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
       {
         order.push_back(name);
       }
+      cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
+      if (!timings->GetStageTimedOnGPU(s))
+      {
+        gpu[name].push_back(NaN); // CPU work (e.g. the scene snapshot): no GPU time
+        continue;
+      }
       const double milliseconds = timings->GetStageGPUMilliseconds(s);
       // -1: the timer query had no result (it would wrongly lower the total).
       gpu[name].push_back(milliseconds >= 0.0 ? milliseconds : NaN);
-      cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
       total += gpu[name].back();
     }
     gpuTotal.push_back(total);
@@ -1135,7 +1213,10 @@ std::string MakeDocsSection(const Options& options, const Machine& machine,
         {
           auto stage = std::find_if(
             row->Stages.begin(), row->Stages.end(), [&](const Stage& s) { return s.Name == name; });
-          md << " " << (stage == row->Stages.end() ? "–" : Fixed(stage->GPUMilliseconds, 2))
+          md << " "
+             << (stage == row->Stages.end() || std::isnan(stage->GPUMilliseconds)
+                    ? "–"
+                    : Fixed(stage->GPUMilliseconds, 2))
              << " |";
         }
         md << "\n";
@@ -1204,7 +1285,7 @@ void UpdateDocs(const std::string& path, const std::string& section)
 
 void PrintRow(const Row& row)
 {
-  std::cout << "  " << std::left << std::setw(11) << row.Technique << std::setw(20) << row.Knobs
+  std::cout << "  " << std::left << std::setw(13) << row.Technique << std::setw(34) << row.Knobs
             << std::right << " wall " << std::setw(9) << FormatTime(row.WallMilliseconds)
             << "  gpu " << std::setw(9) << FormatTime(row.GPUMilliseconds) << "  relL2 "
             << Fixed(row.Error.RelativeL2Error, 4) << "  flux " << Fixed(row.Error.FluxRatio, 3)

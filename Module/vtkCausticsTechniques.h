@@ -4,9 +4,10 @@
  *
  * Every technique is a vtkCausticsRenderPass subclass. Names:
  * - "none": vtkCausticsRenderPass itself (VTK shading plus the shared buffers);
- * further techniques register here as they are added (see docs/architecture.md).
- * "best" names the technique with the lowest error against the reference on the
- * built-in scenes (docs/benchmarks.md), the CLI's default.
+ * - "screen-space": vtkCausticsScreenSpacePhotonPass (docs/technique-screen-space.md);
+ * - "caustic-maps": vtkCausticsHierarchicalCausticMapPass (docs/technique-caustic-maps.md).
+ * "best" names the technique with the lowest error against the reference on most
+ * built-in scenes (docs/benchmarks.md), the CLI's default: "screen-space".
  */
 #ifndef vtkCausticsTechniques_h
 #define vtkCausticsTechniques_h

@@ -46,6 +46,26 @@ def main():
         return "role names are wrong"
     renderer.SetPass(None)
     caustics.ReleaseGraphicsResources(window)
+
+    # Each technique renders from Python: the ball lens focuses the 1 W/m^2 light
+    # onto the floor, so the caustic irradiance somewhere exceeds it.
+    for technique in (vtkcaustics.vtkCausticsScreenSpacePhotonPass,
+                      vtkcaustics.vtkCausticsHierarchicalCausticMapPass):
+        name = technique.__name__
+        pass_ = technique()
+        pass_.KeepBuffersOn()
+        pass_.SetLightBufferResolution(64)
+        renderer.SetPass(pass_)
+        window.Render()
+        caustic = vtkImageData()
+        if not pass_.ReadBuffer("CausticIrradiance", caustic):
+            return name + ": no CausticIrradiance buffer"
+        values = caustic.GetPointData().GetArray(0)
+        peak = max(values.GetComponent(i, 0) for i in range(values.GetNumberOfTuples()))
+        if not peak > 1.0:
+            return "%s: peak caustic irradiance %g W/m^2, expected > 1" % (name, peak)
+        renderer.SetPass(None)
+        pass_.ReleaseGraphicsResources(window)
     return None
 
 
