@@ -97,7 +97,8 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
 }
 
 bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-  vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels)
+  vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels,
+  const caustics::Camera* camera)
 {
   if (!this->Internal->HasView || !photons || !hierarchy)
   {
@@ -159,6 +160,15 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
       program->SetUniformu(("nodeOffsets" + index).c_str(), hierarchy->GetNodeOffset(k));
       program->SetUniformi(("nodeRowLength" + index).c_str(), hierarchy->GetNodeRowLength(k));
     }
+    // Clusters get the hierarchy's camera floor too (its photons' kernels have it).
+    const bool cameraFloor =
+      camera && hierarchy->GetSplatMode() != vtkCausticsPhotonBufferHierarchy::SPLAT_CONSTANT;
+    if (camera)
+    {
+      caustics::hcm::SetCameraViewUniforms(program, "cameraView", *camera);
+    }
+    program->SetUniformf("minimumCameraRadiusPixels",
+      cameraFloor ? static_cast<float>(hierarchy->GetMinimumCameraSplatRadius()) : 0.0f);
     program->SetUniformf("minimumRadiusPixels", static_cast<float>(this->MinimumSplatRadius));
     program->SetUniformf("maximumRadiusPixels", static_cast<float>(this->MaximumSplatRadius));
     program->SetUniformf("clusterRadiusPixels",

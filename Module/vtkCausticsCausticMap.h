@@ -45,6 +45,7 @@ class vtkWindow;
 
 namespace caustics
 {
+struct Camera;
 struct LightView;
 namespace gl
 {
@@ -93,10 +94,14 @@ public:
 
   /**
    * Clears the levels and draws the splat lists of `hierarchy` (gathered from
-   * `photons`) into them. Clusters get clusterRadiusPixels. False if a program failed.
+   * `photons`) into them. Clusters get clusterRadiusPixels, and no less than the
+   * hierarchy's MinimumCameraSplatRadius pixel footprints of `camera` (may be null:
+   * no floor).
+   * False if a program failed.
    */
   bool Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels);
+    vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels,
+    const caustics::Camera* camera);
 
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of

@@ -207,6 +207,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     hierarchy->SetConstantSplatRadius(this->ConstantSplatRadius);
     hierarchy->SetSplatSizeThreshold(this->SplatSizeThreshold);
     hierarchy->SetDropCoarseSplats(this->DropCoarseSplats);
+    hierarchy->SetMinimumCameraSplatRadius(this->MinimumCameraSplatRadius);
     vtkCausticsCausticMap* map = light.Map;
     map->SetResolution(this->CausticMapResolution);
     map->SetNumberOfLevels(this->SplatMode == SPLAT_VARYING_MULTIRES ? 4 : 1);
@@ -266,11 +267,11 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
     }
     this->BeginStage("hcm traversal");
     const bool gathered = light.Hierarchy->Gather(renWin, light.Photons, light.MapView,
-      this->CausticMapResolution, static_cast<int>(scene.Lights[i].type));
+      this->CausticMapResolution, static_cast<int>(scene.Lights[i].type), &scene.View);
     this->EndStage("hcm traversal");
     this->BeginStage("hcm splat");
-    light.Traced =
-      gathered && light.Map->Splat(renWin, light.Photons, light.Hierarchy, clusterRadius);
+    light.Traced = gathered &&
+      light.Map->Splat(renWin, light.Photons, light.Hierarchy, clusterRadius, &scene.View);
     this->EndStage("hcm splat");
     ok = ok && light.Traced;
   }
@@ -441,6 +442,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "ConstantSplatRadius: " << this->ConstantSplatRadius << " px\n";
   os << indent << "SplatSizeThreshold: " << this->SplatSizeThreshold << " px\n";
   os << indent << "MinimumSplatRadius: " << this->MinimumSplatRadius << " px\n";
+  os << indent << "MinimumCameraSplatRadius: " << this->MinimumCameraSplatRadius
+     << " camera pixel footprints\n";
   os << indent << "MaximumSplatRadius: " << this->MaximumSplatRadius << " px\n";
   os << indent << "DropCoarseSplats: " << this->DropCoarseSplats << "\n";
   os << indent << "MaximumInternalEvents: " << this->MaximumInternalEvents << "\n";

@@ -139,6 +139,18 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Smallest radius of the varying splats in camera pixel footprints (the square root
+   * of a pixel's area on the receiver where the photon lands), in [0, 16]; 0: off.
+   * Default 1: detail finer than the image would alias in the final render, which
+   * samples the map once per pixel (vtkCausticsPhotonBufferHierarchy::
+   * SetMinimumCameraSplatRadius).
+   */
+  vtkSetClampMacro(MinimumCameraSplatRadius, double, 0.0, 16.0);
+  vtkGetMacro(MinimumCameraSplatRadius, double);
+  ///@}
+
+  ///@{
   /** Largest splat radius in pixels of its map level, in [2, 360]. Default 32. */
   vtkSetClampMacro(MaximumSplatRadius, double, 2.0, 360.0);
   vtkGetMacro(MaximumSplatRadius, double);
@@ -263,6 +275,7 @@ protected:
   double ConstantSplatRadius = 1.5;
   double SplatSizeThreshold = 5.0;
   double MinimumSplatRadius = 1.5;
+  double MinimumCameraSplatRadius = 1.0;
   double MaximumSplatRadius = 32.0;
   bool DropCoarseSplats = false;
   int MaximumInternalEvents = 8;

@@ -138,7 +138,7 @@ void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
 
 bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
-  int lightType)
+  int lightType, const caustics::Camera* camera)
 {
   const int width = photons ? photons->GetGridSize()[0] : 0;
   const int height = photons ? photons->GetGridSize()[1] : 0;
@@ -181,7 +181,7 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   {
     return false;
   }
-  return this->Traverse(renWin, photons, mapView, mapResolution, lightType);
+  return this->Traverse(renWin, photons, mapView, mapResolution, lightType, camera);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin,
@@ -222,7 +222,7 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
 
 bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
-  int lightType)
+  int lightType, const caustics::Camera* camera)
 {
   vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
     photons->GetHitFluxTexture() };
@@ -269,6 +269,12 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
       gather->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
     caustics::hcm::SetViewUniforms(gather, "mapView", mapView, mapResolution, mapResolution);
+    if (camera)
+    {
+      caustics::hcm::SetCameraViewUniforms(gather, "cameraView", *camera);
+    }
+    gather->SetUniformf("minimumCameraRadiusPixels",
+      camera ? static_cast<float>(this->MinimumCameraSplatRadius) : 0.0f);
     gather->SetUniform2i("gridSize", grid[0], grid[1]);
     gather->SetUniformi("branchRows", std::max(photons->GetBranchRows(), 1));
     gather->SetUniformu("splatRegion", this->SplatRegion);
@@ -394,5 +400,7 @@ void vtkCausticsPhotonBufferHierarchy::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ConstantSplatRadius: " << this->ConstantSplatRadius << " px\n";
   os << indent << "SplatSizeThreshold: " << this->SplatSizeThreshold << " px\n";
   os << indent << "DropCoarseSplats: " << this->DropCoarseSplats << "\n";
+  os << indent << "MinimumCameraSplatRadius: " << this->MinimumCameraSplatRadius
+     << " camera pixel footprints\n";
   os << indent << "StartLevel: " << this->StartLevel << "\n";
 }

@@ -64,6 +64,7 @@ class vtkWindow;
 
 namespace caustics
 {
+struct Camera;
 struct LightView;
 }
 
@@ -155,14 +156,32 @@ public:
   vtkBooleanMacro(DropCoarseSplats, bool);
   ///@}
 
+  ///@{
+  /**
+   * Smallest kernel radius of the varying splats, in pixel footprints of the camera
+   * that will look at the caustic (the square root of a pixel's area on the receiver
+   * where the photon lands, as the reference's kernel), in [0, 16]; 0 turns it off.
+   * Default 1. A kernel narrower than a camera pixel puts
+   * detail into the caustic map that the image cannot show: the final render samples
+   * the map at one point per pixel, so that detail aliases into noise, the more the
+   * finer the map. With this floor the map is filtered to the image's resolution and
+   * its result no longer depends on the map's (SPLAT_CONSTANT, the paper's baseline,
+   * ignores it).
+   */
+  vtkSetClampMacro(MinimumCameraSplatRadius, double, 0.0, 16.0);
+  vtkGetMacro(MinimumCameraSplatRadius, double);
+  ///@}
+
 #ifndef __VTK_WRAP__
   /**
    * Gathers the photons of `photons` into splat lists for a caustic map seen
    * through `mapView` at `mapResolution` (finest level) texels per side;
-   * `lightType` is caustics::Light::Type. Returns false if a program failed.
+   * `lightType` is caustics::Light::Type; `camera` (may be null: no camera floor) is
+   * the view MinimumCameraSplatRadius refers to. Returns false if a program failed.
    */
   bool Gather(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    const caustics::LightView& mapView, int mapResolution, int lightType);
+    const caustics::LightView& mapView, int mapResolution, int lightType,
+    const caustics::Camera* camera);
 
   /** GPU counters of the last Gather(); flux in W summed over RGB. */
   struct Counters
@@ -233,6 +252,7 @@ protected:
   double ConstantSplatRadius = 1.5;
   double SplatSizeThreshold = 5.0;
   bool DropCoarseSplats = false;
+  double MinimumCameraSplatRadius = 1.0;
 
   vtkNew<vtkCausticsShaderProgram> BuildProgram;
   vtkNew<vtkCausticsShaderProgram> GatherPrograms[3]; // flat, traversal nodes, photons
@@ -258,7 +278,8 @@ private:
   bool BuildMipmap(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
     const caustics::LightView& mapView, int mapResolution);
   bool Traverse(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    const caustics::LightView& mapView, int mapResolution, int lightType);
+    const caustics::LightView& mapView, int mapResolution, int lightType,
+    const caustics::Camera* camera);
 };
 
 #endif

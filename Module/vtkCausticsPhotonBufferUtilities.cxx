@@ -2,6 +2,7 @@
 
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkMath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,36 @@ void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
   program->SetUniformf(
     (name + ".texel").c_str(), static_cast<float>(2.0 * view.halfExtent / std::max(width, 1)));
   program->SetUniformi((name + ".perspective").c_str(), view.perspective ? 1 : 0);
+}
+
+void SetCameraViewUniforms(
+  vtkCausticsShaderProgram* program, const std::string& name, const caustics::Camera& camera)
+{
+  float matrix[16];
+  caustics::gl::ToColumnMajor(camera.worldToClip, matrix);
+  program->SetUniformMatrix4((name + ".worldToClip").c_str(), matrix);
+  caustics::gl::ToColumnMajor(camera.clipToWorld, matrix);
+  program->SetUniformMatrix4((name + ".clipToWorld").c_str(), matrix);
+  double axis[3] = { camera.focalPoint[0] - camera.position[0],
+    camera.focalPoint[1] - camera.position[1], camera.focalPoint[2] - camera.position[2] };
+  const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  for (double& a : axis)
+  {
+    a = length > 0.0 ? a / length : 0.0;
+  }
+  program->SetUniform3f((name + ".eye").c_str(), static_cast<float>(camera.position[0]),
+    static_cast<float>(camera.position[1]), static_cast<float>(camera.position[2]));
+  program->SetUniform3f((name + ".axis").c_str(), static_cast<float>(axis[0]),
+    static_cast<float>(axis[1]), static_cast<float>(axis[2]));
+  const int height = std::max(camera.height, 1);
+  program->SetUniform2f((name + ".size").c_str(), static_cast<float>(std::max(camera.width, 1)),
+    static_cast<float>(height));
+  // viewAngle is vertical: the pixel height, which is its width too (square pixels).
+  const double halfHeight = camera.parallel
+    ? camera.parallelScale
+    : std::tan(0.5 * vtkMath::RadiansFromDegrees(camera.viewAngle));
+  program->SetUniformf((name + ".texel").c_str(), static_cast<float>(2.0 * halfHeight / height));
+  program->SetUniformi((name + ".perspective").c_str(), camera.parallel ? 0 : 1);
 }
 
 double TexelFluxBound(const caustics::Light& light, const caustics::LightView& view, int resolution)

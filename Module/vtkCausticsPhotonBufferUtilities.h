@@ -64,6 +64,14 @@ void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
   const caustics::LightView& view, int width, int height);
 
 /**
+ * Sets the CausticsView uniform struct `name` to the camera's view: its matrices,
+ * eye, viewing direction, image size, and the width of one pixel (at unit depth when
+ * perspective), so that ViewTexelSize(name, x) is a camera pixel's width at x.
+ */
+void SetCameraViewUniforms(
+  vtkCausticsShaderProgram* program, const std::string& name, const caustics::Camera& camera);
+
+/**
  * Upper bound of the flux (W, summed over RGB) one texel of a light view of the
  * given resolution carries: the unit of the GPU flux statistics is this / 2^20,
  * so a photon is rounded to within 5e-7 of that bound (a float holds its units

@@ -18,6 +18,8 @@ uniform CausticsView targetView; // the caustic map level drawn into
 uniform float minimumRadiusPixels;
 uniform float maximumRadiusPixels;
 uniform float clusterRadiusPixels;
+uniform CausticsView cameraView;
+uniform float minimumCameraRadiusPixels; // clusters' floor in camera pixel footprints (0: none)
 
 struct Node
 {
@@ -121,7 +123,11 @@ void main()
     Node cluster = nodes[nodeOffsets[k] + uint(node.y * nodeRowLength[k] + node.x)];
     flux = vec3(cluster.fluxR, cluster.fluxG, cluster.fluxB) * float(1u << (2 * k));
     position = vec3(cluster.x, cluster.y, cluster.z);
-    r = 0.0; // converged: the photons all land in one texel
+    // Converged: the photons all land in one texel; no finer than the image though
+    // (the gather gives single photons the same floor).
+    r = minimumCameraRadiusPixels > 0.0
+      ? minimumCameraRadiusPixels * CameraFootprint(cameraView, position, n)
+      : 0.0;
     smallest = clusterRadiusPixels;
   }
   vec4 clip = targetView.worldToClip * vec4(position, 1.0);

@@ -93,6 +93,16 @@ vec3 ViewAway(CausticsView v, vec3 x)
   return v.perspective != 0 ? normalize(x - v.eye) : v.axis;
 }
 
+// Width (m) of a pixel's footprint on the surface (x, n) of camera view v: the
+// square root of the pixel's area there (the pixel footprint of the reference's
+// kernel), at most 1/sqrt(0.05) of the pixel's width at grazing view; 0 behind an
+// orthographic view's eye plane or a perspective eye.
+float CameraFootprint(CausticsView v, vec3 x, vec3 n)
+{
+  float cosine = abs(dot(n, ViewAway(v, x)));
+  return ViewTexelSize(v, x) * inversesqrt(max(cosine, 0.05));
+}
+
 bool AllFinite(vec3 v)
 {
   return !any(isnan(v)) && !any(isinf(v));

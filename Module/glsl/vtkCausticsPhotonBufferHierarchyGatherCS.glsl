@@ -45,6 +45,8 @@ uniform float splatSizeThreshold; // largest splat diameter per level, in that l
 uniform int dropCoarseSplats;     // 1: as the paper, drop splats needing level >= 4
 uniform float fluxUnit;           // W per statistics unit
 uniform CausticsView mapView;     // caustic map level 0
+uniform CausticsView cameraView;  // the camera that will look at the caustic
+uniform float minimumCameraRadiusPixels; // varying kernels' floor, camera pixel footprints
 uniform sampler2D hitPosition;
 uniform sampler2D hitNormal;
 uniform sampler2D hitFlux;
@@ -147,6 +149,14 @@ int TransformPhoton(
   if (!(rho > 0.0) || isinf(rho))
   {
     return 0; // degenerate footprint: the smallest splat
+  }
+  if (splatMode != SPLAT_CONSTANT && minimumCameraRadiusPixels > 0.0)
+  {
+    // No finer than the image: the final render samples the map once per camera
+    // pixel, so kernels narrower than the pixel's footprint on the receiver would
+    // alias (behind the camera: no floor).
+    float pixelFootprint = CameraFootprint(cameraView, hit.xyz, normalize(normal.xyz));
+    rho = max(rho, minimumCameraRadiusPixels * pixelFootprint);
   }
   float pixels = ProjectedRadiusPixels(mapView, hit.xyz, normalize(normal.xyz), rho);
   if (!(pixels > 0.0) || isinf(pixels))

@@ -90,14 +90,14 @@ TEST(CausticMapReference, PoolFloor)
 {
   // The floor under the waves: the water is an open refractor (one sheet), so the
   // photons stay in the water after refracting in and go on to the floor. Reached
-  // here: relL2 20.6 %, flux 0.969. The missing 3 % is the floor along the sunlit
+  // here: relL2 19.7 %, flux 0.968. The missing 3 % is the floor along the sunlit
   // wall, which the wall hides from the sun's caustic map while refraction bends
   // photons onto it (docs/technique-caustic-maps.md, Limits); before open
   // refractors were handled, the water acted as a zero-thickness slab: relL2 50 %.
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(Compare("pool", metrics, true));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.22);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.21);
   EXPECT_GT(metrics->GetFluxRatio(), 0.96);
   EXPECT_LT(metrics->GetFluxRatio(), 1.0);
 }
@@ -123,11 +123,12 @@ TEST(CausticMapReference, Bunny)
   // the slab between its front and back faces seen from the light, the caustic
   // map sees only the spot's cone (the light reflected onto the ceiling and the
   // upper walls is lost), and photons trapped inside after 8 interfaces are
-  // dropped. Measured: relative L2 59.8 %, flux ratio 0.650, peak 1 px off.
+  // dropped. Measured: relative L2 53.3 %, flux ratio 0.655, peak 1 px off (59.8 %
+  // before the splats' floor of one camera pixel footprint, MinimumCameraSplatRadius).
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(Compare("bunny", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.62);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.55);
   EXPECT_GT(metrics->GetFluxRatio(), 0.63);
   EXPECT_LT(metrics->GetFluxRatio(), 1.0);
 }
