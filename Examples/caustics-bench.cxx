@@ -17,6 +17,7 @@
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
+#include "vtkCausticsImageIO.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
@@ -37,6 +38,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -123,6 +125,19 @@ std::vector<Configuration> MakeConfigurations()
           pass->SetMaximumNumberOfLayers(layers);
         }) });
   }
+  // Its splat kernel: the default radius of 2 pixel footprints against 1 (sharper, noisier)
+  // at N = 256 and 512, since the ground truth's own kernel is 1 footprint.
+  for (int grid : { 256, 512 })
+  {
+    table.push_back({ "screen-space", "grid=" + std::to_string(grid) + " layers=8 splat=1",
+      Set<vtkCausticsScreenSpacePhotonPass>(
+        [grid](vtkCausticsScreenSpacePhotonPass* pass)
+        {
+          pass->SetLightBufferResolution(grid);
+          pass->SetMaximumNumberOfLayers(8);
+          pass->SetSplatRadiusPixels(1.0);
+        }) });
+  }
 
   // Hierarchical caustic maps (docs/technique-caustic-maps.md): the variants of the
   // paper's Table 3. The default (hierarchical gather, clustering at the last level,
@@ -164,6 +179,34 @@ std::vector<Configuration> MakeConfigurations()
     for (const Variant& variant : variants)
     {
       addCausticMap(grid, variant);
+    }
+  }
+  // The caustic map's own resolution (the default 512^2 texels over the light's view of
+  // the whole scene) at 1024^2 photons, with and without the kernels' floor of one
+  // camera pixel (MinimumCameraSplatRadius): where the error stops falling with
+  // photons, it shows whether the map's texels are what limits it, and that the
+  // floor makes the result independent of them.
+  for (double cameraFloor : { 1.0, 0.0 })
+  {
+    for (int map : { 256, 512, 1024, 2048 })
+    {
+      if (cameraFloor == 1.0 && map == 512)
+      {
+        continue; // the defaults: "grid=1024 variant=varying-multires" above
+      }
+      table.push_back({ "caustic-maps",
+        "grid=1024 variant=" + std::string(defaultVariant.Name) + " map=" + std::to_string(map) +
+          (cameraFloor == 0.0 ? " camera-floor=off" : ""),
+        Set<HCM>(
+          [map, cameraFloor, defaultVariant](HCM* pass)
+          {
+            pass->SetLightBufferResolution(1024);
+            pass->SetGatherMode(defaultVariant.Gather);
+            pass->SetClusterMode(defaultVariant.Cluster);
+            pass->SetSplatMode(defaultVariant.Splat);
+            pass->SetCausticMapResolution(map);
+            pass->SetMinimumCameraSplatRadius(cameraFloor);
+          }) });
     }
   }
 
@@ -209,10 +252,17 @@ Measurement:
   --reference-repeats N      renders per ladder count, 1..20; the median time is
                              kept; a count stops repeating once its runs took 30 s
                              (default 3)
+  --reference-kernel R       radius of the reference's density-estimation kernel in
+                             pixel footprints, ground truth and ladder, in [0.25, 64]
+                             (default 1; vtkCausticsReferenceRenderer's own default
+                             is 2)
 
 Output:
   --output DIR               output folder, created if needed (default: caustics-bench-results)
   --no-plot                  do not run scripts/plot-benchmarks.py
+  --images                   also write each configuration's caustic irradiance
+                             (W/m^2, last frame) to images/SCENE_TECHNIQUE_KNOBS.exr
+                             in the output folder, to look at what the error measures
   --python PATH              Python with matplotlib for the plot (default:
                              $CAUSTICS_PYTHON, else /usr/bin/python3, else python3)
   --update-docs              rewrite the generated section of docs/benchmarks.md and
@@ -235,8 +285,15 @@ struct Options
   double ReferencePhotons = 2e7;
   std::vector<double> Ladder = { 1e5, 1e6, 1e7 };
   int ReferenceRepeats = 3;
+  // The ground truth's kernel radius in pixel footprints: 1, about a pixel's own
+  // extent (an Epanechnikov kernel of radius 0.71 has the variance of the pixel box),
+  // rather than the reference renderer's default of 2, which halves the peak of a
+  // sharp caustic line (the bunny's) and would charge a sharper technique for it;
+  // the extra noise is paid for with the ground truth's photons.
+  double ReferenceKernel = 1.0;
   std::string Output = "caustics-bench-results";
   bool Plot = true;
+  bool Images = false;
   std::string Python;
   bool UpdateDocs = false;
   std::string Docs;
@@ -431,6 +488,14 @@ Options Parse(int argc, char* argv[])
       std::sort(options.Ladder.begin(), options.Ladder.end());
       ladderGiven = true;
     }
+    else if (arg == "--reference-kernel")
+    {
+      options.ReferenceKernel = ParseNumber(arg, value());
+      if (options.ReferenceKernel < 0.25 || options.ReferenceKernel > 64.0)
+      {
+        throw UsageError(arg + " expects a radius in [0.25, 64] pixel footprints");
+      }
+    }
     else if (arg == "--reference-repeats")
     {
       options.ReferenceRepeats = static_cast<int>(ParseCount(arg, value(), 1, 20));
@@ -446,6 +511,10 @@ Options Parse(int argc, char* argv[])
     else if (arg == "--no-plot")
     {
       options.Plot = false;
+    }
+    else if (arg == "--images")
+    {
+      options.Images = true;
     }
     else if (arg == "--python")
     {
@@ -711,13 +780,14 @@ vtkCausticsErrorMetrics::Result CompareWithReference(vtkImageData* test, vtkImag
 }
 
 /** The renderer's scene at size x size, rendered by the reference with `photons` per light. */
-vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(
-  vtkRenderer* renderer, int size, double photons, unsigned int seed, bool cache)
+vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(vtkRenderer* renderer, int size,
+  double photons, double kernelPixels, unsigned int seed, bool cache)
 {
   auto reference = vtkSmartPointer<vtkCausticsReferenceRenderer>::New();
   reference->SetInputRenderer(renderer);
   reference->SetImageSize(size, size);
   reference->SetPhotonsPerLight(static_cast<vtkIdType>(photons));
+  reference->SetKernelRadiusPixels(kernelPixels);
   reference->SetSeed(seed);
   reference->SetUseCache(cache);
   // The techniques output the irradiance at each pixel's nearest opaque surface
@@ -757,7 +827,7 @@ std::vector<Row> TimeReferenceLadder(const Options& options, const std::string& 
     for (int repeat = 0; repeat < options.ReferenceRepeats && (repeat == 0 || spent < 30.0);
          ++repeat)
     {
-      reference = MakeReference(renderer, options.Size, photons, 2, false);
+      reference = MakeReference(renderer, options.Size, photons, options.ReferenceKernel, 2, false);
       if (!reference->Update())
       {
         throw std::runtime_error(
@@ -806,6 +876,26 @@ vtkSmartPointer<vtkImageData> ReadCausticIrradiance(vtkCausticsRenderPass* pass,
   zero->Fill(0.0);
   image->GetPointData()->AddArray(zero);
   return image;
+}
+
+/**
+ * Writes `image`'s CausticIrradiance to <output>/images/<name>.exr (name made
+ * file-safe), for --images.
+ */
+void WriteIrradiance(const Options& options, vtkImageData* image, std::string name)
+{
+  for (char& c : name)
+  {
+    c = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  }
+  const std::string folder = options.Output + "/images";
+  vtksys::SystemTools::MakeDirectory(folder);
+  std::string error;
+  if (!vtkCausticsImageIO::WriteEXR(
+        image, { { "CausticIrradiance", "caustic" } }, folder + "/" + name + ".exr", &error))
+  {
+    throw std::runtime_error("--images: " + error);
+  }
 }
 
 /**
@@ -884,7 +974,13 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
   {
     try
     {
-      row.Error = CompareWithReference(ReadCausticIrradiance(pass, options.Size), truth);
+      vtkSmartPointer<vtkImageData> irradiance = ReadCausticIrradiance(pass, options.Size);
+      row.Error = CompareWithReference(irradiance, truth);
+      if (options.Images)
+      {
+        WriteIrradiance(
+          options, irradiance, scene + "_" + configuration.Technique + "_" + configuration.Knobs);
+      }
       if (!pass->GetLastFrameHadCaustics())
       {
         row.Status = "no caustic stage ran";
@@ -1136,7 +1232,8 @@ std::string MakeDocsSection(const Options& options, const Machine& machine,
   for (const auto& truth : truths)
   {
     md << "| ground truth, " << truth.Scene << " | reference, " << truth.Photons
-       << " photons per light, seed 1, `" << truth.CacheFile << "` ("
+       << " photons per light, seed 1, kernel radius " << Fixed(options.ReferenceKernel, 2)
+       << " pixel footprints, `" << truth.CacheFile << "` ("
        << (truth.FromCache ? "from the cache" : "rendered in " + Fixed(truth.Seconds, 0) + " s")
        << ") |\n";
   }
@@ -1357,7 +1454,8 @@ int Run(const Options& options, OneLineOutputWindow* messages)
     // The GPU frames and the reference see the same camera, clipping range included.
     renderer->ResetCameraClippingRange();
 
-    auto truth = MakeReference(renderer, options.Size, options.ReferencePhotons, 1, true);
+    auto truth = MakeReference(
+      renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
     std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
               << " photons per light" << std::flush;
     if (!truth->Update())
