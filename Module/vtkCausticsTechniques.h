@@ -6,8 +6,9 @@
  * - "none": vtkCausticsRenderPass itself (VTK shading plus the shared buffers);
  * - "screen-space": vtkCausticsScreenSpacePhotonPass (docs/technique-screen-space.md);
  * - "caustic-maps": vtkCausticsHierarchicalCausticMapPass (docs/technique-caustic-maps.md).
- * "best" names the technique with the lowest error against the reference on most
- * built-in scenes (docs/benchmarks.md), the CLI's default: "screen-space".
+ * "best" names the technique the CLI uses by default: "screen-space", the more accurate
+ * on two of the four built-in scenes (caustic-maps on the other two,
+ * docs/benchmarks.md) and the only one that shows refractors refracting the scene.
  */
 #ifndef vtkCausticsTechniques_h
 #define vtkCausticsTechniques_h
