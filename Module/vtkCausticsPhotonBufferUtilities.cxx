@@ -11,54 +11,56 @@ namespace caustics
 {
 namespace hcm
 {
+namespace
+{
+// Fills the GLSL struct CausticsView `name` (vtkCausticsPhotonBufferCommon.glsl).
+// texel: one texel's width (at unit depth when perspective), both axes.
+void SetViewStruct(vtkCausticsShaderProgram* program, const std::string& name,
+  const double worldToClip[16], const double clipToWorld[16], const Vec3& eye, const Vec3& axis,
+  int width, int height, double texel, bool perspective)
+{
+  float matrix[16];
+  caustics::gl::ToColumnMajor(worldToClip, matrix);
+  program->SetUniformMatrix4((name + ".worldToClip").c_str(), matrix);
+  caustics::gl::ToColumnMajor(clipToWorld, matrix);
+  program->SetUniformMatrix4((name + ".clipToWorld").c_str(), matrix);
+  program->SetUniform3f((name + ".eye").c_str(), static_cast<float>(eye[0]),
+    static_cast<float>(eye[1]), static_cast<float>(eye[2]));
+  program->SetUniform3f((name + ".axis").c_str(), static_cast<float>(axis[0]),
+    static_cast<float>(axis[1]), static_cast<float>(axis[2]));
+  program->SetUniform2f(
+    (name + ".size").c_str(), static_cast<float>(width), static_cast<float>(height));
+  program->SetUniformf((name + ".texel").c_str(), static_cast<float>(texel));
+  program->SetUniformi((name + ".perspective").c_str(), perspective ? 1 : 0);
+}
+}
+
 void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
   const caustics::LightView& view, int width, int height)
 {
-  float matrix[16];
-  caustics::gl::ToColumnMajor(view.worldToClip, matrix);
-  program->SetUniformMatrix4((name + ".worldToClip").c_str(), matrix);
-  caustics::gl::ToColumnMajor(view.clipToWorld, matrix);
-  program->SetUniformMatrix4((name + ".clipToWorld").c_str(), matrix);
-  program->SetUniform3f((name + ".eye").c_str(), static_cast<float>(view.eye[0]),
-    static_cast<float>(view.eye[1]), static_cast<float>(view.eye[2]));
-  program->SetUniform3f((name + ".axis").c_str(), static_cast<float>(view.axis[0]),
-    static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
-  program->SetUniform2f(
-    (name + ".size").c_str(), static_cast<float>(width), static_cast<float>(height));
-  // Square frusta: one texel width for both axes (at unit depth when perspective).
-  program->SetUniformf(
-    (name + ".texel").c_str(), static_cast<float>(2.0 * view.halfExtent / std::max(width, 1)));
-  program->SetUniformi((name + ".perspective").c_str(), view.perspective ? 1 : 0);
+  // Square frusta: one texel width for both axes.
+  SetViewStruct(program, name, view.worldToClip, view.clipToWorld, view.eye, view.axis, width,
+    height, 2.0 * view.halfExtent / std::max(width, 1), view.perspective);
 }
 
 void SetCameraViewUniforms(
   vtkCausticsShaderProgram* program, const std::string& name, const caustics::Camera& camera)
 {
-  float matrix[16];
-  caustics::gl::ToColumnMajor(camera.worldToClip, matrix);
-  program->SetUniformMatrix4((name + ".worldToClip").c_str(), matrix);
-  caustics::gl::ToColumnMajor(camera.clipToWorld, matrix);
-  program->SetUniformMatrix4((name + ".clipToWorld").c_str(), matrix);
-  double axis[3] = { camera.focalPoint[0] - camera.position[0],
-    camera.focalPoint[1] - camera.position[1], camera.focalPoint[2] - camera.position[2] };
+  Vec3 axis{ { camera.focalPoint[0] - camera.position[0],
+    camera.focalPoint[1] - camera.position[1], camera.focalPoint[2] - camera.position[2] } };
   const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
   for (double& a : axis)
   {
     a = length > 0.0 ? a / length : 0.0;
   }
-  program->SetUniform3f((name + ".eye").c_str(), static_cast<float>(camera.position[0]),
-    static_cast<float>(camera.position[1]), static_cast<float>(camera.position[2]));
-  program->SetUniform3f((name + ".axis").c_str(), static_cast<float>(axis[0]),
-    static_cast<float>(axis[1]), static_cast<float>(axis[2]));
+  const int width = std::max(camera.width, 1);
   const int height = std::max(camera.height, 1);
-  program->SetUniform2f((name + ".size").c_str(), static_cast<float>(std::max(camera.width, 1)),
-    static_cast<float>(height));
   // viewAngle is vertical: the pixel height, which is its width too (square pixels).
   const double halfHeight = camera.parallel
     ? camera.parallelScale
     : std::tan(0.5 * vtkMath::RadiansFromDegrees(camera.viewAngle));
-  program->SetUniformf((name + ".texel").c_str(), static_cast<float>(2.0 * halfHeight / height));
-  program->SetUniformi((name + ".perspective").c_str(), camera.parallel ? 0 : 1);
+  SetViewStruct(program, name, camera.worldToClip, camera.clipToWorld, camera.position, axis,
+    width, height, 2.0 * halfHeight / height, !camera.parallel);
 }
 
 double TexelFluxBound(const caustics::Light& light, const caustics::LightView& view, int resolution)
