@@ -157,17 +157,27 @@ std::vector<Configuration> MakeConfigurations()
     { "combine-last", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_CONSTANT },
     { "combine-all", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_ALL_LEVELS, HCM::SPLAT_CONSTANT },
   };
-  auto addCausticMap = [&table](int grid, const Variant& variant)
+  // map: caustic-map resolution (0: the pass's default); cameraFloor: its
+  // MinimumCameraSplatRadius (the default 1 is not named in the knobs).
+  auto addCausticMap = [&table](
+                         int grid, const Variant& variant, int map = 0, double cameraFloor = 1.0)
   {
-    table.push_back({ "caustic-maps",
-      "grid=" + std::to_string(grid) + " variant=" + variant.Name,
+    std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
+    knobs += map > 0 ? " map=" + std::to_string(map) : "";
+    knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
+    table.push_back({ "caustic-maps", knobs,
       Set<HCM>(
-        [grid, variant](HCM* pass)
+        [grid, variant, map, cameraFloor](HCM* pass)
         {
           pass->SetLightBufferResolution(grid);
           pass->SetGatherMode(variant.Gather);
           pass->SetClusterMode(variant.Cluster);
           pass->SetSplatMode(variant.Splat);
+          if (map > 0)
+          {
+            pass->SetCausticMapResolution(map);
+          }
+          pass->SetMinimumCameraSplatRadius(cameraFloor);
         }) });
   };
   for (int grid : { 256, 512, 1024, 2048 })
@@ -194,19 +204,7 @@ std::vector<Configuration> MakeConfigurations()
       {
         continue; // the defaults: "grid=1024 variant=varying-multires" above
       }
-      table.push_back({ "caustic-maps",
-        "grid=1024 variant=" + std::string(defaultVariant.Name) + " map=" + std::to_string(map) +
-          (cameraFloor == 0.0 ? " camera-floor=off" : ""),
-        Set<HCM>(
-          [map, cameraFloor, defaultVariant](HCM* pass)
-          {
-            pass->SetLightBufferResolution(1024);
-            pass->SetGatherMode(defaultVariant.Gather);
-            pass->SetClusterMode(defaultVariant.Cluster);
-            pass->SetSplatMode(defaultVariant.Splat);
-            pass->SetCausticMapResolution(map);
-            pass->SetMinimumCameraSplatRadius(cameraFloor);
-          }) });
+      addCausticMap(1024, defaultVariant, map, cameraFloor);
     }
   }
 

@@ -46,8 +46,8 @@ void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
 void SetCameraViewUniforms(
   vtkCausticsShaderProgram* program, const std::string& name, const caustics::Camera& camera)
 {
-  Vec3 axis{ { camera.focalPoint[0] - camera.position[0],
-    camera.focalPoint[1] - camera.position[1], camera.focalPoint[2] - camera.position[2] } };
+  Vec3 axis{ { camera.focalPoint[0] - camera.position[0], camera.focalPoint[1] - camera.position[1],
+    camera.focalPoint[2] - camera.position[2] } };
   const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
   for (double& a : axis)
   {
@@ -59,8 +59,8 @@ void SetCameraViewUniforms(
   const double halfHeight = camera.parallel
     ? camera.parallelScale
     : std::tan(0.5 * vtkMath::RadiansFromDegrees(camera.viewAngle));
-  SetViewStruct(program, name, camera.worldToClip, camera.clipToWorld, camera.position, axis,
-    width, height, 2.0 * halfHeight / height, !camera.parallel);
+  SetViewStruct(program, name, camera.worldToClip, camera.clipToWorld, camera.position, axis, width,
+    height, 2.0 * halfHeight / height, !camera.parallel);
 }
 
 double TexelFluxBound(const caustics::Light& light, const caustics::LightView& view, int resolution)
