@@ -3,4 +3,8 @@
 Import after VTK's OpenGL2 rendering module, whose classes the passes derive from.
 """
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (base classes, OpenGL factory)
+from .vtkCausticsScene import *  # noqa: F401,F403
 from .vtkRenderingCaustics import *  # noqa: F401,F403
+from .vtkIOCaustics import *  # noqa: F401,F403
+from .vtkCausticsReference import *  # noqa: F401,F403
+from .vtkRenderingCausticsEGL import *  # noqa: F401,F403

@@ -63,7 +63,7 @@
 #define vtkCausticsReferenceRenderer_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkCausticsReferenceModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For members
 
 #include "vtkCausticsReferenceCore.h" // For caustics::ReferencePhoton and friends
@@ -75,7 +75,7 @@ class vtkCausticsSceneExtractor;
 class vtkImageData;
 class vtkRenderer;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsReferenceRenderer : public vtkObject
+class VTKCAUSTICSREFERENCE_EXPORT vtkCausticsReferenceRenderer : public vtkObject
 {
 public:
   static vtkCausticsReferenceRenderer* New();

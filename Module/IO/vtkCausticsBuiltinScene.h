@@ -18,7 +18,7 @@
 #define vtkCausticsBuiltinScene_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkIOCausticsModule.h" // For export macro
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -26,7 +26,7 @@
 
 class vtkRenderer;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsBuiltinScene : public vtkObject
+class VTKIOCAUSTICS_EXPORT vtkCausticsBuiltinScene : public vtkObject
 {
 public:
   static vtkCausticsBuiltinScene* New();
@@ -66,7 +66,11 @@ public:
   ///@}
 
   ///@{
-  /** Folder holding bunny.ply. Default: the source tree's Data/ folder. */
+  /**
+   * Folder holding bunny.ply. Default: the environment variable CAUSTICS_DATA_DIR
+   * if set, else the module's data found from where its library is loaded
+   * (`<prefix>/share/vtkcaustics/data` once installed; `build/share/...` in a build tree).
+   */
   vtkSetStdStringFromCharMacro(DataDirectory);
   vtkGetCharFromStdStringMacro(DataDirectory);
   ///@}

@@ -24,7 +24,7 @@
 #define vtkCausticsMaterial_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkCausticsSceneModule.h" // For export macro
 
 #include "vtkCausticsSceneData.h" // For caustics::Material
 
@@ -37,7 +37,7 @@ class vtkInformationIntegerKey;
 class vtkInformationStringKey;
 class vtkProperty;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsMaterial : public vtkObject
+class VTKCAUSTICSSCENE_EXPORT vtkCausticsMaterial : public vtkObject
 {
 public:
   static vtkCausticsMaterial* New();

@@ -32,14 +32,14 @@
 #define vtkCausticsMeshReader_h
 
 #include "vtkPolyDataAlgorithm.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkIOCausticsModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For return value
 
 #include <string> // For std::string
 
 class vtkActor;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsMeshReader : public vtkPolyDataAlgorithm
+class VTKIOCAUSTICS_EXPORT vtkCausticsMeshReader : public vtkPolyDataAlgorithm
 {
 public:
   static vtkCausticsMeshReader* New();

@@ -20,12 +20,12 @@
 #define vtkCausticsEGLRenderWindow_h
 
 #include "vtkGenericOpenGLRenderWindow.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkRenderingCausticsEGLModule.h" // For export macro
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+class VTKRENDERINGCAUSTICSEGL_EXPORT vtkCausticsEGLRenderWindow : public vtkGenericOpenGLRenderWindow
 {
 public:
   static vtkCausticsEGLRenderWindow* New();

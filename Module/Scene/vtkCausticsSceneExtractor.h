@@ -23,7 +23,7 @@
 #define vtkCausticsSceneExtractor_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkCausticsSceneModule.h" // For export macro
 
 #include "vtkCausticsSceneData.h" // For caustics::SceneData
 
@@ -32,7 +32,7 @@
 class vtkInformationDoubleKey;
 class vtkRenderer;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsSceneExtractor : public vtkObject
+class VTKCAUSTICSSCENE_EXPORT vtkCausticsSceneExtractor : public vtkObject
 {
 public:
   static vtkCausticsSceneExtractor* New();

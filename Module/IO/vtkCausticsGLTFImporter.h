@@ -51,14 +51,14 @@
 #define vtkCausticsGLTFImporter_h
 
 #include "vtkGLTFImporter.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkIOCausticsModule.h" // For export macro
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
 class vtkActor;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsGLTFImporter : public vtkGLTFImporter
+class VTKIOCAUSTICS_EXPORT vtkCausticsGLTFImporter : public vtkGLTFImporter
 {
 public:
   static vtkCausticsGLTFImporter* New();

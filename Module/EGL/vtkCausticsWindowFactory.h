@@ -14,14 +14,14 @@
 #define vtkCausticsWindowFactory_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkRenderingCausticsEGLModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For return value
 
 #include <string> // For std::string
 
 class vtkRenderWindow;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsWindowFactory : public vtkObject
+class VTKRENDERINGCAUSTICSEGL_EXPORT vtkCausticsWindowFactory : public vtkObject
 {
 public:
   static vtkCausticsWindowFactory* New();

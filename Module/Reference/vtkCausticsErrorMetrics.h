@@ -36,14 +36,14 @@
 #define vtkCausticsErrorMetrics_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkCausticsReferenceModule.h" // For export macro
 
 #include <limits> // For std::numeric_limits
 #include <string> // For std::string
 
 class vtkImageData;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsErrorMetrics : public vtkObject
+class VTKCAUSTICSREFERENCE_EXPORT vtkCausticsErrorMetrics : public vtkObject
 {
 public:
   static vtkCausticsErrorMetrics* New();

@@ -14,7 +14,7 @@
 #define vtkCausticsImageIO_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkIOCausticsModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For return value
 
 #include <string>  // For std::string
@@ -23,7 +23,7 @@
 
 class vtkImageData;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsImageIO : public vtkObject
+class VTKIOCAUSTICS_EXPORT vtkCausticsImageIO : public vtkObject
 {
 public:
   static vtkCausticsImageIO* New();

@@ -29,6 +29,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <cmath>
+#include <dlfcn.h> // For dladdr: where this library lives
 
 vtkStandardNewMacro(vtkCausticsBuiltinScene);
 
@@ -110,6 +111,33 @@ void SetCamera(vtkRenderer* renderer, const double position[3], const double foc
   camera->OrthogonalizeViewUp();
   renderer->ResetCameraClippingRange();
 }
+/**
+ * The data shipped with the module, found from where this library is loaded:
+ * <libdir>/CAUSTICS_DATA_FROM_LIBRARY in an installed prefix, or
+ * <build>/lib/../share/vtkcaustics/data in the build tree (copied there at
+ * configure time). Empty when neither exists: then CAUSTICS_DATA_DIR or
+ * SetDataDirectory() must say where the data is.
+ */
+std::string DataBesideLibrary()
+{
+  Dl_info info;
+  if (dladdr(reinterpret_cast<void*>(&DataBesideLibrary), &info) == 0 || !info.dli_fname)
+  {
+    return std::string();
+  }
+  const std::string libraryDirectory = vtksys::SystemTools::GetFilenamePath(
+    vtksys::SystemTools::CollapseFullPath(info.dli_fname));
+  for (const char* relative : { CAUSTICS_DATA_FROM_LIBRARY, "../share/vtkcaustics/data" })
+  {
+    const std::string candidate =
+      vtksys::SystemTools::CollapseFullPath(relative, libraryDirectory);
+    if (vtksys::SystemTools::FileIsDirectory(candidate))
+    {
+      return candidate;
+    }
+  }
+  return std::string();
+}
 }
 
 struct vtkCausticsBuiltinScene::Internals
@@ -121,9 +149,7 @@ struct vtkCausticsBuiltinScene::Internals
 vtkCausticsBuiltinScene::vtkCausticsBuiltinScene()
   : Internal(new Internals)
 {
-#ifdef CAUSTICS_SOURCE_DATA_DIR
-  this->DataDirectory = CAUSTICS_SOURCE_DATA_DIR;
-#endif
+  this->DataDirectory = DataBesideLibrary();
   if (const char* dir = vtksys::SystemTools::GetEnv("CAUSTICS_DATA_DIR"))
   {
     this->DataDirectory = dir;

@@ -11,12 +11,12 @@
 #define vtkCausticsMedium_h
 
 #include "vtkObject.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkCausticsSceneModule.h" // For export macro
 
 class vtkInformationObjectBaseKey;
 class vtkRenderer;
 
-class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsMedium : public vtkObject
+class VTKCAUSTICSSCENE_EXPORT vtkCausticsMedium : public vtkObject
 {
 public:
   static vtkCausticsMedium* New();
