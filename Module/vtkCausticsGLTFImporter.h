@@ -129,6 +129,24 @@ protected:
   /** Records and reports an error about the file; always returns 0 (ImportBegin's failure). */
   int Fail(const std::string& problem);
 
+  ///@{
+  /**
+   * The steps of CheckAndLoad(), in order: read the file; check its extension
+   * against its container and split a binary one into JSON and BIN chunk; parse
+   * the JSON; check the document and the camera index; run VTK's loader; check
+   * the vertex indices VTK decoded and the world transforms of the scene's nodes.
+   * Each returns 1, or Fail()'s 0.
+   */
+  int ReadFile(const std::string& path, std::string& contents);
+  int SplitContainer(const std::string& path, const std::string& contents, std::string& json,
+    bool& binary, std::size_t& binSize);
+  int ParseJSON(const std::string& json);
+  int ValidateDocument(const std::string& path, bool binary, std::size_t binSize);
+  int RunLoader(const std::string& path, bool binary);
+  int CheckVertexIndices();
+  int CheckSceneNodes();
+  ///@}
+
   vtkIdType CameraIndex = 0;
   double CameraAspectRatio = 0.0;
   std::string LastError;
