@@ -129,6 +129,17 @@ protected:
   /** Records and reports an error about the file; always returns 0 (ImportBegin's failure). */
   int Fail(const std::string& problem);
 
+  vtkIdType CameraIndex = 0;
+  double CameraAspectRatio = 0.0;
+  std::string LastError;
+
+private:
+  vtkCausticsGLTFImporter(const vtkCausticsGLTFImporter&) = delete;
+  void operator=(const vtkCausticsGLTFImporter&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+
   ///@{
   /**
    * The steps of CheckAndLoad(), in order: read the file; check its extension
@@ -146,17 +157,6 @@ protected:
   int CheckVertexIndices();
   int CheckSceneNodes();
   ///@}
-
-  vtkIdType CameraIndex = 0;
-  double CameraAspectRatio = 0.0;
-  std::string LastError;
-
-private:
-  vtkCausticsGLTFImporter(const vtkCausticsGLTFImporter&) = delete;
-  void operator=(const vtkCausticsGLTFImporter&) = delete;
-
-  struct Internals;
-  std::unique_ptr<Internals> Internal;
 };
 
 #endif
