@@ -73,6 +73,133 @@ std::vector<IndexRange> MeshRanges(const caustics::SceneData& scene)
   }
   return ranges;
 }
+
+/** Total indices of the ranges: three per triangle. */
+std::uint64_t CountIndices(const std::vector<IndexRange>& ranges)
+{
+  std::uint64_t total = 0;
+  for (const IndexRange& range : ranges)
+  {
+    total += range.Count;
+  }
+  return total;
+}
+
+/** Which LDI every mesh is peeled into, and the index ranges of every LDI. */
+struct ObjectLayout
+{
+  std::vector<int> MeshObject; // per mesh: its object, -1 where the mesh is not drawn
+  int Objects = 1;
+  std::vector<std::vector<IndexRange>> Ranges; // per object
+};
+
+/** Each object's index ranges, merged where meshes are adjacent in the buffer. */
+std::vector<std::vector<IndexRange>> MergeObjectRanges(
+  const std::vector<IndexRange>& ranges, const std::vector<int>& meshObject, int objects)
+{
+  std::vector<std::vector<IndexRange>> objectRanges(objects);
+  std::vector<int> byFirst(ranges.size());
+  std::iota(byFirst.begin(), byFirst.end(), 0);
+  std::sort(byFirst.begin(), byFirst.end(),
+    [&](int a, int b) { return ranges[a].FirstIndex < ranges[b].FirstIndex; });
+  for (int m : byFirst)
+  {
+    if (meshObject[m] < 0)
+    {
+      continue;
+    }
+    auto& list = objectRanges[meshObject[m]];
+    if (!list.empty() && list.back().FirstIndex + list.back().Count == ranges[m].FirstIndex)
+    {
+      list.back().Count += ranges[m].Count;
+    }
+    else
+    {
+      list.push_back(ranges[m]);
+    }
+  }
+  return objectRanges;
+}
+
+/**
+ * Gives the non-empty meshes of the drawn roles their object: all the scene's one,
+ * or with perObject one each, the meshes beyond maxObjects sharing the last.
+ */
+ObjectLayout AssignObjects(const caustics::SceneData& scene, const std::vector<IndexRange>& ranges,
+  int roleMask, bool perObject, int maxObjects)
+{
+  ObjectLayout layout;
+  layout.MeshObject.assign(scene.Meshes.size(), -1);
+  int objects = 0;
+  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  {
+    const int role = static_cast<int>(scene.Materials[scene.Meshes[m].material].role);
+    if (!(roleMask & vtkCausticsSceneGeometry::RoleBit(role)) || ranges[m].Count == 0)
+    {
+      continue;
+    }
+    if (perObject)
+    {
+      layout.MeshObject[m] = std::min(objects, maxObjects - 1);
+      objects = std::min(objects + 1, maxObjects);
+    }
+    else
+    {
+      layout.MeshObject[m] = 0;
+      objects = 1;
+    }
+  }
+  layout.Objects = std::max(objects, 1);
+  layout.Ranges = MergeObjectRanges(ranges, layout.MeshObject, layout.Objects);
+  return layout;
+}
+
+/** All the draw commands depend on: they are rebuilt only when it changes. */
+std::vector<std::uint32_t> LayoutSignature(
+  const ObjectLayout& layout, int layers, std::size_t materials)
+{
+  std::vector<std::uint32_t> signature = { static_cast<std::uint32_t>(layout.Objects),
+    static_cast<std::uint32_t>(layers), static_cast<std::uint32_t>(materials) };
+  for (std::size_t m = 0; m < layout.MeshObject.size(); ++m)
+  {
+    signature.push_back(static_cast<std::uint32_t>(layout.MeshObject[m] + 1));
+  }
+  for (const auto& list : layout.Ranges)
+  {
+    signature.push_back(0xffffffffu);
+    for (const IndexRange& range : list)
+    {
+      signature.push_back(range.FirstIndex);
+      signature.push_back(range.Count);
+    }
+  }
+  return signature;
+}
+
+/** One full-screen-triangle command (gated by the finalize pass) per layer. */
+std::vector<std::uint32_t> ClearCommandList(int layers)
+{
+  std::vector<std::uint32_t> clear;
+  for (int i = 0; i < layers; ++i)
+  {
+    clear.insert(clear.end(), { 3u, 0u, 0u, 0u });
+  }
+  return clear;
+}
+
+/** Per material, the object of its mesh (0 for meshes not drawn). */
+std::vector<std::uint32_t> MaterialObjects(
+  const caustics::SceneData& scene, const ObjectLayout& layout)
+{
+  std::vector<std::uint32_t> objectMap(std::max<std::size_t>(scene.Materials.size(), 1), 0u);
+  for (std::size_t m = 0; m < layout.MeshObject.size(); ++m)
+  {
+    // Materials are one per mesh, same index (vtkCausticsSceneData.h).
+    objectMap[scene.Meshes[m].material] =
+      static_cast<std::uint32_t>(std::max(layout.MeshObject[m], 0));
+  }
+  return objectMap;
+}
 }
 
 struct vtkCausticsLayeredDepth::Internals
@@ -123,7 +250,256 @@ struct vtkCausticsLayeredDepth::Internals
       this->Timings->StopStage((this->StagePrefix + stage).c_str());
     }
   }
+
+  void UpdateCommands(const ObjectLayout& layout, int layers, const caustics::SceneData& scene);
+  void UploadCommands(const ObjectLayout& layout, int layers, const caustics::SceneData& scene);
+  void BindGeometry(vtkCausticsSceneGeometry* geometry);
+  bool CountFragments(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const float worldToClip[16], int roleMask);
+  bool ReduceComplexity(vtkOpenGLRenderWindow* renWin);
+  bool GateLayers(vtkOpenGLRenderWindow* renWin);
+  bool PeelLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const float worldToClip[16], bool programsReady);
+  void AttachLayer(int layer, int k);
+  bool ClearLayer(vtkOpenGLRenderWindow* renWin, int layer);
+  bool PeelLayer(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const float worldToClip[16], int object, int k, int previousUnit);
 };
+
+/** Rebuilds the draw, clear and object-map buffers when the layout changed. */
+void vtkCausticsLayeredDepth::Internals::UpdateCommands(
+  const ObjectLayout& layout, int layers, const caustics::SceneData& scene)
+{
+  std::vector<std::uint32_t> signature = LayoutSignature(layout, layers, scene.Materials.size());
+  const bool layoutChanged = signature != this->StaticSignature || !this->DrawCommands.Handle;
+  if (layoutChanged)
+  {
+    this->UploadCommands(layout, layers, scene);
+    this->StaticSignature = signature;
+  }
+}
+
+/**
+ * Per object, per layer, one indirect draw of each of the object's ranges, with its
+ * (object, layer) in CommandInfo for the finalize pass to gate it.
+ */
+void vtkCausticsLayeredDepth::Internals::UploadCommands(
+  const ObjectLayout& layout, int layers, const caustics::SceneData& scene)
+{
+  const int objects = layout.Objects;
+  this->ObjectCommandCount.assign(objects, 0);
+  this->ObjectCommandFirst.assign(objects, 0);
+  std::vector<std::uint32_t> draw, info;
+  for (int o = 0; o < objects; ++o)
+  {
+    this->ObjectCommandCount[o] = static_cast<int>(layout.Ranges[o].size());
+    this->ObjectCommandFirst[o] = static_cast<int>(info.size());
+    for (int k = 0; k < layers; ++k)
+    {
+      for (const IndexRange& range : layout.Ranges[o])
+      {
+        draw.insert(draw.end(), { range.Count, 0u, range.FirstIndex, 0u, 0u });
+        info.push_back(static_cast<std::uint32_t>(o) | (static_cast<std::uint32_t>(k) << 16));
+      }
+    }
+  }
+  const std::vector<std::uint32_t> clear = ClearCommandList(objects * layers);
+  const std::vector<std::uint32_t> objectMap = MaterialObjects(scene, layout);
+  this->Commands = static_cast<int>(info.size());
+  this->DrawCommands.Ensure(draw.size() * 4);
+  this->CommandInfo.Ensure(info.size() * 4);
+  this->ClearCommands.Ensure(clear.size() * 4);
+  this->ObjectMap.Ensure(objectMap.size() * 4);
+  if (!draw.empty())
+  {
+    glNamedBufferSubData(this->DrawCommands.Handle, 0, draw.size() * 4, draw.data());
+    glNamedBufferSubData(this->CommandInfo.Handle, 0, info.size() * 4, info.data());
+  }
+  glNamedBufferSubData(this->ClearCommands.Handle, 0, clear.size() * 4, clear.data());
+  glNamedBufferSubData(this->ObjectMap.Handle, 0, objectMap.size() * 4, objectMap.data());
+}
+
+/** Makes the vertex arrays once and points them at the geometry's current buffers. */
+void vtkCausticsLayeredDepth::Internals::BindGeometry(vtkCausticsSceneGeometry* geometry)
+{
+  if (!this->VertexArray)
+  {
+    glCreateVertexArrays(1, &this->VertexArray);
+    glCreateVertexArrays(1, &this->EmptyVertexArray);
+    // vtkCausticsSceneGeometry's interleaved vertex: position, normal, material (7 words).
+    for (GLuint a = 0; a < 3; ++a)
+    {
+      glEnableVertexArrayAttrib(this->VertexArray, a);
+      glVertexArrayAttribBinding(this->VertexArray, a, 0);
+    }
+    glVertexArrayAttribFormat(this->VertexArray, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribFormat(this->VertexArray, 1, 3, GL_FLOAT, GL_FALSE, 12);
+    glVertexArrayAttribIFormat(this->VertexArray, 2, 1, GL_UNSIGNED_INT, 24);
+  }
+  // The geometry's buffers may have been recreated: bind them every frame (cheap).
+  glVertexArrayVertexBuffer(this->VertexArray, 0, geometry->GetVertexBuffer(), 0, 28);
+  glVertexArrayElementBuffer(this->VertexArray, geometry->GetIndexBuffer());
+}
+
+/** Step 1: every fragment of the drawn roles adds one to its pixel in its object's slice. */
+bool vtkCausticsLayeredDepth::Internals::CountFragments(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const float worldToClip[16], int roleMask)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  const GLuint zero[4] = { 0, 0, 0, 0 };
+  glClearTexImage(this->Complexity.Handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+  glClearNamedBufferData(this->Table.Handle, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+  const GLuint countFramebuffer = this->CountFramebuffer.Get();
+  glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, this->Width);
+  glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, this->Height);
+  glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_LAYERS, 0);
+  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, countFramebuffer);
+  glNamedFramebufferDrawBuffer(countFramebuffer, GL_NONE);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  const bool ok = this->CountProgram->Bind(renWin);
+  if (ok)
+  {
+    this->CountProgram->SetUniformMatrix4("worldToClip", worldToClip);
+    glBindImageTexture(0, this->Complexity.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    this->ObjectMap.BindStorage(ObjectMapBinding);
+    geometry->Draw(roleMask);
+    this->CountProgram->Unbind(renWin);
+  }
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  return ok;
+}
+
+/** Step 2: reduce-max of the counts, per object, into the layer table. */
+bool vtkCausticsLayeredDepth::Internals::ReduceComplexity(vtkOpenGLRenderWindow* renWin)
+{
+  if (!this->ReduceProgram->Bind(renWin))
+  {
+    return false;
+  }
+  glBindImageTexture(0, this->Complexity.Handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+  this->Table.BindStorage(TableBinding);
+  this->ReduceProgram->SetUniform2i("size", this->Width, this->Height);
+  this->ReduceProgram->SetUniformi("objectCount", this->Objects);
+  this->ReduceProgram->DispatchCovering2D(this->Width, this->Height, 16, 16);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  this->ReduceProgram->Unbind(renWin);
+  return true;
+}
+
+/** Step 3: layers to peel, and the gates of the clear and peel commands. */
+bool vtkCausticsLayeredDepth::Internals::GateLayers(vtkOpenGLRenderWindow* renWin)
+{
+  if (!this->FinalizeProgram->Bind(renWin))
+  {
+    return false;
+  }
+  this->Table.BindStorage(TableBinding);
+  this->CommandInfo.BindStorage(CommandInfoBinding);
+  this->DrawCommands.BindStorage(DrawCommandBinding);
+  this->ClearCommands.BindStorage(ClearCommandBinding);
+  this->FinalizeProgram->SetUniformi("objectCount", this->Objects);
+  this->FinalizeProgram->SetUniformi("maxLayers", this->Layers);
+  this->FinalizeProgram->SetUniformi("commandCount", this->Commands);
+  this->FinalizeProgram->Dispatch(1);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  this->FinalizeProgram->Unbind(renWin);
+  return true;
+}
+
+/**
+ * Step 4: peels every object's layers in turn, each gated on the GPU. Sets up the
+ * peel framebuffer even when programsReady is false, and then peels nothing.
+ */
+bool vtkCausticsLayeredDepth::Internals::PeelLayers(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const float worldToClip[16], bool programsReady)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  const GLuint peelFramebuffer = this->PeelFramebuffer.Get();
+  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, peelFramebuffer);
+  const GLenum drawBuffers[3] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+    GL_COLOR_ATTACHMENT2 };
+  glNamedFramebufferDrawBuffers(peelFramebuffer, 3, drawBuffers);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_TRUE);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  caustics::ssp::TextureUnits units(renWin);
+  const int previousUnit = units.Bind(0u);
+  bool ok = programsReady;
+  for (int o = 0; ok && o < this->Objects; ++o)
+  {
+    for (int k = 0; ok && k < this->Layers; ++k)
+    {
+      ok = this->PeelLayer(renWin, geometry, worldToClip, o, k, previousUnit);
+    }
+  }
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  this->PeelProgram->Unbind(renWin);
+  return ok;
+}
+
+/** Targets of layer k of an object (array layer `layer`), depth ping-ponged on k. */
+void vtkCausticsLayeredDepth::Internals::AttachLayer(int layer, int k)
+{
+  const GLuint peelFramebuffer = this->PeelFramebuffer.Handle;
+  glNamedFramebufferTextureLayer(
+    peelFramebuffer, GL_COLOR_ATTACHMENT0, this->Position.Handle, 0, layer);
+  glNamedFramebufferTextureLayer(
+    peelFramebuffer, GL_COLOR_ATTACHMENT1, this->Normal.Handle, 0, layer);
+  glNamedFramebufferTextureLayer(
+    peelFramebuffer, GL_COLOR_ATTACHMENT2, this->Depth.Handle, 0, layer);
+  glNamedFramebufferTexture(peelFramebuffer, GL_DEPTH_ATTACHMENT, this->PeelDepth[k % 2].Handle, 0);
+}
+
+/** Clears the layer and its depth buffer, only if it will be peeled (gated command). */
+bool vtkCausticsLayeredDepth::Internals::ClearLayer(vtkOpenGLRenderWindow* renWin, int layer)
+{
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->ClearCommands.Handle);
+  renWin->GetState()->vtkglDepthFunc(GL_ALWAYS);
+  if (!this->ClearProgram->Bind(renWin))
+  {
+    return false;
+  }
+  glBindVertexArray(this->EmptyVertexArray);
+  glDrawArraysIndirect(GL_TRIANGLES,
+    reinterpret_cast<const void*>(
+      static_cast<std::uintptr_t>(layer * caustics::ssp::DrawArraysCommandWords * 4)));
+  return true;
+}
+
+/** Layer k of an object: the nearest fragments strictly behind layer k - 1. */
+bool vtkCausticsLayeredDepth::Internals::PeelLayer(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const float worldToClip[16], int object, int k,
+  int previousUnit)
+{
+  this->AttachLayer(object * this->Layers + k, k);
+  if (!this->ClearLayer(renWin, object * this->Layers + k))
+  {
+    return false;
+  }
+  renWin->GetState()->vtkglDepthFunc(GL_LESS);
+  if (!this->PeelProgram->Bind(renWin))
+  {
+    return false;
+  }
+  glBindTextureUnit(previousUnit, this->PeelDepth[(k + 1) % 2].Handle);
+  this->PeelProgram->SetUniformi("previousDepth", previousUnit);
+  this->PeelProgram->SetUniformi("firstLayer", k == 0 ? 1 : 0);
+  this->PeelProgram->SetUniformMatrix4("worldToClip", worldToClip);
+  geometry->BindMaterials();
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->DrawCommands.Handle);
+  glBindVertexArray(this->VertexArray);
+  const int count = this->ObjectCommandCount[object];
+  const int first = this->ObjectCommandFirst[object] + k * count;
+  if (count > 0)
+  {
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+      reinterpret_cast<const void*>(
+        static_cast<std::uintptr_t>(first * caustics::ssp::DrawElementsCommandWords * 4)),
+      count, 0);
+  }
+  glBindVertexArray(0);
+  return true;
+}
 
 vtkCausticsLayeredDepth::vtkCausticsLayeredDepth()
   : Internal(new Internals)
@@ -167,180 +543,24 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, const float worldToClip[16],
   int width, int height)
 {
-  auto& in = *this->Internal;
-  const int maxSize = caustics::ssp::MaxTextureSize();
-  if (width < 1 || height < 1 || width > maxSize || height > maxSize)
+  if (!this->CheckInputs(geometry, scene, width, height))
   {
-    vtkErrorMacro(<< "layered depth image of " << width << " x " << height
-                  << " pixels: each side must be in [1, " << maxSize << "]");
     return false;
   }
-  if (!geometry || scene.Materials.size() != scene.Meshes.size())
-  {
-    vtkErrorMacro(<< "layered depth image needs the scene geometry and one material per mesh");
-    return false;
-  }
-
-  // 0. Objects and their draw commands (rebuilt only when the layout changes).
   const std::vector<IndexRange> ranges = MeshRanges(scene);
-  std::uint64_t total = 0;
-  for (const IndexRange& range : ranges)
+  if (!this->CheckUploaded(geometry, CountIndices(ranges)))
   {
-    total += range.Count;
-  }
-  if (total !=
-    static_cast<std::uint64_t>(geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::AllRoles)) *
-      3)
-  {
-    vtkErrorMacro(<< "the scene geometry was not uploaded from this scene (" << total / 3
-                  << " triangles in the scene, "
-                  << geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::AllRoles)
-                  << " on the GPU)");
     return false;
   }
-  std::vector<int> meshObject(scene.Meshes.size(), -1);
-  int objects = 0;
-  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  auto& in = *this->Internal;
+  const ObjectLayout layout =
+    AssignObjects(scene, ranges, this->RoleMask, this->PerObject, this->MaximumNumberOfObjects);
+  in.UpdateCommands(layout, this->MaximumNumberOfLayers, scene);
+  if (!this->AllocateTargets(layout.Objects, this->MaximumNumberOfLayers, width, height))
   {
-    const int role = static_cast<int>(scene.Materials[scene.Meshes[m].material].role);
-    if (!(this->RoleMask & vtkCausticsSceneGeometry::RoleBit(role)) || ranges[m].Count == 0)
-    {
-      continue;
-    }
-    if (this->PerObject)
-    {
-      meshObject[m] = std::min(objects, this->MaximumNumberOfObjects - 1);
-      objects = std::min(objects + 1, this->MaximumNumberOfObjects);
-    }
-    else
-    {
-      meshObject[m] = 0;
-      objects = 1;
-    }
-  }
-  objects = std::max(objects, 1);
-  const int layers = this->MaximumNumberOfLayers;
-  // Each object's index ranges, merged where meshes are adjacent in the buffer.
-  std::vector<std::vector<IndexRange>> objectRanges(objects);
-  {
-    std::vector<int> byFirst(scene.Meshes.size());
-    std::iota(byFirst.begin(), byFirst.end(), 0);
-    std::sort(byFirst.begin(), byFirst.end(),
-      [&](int a, int b) { return ranges[a].FirstIndex < ranges[b].FirstIndex; });
-    for (int m : byFirst)
-    {
-      if (meshObject[m] < 0)
-      {
-        continue;
-      }
-      auto& list = objectRanges[meshObject[m]];
-      if (!list.empty() && list.back().FirstIndex + list.back().Count == ranges[m].FirstIndex)
-      {
-        list.back().Count += ranges[m].Count;
-      }
-      else
-      {
-        list.push_back(ranges[m]);
-      }
-    }
-  }
-  std::vector<std::uint32_t> signature = { static_cast<std::uint32_t>(objects),
-    static_cast<std::uint32_t>(layers), static_cast<std::uint32_t>(scene.Materials.size()) };
-  for (std::size_t m = 0; m < meshObject.size(); ++m)
-  {
-    signature.push_back(static_cast<std::uint32_t>(meshObject[m] + 1));
-  }
-  for (const auto& list : objectRanges)
-  {
-    signature.push_back(0xffffffffu);
-    for (const IndexRange& range : list)
-    {
-      signature.push_back(range.FirstIndex);
-      signature.push_back(range.Count);
-    }
-  }
-  const bool layoutChanged = signature != in.StaticSignature || !in.DrawCommands.Handle;
-  if (layoutChanged)
-  {
-    in.ObjectCommandCount.assign(objects, 0);
-    in.ObjectCommandFirst.assign(objects, 0);
-    std::vector<std::uint32_t> draw, info;
-    for (int o = 0; o < objects; ++o)
-    {
-      in.ObjectCommandCount[o] = static_cast<int>(objectRanges[o].size());
-      in.ObjectCommandFirst[o] = static_cast<int>(info.size());
-      for (int k = 0; k < layers; ++k)
-      {
-        for (const IndexRange& range : objectRanges[o])
-        {
-          draw.insert(draw.end(), { range.Count, 0u, range.FirstIndex, 0u, 0u });
-          info.push_back(static_cast<std::uint32_t>(o) | (static_cast<std::uint32_t>(k) << 16));
-        }
-      }
-    }
-    std::vector<std::uint32_t> clear;
-    for (int i = 0; i < objects * layers; ++i)
-    {
-      clear.insert(clear.end(), { 3u, 0u, 0u, 0u });
-    }
-    std::vector<std::uint32_t> objectMap(std::max<std::size_t>(scene.Materials.size(), 1), 0u);
-    for (std::size_t m = 0; m < meshObject.size(); ++m)
-    {
-      // Materials are one per mesh, same index (vtkCausticsSceneData.h).
-      objectMap[scene.Meshes[m].material] = static_cast<std::uint32_t>(std::max(meshObject[m], 0));
-    }
-    in.Commands = static_cast<int>(info.size());
-    in.DrawCommands.Ensure(draw.size() * 4);
-    in.CommandInfo.Ensure(info.size() * 4);
-    in.ClearCommands.Ensure(clear.size() * 4);
-    in.ObjectMap.Ensure(objectMap.size() * 4);
-    if (!draw.empty())
-    {
-      glNamedBufferSubData(in.DrawCommands.Handle, 0, draw.size() * 4, draw.data());
-      glNamedBufferSubData(in.CommandInfo.Handle, 0, info.size() * 4, info.data());
-    }
-    glNamedBufferSubData(in.ClearCommands.Handle, 0, clear.size() * 4, clear.data());
-    glNamedBufferSubData(in.ObjectMap.Handle, 0, objectMap.size() * 4, objectMap.data());
-    in.StaticSignature = signature;
-  }
-  in.Objects = objects;
-  in.Layers = layers;
-  in.Width = width;
-  in.Height = height;
-  in.Table.Ensure(16 * (1 + static_cast<std::size_t>(objects)));
-
-  // Targets (reallocated only when the size, cap or object count changes).
-  GLint maxLayers = 0;
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  if (objects * layers > maxLayers)
-  {
-    vtkErrorMacro(<< objects << " objects x " << layers << " layers exceed the " << maxLayers
-                  << " layers of an array texture on this GPU");
     return false;
   }
-  in.Complexity.Ensure(width, height, objects, GL_R32UI);
-  in.Position.Ensure(width, height, objects * layers, GL_RGBA32F);
-  in.Normal.Ensure(width, height, objects * layers, GL_RGBA16F);
-  in.Depth.Ensure(width, height, objects * layers, GL_R32F);
-  in.PeelDepth[0].Ensure(width, height, 0, GL_DEPTH_COMPONENT32F);
-  in.PeelDepth[1].Ensure(width, height, 0, GL_DEPTH_COMPONENT32F);
-  if (!in.VertexArray)
-  {
-    glCreateVertexArrays(1, &in.VertexArray);
-    glCreateVertexArrays(1, &in.EmptyVertexArray);
-    // vtkCausticsSceneGeometry's interleaved vertex: position, normal, material (7 words).
-    for (GLuint a = 0; a < 3; ++a)
-    {
-      glEnableVertexArrayAttrib(in.VertexArray, a);
-      glVertexArrayAttribBinding(in.VertexArray, a, 0);
-    }
-    glVertexArrayAttribFormat(in.VertexArray, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribFormat(in.VertexArray, 1, 3, GL_FLOAT, GL_FALSE, 12);
-    glVertexArrayAttribIFormat(in.VertexArray, 2, 1, GL_UNSIGNED_INT, 24);
-  }
-  // The geometry's buffers may have been recreated: bind them every frame (cheap).
-  glVertexArrayVertexBuffer(in.VertexArray, 0, geometry->GetVertexBuffer(), 0, 28);
-  glVertexArrayElementBuffer(in.VertexArray, geometry->GetIndexBuffer());
+  in.BindGeometry(geometry);
 
   vtkOpenGLState* state = renWin->GetState();
   state->PushFramebufferBindings();
@@ -356,126 +576,15 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   state->vtkglDisable(GL_CULL_FACE);
   state->vtkglViewport(0, 0, width, height);
 
-  // 1. Count fragments per pixel and object.
   in.Start("depth complexity");
-  const GLuint zero[4] = { 0, 0, 0, 0 };
-  glClearTexImage(in.Complexity.Handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
-  glClearNamedBufferData(in.Table.Handle, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
-  const GLuint countFramebuffer = in.CountFramebuffer.Get();
-  glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-  glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
-  glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_LAYERS, 0);
-  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, countFramebuffer);
-  glNamedFramebufferDrawBuffer(countFramebuffer, GL_NONE);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  bool ok = in.CountProgram->Bind(renWin);
-  if (ok)
-  {
-    in.CountProgram->SetUniformMatrix4("worldToClip", worldToClip);
-    glBindImageTexture(0, in.Complexity.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    in.ObjectMap.BindStorage(ObjectMapBinding);
-    geometry->Draw(this->RoleMask);
-    in.CountProgram->Unbind(renWin);
-  }
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-
-  // 2. Reduce-max of the counts, per object.
-  ok = ok && in.ReduceProgram->Bind(renWin);
-  if (ok)
-  {
-    glBindImageTexture(0, in.Complexity.Handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    in.Table.BindStorage(TableBinding);
-    in.ReduceProgram->SetUniform2i("size", width, height);
-    in.ReduceProgram->SetUniformi("objectCount", objects);
-    in.ReduceProgram->DispatchCovering2D(width, height, 16, 16);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    in.ReduceProgram->Unbind(renWin);
-  }
+  bool ok = in.CountFragments(renWin, geometry, worldToClip, this->RoleMask);
+  ok = ok && in.ReduceComplexity(renWin);
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-
-  // 3. Layers to peel, and the gates of the peel commands.
-  ok = ok && in.FinalizeProgram->Bind(renWin);
-  if (ok)
-  {
-    in.Table.BindStorage(TableBinding);
-    in.CommandInfo.BindStorage(CommandInfoBinding);
-    in.DrawCommands.BindStorage(DrawCommandBinding);
-    in.ClearCommands.BindStorage(ClearCommandBinding);
-    in.FinalizeProgram->SetUniformi("objectCount", objects);
-    in.FinalizeProgram->SetUniformi("maxLayers", layers);
-    in.FinalizeProgram->SetUniformi("commandCount", in.Commands);
-    in.FinalizeProgram->Dispatch(1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    in.FinalizeProgram->Unbind(renWin);
-  }
+  ok = ok && in.GateLayers(renWin);
   in.Stop("depth complexity");
 
-  // 4. Peel, layer after layer, each gated on the GPU.
   in.Start("depth peeling");
-  const GLuint peelFramebuffer = in.PeelFramebuffer.Get();
-  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, peelFramebuffer);
-  const GLenum drawBuffers[3] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-    GL_COLOR_ATTACHMENT2 };
-  glNamedFramebufferDrawBuffers(peelFramebuffer, 3, drawBuffers);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_TRUE);
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  caustics::ssp::TextureUnits units(renWin);
-  const int previousUnit = units.Bind(0u);
-  for (int o = 0; ok && o < objects; ++o)
-  {
-    for (int k = 0; ok && k < layers; ++k)
-    {
-      const int layer = o * layers + k;
-      glNamedFramebufferTextureLayer(
-        peelFramebuffer, GL_COLOR_ATTACHMENT0, in.Position.Handle, 0, layer);
-      glNamedFramebufferTextureLayer(
-        peelFramebuffer, GL_COLOR_ATTACHMENT1, in.Normal.Handle, 0, layer);
-      glNamedFramebufferTextureLayer(
-        peelFramebuffer, GL_COLOR_ATTACHMENT2, in.Depth.Handle, 0, layer);
-      glNamedFramebufferTexture(
-        peelFramebuffer, GL_DEPTH_ATTACHMENT, in.PeelDepth[k % 2].Handle, 0);
-
-      // Clear the layer and its depth buffer, only if it will be peeled.
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.ClearCommands.Handle);
-      state->vtkglDepthFunc(GL_ALWAYS);
-      ok = in.ClearProgram->Bind(renWin);
-      if (!ok)
-      {
-        break;
-      }
-      glBindVertexArray(in.EmptyVertexArray);
-      glDrawArraysIndirect(GL_TRIANGLES,
-        reinterpret_cast<const void*>(
-          static_cast<std::uintptr_t>(layer * caustics::ssp::DrawArraysCommandWords * 4)));
-
-      // Peel the layer.
-      state->vtkglDepthFunc(GL_LESS);
-      ok = in.PeelProgram->Bind(renWin);
-      if (!ok)
-      {
-        break;
-      }
-      glBindTextureUnit(previousUnit, in.PeelDepth[(k + 1) % 2].Handle);
-      in.PeelProgram->SetUniformi("previousDepth", previousUnit);
-      in.PeelProgram->SetUniformi("firstLayer", k == 0 ? 1 : 0);
-      in.PeelProgram->SetUniformMatrix4("worldToClip", worldToClip);
-      geometry->BindMaterials();
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.DrawCommands.Handle);
-      glBindVertexArray(in.VertexArray);
-      const int first = in.ObjectCommandFirst[o] + k * in.ObjectCommandCount[o];
-      if (in.ObjectCommandCount[o] > 0)
-      {
-        glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-          reinterpret_cast<const void*>(
-            static_cast<std::uintptr_t>(first * caustics::ssp::DrawElementsCommandWords * 4)),
-          in.ObjectCommandCount[o], 0);
-      }
-      glBindVertexArray(0);
-    }
-  }
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  in.PeelProgram->Unbind(renWin);
+  ok = in.PeelLayers(renWin, geometry, worldToClip, ok);
   state->PopFramebufferBindings();
   in.Stop("depth peeling");
   if (!ok)
@@ -483,6 +592,64 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
     vtkErrorMacro(<< "layered depth image: a program failed to build");
   }
   return ok;
+}
+
+bool vtkCausticsLayeredDepth::CheckInputs(
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, int width, int height)
+{
+  const int maxSize = caustics::ssp::MaxTextureSize();
+  if (width < 1 || height < 1 || width > maxSize || height > maxSize)
+  {
+    vtkErrorMacro(<< "layered depth image of " << width << " x " << height
+                  << " pixels: each side must be in [1, " << maxSize << "]");
+    return false;
+  }
+  if (!geometry || scene.Materials.size() != scene.Meshes.size())
+  {
+    vtkErrorMacro(<< "layered depth image needs the scene geometry and one material per mesh");
+    return false;
+  }
+  return true;
+}
+
+bool vtkCausticsLayeredDepth::CheckUploaded(
+  vtkCausticsSceneGeometry* geometry, vtkTypeUInt64 sceneIndices)
+{
+  const vtkIdType triangles = geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::AllRoles);
+  if (sceneIndices != static_cast<std::uint64_t>(triangles) * 3)
+  {
+    vtkErrorMacro(<< "the scene geometry was not uploaded from this scene (" << sceneIndices / 3
+                  << " triangles in the scene, " << triangles << " on the GPU)");
+    return false;
+  }
+  return true;
+}
+
+bool vtkCausticsLayeredDepth::AllocateTargets(int objects, int layers, int width, int height)
+{
+  auto& in = *this->Internal;
+  in.Objects = objects;
+  in.Layers = layers;
+  in.Width = width;
+  in.Height = height;
+  in.Table.Ensure(16 * (1 + static_cast<std::size_t>(objects)));
+
+  // Reallocated only when the size, cap or object count changes.
+  GLint maxLayers = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  if (objects * layers > maxLayers)
+  {
+    vtkErrorMacro(<< objects << " objects x " << layers << " layers exceed the " << maxLayers
+                  << " layers of an array texture on this GPU");
+    return false;
+  }
+  in.Complexity.Ensure(width, height, objects, GL_R32UI);
+  in.Position.Ensure(width, height, objects * layers, GL_RGBA32F);
+  in.Normal.Ensure(width, height, objects * layers, GL_RGBA16F);
+  in.Depth.Ensure(width, height, objects * layers, GL_R32F);
+  in.PeelDepth[0].Ensure(width, height, 0, GL_DEPTH_COMPONENT32F);
+  in.PeelDepth[1].Ensure(width, height, 0, GL_DEPTH_COMPONENT32F);
+  return true;
 }
 
 unsigned int vtkCausticsLayeredDepth::GetPositionTexture() const

@@ -162,6 +162,16 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+#ifndef __VTK_WRAP__
+  ///@{
+  /** Steps of Render() that can fail: they say why with vtkErrorMacro. */
+  bool CheckInputs(
+    vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, int width, int height);
+  bool CheckUploaded(vtkCausticsSceneGeometry* geometry, vtkTypeUInt64 sceneIndices);
+  bool AllocateTargets(int objects, int layers, int width, int height);
+  ///@}
+#endif
 };
 
 #endif

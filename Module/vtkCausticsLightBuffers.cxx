@@ -29,6 +29,29 @@ struct PerLight
     vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
   caustics::LightView View;
 };
+
+/** The flux shader's view of one light: its frustum and its emission. */
+void SetFluxUniforms(vtkCausticsShaderProgram* program, const caustics::Light& source,
+  const caustics::LightView& view, int resolution)
+{
+  program->SetUniformi("perspective", view.perspective ? 1 : 0);
+  program->SetUniformf("halfExtent", static_cast<float>(view.halfExtent));
+  program->SetUniform2f(
+    "resolution", static_cast<float>(resolution), static_cast<float>(resolution));
+  program->SetUniform3f("radiometric", static_cast<float>(source.radiometric[0]),
+    static_cast<float>(source.radiometric[1]), static_cast<float>(source.radiometric[2]));
+  program->SetUniform3f("viewAxis", static_cast<float>(view.axis[0]),
+    static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
+  program->SetUniform3f("viewRight", static_cast<float>(view.right[0]),
+    static_cast<float>(view.right[1]), static_cast<float>(view.right[2]));
+  program->SetUniform3f("viewUp", static_cast<float>(view.up[0]), static_cast<float>(view.up[1]),
+    static_cast<float>(view.up[2]));
+  program->SetUniformi("isSpot", source.type == caustics::Light::Type::Spot ? 1 : 0);
+  program->SetUniform3f("spotAxis", static_cast<float>(source.direction[0]),
+    static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
+  program->SetUniformf("cosOuter", static_cast<float>(source.cosOuter));
+  program->SetUniformf("cosInner", static_cast<float>(source.cosInner));
+}
 }
 
 struct vtkCausticsLightBuffers::Internals
@@ -38,7 +61,64 @@ struct vtkCausticsLightBuffers::Internals
   vtkNew<vtkCausticsShaderProgram> FluxProgram;
   caustics::gl::FullScreenTriangle Triangle;
   caustics::LightView Invalid;
+
+  void SetNumberOfLights(vtkOpenGLRenderWindow* renWin, int count);
+  bool RenderFlux(
+    vtkOpenGLRenderWindow* renWin, const caustics::Light& source, PerLight& light, int resolution);
 };
+
+/** Keeps one PerLight per light; lights that went away give their GL objects back. */
+void vtkCausticsLightBuffers::Internals::SetNumberOfLights(vtkOpenGLRenderWindow* renWin, int count)
+{
+  if (static_cast<int>(this->Lights.size()) < count)
+  {
+    this->Lights.resize(count);
+  }
+  for (int i = count; i < static_cast<int>(this->Lights.size()); ++i)
+  {
+    this->Lights[i].GBuffer->ReleaseGraphicsResources(renWin);
+    this->Lights[i].Flux->ReleaseGraphicsResources(renWin);
+    this->Lights[i].FluxFramebuffer->ReleaseGraphicsResources(renWin);
+  }
+  this->Lights.resize(count);
+  this->ActiveLights = count;
+}
+
+/** Draws the flux leaving the light through each texel of its frustum. */
+bool vtkCausticsLightBuffers::Internals::RenderFlux(
+  vtkOpenGLRenderWindow* renWin, const caustics::Light& source, PerLight& light, int resolution)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  const bool resized =
+    caustics::gl::EnsureTexture(light.Flux, renWin, resolution, resolution, GL_RGBA32F);
+  state->PushFramebufferBindings();
+  light.FluxFramebuffer->SetContext(renWin);
+  light.FluxFramebuffer->Bind();
+  if (resized || light.FluxFramebuffer->GetNumberOfColorAttachments() != 1)
+  {
+    light.FluxFramebuffer->AddColorAttachment(0, light.Flux);
+  }
+  light.FluxFramebuffer->ActivateDrawBuffers(1);
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  // Stages draw whole off-screen targets: VTK may leave a scissor box set.
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglViewport(0, 0, resolution, resolution);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_BLEND);
+  vtkCausticsShaderProgram* program = this->FluxProgram;
+  const bool ok = program->Bind(renWin);
+  if (ok)
+  {
+    SetFluxUniforms(program, source, light.View, resolution);
+    this->Triangle.Draw();
+    program->Unbind(renWin);
+  }
+  state->PopFramebufferBindings();
+  return ok;
+}
 
 vtkCausticsLightBuffers::vtkCausticsLightBuffers()
   : Internal(new Internals)
@@ -56,22 +136,8 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
 {
   auto& in = *this->Internal;
   const int count = static_cast<int>(scene.Lights.size());
-  if (static_cast<int>(in.Lights.size()) < count)
-  {
-    in.Lights.resize(count);
-  }
-  // Lights that went away give their GL objects back.
-  for (int i = count; i < static_cast<int>(in.Lights.size()); ++i)
-  {
-    in.Lights[i].GBuffer->ReleaseGraphicsResources(renWin);
-    in.Lights[i].Flux->ReleaseGraphicsResources(renWin);
-    in.Lights[i].FluxFramebuffer->ReleaseGraphicsResources(renWin);
-  }
-  in.Lights.resize(count);
-  in.ActiveLights = count;
-
+  in.SetNumberOfLights(renWin, count);
   const int resolution = this->Resolution;
-  vtkOpenGLState* state = renWin->GetState();
   bool ok = true;
   for (int i = 0; i < count; ++i)
   {
@@ -90,56 +156,7 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
     ok = light.GBuffer->Render(renWin, geometry, worldToClip, resolution, resolution,
            vtkCausticsSceneGeometry::AllRoles) &&
       ok;
-
-    const bool resized =
-      caustics::gl::EnsureTexture(light.Flux, renWin, resolution, resolution, GL_RGBA32F);
-    state->PushFramebufferBindings();
-    light.FluxFramebuffer->SetContext(renWin);
-    light.FluxFramebuffer->Bind();
-    if (resized || light.FluxFramebuffer->GetNumberOfColorAttachments() != 1)
-    {
-      light.FluxFramebuffer->AddColorAttachment(0, light.Flux);
-    }
-    light.FluxFramebuffer->ActivateDrawBuffers(1);
-    vtkOpenGLState::ScopedglViewport viewport(state);
-    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
-    // Stages draw whole off-screen targets: VTK may leave a scissor box set.
-    vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
-    state->vtkglDisable(GL_SCISSOR_TEST);
-    state->vtkglViewport(0, 0, resolution, resolution);
-    state->vtkglDisable(GL_DEPTH_TEST);
-    state->vtkglDisable(GL_BLEND);
-    vtkCausticsShaderProgram* program = in.FluxProgram;
-    if (program->Bind(renWin))
-    {
-      const caustics::Light& source = scene.Lights[i];
-      const caustics::LightView& view = light.View;
-      program->SetUniformi("perspective", view.perspective ? 1 : 0);
-      program->SetUniformf("halfExtent", static_cast<float>(view.halfExtent));
-      program->SetUniform2f(
-        "resolution", static_cast<float>(resolution), static_cast<float>(resolution));
-      program->SetUniform3f("radiometric", static_cast<float>(source.radiometric[0]),
-        static_cast<float>(source.radiometric[1]), static_cast<float>(source.radiometric[2]));
-      program->SetUniform3f("viewAxis", static_cast<float>(view.axis[0]),
-        static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
-      program->SetUniform3f("viewRight", static_cast<float>(view.right[0]),
-        static_cast<float>(view.right[1]), static_cast<float>(view.right[2]));
-      program->SetUniform3f("viewUp", static_cast<float>(view.up[0]),
-        static_cast<float>(view.up[1]), static_cast<float>(view.up[2]));
-      program->SetUniformi("isSpot", source.type == caustics::Light::Type::Spot ? 1 : 0);
-      program->SetUniform3f("spotAxis", static_cast<float>(source.direction[0]),
-        static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
-      program->SetUniformf("cosOuter", static_cast<float>(source.cosOuter));
-      program->SetUniformf("cosInner", static_cast<float>(source.cosInner));
-      in.Triangle.Draw();
-      program->Unbind(renWin);
-    }
-    else
-    {
-      ok = false;
-    }
-    state->PopFramebufferBindings();
+    ok = in.RenderFlux(renWin, scene.Lights[i], light, resolution) && ok;
   }
   return ok;
 }

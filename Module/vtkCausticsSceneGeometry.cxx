@@ -41,6 +41,128 @@ struct Range
   int role;
   std::size_t firstIndex, indexCount;
 };
+
+/** Mesh indices stably sorted by role: the layout of the buffers (receivers first). */
+std::vector<int> RoleOrder(const caustics::SceneData& scene)
+{
+  std::vector<int> order(scene.Meshes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+    [&](int a, int b)
+    {
+      return scene.Materials[scene.Meshes[a].material].role <
+        scene.Materials[scene.Meshes[b].material].role;
+    });
+  return order;
+}
+
+/** Each mesh, in `order`, a block of vertices and indices; sums them up. */
+std::vector<MeshSlot> LayOutSlots(const caustics::SceneData& scene, const std::vector<int>& order,
+  std::size_t& vertices, std::size_t& indices)
+{
+  std::vector<MeshSlot> slots;
+  vertices = indices = 0;
+  for (int m : order)
+  {
+    const auto& mesh = scene.Meshes[m];
+    MeshSlot slot;
+    slot.actor = mesh.actor;
+    slot.version = mesh.version;
+    slot.firstVertex = vertices;
+    slot.vertexCount = mesh.positions.size() / 3;
+    slot.firstIndex = indices;
+    slot.indexCount = mesh.indices.size();
+    slot.role = static_cast<int>(scene.Materials[mesh.material].role);
+    slot.material = mesh.material;
+    vertices += slot.vertexCount;
+    indices += slot.indexCount;
+    slots.push_back(slot);
+  }
+  return slots;
+}
+
+/** Same actors, sizes and materials in the same places: only changed meshes are resent. */
+bool SameLayout(const std::vector<MeshSlot>& slots, const std::vector<MeshSlot>& previous)
+{
+  bool sameLayout = slots.size() == previous.size();
+  for (std::size_t i = 0; sameLayout && i < slots.size(); ++i)
+  {
+    sameLayout = slots[i].actor == previous[i].actor &&
+      slots[i].vertexCount == previous[i].vertexCount &&
+      slots[i].indexCount == previous[i].indexCount && slots[i].material == previous[i].material;
+  }
+  return sameLayout;
+}
+
+/**
+ * Sends one mesh to its slot: interleaved vertices, and indices stored absolute
+ * so that compute stages need no base vertex. Returns the bytes sent.
+ */
+std::size_t UploadMesh(GLuint vertexBuffer, GLuint indexBuffer, const caustics::Mesh& mesh,
+  const MeshSlot& slot, std::vector<float>& staging)
+{
+  staging.resize(slot.vertexCount * WordsPerVertex);
+  for (std::size_t v = 0; v < slot.vertexCount; ++v)
+  {
+    float* out = &staging[v * WordsPerVertex];
+    std::memcpy(out, &mesh.positions[3 * v], 12);
+    std::memcpy(out + 3, &mesh.normals[3 * v], 12);
+    const std::uint32_t material = static_cast<std::uint32_t>(slot.material);
+    std::memcpy(out + 6, &material, 4);
+  }
+  const std::size_t vertexBytes = staging.size() * 4;
+  glNamedBufferSubData(
+    vertexBuffer, slot.firstVertex * WordsPerVertex * 4, vertexBytes, staging.data());
+  std::vector<std::uint32_t> shifted(mesh.indices.size());
+  for (std::size_t k = 0; k < shifted.size(); ++k)
+  {
+    shifted[k] = mesh.indices[k] + static_cast<std::uint32_t>(slot.firstVertex);
+  }
+  glNamedBufferSubData(indexBuffer, slot.firstIndex * 4, shifted.size() * 4, shifted.data());
+  return vertexBytes + shifted.size() * 4;
+}
+
+/** Contiguous draw ranges per role. */
+std::vector<Range> DrawRanges(const std::vector<MeshSlot>& slots)
+{
+  std::vector<Range> ranges;
+  for (const MeshSlot& slot : slots)
+  {
+    if (!ranges.empty() && ranges.back().role == slot.role)
+    {
+      ranges.back().indexCount += slot.indexCount;
+    }
+    else
+    {
+      ranges.push_back({ slot.role, slot.firstIndex, slot.indexCount });
+    }
+  }
+  return ranges;
+}
+
+/** The scene's materials in the shaders' layout (glsl/vtkCausticsCommon.glsl). */
+std::vector<GPUMaterial> PackMaterials(const caustics::SceneData& scene)
+{
+  std::vector<GPUMaterial> materials(scene.Materials.size());
+  for (std::size_t m = 0; m < scene.Materials.size(); ++m)
+  {
+    const auto& src = scene.Materials[m];
+    GPUMaterial& dst = materials[m];
+    for (int c = 0; c < 3; ++c)
+    {
+      dst.albedoRole[c] = static_cast<float>(src.albedo[c]);
+      dst.metalN[c] = static_cast<float>(src.metalN[c]);
+      dst.metalK[c] = static_cast<float>(src.metalK[c]);
+      dst.attenuation[c] = static_cast<float>(src.attenuation[c]);
+    }
+    dst.albedoRole[3] = static_cast<float>(static_cast<int>(src.role));
+    dst.params[0] = static_cast<float>(src.ior);
+    dst.params[1] = static_cast<float>(src.roughness);
+    dst.params[2] = dst.params[3] = 0.0f;
+    dst.metalN[3] = dst.metalK[3] = dst.attenuation[3] = 0.0f;
+  }
+  return materials;
+}
 }
 
 struct vtkCausticsSceneGeometry::Internals
@@ -97,6 +219,35 @@ bool vtkCausticsSceneGeometry::Upload(
 {
   auto& in = *this->Internal;
   in.LastUploadBytes = 0;
+  this->CreateBuffers();
+
+  // Layout: meshes sorted by role (stable), each a block of vertices and indices.
+  const std::vector<int> order = RoleOrder(scene);
+  std::size_t vertices = 0, indices = 0;
+  std::vector<MeshSlot> slots = LayOutSlots(scene, order, vertices, indices);
+  const bool sameLayout = SameLayout(slots, in.Slots);
+  if (!sameLayout)
+  {
+    this->ReserveMeshBuffers(vertices, indices);
+  }
+  for (std::size_t i = 0; i < slots.size(); ++i)
+  {
+    if (sameLayout && slots[i].version == in.Slots[i].version)
+    {
+      continue;
+    }
+    in.LastUploadBytes += static_cast<vtkIdType>(
+      UploadMesh(in.VertexBuffer, in.IndexBuffer, scene.Meshes[order[i]], slots[i], in.Staging));
+  }
+  in.Slots = std::move(slots);
+  in.Ranges = DrawRanges(in.Slots);
+  this->UploadMaterials(scene);
+  return glGetError() == GL_NO_ERROR;
+}
+
+void vtkCausticsSceneGeometry::CreateBuffers()
+{
+  auto& in = *this->Internal;
   if (!in.VertexArray)
   {
     glCreateVertexArrays(1, &in.VertexArray);
@@ -115,121 +266,30 @@ bool vtkCausticsSceneGeometry::Upload(
     glVertexArrayAttribBinding(in.VertexArray, 1, 0);
     glVertexArrayAttribBinding(in.VertexArray, 2, 0);
   }
+}
 
-  // Layout: meshes sorted by role (stable), each a block of vertices and indices.
-  std::vector<int> order(scene.Meshes.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-    [&](int a, int b)
-    {
-      return scene.Materials[scene.Meshes[a].material].role <
-        scene.Materials[scene.Meshes[b].material].role;
-    });
-  std::vector<MeshSlot> slots;
-  std::size_t vertices = 0, indices = 0;
-  for (int m : order)
+void vtkCausticsSceneGeometry::ReserveMeshBuffers(std::size_t vertices, std::size_t indices)
+{
+  auto& in = *this->Internal;
+  const std::size_t vertexBytes = std::max<std::size_t>(vertices * WordsPerVertex * 4, 4);
+  const std::size_t indexBytes = std::max<std::size_t>(indices * 4, 4);
+  if (vertexBytes > in.VertexCapacity)
   {
-    const auto& mesh = scene.Meshes[m];
-    MeshSlot slot;
-    slot.actor = mesh.actor;
-    slot.version = mesh.version;
-    slot.firstVertex = vertices;
-    slot.vertexCount = mesh.positions.size() / 3;
-    slot.firstIndex = indices;
-    slot.indexCount = mesh.indices.size();
-    slot.role = static_cast<int>(scene.Materials[mesh.material].role);
-    slot.material = mesh.material;
-    vertices += slot.vertexCount;
-    indices += slot.indexCount;
-    slots.push_back(slot);
+    glNamedBufferData(in.VertexBuffer, vertexBytes, nullptr, GL_DYNAMIC_DRAW);
+    in.VertexCapacity = vertexBytes;
   }
-  bool sameLayout = slots.size() == in.Slots.size();
-  for (std::size_t i = 0; sameLayout && i < slots.size(); ++i)
+  if (indexBytes > in.IndexCapacity)
   {
-    sameLayout = slots[i].actor == in.Slots[i].actor &&
-      slots[i].vertexCount == in.Slots[i].vertexCount &&
-      slots[i].indexCount == in.Slots[i].indexCount && slots[i].material == in.Slots[i].material;
+    glNamedBufferData(in.IndexBuffer, indexBytes, nullptr, GL_DYNAMIC_DRAW);
+    in.IndexCapacity = indexBytes;
   }
-  if (!sameLayout)
-  {
-    const std::size_t vertexBytes = std::max<std::size_t>(vertices * WordsPerVertex * 4, 4);
-    const std::size_t indexBytes = std::max<std::size_t>(indices * 4, 4);
-    if (vertexBytes > in.VertexCapacity)
-    {
-      glNamedBufferData(in.VertexBuffer, vertexBytes, nullptr, GL_DYNAMIC_DRAW);
-      in.VertexCapacity = vertexBytes;
-    }
-    if (indexBytes > in.IndexCapacity)
-    {
-      glNamedBufferData(in.IndexBuffer, indexBytes, nullptr, GL_DYNAMIC_DRAW);
-      in.IndexCapacity = indexBytes;
-    }
-  }
+}
 
-  for (std::size_t i = 0; i < slots.size(); ++i)
-  {
-    if (sameLayout && slots[i].version == in.Slots[i].version)
-    {
-      continue;
-    }
-    const auto& mesh = scene.Meshes[order[i]];
-    const MeshSlot& slot = slots[i];
-    in.Staging.resize(slot.vertexCount * WordsPerVertex);
-    for (std::size_t v = 0; v < slot.vertexCount; ++v)
-    {
-      float* out = &in.Staging[v * WordsPerVertex];
-      std::memcpy(out, &mesh.positions[3 * v], 12);
-      std::memcpy(out + 3, &mesh.normals[3 * v], 12);
-      const std::uint32_t material = static_cast<std::uint32_t>(slot.material);
-      std::memcpy(out + 6, &material, 4);
-    }
-    const std::size_t vertexBytes = in.Staging.size() * 4;
-    glNamedBufferSubData(
-      in.VertexBuffer, slot.firstVertex * WordsPerVertex * 4, vertexBytes, in.Staging.data());
-    // Indices are stored absolute, so that compute stages need no base vertex.
-    std::vector<std::uint32_t> shifted(mesh.indices.size());
-    for (std::size_t k = 0; k < shifted.size(); ++k)
-    {
-      shifted[k] = mesh.indices[k] + static_cast<std::uint32_t>(slot.firstVertex);
-    }
-    glNamedBufferSubData(in.IndexBuffer, slot.firstIndex * 4, shifted.size() * 4, shifted.data());
-    in.LastUploadBytes += static_cast<vtkIdType>(vertexBytes + shifted.size() * 4);
-  }
-  in.Slots = std::move(slots);
-
-  // Contiguous draw ranges per role.
-  in.Ranges.clear();
-  for (const MeshSlot& slot : in.Slots)
-  {
-    if (!in.Ranges.empty() && in.Ranges.back().role == slot.role)
-    {
-      in.Ranges.back().indexCount += slot.indexCount;
-    }
-    else
-    {
-      in.Ranges.push_back({ slot.role, slot.firstIndex, slot.indexCount });
-    }
-  }
-
+void vtkCausticsSceneGeometry::UploadMaterials(const caustics::SceneData& scene)
+{
+  auto& in = *this->Internal;
   // Materials (tiny: always sent when they differ).
-  std::vector<GPUMaterial> materials(scene.Materials.size());
-  for (std::size_t m = 0; m < scene.Materials.size(); ++m)
-  {
-    const auto& src = scene.Materials[m];
-    GPUMaterial& dst = materials[m];
-    for (int c = 0; c < 3; ++c)
-    {
-      dst.albedoRole[c] = static_cast<float>(src.albedo[c]);
-      dst.metalN[c] = static_cast<float>(src.metalN[c]);
-      dst.metalK[c] = static_cast<float>(src.metalK[c]);
-      dst.attenuation[c] = static_cast<float>(src.attenuation[c]);
-    }
-    dst.albedoRole[3] = static_cast<float>(static_cast<int>(src.role));
-    dst.params[0] = static_cast<float>(src.ior);
-    dst.params[1] = static_cast<float>(src.roughness);
-    dst.params[2] = dst.params[3] = 0.0f;
-    dst.metalN[3] = dst.metalK[3] = dst.attenuation[3] = 0.0f;
-  }
+  std::vector<GPUMaterial> materials = PackMaterials(scene);
   const std::size_t materialBytes =
     std::max<std::size_t>(materials.size(), 1) * sizeof(GPUMaterial);
   const bool materialsChanged = materials.size() != in.Materials.size() ||
@@ -248,7 +308,6 @@ bool vtkCausticsSceneGeometry::Upload(
     in.LastUploadBytes += static_cast<vtkIdType>(materials.size() * sizeof(GPUMaterial));
   }
   in.Materials = std::move(materials);
-  return glGetError() == GL_NO_ERROR;
 }
 
 void vtkCausticsSceneGeometry::BindMaterials()

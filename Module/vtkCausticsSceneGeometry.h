@@ -79,6 +79,16 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+  ///@{
+  /**
+   * Steps of Upload(): make the vertex array and buffers on first use; grow the
+   * vertex and index buffers to a new layout; send the materials when they changed.
+   */
+  void CreateBuffers();
+  void ReserveMeshBuffers(std::size_t vertices, std::size_t indices);
+  void UploadMaterials(const caustics::SceneData& scene);
+  ///@}
 };
 
 #endif

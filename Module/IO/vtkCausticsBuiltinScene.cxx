@@ -238,6 +238,111 @@ vtkSmartPointer<vtkPolyData> MakeWater(int resolution, double time)
   FillWater(water, resolution, time);
   return water;
 }
+
+/** The pool's floor: checker tiles, 0.25 m, as two receivers (per-mesh albedo). */
+void AddPoolTiles(vtkRenderer* renderer)
+{
+  vtkNew<vtkAppendPolyData> light, dark;
+  const int tiles = 16;
+  const double tile = 2.0 * PoolHalfSize / tiles;
+  for (int j = 0; j < tiles; ++j)
+  {
+    for (int i = 0; i < tiles; ++i)
+    {
+      const double x0 = -PoolHalfSize + i * tile, z0 = -PoolHalfSize + j * tile;
+      ((i + j) % 2 ? dark : light)->AddInputData(Floor(x0, x0 + tile, z0, z0 + tile, 0.0));
+    }
+  }
+  light->Update();
+  dark->Update();
+  auto lightTiles = MakeActor(light->GetOutput(), "light tiles");
+  MakeDiffuse(lightTiles, 0.85, 0.85, 0.85);
+  auto darkTiles = MakeActor(dark->GetOutput(), "dark tiles");
+  MakeDiffuse(darkTiles, 0.25, 0.45, 0.65);
+  renderer->AddActor(lightTiles);
+  renderer->AddActor(darkTiles);
+}
+
+/** The pool's four walls, one receiver. */
+void AddPoolWalls(vtkRenderer* renderer)
+{
+  vtkNew<vtkAppendPolyData> walls;
+  const double h = PoolWallHeight, s = PoolHalfSize;
+  const double corners[4][3][3] = { { { -s, 0, -s }, { s, 0, -s }, { -s, h, -s } },
+    { { s, 0, s }, { -s, 0, s }, { s, h, s } }, { { -s, 0, s }, { -s, 0, -s }, { -s, h, s } },
+    { { s, 0, -s }, { s, 0, s }, { s, h, -s } } };
+  for (const auto& wall : corners)
+  {
+    walls->AddInputData(Quad(wall[0], wall[1], wall[2], 1));
+  }
+  walls->Update();
+  auto wallActor = MakeActor(walls->GetOutput(), "walls");
+  MakeDiffuse(wallActor, 0.7, 0.75, 0.8);
+  renderer->AddActor(wallActor);
+}
+
+/** The bunny scaled to 0.8 m tall, standing centred on the floor, with smooth normals. */
+vtkSmartPointer<vtkPolyData> PlaceBunny(vtkPolyData* raw)
+{
+  double bounds[6];
+  raw->GetBounds(bounds);
+  const double scale = 0.8 / (bounds[3] - bounds[2]); // 0.8 m tall
+  vtkNew<vtkTransform> place;
+  place->Translate(0.0, 1e-3, 0.0);
+  place->Scale(scale, scale, scale);
+  place->Translate(-0.5 * (bounds[0] + bounds[1]), -bounds[2], -0.5 * (bounds[4] + bounds[5]));
+  vtkNew<vtkTransformPolyDataFilter> transform;
+  transform->SetInputData(raw);
+  transform->SetTransform(place);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(transform->GetOutputPort());
+  normals->SplittingOff();
+  normals->ConsistencyOn();
+  normals->AutoOrientNormalsOn();
+  normals->Update();
+  return normals->GetOutput();
+}
+
+/** The bunny's Cornell box, 2 m, open at the front. */
+void AddCornellBox(vtkRenderer* renderer)
+{
+  struct Wall
+  {
+    const char* name;
+    double origin[3], p1[3], p2[3], color[3];
+  };
+  const Wall walls[] = { { "floor", { -1, 0, 1 }, { 1, 0, 1 }, { -1, 0, -1 },
+                           { 0.75, 0.75, 0.75 } },
+    { "ceiling", { -1, 2, -1 }, { 1, 2, -1 }, { -1, 2, 1 }, { 0.75, 0.75, 0.75 } },
+    { "back wall", { -1, 0, -1 }, { 1, 0, -1 }, { -1, 2, -1 }, { 0.75, 0.75, 0.75 } },
+    { "red wall", { -1, 0, 1 }, { -1, 0, -1 }, { -1, 2, 1 }, { 0.63, 0.065, 0.05 } },
+    { "green wall", { 1, 0, -1 }, { 1, 0, 1 }, { 1, 2, -1 }, { 0.14, 0.45, 0.091 } } };
+  for (const Wall& wall : walls)
+  {
+    auto actor = MakeActor(Quad(wall.origin, wall.p1, wall.p2, 1), wall.name);
+    MakeDiffuse(actor, wall.color[0], wall.color[1], wall.color[2]);
+    renderer->AddActor(actor);
+  }
+}
+
+/** The Cornell box's ceiling spot: 2 W/sr, 50 degree cone, 40 degree inner cone. */
+void AddCeilingSpot(vtkRenderer* renderer)
+{
+  auto spot = vtkSmartPointer<vtkLight>::New();
+  spot->SetLightTypeToSceneLight();
+  spot->SetPositional(true);
+  spot->SetPosition(0.0, 1.95, 0.0);
+  spot->SetFocalPoint(0.0, 0.0, 0.0);
+  spot->SetConeAngle(50.0);
+  spot->SetExponent(1.0);
+  spot->SetAttenuationValues(0.0, 0.0, 1.0); // physical 1/r^2
+  spot->SetColor(1, 1, 1);
+  spot->SetIntensity(2.0); // W/sr
+  vtkNew<vtkInformation> lightInfo;
+  lightInfo->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), 40.0);
+  spot->SetInformation(lightInfo);
+  renderer->AddLight(spot);
+}
 }
 
 bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
@@ -246,217 +351,163 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
   this->Internal->Water = nullptr;
   if (!renderer)
   {
-    this->LastError = "Populate needs a renderer";
-    vtkErrorMacro(<< this->LastError);
-    return false;
+    return this->Fail("Populate needs a renderer");
   }
   renderer->RemoveAllViewProps();
   renderer->RemoveAllLights();
   renderer->AutomaticLightCreationOff();
   renderer->SetBackground(0.05, 0.05, 0.06);
+  if (!this->CheckSettings())
+  {
+    return false;
+  }
+  if (this->SceneName == "ball-lens")
+  {
+    this->AddBallLens(renderer);
+  }
+  else if (this->SceneName == "pool")
+  {
+    this->AddPool(renderer);
+  }
+  else if (this->SceneName == "ring")
+  {
+    this->AddRing(renderer);
+  }
+  else
+  {
+    return this->AddBunny(renderer);
+  }
+  return true;
+}
 
+bool vtkCausticsBuiltinScene::Fail(const std::string& message)
+{
+  this->LastError = message;
+  vtkErrorMacro(<< this->LastError);
+  return false;
+}
+
+bool vtkCausticsBuiltinScene::CheckSettings()
+{
   if (!IsSceneName(this->SceneName))
   {
-    this->LastError =
-      "unknown scene '" + this->SceneName + "' (known: ball-lens, pool, ring, bunny)";
-    vtkErrorMacro(<< this->LastError);
-    return false;
+    return this->Fail(
+      "unknown scene '" + this->SceneName + "' (known: ball-lens, pool, ring, bunny)");
   }
   if (!(this->RefractiveIndex == 0.0 ||
         (this->RefractiveIndex >= 1.0 && std::isfinite(this->RefractiveIndex))))
   {
-    this->LastError = "refractive index " + std::to_string(this->RefractiveIndex) +
-      " must be 0 (scene default) or a finite value >= 1";
-    vtkErrorMacro(<< this->LastError);
-    return false;
+    return this->Fail("refractive index " + std::to_string(this->RefractiveIndex) +
+      " must be 0 (scene default) or a finite value >= 1");
   }
   if (!std::isfinite(this->Time))
   {
-    this->LastError = "animation time must be finite";
-    vtkErrorMacro(<< this->LastError);
-    return false;
+    return this->Fail("animation time must be finite");
   }
-  auto ior = [this](double sceneDefault)
-  { return this->RefractiveIndex > 0.0 ? this->RefractiveIndex : sceneDefault; };
-  const double tess = this->Tessellation;
+  return true;
+}
 
-  if (this->SceneName == "ball-lens")
+double vtkCausticsBuiltinScene::IndexOfRefraction(double sceneDefault) const
+{
+  return this->RefractiveIndex > 0.0 ? this->RefractiveIndex : sceneDefault;
+}
+
+void vtkCausticsBuiltinScene::AddBallLens(vtkRenderer* renderer)
+{
+  auto floor = MakeActor(Floor(-6, 6, -6, 6, 0.0), "floor");
+  MakeDiffuse(floor, 0.8, 0.8, 0.8);
+  renderer->AddActor(floor);
+
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1.0);
+  sphere->SetCenter(0.0, 3.0, 0.0);
+  sphere->SetThetaResolution(static_cast<int>(128 * this->Tessellation));
+  sphere->SetPhiResolution(static_cast<int>(64 * this->Tessellation));
+  sphere->Update();
+  auto ball = MakeActor(sphere->GetOutput(), "glass ball");
+  ball->GetProperty()->SetColor(1, 1, 1);
+  vtkCausticsMaterial::MakeGlass(ball->GetProperty(), this->IndexOfRefraction(1.5));
+  renderer->AddActor(ball);
+
+  const double down[3] = { 0, -1, 0 };
+  renderer->AddLight(DirectionalLight(down, 1.0));
+  const double eye[3] = { 0.0, 4.5, 9.0 }, focal[3] = { 0.0, 1.3, 0.0 };
+  SetCamera(renderer, eye, focal, 30.0);
+}
+
+void vtkCausticsBuiltinScene::AddPool(vtkRenderer* renderer)
+{
+  AddPoolTiles(renderer);
+  AddPoolWalls(renderer);
+
+  this->Internal->WaterResolution = static_cast<int>(128 * this->Tessellation);
+  this->Internal->Water = MakeWater(this->Internal->WaterResolution, this->Time);
+  auto water = MakeActor(this->Internal->Water, "water");
+  water->GetProperty()->SetColor(0.9, 0.95, 1.0);
+  vtkCausticsMaterial::MakeGlass(water->GetProperty(), this->IndexOfRefraction(1.33));
+  renderer->AddActor(water);
+
+  const double elevation = vtkMath::RadiansFromDegrees(60.0);
+  const double sun[3] = { -std::cos(elevation) * 0.8, -std::sin(elevation),
+    -std::cos(elevation) * 0.6 };
+  renderer->AddLight(DirectionalLight(sun, 1.0));
+  const double eye[3] = { 0.0, 5.5, 4.5 }, focal[3] = { 0.0, 0.4, 0.0 };
+  SetCamera(renderer, eye, focal, 40.0);
+}
+
+void vtkCausticsBuiltinScene::AddRing(vtkRenderer* renderer)
+{
+  auto floor = MakeActor(Floor(-3, 3, -3, 3, 0.0), "floor");
+  MakeDiffuse(floor, 0.8, 0.8, 0.8);
+  renderer->AddActor(floor);
+
+  vtkNew<vtkCylinderSource> cylinder;
+  cylinder->SetRadius(1.0);
+  cylinder->SetHeight(0.6);
+  cylinder->SetCenter(0.0, 0.3, 0.0);
+  cylinder->SetResolution(static_cast<int>(256 * this->Tessellation));
+  cylinder->CappingOff();
+  cylinder->Update();
+  auto ring = MakeActor(cylinder->GetOutput(), "silver ring");
+  ring->GetProperty()->SetColor(0.97, 0.96, 0.91);
+  const double silverN[3] = { 0.155, 0.117, 0.138 }, silverK[3] = { 4.83, 3.12, 2.15 };
+  vtkCausticsMaterial::MakeMirror(ring->GetProperty(), silverN, silverK);
+  renderer->AddActor(ring);
+
+  const double elevation = vtkMath::RadiansFromDegrees(20.0);
+  const double light[3] = { -std::cos(elevation), -std::sin(elevation), 0.0 };
+  renderer->AddLight(DirectionalLight(light, 1.0));
+  const double eye[3] = { 0.0, 4.6, 3.2 }, focal[3] = { 0.0, 0.0, 0.0 };
+  SetCamera(renderer, eye, focal, 35.0);
+}
+
+bool vtkCausticsBuiltinScene::AddBunny(vtkRenderer* renderer)
+{
+  const std::string path = this->DataDirectory + "/bunny.ply";
+  if (!vtksys::SystemTools::FileExists(path, true))
   {
-    auto floor = MakeActor(Floor(-6, 6, -6, 6, 0.0), "floor");
-    MakeDiffuse(floor, 0.8, 0.8, 0.8);
-    renderer->AddActor(floor);
-
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetRadius(1.0);
-    sphere->SetCenter(0.0, 3.0, 0.0);
-    sphere->SetThetaResolution(static_cast<int>(128 * tess));
-    sphere->SetPhiResolution(static_cast<int>(64 * tess));
-    sphere->Update();
-    auto ball = MakeActor(sphere->GetOutput(), "glass ball");
-    ball->GetProperty()->SetColor(1, 1, 1);
-    vtkCausticsMaterial::MakeGlass(ball->GetProperty(), ior(1.5));
-    renderer->AddActor(ball);
-
-    const double down[3] = { 0, -1, 0 };
-    renderer->AddLight(DirectionalLight(down, 1.0));
-    const double eye[3] = { 0.0, 4.5, 9.0 }, focal[3] = { 0.0, 1.3, 0.0 };
-    SetCamera(renderer, eye, focal, 30.0);
+    return this->Fail("the bunny scene needs " + path +
+      " (set the data directory or CAUSTICS_DATA_DIR to the folder holding bunny.ply)");
   }
-  else if (this->SceneName == "pool")
+  // The validating reader: vtkPLYReader alone crashes on a truncated file.
+  vtkNew<vtkCausticsMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* raw = reader->GetOutput();
+  if (raw->GetNumberOfPolys() == 0)
   {
-    // Checker tiles, 0.25 m, as two receivers (per-mesh albedo).
-    vtkNew<vtkAppendPolyData> light, dark;
-    const int tiles = 16;
-    const double tile = 2.0 * PoolHalfSize / tiles;
-    for (int j = 0; j < tiles; ++j)
-    {
-      for (int i = 0; i < tiles; ++i)
-      {
-        const double x0 = -PoolHalfSize + i * tile, z0 = -PoolHalfSize + j * tile;
-        ((i + j) % 2 ? dark : light)->AddInputData(Floor(x0, x0 + tile, z0, z0 + tile, 0.0));
-      }
-    }
-    light->Update();
-    dark->Update();
-    auto lightTiles = MakeActor(light->GetOutput(), "light tiles");
-    MakeDiffuse(lightTiles, 0.85, 0.85, 0.85);
-    auto darkTiles = MakeActor(dark->GetOutput(), "dark tiles");
-    MakeDiffuse(darkTiles, 0.25, 0.45, 0.65);
-    renderer->AddActor(lightTiles);
-    renderer->AddActor(darkTiles);
-
-    vtkNew<vtkAppendPolyData> walls;
-    const double h = PoolWallHeight, s = PoolHalfSize;
-    const double corners[4][3][3] = { { { -s, 0, -s }, { s, 0, -s }, { -s, h, -s } },
-      { { s, 0, s }, { -s, 0, s }, { s, h, s } }, { { -s, 0, s }, { -s, 0, -s }, { -s, h, s } },
-      { { s, 0, -s }, { s, 0, s }, { s, h, -s } } };
-    for (const auto& wall : corners)
-    {
-      walls->AddInputData(Quad(wall[0], wall[1], wall[2], 1));
-    }
-    walls->Update();
-    auto wallActor = MakeActor(walls->GetOutput(), "walls");
-    MakeDiffuse(wallActor, 0.7, 0.75, 0.8);
-    renderer->AddActor(wallActor);
-
-    this->Internal->WaterResolution = static_cast<int>(128 * tess);
-    this->Internal->Water = MakeWater(this->Internal->WaterResolution, this->Time);
-    auto water = MakeActor(this->Internal->Water, "water");
-    water->GetProperty()->SetColor(0.9, 0.95, 1.0);
-    vtkCausticsMaterial::MakeGlass(water->GetProperty(), ior(1.33));
-    renderer->AddActor(water);
-
-    const double elevation = vtkMath::RadiansFromDegrees(60.0);
-    const double sun[3] = { -std::cos(elevation) * 0.8, -std::sin(elevation),
-      -std::cos(elevation) * 0.6 };
-    renderer->AddLight(DirectionalLight(sun, 1.0));
-    const double eye[3] = { 0.0, 5.5, 4.5 }, focal[3] = { 0.0, 0.4, 0.0 };
-    SetCamera(renderer, eye, focal, 40.0);
+    return this->Fail(
+      *reader->GetLastError() ? std::string(reader->GetLastError()) : path + " holds no triangles");
   }
-  else if (this->SceneName == "ring")
-  {
-    auto floor = MakeActor(Floor(-3, 3, -3, 3, 0.0), "floor");
-    MakeDiffuse(floor, 0.8, 0.8, 0.8);
-    renderer->AddActor(floor);
+  auto bunny = MakeActor(PlaceBunny(raw), "glass bunny");
+  bunny->GetProperty()->SetColor(1, 1, 1);
+  vtkCausticsMaterial::MakeGlass(bunny->GetProperty(), this->IndexOfRefraction(1.5));
+  renderer->AddActor(bunny);
+  AddCornellBox(renderer);
+  AddCeilingSpot(renderer);
 
-    vtkNew<vtkCylinderSource> cylinder;
-    cylinder->SetRadius(1.0);
-    cylinder->SetHeight(0.6);
-    cylinder->SetCenter(0.0, 0.3, 0.0);
-    cylinder->SetResolution(static_cast<int>(256 * tess));
-    cylinder->CappingOff();
-    cylinder->Update();
-    auto ring = MakeActor(cylinder->GetOutput(), "silver ring");
-    ring->GetProperty()->SetColor(0.97, 0.96, 0.91);
-    const double silverN[3] = { 0.155, 0.117, 0.138 }, silverK[3] = { 4.83, 3.12, 2.15 };
-    vtkCausticsMaterial::MakeMirror(ring->GetProperty(), silverN, silverK);
-    renderer->AddActor(ring);
-
-    const double elevation = vtkMath::RadiansFromDegrees(20.0);
-    const double light[3] = { -std::cos(elevation), -std::sin(elevation), 0.0 };
-    renderer->AddLight(DirectionalLight(light, 1.0));
-    const double eye[3] = { 0.0, 4.6, 3.2 }, focal[3] = { 0.0, 0.0, 0.0 };
-    SetCamera(renderer, eye, focal, 35.0);
-  }
-  else // bunny
-  {
-    const std::string path = this->DataDirectory + "/bunny.ply";
-    if (!vtksys::SystemTools::FileExists(path, true))
-    {
-      this->LastError = "the bunny scene needs " + path +
-        " (set the data directory or CAUSTICS_DATA_DIR to the folder holding bunny.ply)";
-      vtkErrorMacro(<< this->LastError);
-      return false;
-    }
-    // The validating reader: vtkPLYReader alone crashes on a truncated file.
-    vtkNew<vtkCausticsMeshReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkPolyData* raw = reader->GetOutput();
-    if (raw->GetNumberOfPolys() == 0)
-    {
-      this->LastError = *reader->GetLastError() ? std::string(reader->GetLastError())
-                                                : path + " holds no triangles";
-      vtkErrorMacro(<< this->LastError);
-      return false;
-    }
-    double bounds[6];
-    raw->GetBounds(bounds);
-    const double scale = 0.8 / (bounds[3] - bounds[2]); // 0.8 m tall
-    vtkNew<vtkTransform> place;
-    place->Translate(0.0, 1e-3, 0.0);
-    place->Scale(scale, scale, scale);
-    place->Translate(-0.5 * (bounds[0] + bounds[1]), -bounds[2], -0.5 * (bounds[4] + bounds[5]));
-    vtkNew<vtkTransformPolyDataFilter> transform;
-    transform->SetInputData(raw);
-    transform->SetTransform(place);
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputConnection(transform->GetOutputPort());
-    normals->SplittingOff();
-    normals->ConsistencyOn();
-    normals->AutoOrientNormalsOn();
-    normals->Update();
-    auto bunny = MakeActor(normals->GetOutput(), "glass bunny");
-    bunny->GetProperty()->SetColor(1, 1, 1);
-    vtkCausticsMaterial::MakeGlass(bunny->GetProperty(), ior(1.5));
-    renderer->AddActor(bunny);
-
-    struct Wall
-    {
-      const char* name;
-      double origin[3], p1[3], p2[3], color[3];
-    };
-    const Wall walls[] = { { "floor", { -1, 0, 1 }, { 1, 0, 1 }, { -1, 0, -1 },
-                             { 0.75, 0.75, 0.75 } },
-      { "ceiling", { -1, 2, -1 }, { 1, 2, -1 }, { -1, 2, 1 }, { 0.75, 0.75, 0.75 } },
-      { "back wall", { -1, 0, -1 }, { 1, 0, -1 }, { -1, 2, -1 }, { 0.75, 0.75, 0.75 } },
-      { "red wall", { -1, 0, 1 }, { -1, 0, -1 }, { -1, 2, 1 }, { 0.63, 0.065, 0.05 } },
-      { "green wall", { 1, 0, -1 }, { 1, 0, 1 }, { 1, 2, -1 }, { 0.14, 0.45, 0.091 } } };
-    for (const Wall& wall : walls)
-    {
-      auto actor = MakeActor(Quad(wall.origin, wall.p1, wall.p2, 1), wall.name);
-      MakeDiffuse(actor, wall.color[0], wall.color[1], wall.color[2]);
-      renderer->AddActor(actor);
-    }
-
-    auto spot = vtkSmartPointer<vtkLight>::New();
-    spot->SetLightTypeToSceneLight();
-    spot->SetPositional(true);
-    spot->SetPosition(0.0, 1.95, 0.0);
-    spot->SetFocalPoint(0.0, 0.0, 0.0);
-    spot->SetConeAngle(50.0);
-    spot->SetExponent(1.0);
-    spot->SetAttenuationValues(0.0, 0.0, 1.0); // physical 1/r^2
-    spot->SetColor(1, 1, 1);
-    spot->SetIntensity(2.0); // W/sr
-    vtkNew<vtkInformation> lightInfo;
-    lightInfo->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), 40.0);
-    spot->SetInformation(lightInfo);
-    renderer->AddLight(spot);
-
-    const double eye[3] = { 0.0, 1.0, 4.2 }, focal[3] = { 0.0, 0.95, 0.0 };
-    SetCamera(renderer, eye, focal, 37.0);
-  }
+  const double eye[3] = { 0.0, 1.0, 4.2 }, focal[3] = { 0.0, 0.95, 0.0 };
+  SetCamera(renderer, eye, focal, 37.0);
   return true;
 }
 

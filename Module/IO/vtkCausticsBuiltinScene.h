@@ -108,6 +108,20 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+  /** Keeps `message` as the last error, reports it, returns false. */
+  bool Fail(const std::string& message);
+  /** False, with the error, for an unknown scene or a bad parameter. */
+  bool CheckSettings();
+  /** RefractiveIndex, or the scene's own where it is 0. */
+  double IndexOfRefraction(double sceneDefault) const;
+  ///@{
+  /** The scenes' actors, lights and camera. */
+  void AddBallLens(vtkRenderer* renderer);
+  void AddPool(vtkRenderer* renderer);
+  void AddRing(vtkRenderer* renderer);
+  bool AddBunny(vtkRenderer* renderer);
+  ///@}
 };
 
 #endif

@@ -669,70 +669,9 @@ private:
     const Json::Value& materials = this->Root["materials"];
     for (Json::ArrayIndex i = 0; i < this->Count("materials"); ++i)
     {
-      const Json::Value& material = materials[i];
-      std::string path = "materials[" + std::to_string(i) + "]";
-      if (!this->IsObjectOrAbsent(material, "pbrMetallicRoughness", path) ||
-        !this->IsObjectOrAbsent(material, "extensions", path))
-      {
-        return false;
-      }
-      const Json::Value& pbr = material["pbrMetallicRoughness"];
-      const std::string pbrPath = Member(path, "pbrMetallicRoughness");
-      if (!this->Numbers(pbr, "baseColorFactor", pbrPath, 4, 0.0, 1.0) ||
-        !this->Number(pbr, "metallicFactor", pbrPath, 0.0, 1.0) ||
-        !this->Number(pbr, "roughnessFactor", pbrPath, 0.0, 1.0) ||
-        !this->CheckTextureInfo(pbr, "baseColorTexture", pbrPath) ||
-        !this->CheckTextureInfo(pbr, "metallicRoughnessTexture", pbrPath) ||
-        !this->CheckTextureInfo(material, "normalTexture", path) ||
-        !this->CheckTextureInfo(material, "occlusionTexture", path) ||
-        !this->CheckTextureInfo(material, "emissiveTexture", path) ||
-        !this->Numbers(material, "emissiveFactor", path, 3, 0.0, Huge) ||
-        !this->Number(material, "alphaCutoff", path, 0.0, Huge))
-      {
-        return false;
-      }
-      const std::string alphaMode = material.get("alphaMode", "OPAQUE").isString()
-        ? material.get("alphaMode", "OPAQUE").asString()
-        : "";
-      if (alphaMode != "OPAQUE" && alphaMode != "MASK" && alphaMode != "BLEND")
-      {
-        return this->Fail(
-          path + ".alphaMode " + Quoted(alphaMode) + " is not OPAQUE, MASK or BLEND");
-      }
-      const Json::Value& extensions = material["extensions"];
-      const std::string extPath = Member(path, "extensions");
-      for (const char* name : OwnExtensions)
-      {
-        if (!this->IsObjectOrAbsent(extensions, name, extPath))
-        {
-          return false;
-        }
-      }
-      const Json::Value& ior = extensions["KHR_materials_ior"];
-      if (ior.isMember("ior") && !(ior["ior"].isNumeric() && ior["ior"].asDouble() >= 1.0))
-      {
-        std::ostringstream message;
-        message << extPath << ".KHR_materials_ior.ior = "
-                << (ior["ior"].isNumeric() ? ior["ior"].asDouble() : NaN)
-                << " is not a physical index of refraction (it must be finite and >= 1)";
-        if (material.isMember("name"))
-        {
-          message << " in material " << Quoted(material["name"].asString());
-        }
-        return this->Fail(message.str());
-      }
-      const Json::Value& transmission = extensions["KHR_materials_transmission"];
-      const Json::Value& volume = extensions["KHR_materials_volume"];
-      if (!this->Number(transmission, "transmissionFactor",
-            Member(extPath, "KHR_materials_transmission"), 0.0, 1.0) ||
-        !this->CheckTextureInfo(
-          transmission, "transmissionTexture", Member(extPath, "KHR_materials_transmission")) ||
-        !this->Number(
-          volume, "thicknessFactor", Member(extPath, "KHR_materials_volume"), 0.0, Huge) ||
-        !this->Number(volume, "attenuationDistance", Member(extPath, "KHR_materials_volume"),
-          VTK_DBL_MIN, Huge) ||
-        !this->Numbers(
-          volume, "attenuationColor", Member(extPath, "KHR_materials_volume"), 3, 0.0, 1.0))
+      const std::string path = "materials[" + std::to_string(i) + "]";
+      if (!this->CheckMaterial(materials[i], path) ||
+        !this->CheckMaterialExtensions(materials[i], path))
       {
         return false;
       }
@@ -740,10 +679,85 @@ private:
     return true;
   }
 
+  /** A material's core members: factors in range, texture references, alpha mode. */
+  bool CheckMaterial(const Json::Value& material, const std::string& path)
+  {
+    if (!this->IsObjectOrAbsent(material, "pbrMetallicRoughness", path) ||
+      !this->IsObjectOrAbsent(material, "extensions", path))
+    {
+      return false;
+    }
+    const Json::Value& pbr = material["pbrMetallicRoughness"];
+    const std::string pbrPath = Member(path, "pbrMetallicRoughness");
+    if (!this->Numbers(pbr, "baseColorFactor", pbrPath, 4, 0.0, 1.0) ||
+      !this->Number(pbr, "metallicFactor", pbrPath, 0.0, 1.0) ||
+      !this->Number(pbr, "roughnessFactor", pbrPath, 0.0, 1.0) ||
+      !this->CheckTextureInfo(pbr, "baseColorTexture", pbrPath) ||
+      !this->CheckTextureInfo(pbr, "metallicRoughnessTexture", pbrPath) ||
+      !this->CheckTextureInfo(material, "normalTexture", path) ||
+      !this->CheckTextureInfo(material, "occlusionTexture", path) ||
+      !this->CheckTextureInfo(material, "emissiveTexture", path) ||
+      !this->Numbers(material, "emissiveFactor", path, 3, 0.0, Huge) ||
+      !this->Number(material, "alphaCutoff", path, 0.0, Huge))
+    {
+      return false;
+    }
+    const std::string alphaMode = material.get("alphaMode", "OPAQUE").isString()
+      ? material.get("alphaMode", "OPAQUE").asString()
+      : "";
+    if (alphaMode != "OPAQUE" && alphaMode != "MASK" && alphaMode != "BLEND")
+    {
+      return this->Fail(path + ".alphaMode " + Quoted(alphaMode) + " is not OPAQUE, MASK or BLEND");
+    }
+    return true;
+  }
+
+  /** The material extensions this importer reads (ior, transmission, volume). */
+  bool CheckMaterialExtensions(const Json::Value& material, const std::string& path)
+  {
+    const Json::Value& extensions = material["extensions"];
+    const std::string extPath = Member(path, "extensions");
+    for (const char* name : OwnExtensions)
+    {
+      if (!this->IsObjectOrAbsent(extensions, name, extPath))
+      {
+        return false;
+      }
+    }
+    const Json::Value& ior = extensions["KHR_materials_ior"];
+    if (ior.isMember("ior") && !(ior["ior"].isNumeric() && ior["ior"].asDouble() >= 1.0))
+    {
+      std::ostringstream message;
+      message << extPath << ".KHR_materials_ior.ior = "
+              << (ior["ior"].isNumeric() ? ior["ior"].asDouble() : NaN)
+              << " is not a physical index of refraction (it must be finite and >= 1)";
+      if (material.isMember("name"))
+      {
+        message << " in material " << Quoted(material["name"].asString());
+      }
+      return this->Fail(message.str());
+    }
+    const Json::Value& transmission = extensions["KHR_materials_transmission"];
+    const Json::Value& volume = extensions["KHR_materials_volume"];
+    if (!this->Number(transmission, "transmissionFactor",
+          Member(extPath, "KHR_materials_transmission"), 0.0, 1.0) ||
+      !this->CheckTextureInfo(
+        transmission, "transmissionTexture", Member(extPath, "KHR_materials_transmission")) ||
+      !this->Number(
+        volume, "thicknessFactor", Member(extPath, "KHR_materials_volume"), 0.0, Huge) ||
+      !this->Number(volume, "attenuationDistance", Member(extPath, "KHR_materials_volume"),
+        VTK_DBL_MIN, Huge) ||
+      !this->Numbers(
+        volume, "attenuationColor", Member(extPath, "KHR_materials_volume"), 3, 0.0, 1.0))
+    {
+      return false;
+    }
+    return true;
+  }
+
   bool CheckMeshes()
   {
     const Json::Value& meshes = this->Root["meshes"];
-    const Json::Value& accessors = this->Root["accessors"];
     for (Json::ArrayIndex m = 0; m < this->Count("meshes"); ++m)
     {
       const std::string meshPath = "meshes[" + std::to_string(m) + "]";
@@ -755,63 +769,76 @@ private:
       for (Json::ArrayIndex p = 0; p < primitives.size(); ++p)
       {
         const std::string path = meshPath + ".primitives[" + std::to_string(p) + "]";
-        const Json::Value& primitive = primitives[p];
-        if (!primitive.isObject() || !primitive["attributes"].isObject() ||
-          !primitive["attributes"].isMember("POSITION"))
-        {
-          return this->Fail(path + ".attributes.POSITION is missing");
-        }
-        const Json::Value& attributes = primitive["attributes"];
-        for (const std::string& name : attributes.getMemberNames())
-        {
-          if (!this->IndexValue(attributes[name], path + ".attributes." + name, "accessors"))
-          {
-            return false;
-          }
-        }
-        const Json::Value& position = accessors[attributes["POSITION"].asUInt()];
-        if (position.get("type", "").asString() != "VEC3" ||
-          position.get("componentType", 0).asInt() != 5126)
-        {
-          return this->Fail(path + ".attributes.POSITION must be a VEC3 FLOAT accessor");
-        }
-        const std::uint64_t vertices = position["count"].asUInt64();
-        for (const std::string& name : attributes.getMemberNames())
-        {
-          if (accessors[attributes[name].asUInt()]["count"].asUInt64() != vertices)
-          {
-            return this->Fail(path + ".attributes." + name + " has " +
-              std::to_string(accessors[attributes[name].asUInt()]["count"].asUInt64()) +
-              " elements but POSITION has " + std::to_string(vertices));
-          }
-        }
-        if (!this->Index(primitive, "indices", path, "accessors") ||
-          !this->Index(primitive, "material", path, "materials") ||
-          !this->Integer(primitive, "mode", path, 0, 6))
+        if (!this->CheckPrimitive(primitives[p], path))
         {
           return false;
         }
-        if (primitive.isMember("indices"))
+      }
+    }
+    return true;
+  }
+
+  /**
+   * A primitive: a VEC3 FLOAT POSITION, every attribute an accessor of as many
+   * elements, unsigned integer indices, morph targets that are accessors.
+   */
+  bool CheckPrimitive(const Json::Value& primitive, const std::string& path)
+  {
+    const Json::Value& accessors = this->Root["accessors"];
+    if (!primitive.isObject() || !primitive["attributes"].isObject() ||
+      !primitive["attributes"].isMember("POSITION"))
+    {
+      return this->Fail(path + ".attributes.POSITION is missing");
+    }
+    const Json::Value& attributes = primitive["attributes"];
+    for (const std::string& name : attributes.getMemberNames())
+    {
+      if (!this->IndexValue(attributes[name], path + ".attributes." + name, "accessors"))
+      {
+        return false;
+      }
+    }
+    const Json::Value& position = accessors[attributes["POSITION"].asUInt()];
+    if (position.get("type", "").asString() != "VEC3" ||
+      position.get("componentType", 0).asInt() != 5126)
+    {
+      return this->Fail(path + ".attributes.POSITION must be a VEC3 FLOAT accessor");
+    }
+    const std::uint64_t vertices = position["count"].asUInt64();
+    for (const std::string& name : attributes.getMemberNames())
+    {
+      if (accessors[attributes[name].asUInt()]["count"].asUInt64() != vertices)
+      {
+        return this->Fail(path + ".attributes." + name + " has " +
+          std::to_string(accessors[attributes[name].asUInt()]["count"].asUInt64()) +
+          " elements but POSITION has " + std::to_string(vertices));
+      }
+    }
+    if (!this->Index(primitive, "indices", path, "accessors") ||
+      !this->Index(primitive, "material", path, "materials") ||
+      !this->Integer(primitive, "mode", path, 0, 6))
+    {
+      return false;
+    }
+    if (primitive.isMember("indices"))
+    {
+      const Json::Value& indices = accessors[primitive["indices"].asUInt()];
+      const int type = indices.get("componentType", 0).asInt();
+      if (indices.get("type", "").asString() != "SCALAR" ||
+        (type != 5121 && type != 5123 && type != 5125))
+      {
+        return this->Fail(path + ".indices must be a SCALAR accessor of unsigned integers");
+      }
+    }
+    const Json::Value& targets = primitive["targets"];
+    for (Json::ArrayIndex t = 0; targets.isArray() && t < targets.size(); ++t)
+    {
+      for (const std::string& name : targets[t].getMemberNames())
+      {
+        if (!this->IndexValue(
+              targets[t][name], path + ".targets[" + std::to_string(t) + "]." + name, "accessors"))
         {
-          const Json::Value& indices = accessors[primitive["indices"].asUInt()];
-          const int type = indices.get("componentType", 0).asInt();
-          if (indices.get("type", "").asString() != "SCALAR" ||
-            (type != 5121 && type != 5123 && type != 5125))
-          {
-            return this->Fail(path + ".indices must be a SCALAR accessor of unsigned integers");
-          }
-        }
-        const Json::Value& targets = primitive["targets"];
-        for (Json::ArrayIndex t = 0; targets.isArray() && t < targets.size(); ++t)
-        {
-          for (const std::string& name : targets[t].getMemberNames())
-          {
-            if (!this->IndexValue(targets[t][name],
-                  path + ".targets[" + std::to_string(t) + "]." + name, "accessors"))
-            {
-              return false;
-            }
-          }
+          return false;
         }
       }
     }
@@ -915,59 +942,82 @@ private:
     for (Json::ArrayIndex i = 0; i < count; ++i)
     {
       const std::string path = "nodes[" + std::to_string(i) + "]";
-      const Json::Value& node = nodes[i];
-      if (!this->Index(node, "mesh", path, "meshes") ||
-        !this->Index(node, "camera", path, "cameras") ||
-        !this->Index(node, "skin", path, "skins") ||
-        !this->Numbers(node, "matrix", path, 16, -Huge, Huge) ||
-        !this->Numbers(node, "translation", path, 3, -Huge, Huge) ||
-        !this->Numbers(node, "rotation", path, 4, -1.0, 1.0) ||
-        !this->Numbers(node, "scale", path, 3, -Huge, Huge) ||
-        !this->IsObjectOrAbsent(node, "extensions", path) ||
-        !this->IsObjectOrAbsent(node["extensions"], "KHR_lights_punctual", path + ".extensions") ||
-        !this->Index(node["extensions"]["KHR_lights_punctual"], "light",
-          path + ".extensions.KHR_lights_punctual", "lights",
-          node["extensions"].isMember("KHR_lights_punctual")))
+      if (!this->CheckNode(nodes[i], path) || !this->CheckChildren(nodes[i], path, i))
       {
         return false;
       }
-      if (node.isMember("rotation"))
+    }
+    return this->CheckNodeTree();
+  }
+
+  /** A node's references, transform and light link. */
+  bool CheckNode(const Json::Value& node, const std::string& path)
+  {
+    if (!this->Index(node, "mesh", path, "meshes") ||
+      !this->Index(node, "camera", path, "cameras") || !this->Index(node, "skin", path, "skins") ||
+      !this->Numbers(node, "matrix", path, 16, -Huge, Huge) ||
+      !this->Numbers(node, "translation", path, 3, -Huge, Huge) ||
+      !this->Numbers(node, "rotation", path, 4, -1.0, 1.0) ||
+      !this->Numbers(node, "scale", path, 3, -Huge, Huge) ||
+      !this->IsObjectOrAbsent(node, "extensions", path) ||
+      !this->IsObjectOrAbsent(node["extensions"], "KHR_lights_punctual", path + ".extensions") ||
+      !this->Index(node["extensions"]["KHR_lights_punctual"], "light",
+        path + ".extensions.KHR_lights_punctual", "lights",
+        node["extensions"].isMember("KHR_lights_punctual")))
+    {
+      return false;
+    }
+    if (node.isMember("rotation"))
+    {
+      // glTF rotations are unit quaternions; exporters write float32, ~1e-7 off.
+      const Json::Value& q = node["rotation"];
+      const double norm =
+        std::sqrt(q[0].asDouble() * q[0].asDouble() + q[1].asDouble() * q[1].asDouble() +
+          q[2].asDouble() * q[2].asDouble() + q[3].asDouble() * q[3].asDouble());
+      if (std::abs(norm - 1.0) > 1e-3)
       {
-        // glTF rotations are unit quaternions; exporters write float32, ~1e-7 off.
-        const Json::Value& q = node["rotation"];
-        const double norm =
-          std::sqrt(q[0].asDouble() * q[0].asDouble() + q[1].asDouble() * q[1].asDouble() +
-            q[2].asDouble() * q[2].asDouble() + q[3].asDouble() * q[3].asDouble());
-        if (std::abs(norm - 1.0) > 1e-3)
-        {
-          return this->Fail(
-            path + ".rotation is not a unit quaternion (norm " + std::to_string(norm) + ")");
-        }
-      }
-      const Json::Value& children = node["children"];
-      if (node.isMember("children") && !children.isArray())
-      {
-        return this->Fail(path + ".children must be an array");
-      }
-      for (Json::ArrayIndex c = 0; children.isArray() && c < children.size(); ++c)
-      {
-        const std::string childPath = path + ".children[" + std::to_string(c) + "]";
-        if (!this->IndexValue(children[c], childPath, "nodes"))
-        {
-          return false;
-        }
-        const int child = children[c].asInt();
-        if (this->Parents[child] >= 0)
-        {
-          return this->Fail(childPath + ": node " + std::to_string(child) +
-            " already has a parent (node " + std::to_string(this->Parents[child]) +
-            "); glTF nodes form a tree");
-        }
-        this->Parents[child] = static_cast<int>(i);
+        return this->Fail(
+          path + ".rotation is not a unit quaternion (norm " + std::to_string(norm) + ")");
       }
     }
-    // With at most one parent each, a cycle is a parent chain that comes back to
-    // itself. Each chain is walked once: 1 marks the current walk, 2 a checked node.
+    return true;
+  }
+
+  /** Node `parent`'s children: valid node indices, none with another parent. */
+  bool CheckChildren(const Json::Value& node, const std::string& path, Json::ArrayIndex parent)
+  {
+    const Json::Value& children = node["children"];
+    if (node.isMember("children") && !children.isArray())
+    {
+      return this->Fail(path + ".children must be an array");
+    }
+    for (Json::ArrayIndex c = 0; children.isArray() && c < children.size(); ++c)
+    {
+      const std::string childPath = path + ".children[" + std::to_string(c) + "]";
+      if (!this->IndexValue(children[c], childPath, "nodes"))
+      {
+        return false;
+      }
+      const int child = children[c].asInt();
+      if (this->Parents[child] >= 0)
+      {
+        return this->Fail(childPath + ": node " + std::to_string(child) +
+          " already has a parent (node " + std::to_string(this->Parents[child]) +
+          "); glTF nodes form a tree");
+      }
+      this->Parents[child] = static_cast<int>(parent);
+    }
+    return true;
+  }
+
+  /**
+   * No cycles. With at most one parent each, a cycle is a parent chain that comes
+   * back to itself. Each chain is walked once: 1 marks the current walk, 2 a
+   * checked node.
+   */
+  bool CheckNodeTree()
+  {
+    const std::size_t count = this->Parents.size();
     std::vector<char> state(count, 0);
     for (std::size_t i = 0; i < count; ++i)
     {

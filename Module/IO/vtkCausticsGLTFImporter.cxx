@@ -108,6 +108,71 @@ std::vector<int> SceneNodes(const Json::Value& nodes, const Json::Value& roots)
   }
   return order;
 }
+
+/** The first vertex index of a primitive beyond its POSITION count, as a problem; "" if none. */
+std::string VertexIndexProblem(vtkPolyData* geometry)
+{
+  const vtkIdType numPoints = geometry->GetNumberOfPoints();
+  for (vtkCellArray* cells :
+    { geometry->GetVerts(), geometry->GetLines(), geometry->GetPolys(), geometry->GetStrips() })
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* ids = nullptr;
+    for (cells->InitTraversal(); cells->GetNextCell(npts, ids);)
+    {
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        if (ids[k] < 0 || ids[k] >= numPoints)
+        {
+          return "vertex index " + std::to_string(ids[k]) + " is out of range: POSITION has " +
+            std::to_string(numPoints) + " vertices";
+        }
+      }
+    }
+  }
+  return std::string();
+}
+
+/**
+ * Why node n's world transform cannot be used, or "": it must be finite, and
+ * give cameras and directional or spot lights a direction (cameras also an up
+ * vector off their axis).
+ */
+std::string NodeTransformProblem(
+  const Json::Value& nodes, const Json::Value& lights, int n, vtkMatrix4x4* world)
+{
+  if (!world ||
+    !std::all_of(
+      world->GetData(), world->GetData() + 16, [](double v) { return std::isfinite(v); }))
+  {
+    return "the world transform is not finite (overflow?)";
+  }
+  const Json::Value& light = nodes[n]["extensions"]["KHR_lights_punctual"];
+  const bool isCamera = nodes[n].isMember("camera");
+  const bool aims = isCamera ||
+    (light.isMember("light") && lights[light["light"].asInt()]["type"].asString() != "point");
+  auto forward = Transform(world, 0, 0, -1, 0);
+  auto up = Transform(world, 0, 1, 0, 0);
+  bool directed = Normalize(forward);
+  if (isCamera && directed && Normalize(up))
+  {
+    // A view needs an up vector off its axis: sin(angle) > 1e-6, far above
+    // rounding, is what OrthogonalizeViewUp can work with.
+    caustics::Vec3 side;
+    vtkMath::Cross(forward.data(), up.data(), side.data());
+    directed = vtkMath::Norm(side.data()) > 1e-6;
+  }
+  else if (isCamera)
+  {
+    directed = false;
+  }
+  if (aims && !directed)
+  {
+    return std::string("the world transform is degenerate (zero scale?), so the ") +
+      (isCamera ? "camera" : "light") + " has no direction";
+  }
+  return std::string();
+}
 }
 
 struct vtkCausticsGLTFImporter::Internals
@@ -237,27 +302,51 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
     return this->Fail("no glTF file name given");
   }
   const std::string path = this->FileName;
+  std::string contents, json;
+  bool binary = false;
+  std::size_t binSize = 0;
+  if (!this->ReadFile(path, contents) ||
+    !this->SplitContainer(path, contents, json, binary, binSize) || !this->ParseJSON(json) ||
+    !this->ValidateDocument(path, binary, binSize))
+  {
+    return 0;
+  }
+  // 2. VTK's loader, its messages collected so that they name the file.
+  // 3. What VTK decoded: vertex indices and world transforms of the scene.
+  if (!this->RunLoader(path, binary) || !this->CheckVertexIndices() || !this->CheckSceneNodes())
+  {
+    return 0;
+  }
+  this->EnabledAnimations.assign(this->Loader->GetInternalModel()->Animations.size(), false);
+  return 1;
+}
+
+int vtkCausticsGLTFImporter::ReadFile(const std::string& path, std::string& contents)
+{
   if (!vtksys::SystemTools::FileExists(path, true))
   {
     return this->Fail(
       vtksys::SystemTools::FileIsDirectory(path) ? "is a folder, not a glTF file" : "no such file");
   }
-  std::string contents;
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream buffer;
+  buffer << file.rdbuf();
+  if (!file || file.bad())
   {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream buffer;
-    buffer << file.rdbuf();
-    if (!file || file.bad())
-    {
-      return this->Fail("cannot be read (permissions?)");
-    }
-    contents = buffer.str();
+    return this->Fail("cannot be read (permissions?)");
   }
+  contents = buffer.str();
   if (contents.empty())
   {
     return this->Fail("the file is empty");
   }
-  const bool binary = contents.compare(0, 4, "glTF") == 0;
+  return 1;
+}
+
+int vtkCausticsGLTFImporter::SplitContainer(const std::string& path, const std::string& contents,
+  std::string& json, bool& binary, std::size_t& binSize)
+{
+  binary = contents.compare(0, 4, "glTF") == 0;
   const std::string extension = vtksys::SystemTools::GetFilenameLastExtension(path);
   const std::string lowerExtension = vtksys::SystemTools::LowerCase(extension);
   if (lowerExtension != ".glb" && lowerExtension != ".gltf")
@@ -271,8 +360,8 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
     return this->Fail(binary ? "binary glTF content needs the file extension '.glb'"
                              : "a '.glb' file must start with the binary glTF magic 'glTF'");
   }
-  std::string json = contents;
-  std::size_t binSize = 0;
+  json = contents;
+  binSize = 0;
   if (binary)
   {
     const std::string problem = caustics::gltf::SplitBinary(contents, json, binSize);
@@ -281,6 +370,11 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
       return this->Fail(problem);
     }
   }
+  return 1;
+}
+
+int vtkCausticsGLTFImporter::ParseJSON(const std::string& json)
+{
   Json::CharReaderBuilder builder;
   builder["collectComments"] = false;
   builder["allowComments"] = false;
@@ -298,6 +392,13 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
   {
     return this->Fail("malformed JSON at " + caustics::gltf::OneLineErrors(errors));
   }
+  return 1;
+}
+
+int vtkCausticsGLTFImporter::ValidateDocument(
+  const std::string& path, bool binary, std::size_t binSize)
+{
+  const Json::Value& document = this->Internal->Document;
   const std::string folder =
     vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(path));
   const std::string problem = caustics::gltf::CheckDocument(document, folder, binary, binSize);
@@ -311,8 +412,11 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
     return this->Fail("camera index " + std::to_string(this->CameraIndex) +
       " is out of range: the file has " + caustics::gltf::CountOf(cameras, "camera"));
   }
+  return 1;
+}
 
-  // 2. VTK's loader, its messages collected so that they name the file.
+int vtkCausticsGLTFImporter::RunLoader(const std::string& path, bool binary)
+{
   this->Textures.clear();
   this->Loader = vtkSmartPointer<vtkGLTFDocumentLoader>::New();
   vtkNew<vtkEventForwarderCommand> forwarder;
@@ -354,8 +458,11 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
       vtkWarningMacro(<< path << ": VTK's glTF loader: " << message);
     }
   }
+  return 1;
+}
 
-  // 3. What VTK decoded: vertex indices and world transforms of the scene.
+int vtkCausticsGLTFImporter::CheckVertexIndices()
+{
   auto model = this->Loader->GetInternalModel();
   for (std::size_t m = 0; m < model->Meshes.size(); ++m)
   {
@@ -368,66 +475,33 @@ int vtkCausticsGLTFImporter::CheckAndLoad()
       {
         return this->Fail(where + ": VTK's loader built no geometry");
       }
-      const vtkIdType numPoints = geometry->GetNumberOfPoints();
-      for (vtkCellArray* cells :
-        { geometry->GetVerts(), geometry->GetLines(), geometry->GetPolys(), geometry->GetStrips() })
+      const std::string problem = VertexIndexProblem(geometry);
+      if (!problem.empty())
       {
-        vtkIdType npts = 0;
-        const vtkIdType* ids = nullptr;
-        for (cells->InitTraversal(); cells->GetNextCell(npts, ids);)
-        {
-          for (vtkIdType k = 0; k < npts; ++k)
-          {
-            if (ids[k] < 0 || ids[k] >= numPoints)
-            {
-              return this->Fail(where + ": vertex index " + std::to_string(ids[k]) +
-                " is out of range: POSITION has " + std::to_string(numPoints) + " vertices");
-            }
-          }
-        }
+        return this->Fail(where + ": " + problem);
       }
     }
   }
+  return 1;
+}
+
+int vtkCausticsGLTFImporter::CheckSceneNodes()
+{
+  const Json::Value& document = this->Internal->Document;
   const Json::Value& nodes = document["nodes"];
   this->Internal->Nodes =
     SceneNodes(nodes, document["scenes"][this->Internal->SceneIndex()]["nodes"]);
   const Json::Value& lights = document["extensions"]["KHR_lights_punctual"]["lights"];
+  auto model = this->Loader->GetInternalModel();
   for (int n : this->Internal->Nodes)
   {
-    vtkMatrix4x4* world = model->Nodes[n].GlobalTransform;
-    const std::string where = "nodes[" + std::to_string(n) + "]";
-    if (!world ||
-      !std::all_of(
-        world->GetData(), world->GetData() + 16, [](double v) { return std::isfinite(v); }))
+    const std::string problem =
+      NodeTransformProblem(nodes, lights, n, model->Nodes[n].GlobalTransform);
+    if (!problem.empty())
     {
-      return this->Fail(where + ": the world transform is not finite (overflow?)");
-    }
-    const Json::Value& light = nodes[n]["extensions"]["KHR_lights_punctual"];
-    const bool isCamera = nodes[n].isMember("camera");
-    const bool aims = isCamera ||
-      (light.isMember("light") && lights[light["light"].asInt()]["type"].asString() != "point");
-    auto forward = Transform(world, 0, 0, -1, 0);
-    auto up = Transform(world, 0, 1, 0, 0);
-    bool directed = Normalize(forward);
-    if (isCamera && directed && Normalize(up))
-    {
-      // A view needs an up vector off its axis: sin(angle) > 1e-6, far above
-      // rounding, is what OrthogonalizeViewUp can work with.
-      caustics::Vec3 side;
-      vtkMath::Cross(forward.data(), up.data(), side.data());
-      directed = vtkMath::Norm(side.data()) > 1e-6;
-    }
-    else if (isCamera)
-    {
-      directed = false;
-    }
-    if (aims && !directed)
-    {
-      return this->Fail(where + ": the world transform is degenerate (zero scale?), so the " +
-        (isCamera ? "camera" : "light") + " has no direction");
+      return this->Fail("nodes[" + std::to_string(n) + "]: " + problem);
     }
   }
-  this->EnabledAnimations.assign(model->Animations.size(), false);
   return 1;
 }
 
@@ -616,6 +690,66 @@ void vtkCausticsGLTFImporter::ImportLights(vtkRenderer* renderer)
   }
 }
 
+namespace
+{
+/**
+ * A camera at a node's world transform. glTF cameras have no focal point; VTK
+ * rotates about it, so it is put level with the scene's centre (1 m ahead when the
+ * scene is behind, or when there is no centre).
+ */
+vtkSmartPointer<vtkCamera> PlaceCamera(vtkMatrix4x4* world, const double* center)
+{
+  const caustics::Vec3 position = Transform(world, 0, 0, 0, 1);
+  caustics::Vec3 forward = Transform(world, 0, 0, -1, 0);
+  caustics::Vec3 up = Transform(world, 0, 1, 0, 0);
+  Normalize(forward);
+  Normalize(up);
+  double distance = 1.0;
+  if (center)
+  {
+    const double toCenter[3] = { center[0] - position[0], center[1] - position[1],
+      center[2] - position[2] };
+    const double along = vtkMath::Dot(toCenter, forward.data());
+    distance = along > 0.0 ? along : distance;
+  }
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetPosition(position.data());
+  camera->SetFocalPoint(position[0] + distance * forward[0], position[1] + distance * forward[1],
+    position[2] + distance * forward[2]);
+  camera->SetViewUp(up.data());
+  camera->OrthogonalizeViewUp();
+  return camera;
+}
+
+/**
+ * The projection of a glTF camera definition. Returns its aspect ratio (0 when
+ * not given) and whether its frustum is infinite (a perspective without zfar).
+ */
+void SetProjection(
+  vtkCamera* camera, const Json::Value& definition, double& aspectRatio, bool& infinite)
+{
+  infinite = false;
+  if (definition["type"].asString() == "perspective")
+  {
+    const Json::Value& perspective = definition["perspective"];
+    camera->SetParallelProjection(false);
+    camera->SetViewAngle(vtkMath::DegreesFromRadians(perspective["yfov"].asDouble()));
+    const double znear = perspective["znear"].asDouble();
+    infinite = !perspective.isMember("zfar");
+    camera->SetClippingRange(znear, perspective.get("zfar", 2.0 * znear).asDouble());
+    aspectRatio = perspective.get("aspectRatio", 0.0).asDouble();
+  }
+  else
+  {
+    const Json::Value& orthographic = definition["orthographic"];
+    camera->SetParallelProjection(true);
+    camera->SetParallelScale(orthographic["ymag"].asDouble());
+    camera->SetClippingRange(orthographic["znear"].asDouble(), orthographic["zfar"].asDouble());
+    aspectRatio = orthographic["xmag"].asDouble() / orthographic["ymag"].asDouble();
+  }
+}
+}
+
 void vtkCausticsGLTFImporter::ImportCameras(vtkRenderer* renderer)
 {
   // Replaces vtkGLTFImporter::ImportCameras to apply the camera by default, keep
@@ -633,53 +767,13 @@ void vtkCausticsGLTFImporter::ImportCameras(vtkRenderer* renderer)
   std::map<int, bool> infinite;
   for (int n : this->Internal->Nodes)
   {
-    const Json::Value& node = document["nodes"][n];
-    const int index = node.get("camera", -1).asInt();
+    const int index = document["nodes"][n].get("camera", -1).asInt();
     if (index < 0 || this->Cameras.count(index))
     {
       continue; // no camera, or placed by an earlier node
     }
-    vtkMatrix4x4* world = model->Nodes[n].GlobalTransform;
-    const caustics::Vec3 position = Transform(world, 0, 0, 0, 1);
-    caustics::Vec3 forward = Transform(world, 0, 0, -1, 0);
-    caustics::Vec3 up = Transform(world, 0, 1, 0, 0);
-    Normalize(forward);
-    Normalize(up);
-    // glTF cameras have no focal point; VTK rotates about it, so it is put
-    // level with the scene's centre (1 m ahead when the scene is behind).
-    double distance = 1.0;
-    if (haveBounds)
-    {
-      const double toCenter[3] = { center[0] - position[0], center[1] - position[1],
-        center[2] - position[2] };
-      const double along = vtkMath::Dot(toCenter, forward.data());
-      distance = along > 0.0 ? along : distance;
-    }
-    auto camera = vtkSmartPointer<vtkCamera>::New();
-    camera->SetPosition(position.data());
-    camera->SetFocalPoint(position[0] + distance * forward[0], position[1] + distance * forward[1],
-      position[2] + distance * forward[2]);
-    camera->SetViewUp(up.data());
-    camera->OrthogonalizeViewUp();
-    const Json::Value& definition = document["cameras"][index];
-    if (definition["type"].asString() == "perspective")
-    {
-      const Json::Value& perspective = definition["perspective"];
-      camera->SetParallelProjection(false);
-      camera->SetViewAngle(vtkMath::DegreesFromRadians(perspective["yfov"].asDouble()));
-      const double znear = perspective["znear"].asDouble();
-      infinite[index] = !perspective.isMember("zfar");
-      camera->SetClippingRange(znear, perspective.get("zfar", 2.0 * znear).asDouble());
-      aspectRatios[index] = perspective.get("aspectRatio", 0.0).asDouble();
-    }
-    else
-    {
-      const Json::Value& orthographic = definition["orthographic"];
-      camera->SetParallelProjection(true);
-      camera->SetParallelScale(orthographic["ymag"].asDouble());
-      camera->SetClippingRange(orthographic["znear"].asDouble(), orthographic["zfar"].asDouble());
-      aspectRatios[index] = orthographic["xmag"].asDouble() / orthographic["ymag"].asDouble();
-    }
+    auto camera = PlaceCamera(model->Nodes[n].GlobalTransform, haveBounds ? center : nullptr);
+    SetProjection(camera, document["cameras"][index], aspectRatios[index], infinite[index]);
     this->Cameras[index] = camera;
   }
 

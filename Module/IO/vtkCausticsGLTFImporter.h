@@ -139,6 +139,24 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+  ///@{
+  /**
+   * The steps of CheckAndLoad(), in order: read the file; check its extension
+   * against its container and split a binary one into JSON and BIN chunk; parse
+   * the JSON; check the document and the camera index; run VTK's loader; check
+   * the vertex indices VTK decoded and the world transforms of the scene's nodes.
+   * Each returns 1, or Fail()'s 0.
+   */
+  int ReadFile(const std::string& path, std::string& contents);
+  int SplitContainer(const std::string& path, const std::string& contents, std::string& json,
+    bool& binary, std::size_t& binSize);
+  int ParseJSON(const std::string& json);
+  int ValidateDocument(const std::string& path, bool binary, std::size_t binSize);
+  int RunLoader(const std::string& path, bool binary);
+  int CheckVertexIndices();
+  int CheckSceneNodes();
+  ///@}
 };
 
 #endif

@@ -35,27 +35,16 @@ const char* ChannelSuffix(int components, int c)
   static const char* rgba[] = { "R", "G", "B", "A" };
   return components == 1 ? "Y" : rgba[c];
 }
-}
 
-bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
+/**
+ * The arrays of the layers (name, EXR layer) and their channel names ("R", "G",
+ * "B", "A" or "Y", prefixed with "<layer>." unless the layer is unnamed). False,
+ * with the error, for a missing array or one of 2 or more than 4 components.
+ */
+bool CollectLayers(vtkImageData* image,
   const std::vector<std::pair<std::string, std::string>>& layers, const std::string& path,
-  std::string* error)
+  std::vector<vtkDataArray*>& arrays, std::vector<std::string>& channelNames, std::string* error)
 {
-  if (!image)
-  {
-    SetError(error, "no image to write to " + path);
-    return false;
-  }
-  int dims[3];
-  image->GetDimensions(dims);
-  const int width = dims[0], height = dims[1];
-  if (width <= 0 || height <= 0 || dims[2] != 1)
-  {
-    SetError(error, "image to write to " + path + " is not a 2D image");
-    return false;
-  }
-  std::vector<vtkDataArray*> arrays;
-  std::vector<std::string> channelNames;
   for (const auto& layer : layers)
   {
     vtkDataArray* array = image->GetPointData()->GetArray(layer.first.c_str());
@@ -80,12 +69,13 @@ bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
           : layer.second + "." + ChannelSuffix(components, c));
     }
   }
-  const int channels = static_cast<int>(channelNames.size());
-  if (channels == 0)
-  {
-    SetError(error, "no layers to write to " + path);
-    return false;
-  }
+  return true;
+}
+
+/** The arrays' values interleaved per pixel, top row first as files store them. */
+std::vector<float> InterleavePixels(
+  const std::vector<vtkDataArray*>& arrays, int width, int height, int channels)
+{
   std::vector<float> pixels(static_cast<std::size_t>(width) * height * channels);
   for (int y = 0; y < height; ++y)
   {
@@ -103,13 +93,21 @@ bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
       }
     }
   }
+  return pixels;
+}
+
+/** Writes interleaved float pixels with OpenImageIO, ZIP-compressed. */
+bool WriteFloatImage(const std::string& path, int width, int height,
+  const std::vector<std::string>& channelNames, const std::vector<float>& pixels,
+  std::string* error)
+{
   auto output = OIIO::ImageOutput::create(path);
   if (!output)
   {
     SetError(error, "cannot create " + path + ": " + OIIO::geterror());
     return false;
   }
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageSpec spec(width, height, static_cast<int>(channelNames.size()), OIIO::TypeDesc::FLOAT);
   spec.channelnames = channelNames;
   spec.attribute("compression", "zip");
   if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
@@ -119,6 +117,40 @@ bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
     return false;
   }
   return true;
+}
+}
+
+bool vtkCausticsImageIO::WriteEXR(vtkImageData* image,
+  const std::vector<std::pair<std::string, std::string>>& layers, const std::string& path,
+  std::string* error)
+{
+  if (!image)
+  {
+    SetError(error, "no image to write to " + path);
+    return false;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  const int width = dims[0], height = dims[1];
+  if (width <= 0 || height <= 0 || dims[2] != 1)
+  {
+    SetError(error, "image to write to " + path + " is not a 2D image");
+    return false;
+  }
+  std::vector<vtkDataArray*> arrays;
+  std::vector<std::string> channelNames;
+  if (!CollectLayers(image, layers, path, arrays, channelNames, error))
+  {
+    return false;
+  }
+  const int channels = static_cast<int>(channelNames.size());
+  if (channels == 0)
+  {
+    SetError(error, "no layers to write to " + path);
+    return false;
+  }
+  return WriteFloatImage(
+    path, width, height, channelNames, InterleavePixels(arrays, width, height, channels), error);
 }
 
 vtkSmartPointer<vtkImageData> vtkCausticsImageIO::ReadEXR(

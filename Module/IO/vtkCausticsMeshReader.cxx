@@ -213,65 +213,91 @@ private:
         }
         return this->CheckVertexElement();
       }
+      std::string problem;
       if (keyword == "format")
       {
-        std::string format;
-        words >> format;
-        if (format == "ascii")
-        {
-          this->Ascii = true;
-        }
-        else if (format == "binary_little_endian" || format == "binary_big_endian")
-        {
-          this->BigEndian = format == "binary_big_endian";
-        }
-        else
-        {
-          return "unknown PLY format '" + format + "'";
-        }
+        problem = this->ParseFormat(words);
         haveFormat = true;
       }
       else if (keyword == "element")
       {
-        PlyElement element;
-        long long count = -1;
-        words >> element.name >> count;
-        if (!words || count < 0)
-        {
-          return "malformed header line '" + line + "'";
-        }
-        element.count = static_cast<std::uint64_t>(count);
-        this->Elements.push_back(element);
+        problem = this->ParseElement(words, line);
       }
       else if (keyword == "property")
       {
-        if (this->Elements.empty())
-        {
-          return "header line '" + line + "' comes before any element";
-        }
-        PlyProperty property;
-        words >> property.type;
-        if (property.type == "list")
-        {
-          words >> property.countType >> property.type;
-          if (PlyTypeSize(property.countType) == 0 || PlyTypeIsFloat(property.countType))
-          {
-            return "header line '" + line + "': bad list length type";
-          }
-        }
-        words >> property.name;
-        if (!words || PlyTypeSize(property.type) == 0)
-        {
-          return "malformed header line '" + line + "'";
-        }
-        this->Elements.back().properties.push_back(property);
+        problem = this->ParseProperty(words, line);
       }
       else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
       {
-        return "unknown header line '" + line + "'";
+        problem = "unknown header line '" + line + "'";
+      }
+      if (!problem.empty())
+      {
+        return problem;
       }
     }
     return "the header has no 'end_header' line";
+  }
+
+  /** "format ascii|binary_little_endian|binary_big_endian 1.0" */
+  std::string ParseFormat(std::istringstream& words)
+  {
+    std::string format;
+    words >> format;
+    if (format == "ascii")
+    {
+      this->Ascii = true;
+    }
+    else if (format == "binary_little_endian" || format == "binary_big_endian")
+    {
+      this->BigEndian = format == "binary_big_endian";
+    }
+    else
+    {
+      return "unknown PLY format '" + format + "'";
+    }
+    return std::string();
+  }
+
+  /** "element <name> <count>" */
+  std::string ParseElement(std::istringstream& words, const std::string& line)
+  {
+    PlyElement element;
+    long long count = -1;
+    words >> element.name >> count;
+    if (!words || count < 0)
+    {
+      return "malformed header line '" + line + "'";
+    }
+    element.count = static_cast<std::uint64_t>(count);
+    this->Elements.push_back(element);
+    return std::string();
+  }
+
+  /** "property <type> <name>" or "property list <count type> <type> <name>" */
+  std::string ParseProperty(std::istringstream& words, const std::string& line)
+  {
+    if (this->Elements.empty())
+    {
+      return "header line '" + line + "' comes before any element";
+    }
+    PlyProperty property;
+    words >> property.type;
+    if (property.type == "list")
+    {
+      words >> property.countType >> property.type;
+      if (PlyTypeSize(property.countType) == 0 || PlyTypeIsFloat(property.countType))
+      {
+        return "header line '" + line + "': bad list length type";
+      }
+    }
+    words >> property.name;
+    if (!words || PlyTypeSize(property.type) == 0)
+    {
+      return "malformed header line '" + line + "'";
+    }
+    this->Elements.back().properties.push_back(property);
+    return std::string();
   }
 
   std::string CheckVertexElement()
@@ -444,6 +470,84 @@ std::string CheckBinarySTL(const std::string& contents)
   }
   return std::string();
 }
+
+/** The container problem VTK's reader would crash on or silently lose data over, or "". */
+std::string ContainerProblem(
+  const std::string& path, const std::string& extension, const std::string& contents)
+{
+  if (extension == ".ply")
+  {
+    return PlyChecker().Check(contents);
+  }
+  if (extension == ".obj")
+  {
+    return CheckOBJVertices(contents);
+  }
+  if (extension == ".stl" &&
+    vtksys::SystemTools::DetectFileType(path.c_str()) != vtksys::SystemTools::FileTypeText)
+  {
+    // Same test as vtkSTLReader uses to pick binary over ASCII.
+    return CheckBinarySTL(contents);
+  }
+  return std::string();
+}
+
+/** VTK's reader for the extension (.ply, .obj, else .stl), set to read path. */
+vtkSmartPointer<vtkPolyDataAlgorithm> NewVTKReader(
+  const std::string& path, const std::string& extension)
+{
+  if (extension == ".ply")
+  {
+    auto ply = vtkSmartPointer<vtkPLYReader>::New();
+    ply->SetFileName(path.c_str());
+    return ply;
+  }
+  if (extension == ".obj")
+  {
+    auto obj = vtkSmartPointer<vtkOBJReader>::New();
+    obj->SetFileName(path.c_str());
+    return obj;
+  }
+  auto stl = vtkSmartPointer<vtkSTLReader>::New();
+  stl->SetFileName(path.c_str());
+  return stl;
+}
+
+/**
+ * Counts the polygons and strips with at least three vertices: usable ones (all
+ * vertices finite) and those with a NaN/Inf vertex. Returns the first vertex index
+ * out of range as a problem, or "".
+ */
+std::string CountFaces(vtkPolyData* mesh, vtkIdType& usable, vtkIdType& withNonFinite)
+{
+  const vtkIdType numPoints = mesh->GetNumberOfPoints();
+  usable = withNonFinite = 0;
+  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* ids = nullptr;
+    vtkIdType cellIndex = 0;
+    for (cells->InitTraversal(); cells->GetNextCell(npts, ids); ++cellIndex)
+    {
+      bool finite = npts >= 3;
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        if (ids[k] < 0 || ids[k] >= numPoints)
+        {
+          return "face " + std::to_string(cellIndex) + " refers to vertex " +
+            std::to_string(ids[k] + 1) + " (1-based), but the file has " +
+            std::to_string(numPoints) + " vertices";
+        }
+        double p[3];
+        mesh->GetPoint(ids[k], p);
+        finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+      }
+      usable += finite ? 1 : 0;
+      withNonFinite += finite || npts < 3 ? 0 : 1;
+    }
+  }
+  return std::string();
+}
 }
 
 vtkCausticsMeshReader::vtkCausticsMeshReader()
@@ -502,84 +606,72 @@ int vtkCausticsMeshReader::RequestData(
 {
   this->LastError.clear();
   this->ReadError.clear();
-  auto fail = [this](const std::string& message)
-  {
-    this->ReadError = message;
-    return this->Fail(message);
-  };
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
 
   // 1. The file and its extension.
   if (!this->FileName || !*this->FileName)
   {
-    return fail("no mesh file name given");
+    return this->ReadFail("no mesh file name given");
   }
   const std::string path = this->FileName;
+  std::string contents;
+  if (!this->ReadFile(path, contents))
+  {
+    return 0;
+  }
+  // 2. The container, where VTK's reader would crash or silently lose data.
+  const std::string problem = ContainerProblem(path, LowerExtension(path), contents);
+  if (!problem.empty())
+  {
+    return this->ReadFail(path + ": " + problem);
+  }
+  // 3. VTK's reader; its complaints become this reader's error.
+  vtkSmartPointer<vtkPolyDataAlgorithm> reader = this->RunVTKReader(path);
+  // 4. The geometry.
+  if (!reader || !this->CheckGeometry(path, reader->GetOutput()))
+  {
+    return 0;
+  }
+  output->ShallowCopy(reader->GetOutput());
+  return 1;
+}
+
+int vtkCausticsMeshReader::ReadFail(const std::string& message)
+{
+  this->ReadError = message;
+  return this->Fail(message);
+}
+
+int vtkCausticsMeshReader::ReadFile(const std::string& path, std::string& contents)
+{
   if (!vtksys::SystemTools::FileExists(path))
   {
-    return fail(path + ": no such file");
+    return this->ReadFail(path + ": no such file");
   }
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    return fail(path + ": is a folder, not a mesh file");
+    return this->ReadFail(path + ": is a folder, not a mesh file");
   }
   const std::string extension = LowerExtension(path);
   if (!IsSupportedExtension(path))
   {
-    return fail(
+    return this->ReadFail(
       path + ": unknown mesh extension '" + extension + "' (supported: .ply, .obj, .stl)");
   }
-  std::string contents;
   if (!ReadWholeFile(path, contents))
   {
-    return fail(path + ": cannot be read (permissions?)");
+    return this->ReadFail(path + ": cannot be read (permissions?)");
   }
   if (contents.empty())
   {
-    return fail(path + ": the file is empty, no triangles");
+    return this->ReadFail(path + ": the file is empty, no triangles");
   }
+  return 1;
+}
 
-  // 2. The container, where VTK's reader would crash or silently lose data.
-  std::string problem;
-  if (extension == ".ply")
-  {
-    problem = PlyChecker().Check(contents);
-  }
-  else if (extension == ".obj")
-  {
-    problem = CheckOBJVertices(contents);
-  }
-  else if (extension == ".stl" &&
-    vtksys::SystemTools::DetectFileType(path.c_str()) != vtksys::SystemTools::FileTypeText)
-  {
-    // Same test as vtkSTLReader uses to pick binary over ASCII.
-    problem = CheckBinarySTL(contents);
-  }
-  if (!problem.empty())
-  {
-    return fail(path + ": " + problem);
-  }
-
-  // 3. VTK's reader; its complaints become this reader's error.
-  vtkSmartPointer<vtkPolyDataAlgorithm> reader;
-  if (extension == ".ply")
-  {
-    auto ply = vtkSmartPointer<vtkPLYReader>::New();
-    ply->SetFileName(path.c_str());
-    reader = ply;
-  }
-  else if (extension == ".obj")
-  {
-    auto obj = vtkSmartPointer<vtkOBJReader>::New();
-    obj->SetFileName(path.c_str());
-    reader = obj;
-  }
-  else
-  {
-    auto stl = vtkSmartPointer<vtkSTLReader>::New();
-    stl->SetFileName(path.c_str());
-    reader = stl;
-  }
+vtkSmartPointer<vtkPolyDataAlgorithm> vtkCausticsMeshReader::RunVTKReader(const std::string& path)
+{
+  vtkSmartPointer<vtkPolyDataAlgorithm> reader = NewVTKReader(path, LowerExtension(path));
   ReaderMessages messages;
   vtkNew<vtkCallbackCommand> collect;
   collect->SetCallback(CollectMessages);
@@ -589,53 +681,35 @@ int vtkCausticsMeshReader::RequestData(
   reader->Update();
   if (!messages.Errors.empty())
   {
-    return fail(path + ": VTK's " + reader->GetClassName() + " failed: " + messages.Errors[0]);
+    this->ReadFail(path + ": VTK's " + reader->GetClassName() + " failed: " + messages.Errors[0]);
+    return nullptr;
   }
   for (const std::string& warning : messages.Warnings)
   {
     vtkWarningMacro(<< path << ": VTK's " << reader->GetClassName() << ": " << warning);
   }
-  vtkPolyData* mesh = reader->GetOutput();
+  return reader;
+}
 
-  // 4. The geometry.
-  const vtkIdType numPoints = mesh->GetNumberOfPoints();
+int vtkCausticsMeshReader::CheckGeometry(const std::string& path, vtkPolyData* mesh)
+{
   vtkIdType usable = 0, withNonFinite = 0;
-  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  const std::string problem = CountFaces(mesh, usable, withNonFinite);
+  if (!problem.empty())
   {
-    vtkIdType npts = 0;
-    const vtkIdType* ids = nullptr;
-    vtkIdType cellIndex = 0;
-    for (cells->InitTraversal(); cells->GetNextCell(npts, ids); ++cellIndex)
-    {
-      bool finite = npts >= 3;
-      for (vtkIdType k = 0; k < npts; ++k)
-      {
-        if (ids[k] < 0 || ids[k] >= numPoints)
-        {
-          return fail(path + ": face " + std::to_string(cellIndex) + " refers to vertex " +
-            std::to_string(ids[k] + 1) + " (1-based), but the file has " +
-            std::to_string(numPoints) + " vertices");
-        }
-        double p[3];
-        mesh->GetPoint(ids[k], p);
-        finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-      }
-      usable += finite ? 1 : 0;
-      withNonFinite += finite || npts < 3 ? 0 : 1;
-    }
+    return this->ReadFail(path + ": " + problem);
   }
   if (usable == 0)
   {
-    return fail(path + ": no triangles with finite vertices (" + std::to_string(numPoints) +
-      " vertices, " + std::to_string(mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips()) +
-      " faces)");
+    return this->ReadFail(path + ": no triangles with finite vertices (" +
+      std::to_string(mesh->GetNumberOfPoints()) + " vertices, " +
+      std::to_string(mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips()) + " faces)");
   }
   if (withNonFinite > 0)
   {
     vtkWarningMacro(<< path << ": " << withNonFinite
                     << " face(s) have NaN/Inf vertices; caustics will drop them");
   }
-  output->ShallowCopy(mesh);
   return 1;
 }
 

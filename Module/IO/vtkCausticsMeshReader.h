@@ -124,6 +124,19 @@ protected:
 private:
   vtkCausticsMeshReader(const vtkCausticsMeshReader&) = delete;
   void operator=(const vtkCausticsMeshReader&) = delete;
+
+  ///@{
+  /**
+   * Steps of RequestData(): read the file (it exists, has a supported extension,
+   * is not empty); run VTK's reader on it; check the faces it produced. Each
+   * returns 1, or ReadFail()'s 0 (nullptr for RunVTKReader).
+   */
+  int ReadFile(const std::string& path, std::string& contents);
+  vtkSmartPointer<vtkPolyDataAlgorithm> RunVTKReader(const std::string& path);
+  int CheckGeometry(const std::string& path, vtkPolyData* mesh);
+  ///@}
+  /** Fail() for a read: the message is also kept as ReadError. */
+  int ReadFail(const std::string& message);
 };
 
 #endif

@@ -57,44 +57,40 @@ unsigned long NextVersion()
   return ++version;
 }
 
-/** Appends the polygons of one polydata, transformed to world space, to a mesh. */
-void AppendPolyData(
-  vtkPolyData* input, vtkMatrix4x4* matrix, CachedMesh& cache, caustics::Mesh& mesh)
+/**
+ * The polygons of `input` as triangles with point normals: its own, or smooth
+ * normals with sharp edges (> 30 degrees) split, as VTK's own vtkPolyDataNormals
+ * defaults; a box gets flat faces, a sphere smooth ones.
+ */
+vtkSmartPointer<vtkPolyData> TriangulatedSurface(vtkPolyData* input)
 {
-  if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
-  {
-    return;
-  }
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputData(input);
   triangles->PassVertsOff();
   triangles->PassLinesOff();
-  vtkSmartPointer<vtkPolyData> surface;
   if (input->GetPointData()->GetNormals())
   {
     triangles->Update();
-    surface = triangles->GetOutput();
+    return triangles->GetOutput();
   }
-  else
-  {
-    // Smooth normals with sharp edges (> 30 degrees) split, as VTK's own
-    // vtkPolyDataNormals defaults; a box gets flat faces, a sphere smooth ones.
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputConnection(triangles->GetOutputPort());
-    normals->ComputePointNormalsOn();
-    normals->SplittingOn();
-    normals->ConsistencyOff();
-    normals->AutoOrientNormalsOff();
-    normals->Update();
-    surface = normals->GetOutput();
-  }
-  vtkPoints* points = surface->GetPoints();
-  vtkDataArray* pointNormals = surface->GetPointData()->GetNormals();
-  if (!points)
-  {
-    return;
-  }
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(triangles->GetOutputPort());
+  normals->ComputePointNormalsOn();
+  normals->SplittingOn();
+  normals->ConsistencyOff();
+  normals->AutoOrientNormalsOff();
+  normals->Update();
+  return normals->GetOutput();
+}
 
+/**
+ * Appends the points and their normals, transformed to world space. Returns, per
+ * point, whether its normal was valid (a zero or non-finite one is replaced by +z
+ * here, and by a face normal in AppendTriangles).
+ */
+std::vector<char> AppendPoints(
+  vtkPoints* points, vtkDataArray* pointNormals, vtkMatrix4x4* matrix, caustics::Mesh& mesh)
+{
   double normalMatrix[16];
   {
     // Normals transform with the inverse transpose of the upper 3x3.
@@ -102,8 +98,6 @@ void AppendPolyData(
     vtkMatrix4x4::Invert(matrix->GetData(), inverse->GetData());
     vtkMatrix4x4::Transpose(inverse->GetData(), normalMatrix);
   }
-
-  const std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size() / 3);
   const vtkIdType numPoints = points->GetNumberOfPoints();
   std::vector<char> validNormal(numPoints, 1);
   for (vtkIdType i = 0; i < numPoints; ++i)
@@ -142,45 +136,63 @@ void AppendPolyData(
       mesh.normals.push_back(static_cast<float>(wn[c]));
     }
   }
+  return validNormal;
+}
 
-  vtkCellArray* polys = surface->GetPolys();
+/**
+ * The unit normal of triangle abc, or false for a triangle to drop: a NaN/Inf
+ * vertex, or zero area relative to the triangle's own size (scale-free, float
+ * precision).
+ */
+bool FaceNormal(const float* a, const float* b, const float* c, double faceNormal[3])
+{
+  bool finite = true;
+  for (int k = 0; k < 3; ++k)
+  {
+    finite = finite && std::isfinite(a[k]) && std::isfinite(b[k]) && std::isfinite(c[k]);
+  }
+  if (!finite)
+  {
+    return false;
+  }
+  const double e1[3] = { double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2] };
+  const double e2[3] = { double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2] };
+  vtkMath::Cross(e1, e2, faceNormal);
+  const double twiceArea = vtkMath::Norm(faceNormal);
+  const double edgeScale = std::max(vtkMath::Dot(e1, e1), vtkMath::Dot(e2, e2));
+  if (!(twiceArea > 1e-12 * edgeScale) || edgeScale == 0.0)
+  {
+    return false;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    faceNormal[k] /= twiceArea;
+  }
+  return true;
+}
+
+/**
+ * Appends the triangles of `polys` (point ids from `base`), dropping degenerate
+ * ones, and gives each invalid point normal the normal of its first kept face.
+ */
+void AppendTriangles(vtkCellArray* polys, std::uint32_t base, const std::vector<char>& validNormal,
+  CachedMesh& cache, caustics::Mesh& mesh)
+{
   vtkIdType npts = 0;
   const vtkIdType* ids = nullptr;
-  std::vector<char> normalFixed(numPoints, 0);
+  std::vector<char> normalFixed(validNormal.size(), 0);
   for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
   {
     if (npts != 3)
     {
       continue;
     }
-    const float* a = &mesh.positions[3 * (base + ids[0])];
-    const float* b = &mesh.positions[3 * (base + ids[1])];
-    const float* c = &mesh.positions[3 * (base + ids[2])];
-    bool finite = true;
-    for (int k = 0; k < 3; ++k)
-    {
-      finite = finite && std::isfinite(a[k]) && std::isfinite(b[k]) && std::isfinite(c[k]);
-    }
-    if (!finite)
-    {
-      ++cache.dropped;
-      continue;
-    }
-    const double e1[3] = { double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2] };
-    const double e2[3] = { double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2] };
     double faceNormal[3];
-    vtkMath::Cross(e1, e2, faceNormal);
-    const double twiceArea = vtkMath::Norm(faceNormal);
-    const double edgeScale = std::max(vtkMath::Dot(e1, e1), vtkMath::Dot(e2, e2));
-    // Zero area relative to the triangle's own size (scale-free, float precision).
-    if (!(twiceArea > 1e-12 * edgeScale) || edgeScale == 0.0)
+    if (!FaceNormal(&mesh.positions[3 * (base + ids[0])], &mesh.positions[3 * (base + ids[1])],
+          &mesh.positions[3 * (base + ids[2])], faceNormal))
     {
       ++cache.dropped;
       continue;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      faceNormal[k] /= twiceArea;
     }
     for (int v = 0; v < 3; ++v)
     {
@@ -200,6 +212,51 @@ void AppendPolyData(
   }
 }
 
+/** Appends the polygons of one polydata, transformed to world space, to a mesh. */
+void AppendPolyData(
+  vtkPolyData* input, vtkMatrix4x4* matrix, CachedMesh& cache, caustics::Mesh& mesh)
+{
+  if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    return;
+  }
+  vtkSmartPointer<vtkPolyData> surface = TriangulatedSurface(input);
+  vtkPoints* points = surface->GetPoints();
+  if (!points)
+  {
+    return;
+  }
+  const std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size() / 3);
+  const std::vector<char> validNormal =
+    AppendPoints(points, surface->GetPointData()->GetNormals(), matrix, mesh);
+  AppendTriangles(surface->GetPolys(), base, validNormal, cache, mesh);
+}
+
+/**
+ * Appends the polygons of a polydata or of every block of a composite dataset.
+ * Returns false for any other data (it takes no part in caustics).
+ */
+bool AppendDataObject(
+  vtkDataObject* input, vtkMatrix4x4* matrix, CachedMesh& cache, caustics::Mesh& mesh)
+{
+  if (auto* polyData = vtkPolyData::SafeDownCast(input))
+  {
+    AppendPolyData(polyData, matrix, cache, mesh);
+    return true;
+  }
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it;
+    it.TakeReference(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      AppendPolyData(vtkPolyData::SafeDownCast(it->GetCurrentDataObject()), matrix, cache, mesh);
+    }
+    return true;
+  }
+  return false;
+}
+
 caustics::Vec3 Normalized(const double v[3])
 {
   const double length = vtkMath::Norm(v);
@@ -209,6 +266,154 @@ caustics::Vec3 Normalized(const double v[3])
   }
   return { { v[0] / length, v[1] / length, v[2] / length } };
 }
+
+/** Bounds of all meshes and of the specular ones (zero where there are none). */
+void ComputeBounds(caustics::SceneData& scene)
+{
+  double all[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  double specular[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  scene.HasSpecular = false;
+  for (const auto& mesh : scene.Meshes)
+  {
+    const auto role = scene.Materials[mesh.material].role;
+    const bool isSpecular = role == caustics::Role::Reflector || role == caustics::Role::Refractor;
+    scene.HasSpecular = scene.HasSpecular || isSpecular;
+    for (std::uint32_t index : mesh.indices)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double v = mesh.positions[3 * index + c];
+        all[2 * c] = std::min(all[2 * c], v);
+        all[2 * c + 1] = std::max(all[2 * c + 1], v);
+        if (isSpecular)
+        {
+          specular[2 * c] = std::min(specular[2 * c], v);
+          specular[2 * c + 1] = std::max(specular[2 * c + 1], v);
+        }
+      }
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+  {
+    scene.Bounds[i] = scene.Meshes.empty() ? 0.0 : all[i];
+    scene.SpecularBounds[i] = scene.HasSpecular ? specular[i] : 0.0;
+  }
+}
+
+/** A light's world position and focal point: headlights and camera lights follow the camera. */
+void LightFrame(vtkLight* vtklight, vtkCamera* camera, double position[3], double focal[3])
+{
+  if (vtklight->LightTypeIsHeadlight())
+  {
+    camera->GetPosition(position);
+    camera->GetFocalPoint(focal);
+  }
+  else if (vtklight->LightTypeIsCameraLight())
+  {
+    vtkNew<vtkMatrix4x4> lightToWorld;
+    lightToWorld->DeepCopy(camera->GetCameraLightTransformMatrix());
+    double p[4] = { 0, 0, 0, 1 }, f[4] = { 0, 0, 0, 1 }, out[4];
+    vtklight->GetPosition(p);
+    vtklight->GetFocalPoint(f);
+    lightToWorld->MultiplyPoint(p, out);
+    std::copy(out, out + 3, position);
+    lightToWorld->MultiplyPoint(f, out);
+    std::copy(out, out + 3, focal);
+  }
+  else
+  {
+    vtklight->GetTransformedPosition(position);
+    vtklight->GetTransformedFocalPoint(focal);
+  }
+}
+
+/** Directional, spot (cone under 90 degrees, inner cone from INNER_CONE_ANGLE) or point. */
+void SetLightType(vtkLight* vtklight, vtkInformationDoubleKey* innerConeKey, caustics::Light& light)
+{
+  if (!vtklight->GetPositional())
+  {
+    light.type = caustics::Light::Type::Directional;
+  }
+  else if (vtklight->GetConeAngle() < 90.0)
+  {
+    light.type = caustics::Light::Type::Spot;
+    const double outer = std::max(0.0, vtklight->GetConeAngle());
+    double inner = 0.0;
+    if (vtklight->GetInformation() && vtklight->GetInformation()->Has(innerConeKey))
+    {
+      inner = std::min(outer, std::max(0.0, vtklight->GetInformation()->Get(innerConeKey)));
+    }
+    light.cosOuter = std::cos(vtkMath::RadiansFromDegrees(outer));
+    light.cosInner = std::cos(vtkMath::RadiansFromDegrees(inner));
+  }
+  else
+  {
+    light.type = caustics::Light::Type::Point;
+  }
+}
+
+/** The caustics light of a VTK light seen with `camera`. */
+caustics::Light DescribeLight(
+  vtkLight* vtklight, vtkCamera* camera, vtkInformationDoubleKey* innerConeKey)
+{
+  double position[3], focal[3];
+  LightFrame(vtklight, camera, position, focal);
+  caustics::Light light;
+  const double axis[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+  light.direction = Normalized(axis);
+  light.position = { { position[0], position[1], position[2] } };
+  const double* color = vtklight->GetDiffuseColor();
+  for (int c = 0; c < 3; ++c)
+  {
+    light.radiometric[c] = std::max(0.0, vtklight->GetIntensity() * color[c]);
+  }
+  SetLightType(vtklight, innerConeKey, light);
+  return light;
+}
+
+bool IsFinite(const caustics::Light& light)
+{
+  return std::isfinite(light.position[0]) && std::isfinite(light.position[1]) &&
+    std::isfinite(light.position[2]) && std::isfinite(light.radiometric[0]) &&
+    std::isfinite(light.radiometric[1]) && std::isfinite(light.radiometric[2]);
+}
+
+/** The camera's view of a width x height image. */
+void DescribeView(vtkCamera* camera, int width, int height, caustics::Camera& view)
+{
+  view.width = width;
+  view.height = height;
+  camera->GetPosition(view.position.data());
+  camera->GetFocalPoint(view.focalPoint.data());
+  camera->GetViewUp(view.viewUp.data());
+  view.viewAngle = camera->GetViewAngle();
+  view.parallel = camera->GetParallelProjection() != 0;
+  view.parallelScale = camera->GetParallelScale();
+  camera->GetClippingRange(view.clippingRange);
+  vtkMatrix4x4* worldToClip =
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0);
+  std::copy(worldToClip->GetData(), worldToClip->GetData() + 16, view.worldToClip);
+  vtkMatrix4x4::Invert(view.worldToClip, view.clipToWorld);
+}
+
+/** The renderer's participating medium (vtkCausticsMedium), disabled without one. */
+caustics::Medium DescribeMedium(vtkRenderer* renderer)
+{
+  caustics::Medium participating;
+  if (vtkCausticsMedium* medium = vtkCausticsMedium::GetFrom(renderer))
+  {
+    participating.enabled = medium->IsScattering();
+    for (int c = 0; c < 3; ++c)
+    {
+      participating.sigmaS[c] = medium->GetScatteringCoefficient()[c];
+      participating.sigmaA[c] = medium->GetAbsorptionCoefficient()[c];
+    }
+    participating.g = medium->GetAnisotropy();
+  }
+  return participating;
+}
 }
 
 struct vtkCausticsSceneExtractor::Internals
@@ -216,11 +421,182 @@ struct vtkCausticsSceneExtractor::Internals
   caustics::SceneData Scene;
   std::map<vtkActor*, CachedMesh> Cache;
   std::map<vtkActor*, caustics::Mesh> Empty; // actors with no triangles, kept to skip re-extraction
+  vtkCausticsSceneExtractor* Owner = nullptr; // warnings are its own
+
+  using MeshMap = std::map<vtkActor*, caustics::Mesh>;
+  MeshMap TakeMeshes();
+  void AddActors(vtkRenderer* renderer, double roughnessCutoff, MeshMap& previous);
+  void AddActor(vtkActor* actor, vtkMatrix4x4* matrix, int actorIndex, double roughnessCutoff,
+    MeshMap& previous);
+  caustics::Mesh ExtractMesh(
+    vtkActor* actor, vtkDataObject* input, vtkMatrix4x4* matrix, int actorIndex, CachedMesh& cache);
+  void ForgetDepartedActors();
+  void AddLights(vtkRenderer* renderer);
 };
+
+/**
+ * Empties the snapshot for a new one. Its meshes, and the empty ones, are handed
+ * back by actor so that unchanged meshes move into the new snapshot (no copy).
+ */
+vtkCausticsSceneExtractor::Internals::MeshMap vtkCausticsSceneExtractor::Internals::TakeMeshes()
+{
+  MeshMap previous;
+  for (auto& mesh : this->Scene.Meshes)
+  {
+    vtkActor* key = mesh.actor;
+    previous.emplace(key, std::move(mesh));
+  }
+  for (auto& entry : this->Empty)
+  {
+    previous.emplace(entry.first, std::move(entry.second));
+  }
+  this->Empty.clear();
+  this->Scene.Meshes.clear();
+  this->Scene.Materials.clear();
+  this->Scene.Lights.clear();
+  for (auto& entry : this->Cache)
+  {
+    entry.second.seen = false;
+  }
+  return previous;
+}
+
+/** Steps 1-3: every visible actor of every assembly path, with its world matrix. */
+void vtkCausticsSceneExtractor::Internals::AddActors(
+  vtkRenderer* renderer, double roughnessCutoff, MeshMap& previous)
+{
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator propIt;
+  props->InitTraversal(propIt);
+  int actorIndex = 0;
+  while (vtkProp* prop = props->GetNextProp(propIt))
+  {
+    if (!prop->GetVisibility())
+    {
+      continue;
+    }
+    prop->InitPathTraversal();
+    while (vtkAssemblyPath* path = prop->GetNextPath())
+    {
+      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
+      vtkMatrix4x4* matrix = path->GetLastNode()->GetMatrix();
+      if (!actor || !actor->GetVisibility() || !actor->GetMapper() || !matrix)
+      {
+        continue;
+      }
+      this->AddActor(actor, matrix, ++actorIndex, roughnessCutoff, previous);
+    }
+  }
+}
+
+/**
+ * Adds an actor of a caustics role with its material, re-extracting its mesh only
+ * when its input, mapper or matrix changed since the previous snapshot.
+ */
+void vtkCausticsSceneExtractor::Internals::AddActor(
+  vtkActor* actor, vtkMatrix4x4* matrix, int actorIndex, double roughnessCutoff, MeshMap& previous)
+{
+  const caustics::Material material = vtkCausticsMaterial::Describe(actor, roughnessCutoff);
+  if (material.role == caustics::Role::None)
+  {
+    return;
+  }
+  vtkMapper* mapper = actor->GetMapper();
+  mapper->Update();
+  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+  if (!input)
+  {
+    return;
+  }
+  CachedMesh& cache = this->Cache[actor];
+  auto reusable = previous.find(actor);
+  const bool changed = cache.version == 0 || reusable == previous.end() ||
+    reusable->second.version != cache.version || cache.inputTime != input->GetMTime() ||
+    cache.mapperTime != mapper->GetMTime() ||
+    !std::equal(cache.matrix, cache.matrix + 16, matrix->GetData());
+  caustics::Mesh mesh = changed ? this->ExtractMesh(actor, input, matrix, actorIndex, cache)
+                                : std::move(reusable->second);
+  cache.seen = true;
+  if (mesh.indices.empty())
+  {
+    // Keep it for the next update so an empty actor is not re-extracted each frame.
+    this->Empty[actor] = std::move(mesh);
+    return;
+  }
+  mesh.material = static_cast<int>(this->Scene.Materials.size());
+  this->Scene.Meshes.push_back(std::move(mesh));
+  this->Scene.Materials.push_back(material);
+}
+
+/** The actor's triangles in world space, with a new version; the cache records why. */
+caustics::Mesh vtkCausticsSceneExtractor::Internals::ExtractMesh(
+  vtkActor* actor, vtkDataObject* input, vtkMatrix4x4* matrix, int actorIndex, CachedMesh& cache)
+{
+  cache.inputTime = input->GetMTime();
+  cache.mapperTime = actor->GetMapper()->GetMTime();
+  std::copy(matrix->GetData(), matrix->GetData() + 16, cache.matrix);
+  cache.dropped = cache.repaired = 0;
+  caustics::Mesh mesh;
+  mesh.actor = actor;
+  mesh.name = vtkCausticsMaterial::GetName(actor);
+  if (mesh.name.empty())
+  {
+    mesh.name = "actor " + std::to_string(actorIndex);
+  }
+  if (!AppendDataObject(input, matrix, cache, mesh))
+  {
+    vtkWarningWithObjectMacro(this->Owner, << mesh.name << ": mapper input is a "
+                                           << input->GetClassName()
+                                           << ", not polygonal data; it takes no part in caustics");
+  }
+  if (cache.dropped > 0 || cache.repaired > 0)
+  {
+    vtkWarningWithObjectMacro(
+      this->Owner, << mesh.name << ": dropped " << cache.dropped
+                   << " triangle(s) with NaN/Inf vertices or zero area, replaced " << cache.repaired
+                   << " invalid vertex normal(s) by face normals");
+  }
+  mesh.version = cache.version = NextVersion();
+  return mesh;
+}
+
+/** Forgets actors that left the scene (their pointers may be reused). */
+void vtkCausticsSceneExtractor::Internals::ForgetDepartedActors()
+{
+  for (auto it = this->Cache.begin(); it != this->Cache.end();)
+  {
+    it = it->second.seen ? std::next(it) : this->Cache.erase(it);
+  }
+}
+
+/** Step 4: the lights that are on and bright, skipping non-finite ones. */
+void vtkCausticsSceneExtractor::Internals::AddLights(vtkRenderer* renderer)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkLightCollection* lights = renderer->GetLights();
+  vtkCollectionSimpleIterator lightIt;
+  lights->InitTraversal(lightIt);
+  while (vtkLight* vtklight = lights->GetNextLight(lightIt))
+  {
+    if (!vtklight->GetSwitch() || !(vtklight->GetIntensity() > 0.0))
+    {
+      continue;
+    }
+    const caustics::Light light = DescribeLight(vtklight, camera, INNER_CONE_ANGLE());
+    if (!IsFinite(light))
+    {
+      vtkWarningWithObjectMacro(
+        this->Owner, << "a light with a non-finite position or intensity was skipped");
+      continue;
+    }
+    this->Scene.Lights.push_back(light);
+  }
+}
 
 vtkCausticsSceneExtractor::vtkCausticsSceneExtractor()
   : Internal(new Internals)
 {
+  this->Internal->Owner = this;
 }
 
 vtkCausticsSceneExtractor::~vtkCausticsSceneExtractor() = default;
@@ -299,263 +675,14 @@ bool vtkCausticsSceneExtractor::Update(vtkRenderer* renderer, int width, int hei
     vtkErrorMacro(<< "image size " << width << " x " << height << " must be positive");
     return false;
   }
-  auto& scene = this->Internal->Scene;
-  // Unchanged meshes move from the previous snapshot into the new one (no copy).
-  std::map<vtkActor*, caustics::Mesh> previous;
-  for (auto& mesh : scene.Meshes)
-  {
-    vtkActor* key = mesh.actor;
-    previous.emplace(key, std::move(mesh));
-  }
-  for (auto& entry : this->Internal->Empty)
-  {
-    previous.emplace(entry.first, std::move(entry.second));
-  }
-  this->Internal->Empty.clear();
-  scene.Meshes.clear();
-  scene.Materials.clear();
-  scene.Lights.clear();
-  for (auto& entry : this->Internal->Cache)
-  {
-    entry.second.seen = false;
-  }
-
-  // 1-3: geometry and materials.
-  vtkPropCollection* props = renderer->GetViewProps();
-  vtkCollectionSimpleIterator propIt;
-  props->InitTraversal(propIt);
-  int actorIndex = 0;
-  while (vtkProp* prop = props->GetNextProp(propIt))
-  {
-    if (!prop->GetVisibility())
-    {
-      continue;
-    }
-    prop->InitPathTraversal();
-    while (vtkAssemblyPath* path = prop->GetNextPath())
-    {
-      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
-      vtkMatrix4x4* matrix = path->GetLastNode()->GetMatrix();
-      if (!actor || !actor->GetVisibility() || !actor->GetMapper() || !matrix)
-      {
-        continue;
-      }
-      ++actorIndex;
-      const caustics::Material material =
-        vtkCausticsMaterial::Describe(actor, this->RoughnessCutoff);
-      if (material.role == caustics::Role::None)
-      {
-        continue;
-      }
-      vtkMapper* mapper = actor->GetMapper();
-      mapper->Update();
-      vtkDataObject* input = mapper->GetInputDataObject(0, 0);
-      if (!input)
-      {
-        continue;
-      }
-      CachedMesh& cache = this->Internal->Cache[actor];
-      auto reusable = previous.find(actor);
-      const bool changed = cache.version == 0 || reusable == previous.end() ||
-        reusable->second.version != cache.version || cache.inputTime != input->GetMTime() ||
-        cache.mapperTime != mapper->GetMTime() ||
-        !std::equal(cache.matrix, cache.matrix + 16, matrix->GetData());
-      caustics::Mesh mesh;
-      if (!changed)
-      {
-        mesh = std::move(reusable->second);
-      }
-      else
-      {
-        cache.inputTime = input->GetMTime();
-        cache.mapperTime = mapper->GetMTime();
-        std::copy(matrix->GetData(), matrix->GetData() + 16, cache.matrix);
-        cache.dropped = cache.repaired = 0;
-        mesh.actor = actor;
-        mesh.name = vtkCausticsMaterial::GetName(actor);
-        if (mesh.name.empty())
-        {
-          mesh.name = "actor " + std::to_string(actorIndex);
-        }
-        if (auto* polyData = vtkPolyData::SafeDownCast(input))
-        {
-          AppendPolyData(polyData, matrix, cache, mesh);
-        }
-        else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
-        {
-          vtkSmartPointer<vtkCompositeDataIterator> it;
-          it.TakeReference(composite->NewIterator());
-          for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-          {
-            AppendPolyData(
-              vtkPolyData::SafeDownCast(it->GetCurrentDataObject()), matrix, cache, mesh);
-          }
-        }
-        else
-        {
-          vtkWarningMacro(<< mesh.name << ": mapper input is a " << input->GetClassName()
-                          << ", not polygonal data; it takes no part in caustics");
-        }
-        if (cache.dropped > 0 || cache.repaired > 0)
-        {
-          vtkWarningMacro(<< mesh.name << ": dropped " << cache.dropped
-                          << " triangle(s) with NaN/Inf vertices or zero area, replaced "
-                          << cache.repaired << " invalid vertex normal(s) by face normals");
-        }
-        mesh.version = cache.version = NextVersion();
-      }
-      cache.seen = true;
-      if (mesh.indices.empty())
-      {
-        // Keep it for the next update so an empty actor is not re-extracted each frame.
-        this->Internal->Empty[actor] = std::move(mesh);
-        continue;
-      }
-      mesh.material = static_cast<int>(scene.Materials.size());
-      scene.Meshes.push_back(std::move(mesh));
-      scene.Materials.push_back(material);
-    }
-  }
-  // Forget actors that left the scene (their pointers may be reused).
-  for (auto it = this->Internal->Cache.begin(); it != this->Internal->Cache.end();)
-  {
-    it = it->second.seen ? std::next(it) : this->Internal->Cache.erase(it);
-  }
-
-  // Bounds.
-  double all[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  double specular[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  scene.HasSpecular = false;
-  for (const auto& mesh : scene.Meshes)
-  {
-    const auto role = scene.Materials[mesh.material].role;
-    const bool isSpecular = role == caustics::Role::Reflector || role == caustics::Role::Refractor;
-    scene.HasSpecular = scene.HasSpecular || isSpecular;
-    for (std::uint32_t index : mesh.indices)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const double v = mesh.positions[3 * index + c];
-        all[2 * c] = std::min(all[2 * c], v);
-        all[2 * c + 1] = std::max(all[2 * c + 1], v);
-        if (isSpecular)
-        {
-          specular[2 * c] = std::min(specular[2 * c], v);
-          specular[2 * c + 1] = std::max(specular[2 * c + 1], v);
-        }
-      }
-    }
-  }
-  for (int i = 0; i < 6; ++i)
-  {
-    scene.Bounds[i] = scene.Meshes.empty() ? 0.0 : all[i];
-    scene.SpecularBounds[i] = scene.HasSpecular ? specular[i] : 0.0;
-  }
-
-  // 4: lights.
-  vtkCamera* camera = renderer->GetActiveCamera();
-  vtkLightCollection* lights = renderer->GetLights();
-  vtkCollectionSimpleIterator lightIt;
-  lights->InitTraversal(lightIt);
-  while (vtkLight* vtklight = lights->GetNextLight(lightIt))
-  {
-    if (!vtklight->GetSwitch() || !(vtklight->GetIntensity() > 0.0))
-    {
-      continue;
-    }
-    double position[3], focal[3];
-    if (vtklight->LightTypeIsHeadlight())
-    {
-      camera->GetPosition(position);
-      camera->GetFocalPoint(focal);
-    }
-    else if (vtklight->LightTypeIsCameraLight())
-    {
-      vtkNew<vtkMatrix4x4> lightToWorld;
-      lightToWorld->DeepCopy(camera->GetCameraLightTransformMatrix());
-      double p[4] = { 0, 0, 0, 1 }, f[4] = { 0, 0, 0, 1 }, out[4];
-      vtklight->GetPosition(p);
-      vtklight->GetFocalPoint(f);
-      lightToWorld->MultiplyPoint(p, out);
-      std::copy(out, out + 3, position);
-      lightToWorld->MultiplyPoint(f, out);
-      std::copy(out, out + 3, focal);
-    }
-    else
-    {
-      vtklight->GetTransformedPosition(position);
-      vtklight->GetTransformedFocalPoint(focal);
-    }
-    caustics::Light light;
-    const double axis[3] = { focal[0] - position[0], focal[1] - position[1],
-      focal[2] - position[2] };
-    light.direction = Normalized(axis);
-    light.position = { { position[0], position[1], position[2] } };
-    const double* color = vtklight->GetDiffuseColor();
-    for (int c = 0; c < 3; ++c)
-    {
-      light.radiometric[c] = std::max(0.0, vtklight->GetIntensity() * color[c]);
-    }
-    if (!vtklight->GetPositional())
-    {
-      light.type = caustics::Light::Type::Directional;
-    }
-    else if (vtklight->GetConeAngle() < 90.0)
-    {
-      light.type = caustics::Light::Type::Spot;
-      const double outer = std::max(0.0, vtklight->GetConeAngle());
-      double inner = 0.0;
-      if (vtklight->GetInformation() && vtklight->GetInformation()->Has(INNER_CONE_ANGLE()))
-      {
-        inner = std::min(outer, std::max(0.0, vtklight->GetInformation()->Get(INNER_CONE_ANGLE())));
-      }
-      light.cosOuter = std::cos(vtkMath::RadiansFromDegrees(outer));
-      light.cosInner = std::cos(vtkMath::RadiansFromDegrees(inner));
-    }
-    else
-    {
-      light.type = caustics::Light::Type::Point;
-    }
-    const bool finite = std::isfinite(light.position[0]) && std::isfinite(light.position[1]) &&
-      std::isfinite(light.position[2]) && std::isfinite(light.radiometric[0]) &&
-      std::isfinite(light.radiometric[1]) && std::isfinite(light.radiometric[2]);
-    if (!finite)
-    {
-      vtkWarningMacro(<< "a light with a non-finite position or intensity was skipped");
-      continue;
-    }
-    scene.Lights.push_back(light);
-  }
-
-  // 5: camera and medium.
-  auto& view = scene.View;
-  view.width = width;
-  view.height = height;
-  camera->GetPosition(view.position.data());
-  camera->GetFocalPoint(view.focalPoint.data());
-  camera->GetViewUp(view.viewUp.data());
-  view.viewAngle = camera->GetViewAngle();
-  view.parallel = camera->GetParallelProjection() != 0;
-  view.parallelScale = camera->GetParallelScale();
-  camera->GetClippingRange(view.clippingRange);
-  vtkMatrix4x4* worldToClip =
-    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0);
-  std::copy(worldToClip->GetData(), worldToClip->GetData() + 16, view.worldToClip);
-  vtkMatrix4x4::Invert(view.worldToClip, view.clipToWorld);
-
-  scene.Participating = caustics::Medium();
-  if (vtkCausticsMedium* medium = vtkCausticsMedium::GetFrom(renderer))
-  {
-    scene.Participating.enabled = medium->IsScattering();
-    for (int c = 0; c < 3; ++c)
-    {
-      scene.Participating.sigmaS[c] = medium->GetScatteringCoefficient()[c];
-      scene.Participating.sigmaA[c] = medium->GetAbsorptionCoefficient()[c];
-    }
-    scene.Participating.g = medium->GetAnisotropy();
-  }
+  auto& in = *this->Internal;
+  Internals::MeshMap previous = in.TakeMeshes();
+  in.AddActors(renderer, this->RoughnessCutoff, previous);
+  in.ForgetDepartedActors();
+  ComputeBounds(in.Scene);
+  in.AddLights(renderer);
+  DescribeView(renderer->GetActiveCamera(), width, height, in.Scene.View);
+  in.Scene.Participating = DescribeMedium(renderer);
   return true;
 }
 
