@@ -216,7 +216,8 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     const caustics::LightView& photonView = this->GetLightBuffers()->GetView(index);
     // Photons after the first specular interaction (the shared stage).
     this->BeginStage("hcm emit");
-    light.Traced = light.Emitter->Emit(renWin, this->GetLightBuffers(), index, this->GetGeometry(), scene);
+    light.Traced =
+      light.Emitter->Emit(renWin, this->GetLightBuffers(), index, this->GetGeometry(), scene);
     this->EndStage("hcm emit");
     // The receivers the caustic map sees, and the refractors' faces from the light.
     this->BeginStage("hcm light layers");
@@ -420,7 +421,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "GatherMode: " << gathers[this->GatherMode] << "\n";
   os << indent << "ClusterMode: " << clusters[this->ClusterMode] << "\n";
   os << indent << "SplatMode: " << splats[this->SplatMode] << "\n";
-  os << indent << "PhotonBufferResolution (LightBufferResolution): " << this->GetLightBufferResolution()
+  os << indent
+     << "PhotonBufferResolution (LightBufferResolution): " << this->GetLightBufferResolution()
      << "\n";
   os << indent << "CausticMapResolution: " << this->CausticMapResolution << "\n";
   os << indent << "TraversalStartResolution: " << this->TraversalStartResolution << "\n";

@@ -571,8 +571,7 @@ bool vtkCausticsRenderPass::RenderCameraGBuffers()
   const FrameInputs& f = this->Frame;
   const int opaque = vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(2);
   const int refractive = vtkCausticsSceneGeometry::RoleBit(3);
-  bool ok = f.CameraGBuffer->Render(
-    f.Window, f.Geometry, f.WorldToClip, f.Width, f.Height, opaque);
+  bool ok = f.CameraGBuffer->Render(f.Window, f.Geometry, f.WorldToClip, f.Width, f.Height, opaque);
   ok = f.RefractiveGBuffer->Render(
          f.Window, f.Geometry, f.WorldToClip, f.Width, f.Height, refractive) &&
     ok;
@@ -792,8 +791,8 @@ void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
     static_cast<float>(light.radiometric[1]), static_cast<float>(light.radiometric[2]));
   program->SetUniformf("cosOuter", static_cast<float>(light.cosOuter));
   program->SetUniformf("cosInner", static_cast<float>(light.cosInner));
-  program->SetUniformf("texelWorldSize",
-    static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
+  program->SetUniformf(
+    "texelWorldSize", static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
 }
 
 void vtkCausticsRenderPass::Composite(bool toFinalTexture)
@@ -892,8 +891,8 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
   static const BufferEntry table[] = {
     { "FinalColor", 3, false, [](Pass* p, int) { return p->Internal->FinalTexture.Get(); },
       [](Pass* p) { return p->KeepBuffers; } },
-    { "CausticIrradiance", 3, false,
-      [](Pass* p, int) { return p->Internal->CausticTexture.Get(); }, caustics },
+    { "CausticIrradiance", 3, false, [](Pass* p, int) { return p->Internal->CausticTexture.Get(); },
+      caustics },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
     { "VolumeRadiance", 3, false, [](Pass* p, int) { return p->Internal->VolumeTexture.Get(); },
@@ -901,8 +900,8 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
     { "TechniqueColor", 4, false,
       [](Pass* p, int) { return p->Internal->TechniqueColorTexture.Get(); },
       [](Pass* p) { return p->Result.Caustics && p->Result.TechniqueColor; } },
-    { "Position", 4, false, [](Pass* p, int) { return p->GetCameraGBuffer()->GetPositionTexture(); },
-      always },
+    { "Position", 4, false,
+      [](Pass* p, int) { return p->GetCameraGBuffer()->GetPositionTexture(); }, always },
     { "Normal", 4, false, [](Pass* p, int) { return p->GetCameraGBuffer()->GetNormalTexture(); },
       always },
     { "Albedo", 4, false, [](Pass* p, int) { return p->GetCameraGBuffer()->GetAlbedoTexture(); },
@@ -974,8 +973,8 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
     return this->ReadReceiverMask(name, output);
   }
   const BufferEntry* entry = FindBuffer(base);
-  const bool lightOk = entry && (!entry->PerLight ||
-    (light >= 0 && light < this->GetLightBuffers()->GetNumberOfLights()));
+  const bool lightOk = entry &&
+    (!entry->PerLight || (light >= 0 && light < this->GetLightBuffers()->GetNumberOfLights()));
   vtkTextureObject* texture =
     lightOk && entry->Available(this) ? entry->Texture(this, light) : nullptr;
   if (!texture || !texture->GetHandle())

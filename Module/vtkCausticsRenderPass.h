@@ -173,7 +173,7 @@ protected:
     int Width = 0; ///< pixels of the renderer's (tiled) viewport
     int Height = 0;
     int Origin[2] = { 0, 0 };
-    float WorldToClip[16] = {}; ///< the camera, column-major (as GL wants it)
+    float WorldToClip[16] = {};                 ///< the camera, column-major (as GL wants it)
     const caustics::SceneData* Scene = nullptr; ///< the snapshot (the extractor's)
     double Background[3] = { 0.0, 0.0, 0.0 };   ///< the renderer's: what escaping rays see
     vtkCausticsSceneGeometry* Geometry = nullptr;

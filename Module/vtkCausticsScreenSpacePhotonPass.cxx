@@ -241,16 +241,16 @@ bool vtkCausticsScreenSpacePhotonPass::RenderLayers(vtkOpenGLRenderWindow* renWi
   in.SceneLayers->SetMaximumNumberOfLayers(this->MaximumNumberOfLayers);
   in.SceneLayers->SetPerObject(this->PerObjectLayers);
   in.SceneLayers->SetTimings(this->GetTimings(), "ssp layers ");
-  in.HasLayers = in.SceneLayers->Render(
-    renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
+  in.HasLayers =
+    in.SceneLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
   in.HasRefractorLayers = false;
   if (in.HasLayers && this->RefractionTracing &&
     f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) > 0)
   {
     in.RefractorLayers->SetMaximumNumberOfLayers(this->MaximumNumberOfLayers);
     in.RefractorLayers->SetTimings(this->GetTimings(), "ssp refractor layers ");
-    in.HasRefractorLayers = in.RefractorLayers->Render(
-      renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
+    in.HasRefractorLayers =
+      in.RefractorLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
   }
   return in.HasLayers;
 }

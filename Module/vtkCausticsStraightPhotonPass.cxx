@@ -7,10 +7,10 @@
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsStraightPhotonPassCS.h" // The transport shader
 #include "vtkObjectFactory.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
-#include "vtkCausticsStraightPhotonPassCS.h" // the transport shader
 
 vtkStandardNewMacro(vtkCausticsStraightPhotonPass);
 
@@ -67,10 +67,9 @@ bool vtkCausticsStraightPhotonPass::Transport(const FrameInputs& in, int light)
     return false;
   }
   // Image units 0-4: the photons and the receivers (normals are RGBA16F); 5-7: hits.
-  vtkTextureObject* images[] = { s.Emitter->GetPositionTexture(),
-    s.Emitter->GetDirectionTexture(), s.Emitter->GetFluxTexture(),
-    s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture(), s.Hits[0], s.Hits[1],
-    s.Hits[2] };
+  vtkTextureObject* images[] = { s.Emitter->GetPositionTexture(), s.Emitter->GetDirectionTexture(),
+    s.Emitter->GetFluxTexture(), s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture(),
+    s.Hits[0], s.Hits[1], s.Hits[2] };
   for (int i = 0; i < 8; ++i)
   {
     if (i >= 5)
