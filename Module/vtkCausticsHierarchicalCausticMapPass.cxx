@@ -106,7 +106,7 @@ int vtkCausticsHierarchicalCausticMapPass::GetNumberOfLights() const
 
 bool vtkCausticsHierarchicalCausticMapPass::GetLightTraced(int i) const
 {
-  return this->LastFrameHadCaustics && i >= 0 && i < this->GetNumberOfLights() &&
+  return this->GetLastFrameHadCaustics() && i >= 0 && i < this->GetNumberOfLights() &&
     this->Internal->Lights[i]->Traced;
 }
 
@@ -134,7 +134,7 @@ void vtkCausticsHierarchicalCausticMapPass::BeginStage(const char* name)
   // and ends when its work is done, so that the CPU time of the stage is its wall
   // time on any implementation (Mesa's llvmpipe runs compute dispatches at once
   // but timestamps them only when it flushes its rasterizer).
-  if (this->Timings->GetSynchronous())
+  if (this->GetTimings()->GetSynchronous())
   {
     glFinish();
   }
@@ -143,38 +143,23 @@ void vtkCausticsHierarchicalCausticMapPass::BeginStage(const char* name)
 
 void vtkCausticsHierarchicalCausticMapPass::EndStage(const char* name)
 {
-  if (this->Timings->GetSynchronous())
+  if (this->GetTimings()->GetSynchronous())
   {
     glFinish();
   }
   this->StopStage(name);
 }
 
-bool vtkCausticsHierarchicalCausticMapPass::NeedsCaustics()
+vtkCausticsRenderPass::CausticNeeds vtkCausticsHierarchicalCausticMapPass::GetCausticNeeds()
 {
-  // Nothing of the last frame stays "traced" if this frame runs no photon stage.
-  for (auto& light : this->Internal->Lights)
-  {
-    light->Traced = false;
-  }
-  if (!this->Superclass::NeedsCaustics())
-  {
-    return false;
-  }
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-  for (const caustics::Light& light : scene.Lights)
-  {
-    if (LightReachesSpecular(scene, light))
-    {
-      return true;
-    }
-  }
-  return false;
+  CausticNeeds needs;
+  needs.LitSpecular = true;
+  return needs;
 }
 
 void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow* renWin)
 {
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *this->GetFrameInputs().Scene;
   auto& lights = this->Internal->Lights;
   const std::size_t count = scene.Lights.size();
   // Lights that went away give their GL objects back.
@@ -192,8 +177,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     PerLight& light = *lights[i];
     const int index = static_cast<int>(i);
     light.MapView = caustics::ComputeLightView(scene, index, caustics::LightView::Focus::Scene);
-    light.Traced = index < this->LightBuffers->GetNumberOfLights() &&
-      this->LightBuffers->GetView(index).valid && light.MapView.valid &&
+    light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
+      this->GetLightBuffers()->GetView(index).valid && light.MapView.valid &&
       LightReachesSpecular(scene, scene.Lights[i]);
 
     light.Emitter->SetSplitFresnel(this->SplitFresnel);
@@ -218,7 +203,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
 
 bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin)
 {
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *this->GetFrameInputs().Scene;
   bool ok = true;
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {
@@ -228,22 +213,23 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
       continue;
     }
     const int index = static_cast<int>(i);
-    const caustics::LightView& photonView = this->LightBuffers->GetView(index);
+    const caustics::LightView& photonView = this->GetLightBuffers()->GetView(index);
     // Photons after the first specular interaction (the shared stage).
     this->BeginStage("hcm emit");
-    light.Traced = light.Emitter->Emit(renWin, this->LightBuffers, index, this->Geometry, scene);
+    light.Traced =
+      light.Emitter->Emit(renWin, this->GetLightBuffers(), index, this->GetGeometry(), scene);
     this->EndStage("hcm emit");
     // The receivers the caustic map sees, and the refractors' faces from the light.
     this->BeginStage("hcm light layers");
     light.Traced = light.Traced &&
-      light.Map->RenderReceivers(renWin, this->Geometry, light.MapView) &&
+      light.Map->RenderReceivers(renWin, this->GetGeometry(), light.MapView) &&
       light.Photons->RenderLayers(
-        renWin, this->Geometry, photonView, light.Emitter->GetGridSize()[0]);
+        renWin, this->GetGeometry(), photonView, light.Emitter->GetGridSize()[0]);
     this->EndStage("hcm light layers");
     // Where each photon lands.
     this->BeginStage("hcm trace");
     light.Traced = light.Traced &&
-      light.Photons->Trace(renWin, this->Geometry, scene, index, light.Emitter, photonView,
+      light.Photons->Trace(renWin, this->GetGeometry(), scene, index, light.Emitter, photonView,
         light.MapView, light.Map->GetReceivers(0));
     this->EndStage("hcm trace");
     ok = ok && light.Traced;
@@ -253,7 +239,7 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
 
 bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWindow* renWin)
 {
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *this->GetFrameInputs().Scene;
   // Clusters land in one texel: the smallest splat (or the constant one).
   const double clusterRadius =
     this->SplatMode == SPLAT_CONSTANT ? this->ConstantSplatRadius : this->MinimumSplatRadius;
@@ -285,14 +271,15 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderFinal(vtkOpenGLRenderWindow* r
   {
     if (light->Traced)
     {
-      ok = light->Map->Apply(renWin, this->CameraGBuffer) && ok;
+      ok = light->Map->Apply(renWin, this->GetCameraGBuffer()) && ok;
     }
   }
   return ok;
 }
 
-bool vtkCausticsHierarchicalCausticMapPass::RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin)
+bool vtkCausticsHierarchicalCausticMapPass::RenderCausticIrradiance(const FrameInputs& in)
 {
+  vtkOpenGLRenderWindow* renWin = in.Window;
   this->PrepareLights(renWin);
 
   this->BeginStage("hcm photon buffer");
@@ -313,12 +300,12 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderCausticIrradiance(vtkOpenGLRen
 bool vtkCausticsHierarchicalCausticMapPass::GetCounters(int i, Counters& counters)
 {
   counters = Counters();
-  if (!this->GetLightTraced(i) || !this->LastWindow)
+  if (!this->GetLightTraced(i) || !this->GetLastWindow())
   {
     vtkErrorMacro(<< "GetCounters: light " << i << " ran no photon stage in the last frame");
     return false;
   }
-  this->LastWindow->MakeCurrent();
+  this->GetLastWindow()->MakeCurrent();
   PerLight& light = *this->Internal->Lights[i];
   vtkCausticsPhotonBuffer::Statistics statistics;
   vtkCausticsPhotonBufferHierarchy::Counters gather;
@@ -384,14 +371,14 @@ double vtkCausticsHierarchicalCausticMapPass::GetDroppedFluxFraction(int light)
 bool vtkCausticsHierarchicalCausticMapPass::ReadCausticMap(
   int light, int level, vtkImageData* output)
 {
-  if (!output || !this->GetLightTraced(light) || !this->LastWindow || level < 0 ||
+  if (!output || !this->GetLightTraced(light) || !this->GetLastWindow() || level < 0 ||
     level >= this->Internal->Lights[light]->Map->GetNumberOfLevels())
   {
     vtkErrorMacro(<< "ReadCausticMap: no level " << level << " of light " << light
                   << " in the last frame");
     return false;
   }
-  this->LastWindow->MakeCurrent();
+  this->GetLastWindow()->MakeCurrent();
   auto image = caustics::gl::ReadTexture(
     this->Internal->Lights[light]->Map->GetIrradianceTexture(level), "CausticMap", 3);
   output->ShallowCopy(image);
@@ -400,12 +387,12 @@ bool vtkCausticsHierarchicalCausticMapPass::ReadCausticMap(
 
 bool vtkCausticsHierarchicalCausticMapPass::ReadPhotonBuffer(int light, vtkImageData* output)
 {
-  if (!output || !this->GetLightTraced(light) || !this->LastWindow)
+  if (!output || !this->GetLightTraced(light) || !this->GetLastWindow())
   {
     vtkErrorMacro(<< "ReadPhotonBuffer: light " << light << " has no photon buffer this frame");
     return false;
   }
-  this->LastWindow->MakeCurrent();
+  this->GetLastWindow()->MakeCurrent();
   vtkCausticsPhotonBuffer* photons = this->Internal->Lights[light]->Photons;
   auto position = caustics::gl::ReadTexture(photons->GetHitPositionTexture(), "HitPosition", 4);
   auto normal = caustics::gl::ReadTexture(photons->GetHitNormalTexture(), "HitNormal", 4);
@@ -434,7 +421,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "GatherMode: " << gathers[this->GatherMode] << "\n";
   os << indent << "ClusterMode: " << clusters[this->ClusterMode] << "\n";
   os << indent << "SplatMode: " << splats[this->SplatMode] << "\n";
-  os << indent << "PhotonBufferResolution (LightBufferResolution): " << this->LightBufferResolution
+  os << indent
+     << "PhotonBufferResolution (LightBufferResolution): " << this->GetLightBufferResolution()
      << "\n";
   os << indent << "CausticMapResolution: " << this->CausticMapResolution << "\n";
   os << indent << "TraversalStartResolution: " << this->TraversalStartResolution << "\n";
@@ -452,6 +440,6 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {
     os << indent.GetNextIndent() << "light " << i << ": "
-       << (this->Internal->Lights[i]->Traced ? "traced" : "no photon stage") << "\n";
+       << (this->GetLightTraced(static_cast<int>(i)) ? "traced" : "no photon stage") << "\n";
   }
 }

@@ -252,8 +252,9 @@ protected:
   vtkCausticsHierarchicalCausticMapPass();
   ~vtkCausticsHierarchicalCausticMapPass() override;
 
-  bool NeedsCaustics() override;
-  bool RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin) override;
+  /** A light must reach a specular actor (the base pass tests it). */
+  CausticNeeds GetCausticNeeds() override;
+  bool RenderCausticIrradiance(const FrameInputs& in) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   /** StartStage/StopStage that wait for the GPU when the timings are synchronous. */

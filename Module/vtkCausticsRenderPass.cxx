@@ -1,9 +1,13 @@
 #include "vtkCausticsRenderPass.h"
 
+#include "vtkActor.h"
+#include "vtkAssemblyNode.h"
+#include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
@@ -11,12 +15,17 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderState.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
@@ -27,13 +36,19 @@
 #include "vtkCausticsDirectIrradianceFS.h"
 #include "vtkCausticsFullScreenVS.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkCausticsRenderPass);
 
 namespace
 {
+using Box = std::array<double, 6>;
+
 /** Binds a framebuffer with one colour attachment and clears it to zero. */
 void BindAndClear(vtkOpenGLFramebufferObject* framebuffer, vtkTextureObject* texture,
   vtkOpenGLRenderWindow* renWin, bool attach)
@@ -48,29 +63,224 @@ void BindAndClear(vtkOpenGLFramebufferObject* framebuffer, vtkTextureObject* tex
   const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
   glClearBufferfv(GL_COLOR, 0, zero);
 }
+
+bool HasPower(const caustics::Light& light)
+{
+  return light.radiometric[0] > 0 || light.radiometric[1] > 0 || light.radiometric[2] > 0;
 }
 
-vtkCausticsRenderPass::vtkCausticsRenderPass()
-  : Triangle(new caustics::gl::FullScreenTriangle)
+/** Bounding box of a mesh's vertices. */
+Box MeshBounds(const caustics::Mesh& mesh)
 {
-  this->ShadowBuffers->SetFocus(vtkCausticsLightBuffers::FOCUS_SCENE);
-  this->DirectProgram->SetName("direct irradiance");
-  this->DirectProgram->SetVertexSource(vtkCausticsFullScreenVS);
-  this->DirectProgram->SetFragmentSource(vtkCausticsDirectIrradianceFS);
-  this->DirectProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
-  this->CompositeProgram->SetName("caustics composite");
-  this->CompositeProgram->SetVertexSource(vtkCausticsFullScreenVS);
-  this->CompositeProgram->SetFragmentSource(vtkCausticsCompositeFS);
-  this->CompositeProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
-  for (float& v : this->WorldToClip)
+  Box b = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+  for (std::size_t v = 0; v + 2 < mesh.positions.size(); v += 3)
   {
-    v = 0.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      b[2 * c] = std::min(b[2 * c], static_cast<double>(mesh.positions[v + c]));
+      b[2 * c + 1] = std::max(b[2 * c + 1], static_cast<double>(mesh.positions[v + c]));
+    }
   }
+  return b;
+}
+
+/** True if the box may intersect the clip volume of a row-major world-to-clip matrix. */
+bool BoxInFrustum(const Box& b, const double m[16])
+{
+  if (b[0] > b[1])
+  {
+    return false; // no vertex
+  }
+  // Planes w + s * clip_a >= 0 for a = x, y, z and s = +-1.
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int s = -1; s <= 1; s += 2)
+    {
+      bool allOutside = true;
+      for (int corner = 0; corner < 8 && allOutside; ++corner)
+      {
+        const double p[3] = { b[(corner & 1) ? 1 : 0], b[(corner & 2) ? 3 : 2],
+          b[(corner & 4) ? 5 : 4] };
+        double w = m[15], c = m[4 * a + 3];
+        for (int k = 0; k < 3; ++k)
+        {
+          w += m[12 + k] * p[k];
+          c += m[4 * a + k] * p[k];
+        }
+        allOutside = w + s * c < 0.0;
+      }
+      if (allOutside)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+/**
+ * True if a light with power can send light into box `sb`: any directional or
+ * point light, a spot light whose outer cone meets the box's bounding sphere.
+ */
+bool LightReachesBox(const caustics::Light& light, const double sb[6])
+{
+  if (!HasPower(light))
+  {
+    return false;
+  }
+  if (light.type != caustics::Light::Type::Spot || light.cosOuter <= -1.0)
+  {
+    return true;
+  }
+  double v[3], radius2 = 0.0, distance2 = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    v[c] = 0.5 * (sb[2 * c] + sb[2 * c + 1]) - light.position[c];
+    radius2 += 0.25 * (sb[2 * c + 1] - sb[2 * c]) * (sb[2 * c + 1] - sb[2 * c]);
+    distance2 += v[c] * v[c];
+  }
+  if (distance2 <= radius2)
+  {
+    return true; // inside the bounding sphere
+  }
+  const double distance = std::sqrt(distance2);
+  const double cosAxis =
+    (v[0] * light.direction[0] + v[1] * light.direction[1] + v[2] * light.direction[2]) / distance;
+  const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
+  const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
+  return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+}
+
+/**
+ * World bounds of the visible specular actors as the snapshot would classify
+ * them (VTK's own bounds, cached by VTK). False when one has no known extent.
+ */
+bool CollectSpecularBounds(vtkRenderer* renderer, double cutoff, std::vector<Box>& specular)
+{
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (!prop->GetVisibility())
+    {
+      continue;
+    }
+    prop->InitPathTraversal();
+    while (vtkAssemblyPath* path = prop->GetNextPath())
+    {
+      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
+      if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+      {
+        continue;
+      }
+      const int role = vtkCausticsMaterial::Classify(actor, cutoff);
+      if (role == vtkCausticsMaterial::ROLE_REFLECTOR ||
+        role == vtkCausticsMaterial::ROLE_REFRACTOR)
+      {
+        const double* b = actor->GetBounds();
+        if (!b || !vtkMath::AreBoundsInitialized(b))
+        {
+          return false; // unknown extent: let the snapshot decide
+        }
+        specular.push_back({ b[0], b[1], b[2], b[3], b[4], b[5] });
+      }
+    }
+  }
+  return true;
+}
+
+/** -1: no VTK light can reach `bounds`, 1: one may, 0: a degenerate light (undecided). */
+int VTKLightsReach(vtkRenderer* renderer, const double bounds[6])
+{
+  vtkCollectionSimpleIterator it;
+  vtkLightCollection* lights = renderer->GetLights();
+  lights->InitTraversal(it);
+  bool reached = false;
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || !(light->GetIntensity() > 0.0))
+    {
+      continue;
+    }
+    caustics::Light physical;
+    physical.radiometric = { { 1.0, 1.0, 1.0 } };
+    double position[3], focal[3], axis[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    vtkMath::Subtract(focal, position, axis);
+    if (vtkMath::Normalize(axis) == 0.0)
+    {
+      return 0; // degenerate: let the snapshot report it
+    }
+    physical.position = { { position[0], position[1], position[2] } };
+    physical.direction = { { axis[0], axis[1], axis[2] } };
+    physical.type = caustics::Light::Type::Directional;
+    if (light->GetPositional() && light->GetConeAngle() < 90.0)
+    {
+      physical.type = caustics::Light::Type::Spot;
+      physical.cosOuter = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
+    }
+    reached = reached || LightReachesBox(physical, bounds);
+  }
+  return reached ? 1 : -1;
+}
+}
+
+struct vtkCausticsRenderPass::Internals
+{
+  vtkNew<vtkCausticsSceneExtractor> Extractor;
+  vtkNew<vtkCausticsSceneGeometry> Geometry;
+  vtkNew<vtkCausticsGBuffer> CameraGBuffer;      // receivers and reflectors
+  vtkNew<vtkCausticsGBuffer> RefractiveGBuffer;  // refractors
+  vtkNew<vtkCausticsLightBuffers> LightBuffers;  // photon buffers, aimed at specular actors
+  vtkNew<vtkCausticsLightBuffers> ShadowBuffers; // shadow maps, aimed at the scene
+  vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
+  vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
+  vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
+  vtkNew<vtkOpenGLFramebufferObject> DirectFramebuffer;
+  vtkNew<vtkTextureObject> VolumeTexture;         // RGBA32F, W/(m^2 sr)
+  vtkNew<vtkTextureObject> TechniqueColorTexture; // RGBA32F, display colour, a = 1: replace
+  vtkNew<vtkTextureObject> DelegateColorTexture;
+  vtkNew<vtkTextureObject> DelegateDepthTexture;
+  vtkNew<vtkOpenGLFramebufferObject> DelegateFramebuffer;
+  vtkNew<vtkTextureObject> FinalTexture; // HDR copy of the composite, on request
+  vtkNew<vtkOpenGLFramebufferObject> FinalFramebuffer;
+  vtkNew<vtkCausticsTimings> Timings;
+  vtkNew<vtkCausticsShaderProgram> DirectProgram;
+  vtkNew<vtkCausticsShaderProgram> CompositeProgram;
+  caustics::gl::FullScreenTriangle Triangle;
+  // Per-mesh bounds for the view test, refreshed when a mesh's version changes.
+  std::vector<std::pair<unsigned long, Box>> MeshBounds;
+};
+
+vtkCausticsRenderPass::vtkCausticsRenderPass()
+  : Internal(new Internals)
+{
+  auto& in = *this->Internal;
+  in.ShadowBuffers->SetFocus(vtkCausticsLightBuffers::FOCUS_SCENE);
+  in.DirectProgram->SetName("direct irradiance");
+  in.DirectProgram->SetVertexSource(vtkCausticsFullScreenVS);
+  in.DirectProgram->SetFragmentSource(vtkCausticsDirectIrradianceFS);
+  in.DirectProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  in.CompositeProgram->SetName("caustics composite");
+  in.CompositeProgram->SetVertexSource(vtkCausticsFullScreenVS);
+  in.CompositeProgram->SetFragmentSource(vtkCausticsCompositeFS);
+  in.CompositeProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  // The frame's inputs that never change: the pass's own stages.
+  this->Frame.Scene = &in.Extractor->GetScene();
+  this->Frame.Geometry = in.Geometry;
+  this->Frame.CameraGBuffer = in.CameraGBuffer;
+  this->Frame.RefractiveGBuffer = in.RefractiveGBuffer;
+  this->Frame.LightBuffers = in.LightBuffers;
+  this->Frame.DelegateColor = in.DelegateColorTexture;
+  this->Frame.DelegateDepth = in.DelegateDepthTexture;
+  this->Frame.CausticIrradiance = in.CausticTexture;
+  this->Frame.DirectIrradiance = in.DirectTexture;
 }
 
 vtkCausticsRenderPass::~vtkCausticsRenderPass()
 {
-  delete this->Triangle;
   if (this->DelegatePass)
   {
     this->DelegatePass->Delete();
@@ -80,231 +290,529 @@ vtkCausticsRenderPass::~vtkCausticsRenderPass()
 
 void vtkCausticsRenderPass::SetRoughnessCutoff(double cutoff)
 {
-  this->Extractor->SetRoughnessCutoff(cutoff);
+  this->Internal->Extractor->SetRoughnessCutoff(cutoff);
   this->Modified();
 }
 
 double vtkCausticsRenderPass::GetRoughnessCutoff()
 {
-  return this->Extractor->GetRoughnessCutoff();
+  return this->Internal->Extractor->GetRoughnessCutoff();
+}
+
+vtkCausticsTimings* vtkCausticsRenderPass::GetTimings()
+{
+  return this->Internal->Timings;
+}
+
+vtkCausticsSceneExtractor* vtkCausticsRenderPass::GetSceneExtractor()
+{
+  return this->Internal->Extractor;
+}
+
+vtkCausticsSceneGeometry* vtkCausticsRenderPass::GetGeometry()
+{
+  return this->Internal->Geometry;
+}
+
+vtkCausticsGBuffer* vtkCausticsRenderPass::GetCameraGBuffer()
+{
+  return this->Internal->CameraGBuffer;
+}
+
+vtkCausticsGBuffer* vtkCausticsRenderPass::GetRefractiveGBuffer()
+{
+  return this->Internal->RefractiveGBuffer;
+}
+
+vtkCausticsLightBuffers* vtkCausticsRenderPass::GetLightBuffers()
+{
+  return this->Internal->LightBuffers;
+}
+
+bool vtkCausticsRenderPass::GetLastFrameHadCaustics() const
+{
+  return this->Result.Caustics;
+}
+
+const vtkCausticsRenderPass::FrameInputs& vtkCausticsRenderPass::GetFrameInputs() const
+{
+  return this->Frame;
+}
+
+const vtkCausticsRenderPass::FrameResult& vtkCausticsRenderPass::GetFrameResult() const
+{
+  return this->Result;
+}
+
+vtkOpenGLRenderWindow* vtkCausticsRenderPass::GetLastWindow()
+{
+  return this->LastWindow;
 }
 
 void vtkCausticsRenderPass::StartStage(const char* name)
 {
-  this->Timings->StartStage(name);
+  this->Internal->Timings->StartStage(name);
 }
 
 void vtkCausticsRenderPass::StopStage(const char* name)
 {
-  this->Timings->StopStage(name);
+  this->Internal->Timings->StopStage(name);
 }
 
-bool vtkCausticsRenderPass::NeedsCaustics()
+vtkCausticsRenderPass::CausticNeeds vtkCausticsRenderPass::GetCausticNeeds()
 {
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-  if (!scene.HasSpecular || scene.Lights.empty())
-  {
-    return false;
-  }
-  bool hasReceiver = false;
-  for (const auto& material : scene.Materials)
-  {
-    hasReceiver = hasReceiver || material.role == caustics::Role::Receiver;
-  }
-  bool hasPower = false;
-  for (const auto& light : scene.Lights)
-  {
-    hasPower =
-      hasPower || light.radiometric[0] > 0 || light.radiometric[1] > 0 || light.radiometric[2] > 0;
-  }
-  return hasReceiver && hasPower;
+  return CausticNeeds(); // a specular actor, a receiver and a light with power
 }
 
-bool vtkCausticsRenderPass::RenderCausticIrradiance(vtkOpenGLRenderWindow*)
+bool vtkCausticsRenderPass::NeedsCaustics(const FrameInputs&)
+{
+  return this->SceneNeedsCaustics(this->GetCausticNeeds());
+}
+
+bool vtkCausticsRenderPass::RenderCausticIrradiance(const FrameInputs&)
 {
   return true; // no technique: the caustic irradiance stays zero
 }
 
-void vtkCausticsRenderPass::ReleaseTechniqueResources(vtkWindow*) {}
+bool vtkCausticsRenderPass::RenderVolumeRadiance(const FrameInputs&, vtkTextureObject*)
+{
+  return false; // no technique: no volume light
+}
 
-bool vtkCausticsRenderPass::RenderTechniqueColor(vtkOpenGLRenderWindow*)
+bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs&, vtkTextureObject*)
 {
   return false; // no technique: VTK's colour everywhere
 }
 
-bool vtkCausticsRenderPass::PrepareScene(vtkRenderer* renderer, vtkOpenGLRenderWindow*)
+void vtkCausticsRenderPass::ReleaseTechniqueResources(vtkWindow*) {}
+
+bool vtkCausticsRenderPass::CannotNeedCaustics(vtkRenderer* renderer, const CausticNeeds& needs)
 {
-  if (!this->Extractor->Update(renderer, this->Width, this->Height))
+  std::vector<Box> specular;
+  if (!CollectSpecularBounds(renderer, this->GetRoughnessCutoff(), specular))
   {
     return false;
   }
-  caustics::gl::ToColumnMajor(this->Extractor->GetScene().View.worldToClip, this->WorldToClip);
+  if (specular.empty())
+  {
+    return true;
+  }
+  double bounds[6];
+  for (int c = 0; c < 3; ++c)
+  {
+    bounds[2 * c] = VTK_DOUBLE_MAX;
+    bounds[2 * c + 1] = -VTK_DOUBLE_MAX;
+    for (const Box& b : specular)
+    {
+      bounds[2 * c] = std::min(bounds[2 * c], b[2 * c]);
+      bounds[2 * c + 1] = std::max(bounds[2 * c + 1], b[2 * c + 1]);
+    }
+  }
+  if (needs.LitSpecular)
+  {
+    const int reach = VTKLightsReach(renderer, bounds);
+    if (reach != 1)
+    {
+      return reach < 0;
+    }
+  }
+  if (!needs.SpecularInView)
+  {
+    return false;
+  }
+  // Is any of them in the camera's view?
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkMatrix4x4* matrix = renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+    height > 0 ? static_cast<double>(width) / height : 1.0, -1.0, 1.0);
+  for (const Box& b : specular)
+  {
+    if (BoxInFrustum(b, &matrix->Element[0][0]))
+    {
+      return false;
+    }
+  }
   return true;
+}
+
+bool vtkCausticsRenderPass::SceneNeedsCaustics(const CausticNeeds& needs)
+{
+  const caustics::SceneData& scene = *this->Frame.Scene;
+  if (!scene.HasSpecular || scene.Lights.empty())
+  {
+    return false;
+  }
+  bool hasReceiver = false, hasPower = false, reached = !needs.LitSpecular;
+  for (const auto& material : scene.Materials)
+  {
+    hasReceiver = hasReceiver || material.role == caustics::Role::Receiver;
+  }
+  for (const auto& light : scene.Lights)
+  {
+    hasPower = hasPower || HasPower(light);
+    reached = reached || LightReachesBox(light, scene.SpecularBounds);
+  }
+  if (!hasReceiver || !hasPower || !reached)
+  {
+    return false;
+  }
+  if (!needs.SpecularInView)
+  {
+    return true;
+  }
+  // A specular mesh whose bounding box meets the camera's frustum (cached per mesh).
+  auto& cache = this->Internal->MeshBounds;
+  cache.resize(scene.Meshes.size(), { ~0ul, {} });
+  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  {
+    const caustics::Mesh& mesh = scene.Meshes[m];
+    const caustics::Role role = scene.Materials[mesh.material].role;
+    if (role != caustics::Role::Reflector && role != caustics::Role::Refractor)
+    {
+      continue;
+    }
+    if (cache[m].first != mesh.version)
+    {
+      cache[m] = { mesh.version, MeshBounds(mesh) };
+    }
+    if (BoxInFrustum(cache[m].second, scene.View.worldToClip))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void vtkCausticsRenderPass::BeginFrame(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  this->Result = FrameResult(); // the one place a frame's result starts over
+  vtkRenderer* renderer = s->GetRenderer();
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  this->LastWindow = renWin;
+  if (!this->DelegatePass)
+  {
+    vtkRenderStepsPass* steps = vtkRenderStepsPass::New();
+    this->SetDelegatePass(steps);
+    steps->Delete();
+  }
+  FrameInputs& frame = this->Frame;
+  frame.Window = renWin;
+  frame.Renderer = renderer;
+  renderer->GetTiledSizeAndOrigin(&frame.Width, &frame.Height, &frame.Origin[0], &frame.Origin[1]);
+  renderer->GetBackground(frame.Background);
+  this->Internal->Timings->BeginFrame();
+}
+
+bool vtkCausticsRenderPass::PrepareScene(vtkRenderer* renderer)
+{
+  vtkCausticsSceneExtractor* extractor = this->Internal->Extractor;
+  if (!extractor->Update(renderer, this->Frame.Width, this->Frame.Height))
+  {
+    return false;
+  }
+  caustics::gl::ToColumnMajor(extractor->GetScene().View.worldToClip, this->Frame.WorldToClip);
+  return true;
+}
+
+bool vtkCausticsRenderPass::SupportsCaustics(vtkOpenGLRenderWindow* renWin, bool buffers)
+{
+  int major = 0, minor = 0;
+  renWin->GetOpenGLVersion(major, minor);
+  const bool supported = major * 10 + minor >= 45;
+  if (buffers && !supported)
+  {
+    vtkErrorMacro(<< "caustics need OpenGL 4.5 (compute shaders, SSBOs); this context is " << major
+                  << "." << minor << ": rendering without caustics");
+  }
+  return supported;
+}
+
+void vtkCausticsRenderPass::RenderPlainVTK(const vtkRenderState* s)
+{
+  // Nothing to add: VTK renders as if the pass were not there (timed on the CPU
+  // only: timer queries would cost more than the rest of the pass here).
+  this->Internal->Timings->StartStage("vtk delegate", false);
+  this->DelegatePass->Render(s);
+  this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+  this->StopStage("vtk delegate");
+  this->Internal->Timings->EndFrame();
 }
 
 void vtkCausticsRenderPass::RenderDelegate(const vtkRenderState* s)
 {
-  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
-  const int w = this->Width, h = this->Height;
-  bool resized = caustics::gl::EnsureTexture(this->DelegateColorTexture, renWin, w, h, GL_RGBA32F);
+  auto& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = this->Frame.Window;
+  const int w = this->Frame.Width, h = this->Frame.Height;
+  bool resized = caustics::gl::EnsureTexture(in.DelegateColorTexture, renWin, w, h, GL_RGBA32F);
   resized |=
-    caustics::gl::EnsureTexture(this->DelegateDepthTexture, renWin, w, h, GL_DEPTH_COMPONENT32F);
+    caustics::gl::EnsureTexture(in.DelegateDepthTexture, renWin, w, h, GL_DEPTH_COMPONENT32F);
 
   this->PreRender(s);
-  this->DelegateFramebuffer->SetContext(renWin);
-  this->DelegateFramebuffer->SaveCurrentBindingsAndBuffers();
-  this->DelegateFramebuffer->Bind();
-  if (resized || this->DelegateFramebuffer->GetNumberOfColorAttachments() != 1)
+  in.DelegateFramebuffer->SetContext(renWin);
+  in.DelegateFramebuffer->SaveCurrentBindingsAndBuffers();
+  in.DelegateFramebuffer->Bind();
+  if (resized || in.DelegateFramebuffer->GetNumberOfColorAttachments() != 1)
   {
-    this->DelegateFramebuffer->AddColorAttachment(0, this->DelegateColorTexture);
-    this->DelegateFramebuffer->AddDepthAttachment(this->DelegateDepthTexture);
+    in.DelegateFramebuffer->AddColorAttachment(0, in.DelegateColorTexture);
+    in.DelegateFramebuffer->AddDepthAttachment(in.DelegateDepthTexture);
   }
-  this->DelegateFramebuffer->ActivateDrawBuffers(1);
-  this->DelegateFramebuffer->StartNonOrtho(w, h);
+  in.DelegateFramebuffer->ActivateDrawBuffers(1);
+  in.DelegateFramebuffer->StartNonOrtho(w, h);
   this->DelegatePass->Render(s);
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-  this->DelegateFramebuffer->UnBind();
-  this->DelegateFramebuffer->RestorePreviousBindingsAndBuffers();
+  in.DelegateFramebuffer->UnBind();
+  in.DelegateFramebuffer->RestorePreviousBindingsAndBuffers();
   this->PostRender(s);
 }
 
-bool vtkCausticsRenderPass::RenderCameraGBuffers(vtkOpenGLRenderWindow* renWin)
+bool vtkCausticsRenderPass::RenderCameraGBuffers()
 {
+  const FrameInputs& f = this->Frame;
   const int opaque = vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(2);
   const int refractive = vtkCausticsSceneGeometry::RoleBit(3);
-  bool ok = this->CameraGBuffer->Render(
-    renWin, this->Geometry, this->WorldToClip, this->Width, this->Height, opaque);
-  ok = this->RefractiveGBuffer->Render(
-         renWin, this->Geometry, this->WorldToClip, this->Width, this->Height, refractive) &&
+  bool ok = f.CameraGBuffer->Render(f.Window, f.Geometry, f.WorldToClip, f.Width, f.Height, opaque);
+  ok = f.RefractiveGBuffer->Render(
+         f.Window, f.Geometry, f.WorldToClip, f.Width, f.Height, refractive) &&
     ok;
   return ok;
 }
 
-bool vtkCausticsRenderPass::RenderLightBuffers(vtkOpenGLRenderWindow* renWin)
+bool vtkCausticsRenderPass::RenderLightBuffers()
 {
-  this->LightBuffers->SetResolution(this->LightBufferResolution);
-  return this->LightBuffers->Render(renWin, this->Geometry, this->Extractor->GetScene());
+  const FrameInputs& f = this->Frame;
+  f.LightBuffers->SetResolution(this->LightBufferResolution);
+  return f.LightBuffers->Render(f.Window, f.Geometry, *f.Scene);
 }
 
-bool vtkCausticsRenderPass::RenderCaustics(vtkOpenGLRenderWindow* renWin)
+bool vtkCausticsRenderPass::RenderCaustics()
 {
-  vtkOpenGLState* state = renWin->GetState();
-  const bool resized = caustics::gl::EnsureTexture(
-    this->CausticTexture, renWin, this->Width, this->Height, GL_RGBA32F);
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  vtkOpenGLState* state = f.Window->GetState();
+  const bool resized =
+    caustics::gl::EnsureTexture(in.CausticTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
   state->PushFramebufferBindings();
-  BindAndClear(this->CausticFramebuffer, this->CausticTexture, renWin, resized);
+  BindAndClear(in.CausticFramebuffer, in.CausticTexture, f.Window, resized);
   vtkOpenGLState::ScopedglViewport viewport(state);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
-  state->vtkglViewport(0, 0, this->Width, this->Height);
+  state->vtkglViewport(0, 0, f.Width, f.Height);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_BLEND);
   state->vtkglDisable(GL_SCISSOR_TEST);
-  const bool ok = this->RenderCausticIrradiance(renWin);
+  const bool ok = this->RenderCausticIrradiance(f);
+  this->Result.Volume = ok && this->RenderVolumeRadiance(f, in.VolumeTexture);
   state->PopFramebufferBindings();
   return ok;
 }
 
-bool vtkCausticsRenderPass::RenderDirectIrradiance(vtkOpenGLRenderWindow* renWin)
+bool vtkCausticsRenderPass::EnsureDirectIrradiance(const char* stage)
 {
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-  this->ShadowBuffers->SetResolution(this->ShadowMapResolution);
-  if (!this->ShadowBuffers->Render(renWin, this->Geometry, scene))
+  if (!this->Result.Direct)
+  {
+    this->StartStage(stage);
+    this->Result.Direct = this->RenderDirectIrradiance();
+    this->StopStage(stage);
+  }
+  return this->Result.Direct;
+}
+
+void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
+{
+  const FrameInputs& f = this->Frame;
+  vtkOpenGLState* state = f.Window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+
+  this->StartStage("vtk delegate");
+  this->RenderDelegate(s);
+  this->StopStage("vtk delegate");
+
+  this->StartStage("geometry upload");
+  bool ok = f.Geometry->Upload(*f.Scene, f.Window);
+  this->StopStage("geometry upload");
+
+  this->StartStage("camera g-buffers");
+  ok = this->RenderCameraGBuffers() && ok;
+  this->StopStage("camera g-buffers");
+  this->Result.Buffers = true;
+
+  if (caustics && ok)
+  {
+    this->StartStage("light buffers");
+    ok = this->RenderLightBuffers();
+    this->StopStage("light buffers");
+    this->StartStage("caustic irradiance");
+    ok = ok && this->RenderCaustics();
+    this->StopStage("caustic irradiance");
+    this->Result.Caustics = ok;
+  }
+  if (this->ComputeDirectIrradiance)
+  {
+    this->EnsureDirectIrradiance("direct irradiance");
+  }
+  if (this->Result.Caustics)
+  {
+    this->Result.TechniqueColor =
+      this->RenderTechniqueColor(f, this->Internal->TechniqueColorTexture);
+  }
+
+  this->StartStage("composite");
+  state->vtkglViewport(f.Origin[0], f.Origin[1], f.Width, f.Height);
+  state->vtkglScissor(f.Origin[0], f.Origin[1], f.Width, f.Height);
+  this->Composite(false);
+  if (this->KeepBuffers)
+  {
+    this->Composite(true);
+  }
+  this->StopStage("composite");
+  this->Internal->Timings->EndFrame();
+}
+
+void vtkCausticsRenderPass::Render(const vtkRenderState* s)
+{
+  vtkOpenGLClearErrorMacro();
+  this->BeginFrame(s);
+  vtkRenderer* renderer = s->GetRenderer();
+  const bool extraOutputs = this->ComputeDirectIrradiance || this->KeepBuffers;
+  const CausticNeeds needs = this->GetCausticNeeds();
+  if (!extraOutputs && needs.EarlySkip && this->CannotNeedCaustics(renderer, needs))
+  {
+    // Nothing can need caustics: plain VTK, without even the scene snapshot (whose
+    // cost grows with the scene's triangles).
+    this->RenderPlainVTK(s);
+    return;
+  }
+  this->Internal->Timings->StartStage("scene snapshot", false); // CPU work: no timer queries
+  const bool sceneOk = this->PrepareScene(renderer);
+  this->StopStage("scene snapshot");
+  const bool caustics = sceneOk && this->NeedsCaustics(this->Frame);
+  const bool buffers = caustics || extraOutputs;
+  if (!sceneOk || !buffers || !this->SupportsCaustics(this->Frame.Window, buffers))
+  {
+    this->RenderPlainVTK(s);
+    return;
+  }
+  this->RenderFrame(s, caustics);
+  vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+bool vtkCausticsRenderPass::RenderDirectIrradiance()
+{
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  in.ShadowBuffers->SetResolution(this->ShadowMapResolution);
+  if (!in.ShadowBuffers->Render(f.Window, f.Geometry, *f.Scene))
   {
     return false;
   }
-  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState* state = f.Window->GetState();
   const bool resized =
-    caustics::gl::EnsureTexture(this->DirectTexture, renWin, this->Width, this->Height, GL_RGBA32F);
+    caustics::gl::EnsureTexture(in.DirectTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
   state->PushFramebufferBindings();
-  BindAndClear(this->DirectFramebuffer, this->DirectTexture, renWin, resized);
+  BindAndClear(in.DirectFramebuffer, in.DirectTexture, f.Window, resized);
   vtkOpenGLState::ScopedglViewport viewport(state);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
   vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
   state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglViewport(0, 0, this->Width, this->Height);
+  state->vtkglViewport(0, 0, f.Width, f.Height);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-
-  vtkCausticsShaderProgram* program = this->DirectProgram;
-  bool ok = program->Bind(renWin);
-  if (ok)
-  {
-    vtkTextureObject* position = this->CameraGBuffer->GetPositionTexture();
-    vtkTextureObject* normal = this->CameraGBuffer->GetNormalTexture();
-    position->Activate();
-    normal->Activate();
-    program->SetUniformi("gPosition", position->GetTextureUnit());
-    program->SetUniformi("gNormal", normal->GetTextureUnit());
-    const caustics::Camera& view = scene.View;
-    double direction[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      direction[i] = view.focalPoint[i] - view.position[i];
-    }
-    const double length = std::sqrt(
-      direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
-    program->SetUniform3f("cameraPosition", static_cast<float>(view.position[0]),
-      static_cast<float>(view.position[1]), static_cast<float>(view.position[2]));
-    program->SetUniform3f("cameraDirection", static_cast<float>(direction[0] / length),
-      static_cast<float>(direction[1] / length), static_cast<float>(direction[2] / length));
-    program->SetUniformi("cameraParallel", view.parallel ? 1 : 0);
-    for (int i = 0; i < this->ShadowBuffers->GetNumberOfLights(); ++i)
-    {
-      const caustics::Light& light = scene.Lights[i];
-      const caustics::LightView& lightView = this->ShadowBuffers->GetView(i);
-      vtkTextureObject* shadow = this->ShadowBuffers->GetGBuffer(i)->GetPositionTexture();
-      shadow->Activate();
-      program->SetUniformi("shadowPosition", shadow->GetTextureUnit());
-      float matrix[16];
-      caustics::gl::ToColumnMajor(lightView.worldToClip, matrix);
-      program->SetUniformMatrix4("lightWorldToClip", matrix);
-      program->SetUniformi("lightType", static_cast<int>(light.type));
-      // Directional lights measure distance along the axis from the view's eye.
-      const caustics::Vec3& origin =
-        light.type == caustics::Light::Type::Directional ? lightView.eye : light.position;
-      program->SetUniform3f("lightPosition", static_cast<float>(origin[0]),
-        static_cast<float>(origin[1]), static_cast<float>(origin[2]));
-      program->SetUniform3f("lightDirection", static_cast<float>(light.direction[0]),
-        static_cast<float>(light.direction[1]), static_cast<float>(light.direction[2]));
-      program->SetUniform3f("radiometric", static_cast<float>(light.radiometric[0]),
-        static_cast<float>(light.radiometric[1]), static_cast<float>(light.radiometric[2]));
-      program->SetUniformf("cosOuter", static_cast<float>(light.cosOuter));
-      program->SetUniformf("cosInner", static_cast<float>(light.cosInner));
-      program->SetUniformf("texelWorldSize",
-        static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
-      this->Triangle->Draw();
-      shadow->Deactivate();
-    }
-    position->Deactivate();
-    normal->Deactivate();
-    program->Unbind(renWin);
-  }
+  const bool ok = this->DrawDirectIrradiance();
   state->PopFramebufferBindings();
   return ok;
 }
 
-void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFinalTexture)
+bool vtkCausticsRenderPass::DrawDirectIrradiance()
 {
-  vtkOpenGLState* state = renWin->GetState();
-  vtkCausticsShaderProgram* program = this->CompositeProgram;
-  if (!program->Bind(renWin))
+  const FrameInputs& f = this->Frame;
+  vtkCausticsShaderProgram* program = this->Internal->DirectProgram;
+  if (!program->Bind(f.Window))
+  {
+    return false;
+  }
+  vtkTextureObject* position = f.CameraGBuffer->GetPositionTexture();
+  vtkTextureObject* normal = f.CameraGBuffer->GetNormalTexture();
+  position->Activate();
+  normal->Activate();
+  program->SetUniformi("gPosition", position->GetTextureUnit());
+  program->SetUniformi("gNormal", normal->GetTextureUnit());
+  const caustics::Camera& view = f.Scene->View;
+  double direction[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    direction[i] = view.focalPoint[i] - view.position[i];
+  }
+  const double length = std::sqrt(
+    direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+  program->SetUniform3f("cameraPosition", static_cast<float>(view.position[0]),
+    static_cast<float>(view.position[1]), static_cast<float>(view.position[2]));
+  program->SetUniform3f("cameraDirection", static_cast<float>(direction[0] / length),
+    static_cast<float>(direction[1] / length), static_cast<float>(direction[2] / length));
+  program->SetUniformi("cameraParallel", view.parallel ? 1 : 0);
+  vtkCausticsLightBuffers* shadows = this->Internal->ShadowBuffers;
+  for (int i = 0; i < shadows->GetNumberOfLights(); ++i)
+  {
+    vtkTextureObject* shadow = shadows->GetGBuffer(i)->GetPositionTexture();
+    shadow->Activate();
+    program->SetUniformi("shadowPosition", shadow->GetTextureUnit());
+    this->SetDirectLightUniforms(i);
+    this->Internal->Triangle.Draw();
+    shadow->Deactivate();
+  }
+  position->Deactivate();
+  normal->Deactivate();
+  program->Unbind(f.Window);
+  return true;
+}
+
+void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
+{
+  vtkCausticsShaderProgram* program = this->Internal->DirectProgram;
+  const caustics::Light& light = this->Frame.Scene->Lights[i];
+  const caustics::LightView& lightView = this->Internal->ShadowBuffers->GetView(i);
+  float matrix[16];
+  caustics::gl::ToColumnMajor(lightView.worldToClip, matrix);
+  program->SetUniformMatrix4("lightWorldToClip", matrix);
+  program->SetUniformi("lightType", static_cast<int>(light.type));
+  // Directional lights measure distance along the axis from the view's eye.
+  const caustics::Vec3& origin =
+    light.type == caustics::Light::Type::Directional ? lightView.eye : light.position;
+  program->SetUniform3f("lightPosition", static_cast<float>(origin[0]),
+    static_cast<float>(origin[1]), static_cast<float>(origin[2]));
+  program->SetUniform3f("lightDirection", static_cast<float>(light.direction[0]),
+    static_cast<float>(light.direction[1]), static_cast<float>(light.direction[2]));
+  program->SetUniform3f("radiometric", static_cast<float>(light.radiometric[0]),
+    static_cast<float>(light.radiometric[1]), static_cast<float>(light.radiometric[2]));
+  program->SetUniformf("cosOuter", static_cast<float>(light.cosOuter));
+  program->SetUniformf("cosInner", static_cast<float>(light.cosInner));
+  program->SetUniformf(
+    "texelWorldSize", static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
+}
+
+void vtkCausticsRenderPass::Composite(bool toFinalTexture)
+{
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  vtkCausticsShaderProgram* program = in.CompositeProgram;
+  if (!program->Bind(f.Window))
   {
     return;
   }
-  vtkTextureObject* textures[] = { this->DelegateColorTexture, this->DelegateDepthTexture,
-    this->CameraGBuffer->GetNormalTexture(), this->CameraGBuffer->GetAlbedoTexture(),
-    this->CameraGBuffer->GetDepthTexture(), this->CausticTexture, this->VolumeTexture,
-    this->TechniqueColorTexture };
+  vtkTextureObject* textures[] = { in.DelegateColorTexture, in.DelegateDepthTexture,
+    f.CameraGBuffer->GetNormalTexture(), f.CameraGBuffer->GetAlbedoTexture(),
+    f.CameraGBuffer->GetDepthTexture(), in.CausticTexture, in.VolumeTexture,
+    in.TechniqueColorTexture };
   const char* names[] = { "delegateColor", "delegateDepth", "gNormal", "gAlbedo", "gDepth",
     "causticIrradiance", "volumeRadiance", "techniqueColor" };
-  const bool hasCaustics = this->LastFrameHadCaustics;
-  const bool hasVolume = hasCaustics && this->TechniqueWroteVolume;
-  const bool hasTechniqueColor = hasCaustics && this->LastFrameHadTechniqueColor;
+  const bool hasCaustics = this->Result.Caustics;
+  const bool hasVolume = hasCaustics && this->Result.Volume;
+  const bool hasTechniqueColor = hasCaustics && this->Result.TechniqueColor;
   for (int i = 0; i < 8; ++i)
   {
     const bool used =
@@ -320,23 +828,38 @@ void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFina
   program->SetUniformi("hasTechniqueColor", hasTechniqueColor ? 1 : 0);
   // The two depth buffers come from the same triangles and matrix; allow float noise.
   program->SetUniformf("depthTolerance", 2e-6f);
+  this->DrawComposite(toFinalTexture);
+  for (int i = 0; i < 8; ++i)
+  {
+    if (textures[i]->GetHandle() && textures[i]->IsBound())
+    {
+      textures[i]->Deactivate();
+    }
+  }
+  program->Unbind(f.Window);
+}
 
+void vtkCausticsRenderPass::DrawComposite(bool toFinalTexture)
+{
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  vtkOpenGLState* state = f.Window->GetState();
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
   state->vtkglDisable(GL_BLEND);
   if (toFinalTexture)
   {
-    const bool resized = caustics::gl::EnsureTexture(
-      this->FinalTexture, renWin, this->Width, this->Height, GL_RGBA32F);
+    const bool resized =
+      caustics::gl::EnsureTexture(in.FinalTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
     state->PushFramebufferBindings();
-    BindAndClear(this->FinalFramebuffer, this->FinalTexture, renWin, resized);
+    BindAndClear(in.FinalFramebuffer, in.FinalTexture, f.Window, resized);
     vtkOpenGLState::ScopedglViewport viewport(state);
     vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
     state->vtkglDisable(GL_SCISSOR_TEST);
-    state->vtkglViewport(0, 0, this->Width, this->Height);
+    state->vtkglViewport(0, 0, f.Width, f.Height);
     state->vtkglDisable(GL_DEPTH_TEST);
-    this->Triangle->Draw();
+    in.Triangle.Draw();
     state->PopFramebufferBindings();
   }
   else
@@ -346,111 +869,71 @@ void vtkCausticsRenderPass::Composite(vtkOpenGLRenderWindow* renWin, bool toFina
     state->vtkglDepthFunc(GL_ALWAYS);
     vtkOpenGLState::ScopedglDepthMask depthMask(state);
     state->vtkglDepthMask(GL_TRUE);
-    this->Triangle->Draw();
+    in.Triangle.Draw();
   }
-  for (int i = 0; i < 8; ++i)
-  {
-    if (textures[i]->GetHandle() && textures[i]->IsBound())
-    {
-      textures[i]->Deactivate();
-    }
-  }
-  program->Unbind(renWin);
 }
 
-void vtkCausticsRenderPass::Render(const vtkRenderState* s)
+/** One readable buffer: a texture of the last frame and when the frame made it. */
+struct vtkCausticsRenderPass::BufferEntry
 {
-  vtkOpenGLClearErrorMacro();
-  this->NumberOfRenderedProps = 0;
-  vtkRenderer* renderer = s->GetRenderer();
-  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
-  this->LastWindow = renWin;
-  if (!this->DelegatePass)
+  const char* Name;
+  int Components;
+  bool PerLight; ///< "Name:i" for light i
+  vtkTextureObject* (*Texture)(vtkCausticsRenderPass* pass, int light);
+  bool (*Available)(vtkCausticsRenderPass* pass);
+};
+
+const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(const std::string& base)
+{
+  using Pass = vtkCausticsRenderPass;
+  auto always = [](Pass*) { return true; };
+  auto caustics = [](Pass* p) { return p->Result.Caustics; };
+  static const BufferEntry table[] = {
+    { "FinalColor", 3, false, [](Pass* p, int) { return p->Internal->FinalTexture.Get(); },
+      [](Pass* p) { return p->KeepBuffers; } },
+    { "CausticIrradiance", 3, false, [](Pass* p, int) { return p->Internal->CausticTexture.Get(); },
+      caustics },
+    { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
+      [](Pass* p) { return p->Result.Direct; } },
+    { "VolumeRadiance", 3, false, [](Pass* p, int) { return p->Internal->VolumeTexture.Get(); },
+      [](Pass* p) { return p->Result.Caustics && p->Result.Volume; } },
+    { "TechniqueColor", 4, false,
+      [](Pass* p, int) { return p->Internal->TechniqueColorTexture.Get(); },
+      [](Pass* p) { return p->Result.Caustics && p->Result.TechniqueColor; } },
+    { "Position", 4, false,
+      [](Pass* p, int) { return p->GetCameraGBuffer()->GetPositionTexture(); }, always },
+    { "Normal", 4, false, [](Pass* p, int) { return p->GetCameraGBuffer()->GetNormalTexture(); },
+      always },
+    { "Albedo", 4, false, [](Pass* p, int) { return p->GetCameraGBuffer()->GetAlbedoTexture(); },
+      always },
+    { "Depth", 1, false, [](Pass* p, int) { return p->GetCameraGBuffer()->GetDepthTexture(); },
+      always },
+    { "RefractivePosition", 4, false,
+      [](Pass* p, int) { return p->GetRefractiveGBuffer()->GetPositionTexture(); }, always },
+    { "RefractiveNormal", 4, false,
+      [](Pass* p, int) { return p->GetRefractiveGBuffer()->GetNormalTexture(); }, always },
+    { "RefractiveDepth", 1, false,
+      [](Pass* p, int) { return p->GetRefractiveGBuffer()->GetDepthTexture(); }, always },
+    { "LightPosition", 4, true,
+      [](Pass* p, int i) { return p->GetLightBuffers()->GetGBuffer(i)->GetPositionTexture(); },
+      caustics },
+    { "LightNormal", 4, true,
+      [](Pass* p, int i) { return p->GetLightBuffers()->GetGBuffer(i)->GetNormalTexture(); },
+      caustics },
+    { "LightDepth", 1, true,
+      [](Pass* p, int i) { return p->GetLightBuffers()->GetGBuffer(i)->GetDepthTexture(); },
+      caustics },
+    { "LightFlux", 4, true, [](Pass* p, int i) { return p->GetLightBuffers()->GetFluxTexture(i); },
+      caustics },
+  };
+  for (const BufferEntry& entry : table)
   {
-    vtkRenderStepsPass* steps = vtkRenderStepsPass::New();
-    this->SetDelegatePass(steps);
-    steps->Delete();
+    if (base == entry.Name)
+    {
+      return &entry;
+    }
   }
-  int x, y;
-  renderer->GetTiledSizeAndOrigin(&this->Width, &this->Height, &x, &y);
-  this->LastFrameHadCaustics = this->LastFrameHadDirect = this->LastFrameHadBuffers = false;
-  this->LastFrameHadTechniqueColor = this->TechniqueWroteVolume = false;
-  this->Timings->BeginFrame();
-
-  this->Timings->StartStage("scene snapshot", false); // CPU work: no timer queries
-  const bool sceneOk = this->PrepareScene(renderer, renWin);
-  this->StopStage("scene snapshot");
-  const bool caustics = sceneOk && this->NeedsCaustics();
-  const bool buffers = caustics || this->ComputeDirectIrradiance || this->KeepBuffers;
-
-  int major = 0, minor = 0;
-  renWin->GetOpenGLVersion(major, minor);
-  if (buffers && major * 10 + minor < 45)
-  {
-    vtkErrorMacro(<< "caustics need OpenGL 4.5 (compute shaders, SSBOs); this context is " << major
-                  << "." << minor << ": rendering without caustics");
-  }
-  if (!sceneOk || !buffers || major * 10 + minor < 45)
-  {
-    // Nothing to add: VTK renders as if the pass were not there (timed on the CPU
-    // only: timer queries would cost more than the rest of the pass here).
-    this->Timings->StartStage("vtk delegate", false);
-    this->DelegatePass->Render(s);
-    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-    this->StopStage("vtk delegate");
-    this->Timings->EndFrame();
-    return;
-  }
-
-  vtkOpenGLState* state = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
-
-  this->StartStage("vtk delegate");
-  this->RenderDelegate(s);
-  this->StopStage("vtk delegate");
-
-  this->StartStage("geometry upload");
-  bool ok = this->Geometry->Upload(this->Extractor->GetScene(), renWin);
-  this->StopStage("geometry upload");
-
-  this->StartStage("camera g-buffers");
-  ok = this->RenderCameraGBuffers(renWin) && ok;
-  this->StopStage("camera g-buffers");
-  this->LastFrameHadBuffers = true;
-
-  if (caustics && ok)
-  {
-    this->StartStage("light buffers");
-    ok = this->RenderLightBuffers(renWin);
-    this->StopStage("light buffers");
-    this->StartStage("caustic irradiance");
-    ok = ok && this->RenderCaustics(renWin);
-    this->StopStage("caustic irradiance");
-    this->LastFrameHadCaustics = ok;
-  }
-  if (this->ComputeDirectIrradiance)
-  {
-    this->StartStage("direct irradiance");
-    this->LastFrameHadDirect = this->RenderDirectIrradiance(renWin);
-    this->StopStage("direct irradiance");
-  }
-  if (this->LastFrameHadCaustics)
-  {
-    this->LastFrameHadTechniqueColor = this->RenderTechniqueColor(renWin);
-  }
-
-  this->StartStage("composite");
-  state->vtkglViewport(x, y, this->Width, this->Height);
-  state->vtkglScissor(x, y, this->Width, this->Height);
-  this->Composite(renWin, false);
-  if (this->KeepBuffers)
-  {
-    this->Composite(renWin, true);
-  }
-  this->StopStage("composite");
-  this->Timings->EndFrame();
-  vtkOpenGLCheckErrorMacro("failed after Render");
+  return nullptr;
 }
 
 bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
@@ -461,7 +944,7 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
     return false;
   }
   vtkOpenGLRenderWindow* renWin = this->LastWindow;
-  if (!renWin || !this->LastFrameHadBuffers)
+  if (!renWin || !this->Result.Buffers)
   {
     vtkErrorMacro(<< "ReadBuffer('" << name
                   << "'): the last frame made no caustics buffers (nothing needed them; turn "
@@ -469,13 +952,13 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
     return false;
   }
   renWin->MakeCurrent();
+  // "Name" or "Name:light".
   const std::string request = name;
-  std::string base = request;
-  int light = -1;
   const auto colon = request.find(':');
+  const std::string base = request.substr(0, colon);
+  int light = -1;
   if (colon != std::string::npos)
   {
-    base = request.substr(0, colon);
     try
     {
       light = std::stoi(request.substr(colon + 1));
@@ -485,107 +968,15 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
       light = -2;
     }
   }
-  vtkTextureObject* texture = nullptr;
-  int components = 4;
-  if (base == "FinalColor" && this->KeepBuffers)
+  if (base == "ReceiverMask")
   {
-    texture = this->FinalTexture;
-    components = 3;
+    return this->ReadReceiverMask(name, output);
   }
-  else if (base == "CausticIrradiance" && this->LastFrameHadCaustics)
-  {
-    texture = this->CausticTexture;
-    components = 3;
-  }
-  else if (base == "DirectIrradiance" && this->LastFrameHadDirect)
-  {
-    texture = this->DirectTexture;
-    components = 3;
-  }
-  else if (base == "VolumeRadiance" && this->LastFrameHadCaustics && this->TechniqueWroteVolume)
-  {
-    texture = this->VolumeTexture;
-    components = 3;
-  }
-  else if (base == "TechniqueColor" && this->LastFrameHadCaustics &&
-    this->LastFrameHadTechniqueColor)
-  {
-    texture = this->TechniqueColorTexture;
-  }
-  else if (base == "Position")
-  {
-    texture = this->CameraGBuffer->GetPositionTexture();
-  }
-  else if (base == "Normal")
-  {
-    texture = this->CameraGBuffer->GetNormalTexture();
-  }
-  else if (base == "Albedo")
-  {
-    texture = this->CameraGBuffer->GetAlbedoTexture();
-  }
-  else if (base == "Depth")
-  {
-    texture = this->CameraGBuffer->GetDepthTexture();
-    components = 1;
-  }
-  else if (base == "RefractivePosition")
-  {
-    texture = this->RefractiveGBuffer->GetPositionTexture();
-  }
-  else if (base == "RefractiveNormal")
-  {
-    texture = this->RefractiveGBuffer->GetNormalTexture();
-  }
-  else if (base == "RefractiveDepth")
-  {
-    texture = this->RefractiveGBuffer->GetDepthTexture();
-    components = 1;
-  }
-  else if (base == "ReceiverMask")
-  {
-    // Receivers not hidden behind a refractor: where caustic irradiance is defined.
-    auto normal = caustics::gl::ReadTexture(this->CameraGBuffer->GetNormalTexture(), "n", 4);
-    auto depth = caustics::gl::ReadTexture(this->CameraGBuffer->GetDepthTexture(), "d", 1);
-    auto refractive = caustics::gl::ReadTexture(this->RefractiveGBuffer->GetDepthTexture(), "r", 1);
-    output->Initialize();
-    output->SetDimensions(this->Width, this->Height, 1);
-    vtkNew<vtkFloatArray> mask;
-    mask->SetName(name);
-    mask->SetNumberOfTuples(static_cast<vtkIdType>(this->Width) * this->Height);
-    vtkDataArray* n = normal->GetPointData()->GetArray(0);
-    vtkDataArray* d = depth->GetPointData()->GetArray(0);
-    vtkDataArray* r = refractive->GetPointData()->GetArray(0);
-    for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
-    {
-      const bool receiver = std::lround(n->GetComponent(i, 3)) == 1;
-      mask->SetValue(i, receiver && d->GetComponent(i, 0) <= r->GetComponent(i, 0) ? 1.0f : 0.0f);
-    }
-    output->GetPointData()->AddArray(mask);
-    return true;
-  }
-  else if (light >= 0 && light < this->LightBuffers->GetNumberOfLights() &&
-    this->LastFrameHadCaustics)
-  {
-    vtkCausticsGBuffer* lightBuffer = this->LightBuffers->GetGBuffer(light);
-    if (base == "LightPosition")
-    {
-      texture = lightBuffer->GetPositionTexture();
-    }
-    else if (base == "LightNormal")
-    {
-      texture = lightBuffer->GetNormalTexture();
-    }
-    else if (base == "LightDepth")
-    {
-      texture = lightBuffer->GetDepthTexture();
-      components = 1;
-    }
-    else if (base == "LightFlux")
-    {
-      texture = this->LightBuffers->GetFluxTexture(light);
-    }
-  }
+  const BufferEntry* entry = FindBuffer(base);
+  const bool lightOk = entry &&
+    (!entry->PerLight || (light >= 0 && light < this->GetLightBuffers()->GetNumberOfLights()));
+  vtkTextureObject* texture =
+    lightOk && entry->Available(this) ? entry->Texture(this, light) : nullptr;
   if (!texture || !texture->GetHandle())
   {
     vtkErrorMacro(<< "ReadBuffer: no buffer '" << name
@@ -593,39 +984,64 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
                      "that did not run)");
     return false;
   }
-  auto image = caustics::gl::ReadTexture(texture, name, components);
+  auto image = caustics::gl::ReadTexture(texture, name, entry->Components);
   output->ShallowCopy(image);
+  return true;
+}
+
+bool vtkCausticsRenderPass::ReadReceiverMask(const char* name, vtkImageData* output)
+{
+  // Receivers not hidden behind a refractor: where caustic irradiance is defined.
+  const FrameInputs& f = this->Frame;
+  auto normal = caustics::gl::ReadTexture(f.CameraGBuffer->GetNormalTexture(), "n", 4);
+  auto depth = caustics::gl::ReadTexture(f.CameraGBuffer->GetDepthTexture(), "d", 1);
+  auto refractive = caustics::gl::ReadTexture(f.RefractiveGBuffer->GetDepthTexture(), "r", 1);
+  output->Initialize();
+  output->SetDimensions(f.Width, f.Height, 1);
+  vtkNew<vtkFloatArray> mask;
+  mask->SetName(name);
+  mask->SetNumberOfTuples(static_cast<vtkIdType>(f.Width) * f.Height);
+  vtkDataArray* n = normal->GetPointData()->GetArray(0);
+  vtkDataArray* d = depth->GetPointData()->GetArray(0);
+  vtkDataArray* r = refractive->GetPointData()->GetArray(0);
+  for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
+  {
+    const bool receiver = std::lround(n->GetComponent(i, 3)) == 1;
+    mask->SetValue(i, receiver && d->GetComponent(i, 0) <= r->GetComponent(i, 0) ? 1.0f : 0.0f);
+  }
+  output->GetPointData()->AddArray(mask);
   return true;
 }
 
 void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
 {
+  auto& in = *this->Internal;
   this->Superclass::ReleaseGraphicsResources(w);
   this->ReleaseTechniqueResources(w);
-  this->Geometry->ReleaseGraphicsResources(w);
-  this->CameraGBuffer->ReleaseGraphicsResources(w);
-  this->RefractiveGBuffer->ReleaseGraphicsResources(w);
-  this->LightBuffers->ReleaseGraphicsResources(w);
-  this->ShadowBuffers->ReleaseGraphicsResources(w);
-  vtkTextureObject* textures[] = { this->CausticTexture, this->DirectTexture, this->VolumeTexture,
-    this->DelegateColorTexture, this->DelegateDepthTexture, this->FinalTexture,
-    this->TechniqueColorTexture };
+  in.Geometry->ReleaseGraphicsResources(w);
+  in.CameraGBuffer->ReleaseGraphicsResources(w);
+  in.RefractiveGBuffer->ReleaseGraphicsResources(w);
+  in.LightBuffers->ReleaseGraphicsResources(w);
+  in.ShadowBuffers->ReleaseGraphicsResources(w);
+  vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture, in.VolumeTexture,
+    in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
   {
     texture->ReleaseGraphicsResources(w);
   }
-  vtkOpenGLFramebufferObject* framebuffers[] = { this->CausticFramebuffer, this->DirectFramebuffer,
-    this->DelegateFramebuffer, this->FinalFramebuffer };
+  vtkOpenGLFramebufferObject* framebuffers[] = { in.CausticFramebuffer, in.DirectFramebuffer,
+    in.DelegateFramebuffer, in.FinalFramebuffer };
   for (vtkOpenGLFramebufferObject* framebuffer : framebuffers)
   {
     framebuffer->ReleaseGraphicsResources(w);
   }
-  this->DirectProgram->ReleaseGraphicsResources(w);
-  this->CompositeProgram->ReleaseGraphicsResources(w);
-  this->Triangle->Release();
-  this->Timings->ReleaseGraphicsResources();
-  this->LastFrameHadBuffers = this->LastFrameHadCaustics = this->LastFrameHadDirect = false;
-  this->LastFrameHadTechniqueColor = this->TechniqueWroteVolume = false;
+  in.DirectProgram->ReleaseGraphicsResources(w);
+  in.CompositeProgram->ReleaseGraphicsResources(w);
+  in.Triangle.Release();
+  in.Timings->ReleaseGraphicsResources();
+  // Nothing of the last frame can be read any more (ReadBuffer, the techniques'
+  // queries): they all need the last frame's window.
+  this->LastWindow = nullptr;
 }
 
 void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
@@ -635,10 +1051,10 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShadowMapResolution: " << this->ShadowMapResolution << "\n";
   os << indent << "ComputeDirectIrradiance: " << this->ComputeDirectIrradiance << "\n";
   os << indent << "KeepBuffers: " << this->KeepBuffers << "\n";
-  os << indent << "RoughnessCutoff: " << this->Extractor->GetRoughnessCutoff() << "\n";
-  os << indent << "LastFrameHadCaustics: " << this->LastFrameHadCaustics << "\n";
-  os << indent << "Size: " << this->Width << " x " << this->Height << "\n";
+  os << indent << "RoughnessCutoff: " << this->GetRoughnessCutoff() << "\n";
+  os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
+  os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
   os << indent << "Scene:\n";
-  this->Extractor->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "Timings:\n" << this->Timings->GetReport();
+  this->Internal->Extractor->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Timings:\n" << this->Internal->Timings->GetReport();
 }

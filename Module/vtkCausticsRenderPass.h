@@ -3,40 +3,54 @@
  * @brief   The caustics frame: VTK's own image plus physically based caustic light.
  *
  * Composes into a normal VTK scene like vtkSSAOPass: set a delegate (by default
- * a vtkRenderStepsPass is made) and install the pass on the renderer. One frame:
- * 1. PrepareScene: vtkCausticsSceneExtractor refreshes the scene snapshot (cached
- *    per actor); vtkCausticsSceneGeometry sends what changed to the GPU.
- * 2. If nothing needs caustics (no specular actor, no light with power, or the
- *    technique says so) and no extra output is requested, the delegate renders
- *    straight into the current framebuffer and the frame ends: plain VTK cost.
- * 3. RenderDelegate: VTK's image (colour, depth) into textures.
- * 4. RenderCameraGBuffers: camera G-buffers of the opaque roles (receivers,
+ * a vtkRenderStepsPass is made) and install the pass on the renderer. Render() is
+ * the only frame, for every technique (a subclass fills in hooks). One frame:
+ * 1. BeginFrame: the FrameResult is reset (the one place), the frame's size,
+ *    camera-independent inputs and the renderer's background are noted.
+ * 2. Early skip: if the technique allows it (CausticNeeds::EarlySkip), a cheap
+ *    test on VTK's own actors and lights, before the scene snapshot, finds that
+ *    nothing can need caustics (no specular actor; with LitSpecular, no light
+ *    reaching one; with SpecularInView, none in the camera's view): the delegate
+ *    renders straight into the current framebuffer, plain VTK cost.
+ * 3. PrepareScene: vtkCausticsSceneExtractor refreshes the scene snapshot (cached
+ *    per actor) and the FrameInputs are completed (world-to-clip).
+ * 4. NeedsCaustics: the same needs on the snapshot (specular actor, receiver,
+ *    light with power, and the technique's CausticNeeds). If nothing needs
+ *    caustics and no extra output is requested (ComputeDirectIrradiance,
+ *    KeepBuffers), plain VTK again.
+ * 5. RenderDelegate: VTK's image (colour, depth) into textures;
+ *    vtkCausticsSceneGeometry sends what changed to the GPU;
+ *    RenderCameraGBuffers: camera G-buffers of the opaque roles (receivers,
  *    reflectors) and of the refractors (vtkCausticsGBuffer).
- * 5. RenderLightBuffers: per-light reflective shadow maps aimed at the specular
- *    actors (vtkCausticsLightBuffers, FOCUS_SPECULAR).
- * 6. RenderCausticIrradiance: the technique (a subclass) writes the caustic
- *    irradiance, W/m^2 at each pixel's visible opaque surface point before
- *    albedo, into CausticTexture. This base class has no technique: zero.
- * 7. RenderDirectIrradiance (on request): direct irradiance, W/m^2, with shadow
- *    maps aimed at the whole scene.
- * 8. RenderTechniqueColor (techniques that change what refractors look like): an
- *    optional display colour per pixel into TechniqueColorTexture; where its alpha
- *    is 1 it replaces VTK's colour (e.g. refraction traced through glass).
+ * 6. If caustics are needed: RenderLightBuffers (per-light reflective shadow maps
+ *    aimed at the specular actors, vtkCausticsLightBuffers FOCUS_SPECULAR), then
+ *    with CausticFramebuffer bound and cleared the technique's hooks
+ *    RenderCausticIrradiance (transport and reconstruction: W/m^2 at each
+ *    pixel's visible opaque surface point before albedo) and
+ *    RenderVolumeRadiance (optional, W/(m^2 sr) into VolumeTexture).
+ * 7. RenderDirectIrradiance (ComputeDirectIrradiance, or a technique asking with
+ *    EnsureDirectIrradiance): direct irradiance, W/m^2, with shadow maps aimed at
+ *    the whole scene.
+ * 8. RenderTechniqueColor hook (after a frame with caustics): an optional display
+ *    colour per pixel; where its alpha is 1 it replaces VTK's colour (e.g.
+ *    refraction traced through glass).
  * 9. Composite: VTK's colour (or the technique's) + albedo x caustic irradiance on
  *    receivers, in VTK's display convention (VTK shades a Lambertian surface as
  *    albedo x light intensity x cos, i.e. pi x radiance for irradiance in W/m^2),
- *    + pi x the volume radiance when the technique wrote VolumeTexture this frame
- *    (TechniqueWroteVolume), written with VTK's depth into the framebuffer the
- *    pass was called with.
+ *    + pi x the volume radiance the technique wrote, with VTK's depth, into the
+ *    framebuffer the pass was called with.
+ * What the frame made is its FrameResult (GetLastFrameHadCaustics(), ReadBuffer()).
  * Each stage is timed (GetTimings()). Intermediate buffers can be read back as
  * vtkImageData with ReadBuffer(), for tests and debugging only.
  *
- * Adding a technique: subclass, override RenderCausticIrradiance() (and
- * NeedsCaustics() if it can tell more cheaply that there is nothing to do),
- * use the protected scene, geometry, G-buffers and light buffers, and draw
- * additively into CausticFramebuffer. A technique with volume light writes
- * VolumeTexture (RGBA32F, W/(m^2 sr)) and sets TechniqueWroteVolume; one that
- * recolours refractors overrides RenderTechniqueColor(). See docs/architecture.md.
+ * Adding a technique: subclass and override the hooks (protected): what it needs
+ * (GetCausticNeeds(), NeedsCaustics()), its transport and reconstruction
+ * (RenderCausticIrradiance(), drawing into the bound CausticFramebuffer), its extra
+ * outputs (RenderVolumeRadiance(), RenderTechniqueColor()) and
+ * ReleaseTechniqueResources(). Every hook gets the frame's const FrameInputs (size,
+ * camera, scene snapshot, geometry, G-buffers, light buffers); no technique renders
+ * a frame, skips, or classifies actors itself. vtkCausticsStraightPhotonPass is the
+ * smallest example. See docs/architecture.md.
  */
 #ifndef vtkCausticsRenderPass_h
 #define vtkCausticsRenderPass_h
@@ -47,23 +61,22 @@
 #include "vtkNew.h"         // For vtkNew members
 #include "vtkWeakPointer.h" // For the last window
 
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
 class vtkCausticsGBuffer;
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneExtractor;
 class vtkCausticsSceneGeometry;
-class vtkCausticsShaderProgram;
 class vtkCausticsTimings;
 class vtkImageData;
-class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
+class vtkRenderer;
 class vtkTextureObject;
 
 namespace caustics
 {
-namespace gl
-{
-class FullScreenTriangle;
-}
+struct SceneData;
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsRenderPass : public vtkImageProcessingPass
@@ -116,21 +129,21 @@ public:
   ///@}
 
   /** Per-stage GPU and CPU times of the last frames. */
-  vtkCausticsTimings* GetTimings() { return this->Timings; }
+  vtkCausticsTimings* GetTimings();
 
-  /** The scene snapshot of the last frame. */
-  vtkCausticsSceneExtractor* GetSceneExtractor() { return this->Extractor; }
+  /** The scene snapshot of the last frame that took one. */
+  vtkCausticsSceneExtractor* GetSceneExtractor();
 
   ///@{
   /** Shared stages of the last frame, for techniques built beside this pass and tests. */
-  vtkCausticsSceneGeometry* GetGeometry() { return this->Geometry; }
-  vtkCausticsGBuffer* GetCameraGBuffer() { return this->CameraGBuffer; }
-  vtkCausticsGBuffer* GetRefractiveGBuffer() { return this->RefractiveGBuffer; }
-  vtkCausticsLightBuffers* GetLightBuffers() { return this->LightBuffers; }
+  vtkCausticsSceneGeometry* GetGeometry();
+  vtkCausticsGBuffer* GetCameraGBuffer();
+  vtkCausticsGBuffer* GetRefractiveGBuffer();
+  vtkCausticsLightBuffers* GetLightBuffers();
   ///@}
 
   /** True if the last frame ran the caustic stages. */
-  vtkGetMacro(LastFrameHadCaustics, bool);
+  bool GetLastFrameHadCaustics() const;
 
   /**
    * Reads an intermediate buffer of the last frame into `output` (point-data array
@@ -147,83 +160,147 @@ protected:
   vtkCausticsRenderPass();
   ~vtkCausticsRenderPass() override;
 
-  /** Whether the technique has anything to do this frame (after PrepareScene). */
-  virtual bool NeedsCaustics();
+  /**
+   * What a frame gives the technique's hooks, built once per frame (size and
+   * background at its start, the camera once the snapshot is taken). The objects
+   * pointed to belong to the pass; their contents are this frame's once the stage
+   * that makes them ran (light buffers: before RenderCausticIrradiance).
+   */
+  struct FrameInputs
+  {
+    vtkOpenGLRenderWindow* Window = nullptr;
+    vtkRenderer* Renderer = nullptr;
+    int Width = 0; ///< pixels of the renderer's (tiled) viewport
+    int Height = 0;
+    int Origin[2] = { 0, 0 };
+    float WorldToClip[16] = {};                 ///< the camera, column-major (as GL wants it)
+    const caustics::SceneData* Scene = nullptr; ///< the snapshot (the extractor's)
+    double Background[3] = { 0.0, 0.0, 0.0 };   ///< the renderer's: what escaping rays see
+    vtkCausticsSceneGeometry* Geometry = nullptr;
+    vtkCausticsGBuffer* CameraGBuffer = nullptr;     ///< receivers and reflectors
+    vtkCausticsGBuffer* RefractiveGBuffer = nullptr; ///< refractors
+    vtkCausticsLightBuffers* LightBuffers = nullptr; ///< aimed at the specular actors
+    vtkTextureObject* DelegateColor = nullptr;       ///< VTK's image, RGBA32F
+    vtkTextureObject* DelegateDepth = nullptr;
+    vtkTextureObject* CausticIrradiance = nullptr; ///< RGBA32F, W/m^2 (the technique's output)
+    vtkTextureObject* DirectIrradiance = nullptr;  ///< RGBA32F, W/m^2 (when the result has it)
+  };
+
+  /** What the frame produced; reset at the start of every Render(). */
+  struct FrameResult
+  {
+    bool Buffers = false;        ///< camera G-buffers (ReadBuffer works)
+    bool Caustics = false;       ///< the caustic stages ran and succeeded
+    bool Direct = false;         ///< direct irradiance
+    bool Volume = false;         ///< the technique wrote volume radiance
+    bool TechniqueColor = false; ///< the technique wrote display colours
+  };
 
   /**
-   * The technique: add caustic irradiance (W/m^2 per channel, before albedo) of the
-   * visible opaque surface at each camera pixel into CausticFramebuffer (bound,
-   * cleared to zero, additive blending off: subclasses choose). Returns false on
-   * failure. The base class has no technique and leaves it at zero.
+   * What must hold for the technique to have anything to do, beyond a specular
+   * actor, a receiver and a light with power. Tested by the base pass on the
+   * snapshot and, when EarlySkip is on, cheaply on VTK's actors before it.
    */
-  virtual bool RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin);
+  struct CausticNeeds
+  {
+    bool LitSpecular = false;    ///< a light reaches the specular actors' bounds
+    bool SpecularInView = false; ///< a specular actor meets the camera's view frustum
+    bool EarlySkip = true;       ///< the pre-snapshot test may skip the frame
+  };
 
-  /** Frees the technique's own GL objects (called by ReleaseGraphicsResources). */
+  ///@{
+  /**
+   * Hooks: what the technique needs. GetCausticNeeds() declares it (the base
+   * class needs nothing more than the scene: a specular actor, a receiver, a light
+   * with power); NeedsCaustics() is the test on the snapshot, and may be extended.
+   */
+  virtual CausticNeeds GetCausticNeeds();
+  virtual bool NeedsCaustics(const FrameInputs& in);
+  ///@}
+
+  /**
+   * Hook, the technique: add caustic irradiance (W/m^2 per channel, before albedo)
+   * of the visible opaque surface at each camera pixel into CausticFramebuffer
+   * (bound, cleared to zero, additive blending off: subclasses choose). Returns
+   * false on failure. The base class has no technique and leaves it at zero.
+   */
+  virtual bool RenderCausticIrradiance(const FrameInputs& in);
+
+  /**
+   * Hook, optional, right after a successful RenderCausticIrradiance(): write
+   * in-scattered volume radiance (RGBA32F, W/(m^2 sr), Width x Height) into
+   * `target`. Returns true if it wrote it this frame. The base class writes nothing.
+   */
+  virtual bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target);
+
+  /**
+   * Hook, optional, after the caustic and direct irradiance of a frame with
+   * caustics: write display colours (VTK's units, linear) into `target` (RGBA32F,
+   * Width x Height); the composite shows them instead of VTK's colour where alpha
+   * is 1. Returns true if it wrote the texture this frame. The base class writes
+   * nothing.
+   */
+  virtual bool RenderTechniqueColor(const FrameInputs& in, vtkTextureObject* target);
+
+  /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
 
   /**
-   * Optional, after the caustic and direct irradiance of a frame with caustics: the
-   * technique writes display colours (VTK's units, linear) into
-   * TechniqueColorTexture (RGBA32F, Width x Height); the composite shows them
-   * instead of VTK's colour where alpha is 1. Returns true if it wrote the texture
-   * this frame. The base class writes nothing.
+   * For techniques that need the direct irradiance this frame: runs the direct
+   * stage (timed as `stage`) unless the frame already has it. True if it has.
    */
-  virtual bool RenderTechniqueColor(vtkOpenGLRenderWindow* renWin);
+  bool EnsureDirectIrradiance(const char* stage);
 
-  // Stages (see the class description).
-  bool PrepareScene(vtkRenderer* renderer, vtkOpenGLRenderWindow* renWin);
-  void RenderDelegate(const vtkRenderState* s);
-  bool RenderCameraGBuffers(vtkOpenGLRenderWindow* renWin);
-  bool RenderLightBuffers(vtkOpenGLRenderWindow* renWin);
-  bool RenderCaustics(vtkOpenGLRenderWindow* renWin);
-  bool RenderDirectIrradiance(vtkOpenGLRenderWindow* renWin);
-  void Composite(vtkOpenGLRenderWindow* renWin, bool toFinalTexture);
+  ///@{
+  /** The last frame's inputs and result (valid after Render(); for later queries). */
+  const FrameInputs& GetFrameInputs() const;
+  const FrameResult& GetFrameResult() const;
+  /** The window of the last frame; null once the graphics resources are released. */
+  vtkOpenGLRenderWindow* GetLastWindow();
+  ///@}
 
   // Timed stage helpers.
   void StartStage(const char* name);
   void StopStage(const char* name);
 
-  int LightBufferResolution = 256;
-  int ShadowMapResolution = 1024;
-  bool ComputeDirectIrradiance = false;
-  bool KeepBuffers = false;
-  bool LastFrameHadCaustics = false;
-  bool LastFrameHadDirect = false;
-  bool LastFrameHadBuffers = false;
-  bool LastFrameHadTechniqueColor = false;
-  bool TechniqueWroteVolume = false; // set by a technique that wrote VolumeTexture this frame
-
-  // Frame state shared with techniques.
-  int Width = 0;
-  int Height = 0;
-  float WorldToClip[16];
-  vtkNew<vtkCausticsSceneExtractor> Extractor;
-  vtkNew<vtkCausticsSceneGeometry> Geometry;
-  vtkNew<vtkCausticsGBuffer> CameraGBuffer;      // receivers and reflectors
-  vtkNew<vtkCausticsGBuffer> RefractiveGBuffer;  // refractors
-  vtkNew<vtkCausticsLightBuffers> LightBuffers;  // photon buffers, aimed at specular actors
-  vtkNew<vtkCausticsLightBuffers> ShadowBuffers; // shadow maps, aimed at the scene
-  vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
-  vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
-  vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
-  vtkNew<vtkOpenGLFramebufferObject> DirectFramebuffer;
-  vtkNew<vtkTextureObject> VolumeTexture;         // RGBA32F, W/(m^2 sr)
-  vtkNew<vtkTextureObject> TechniqueColorTexture; // RGBA32F, display colour, a = 1: replace
-  vtkNew<vtkTextureObject> DelegateColorTexture;
-  vtkNew<vtkTextureObject> DelegateDepthTexture;
-  vtkNew<vtkOpenGLFramebufferObject> DelegateFramebuffer;
-  vtkNew<vtkTextureObject> FinalTexture; // HDR copy of the composite, on request
-  vtkNew<vtkOpenGLFramebufferObject> FinalFramebuffer;
-  vtkNew<vtkCausticsTimings> Timings;
-  vtkWeakPointer<vtkOpenGLRenderWindow> LastWindow;
-
 private:
   vtkCausticsRenderPass(const vtkCausticsRenderPass&) = delete;
   void operator=(const vtkCausticsRenderPass&) = delete;
 
-  vtkNew<vtkCausticsShaderProgram> DirectProgram;
-  vtkNew<vtkCausticsShaderProgram> CompositeProgram;
-  caustics::gl::FullScreenTriangle* Triangle;
+  // Steps of Render() (see the class description).
+  void BeginFrame(const vtkRenderState* s);
+  bool CannotNeedCaustics(vtkRenderer* renderer, const CausticNeeds& needs);
+  bool PrepareScene(vtkRenderer* renderer);
+  bool SceneNeedsCaustics(const CausticNeeds& needs);
+  bool SupportsCaustics(vtkOpenGLRenderWindow* renWin, bool buffers);
+  void RenderPlainVTK(const vtkRenderState* s);
+  void RenderFrame(const vtkRenderState* s, bool caustics);
+  void RenderDelegate(const vtkRenderState* s);
+  bool RenderCameraGBuffers();
+  bool RenderLightBuffers();
+  bool RenderCaustics();
+  bool RenderDirectIrradiance();
+  bool DrawDirectIrradiance();
+  void SetDirectLightUniforms(int light);
+  void Composite(bool toFinalTexture);
+  void DrawComposite(bool toFinalTexture);
+
+  // ReadBuffer() as a table of buffers.
+  struct BufferEntry;
+  static const BufferEntry* FindBuffer(const std::string& name);
+  bool ReadReceiverMask(const char* name, vtkImageData* output);
+
+  int LightBufferResolution = 256;
+  int ShadowMapResolution = 1024;
+  bool ComputeDirectIrradiance = false;
+  bool KeepBuffers = false;
+
+  FrameInputs Frame;
+  FrameResult Result;
+  vtkWeakPointer<vtkOpenGLRenderWindow> LastWindow;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
 };
 
 #endif

@@ -1,14 +1,9 @@
 #include "vtkCausticsScreenSpacePhotonPass.h"
 
-#include "vtkActor.h"
-#include "vtkAssemblyNode.h"
-#include "vtkAssemblyPath.h"
-#include "vtkCamera.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
-#include "vtkCausticsMaterial.h"
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneExtractor.h"
@@ -21,18 +16,10 @@
 #include "vtkCausticsTimings.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
-#include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
-#include "vtkPropCollection.h"
-#include "vtkRenderState.h"
-#include "vtkRenderStepsPass.h"
-#include "vtkRenderer.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
@@ -44,7 +31,6 @@
 #include "vtkCausticsScreenSpacePhotonPassTransferCS.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -66,55 +52,6 @@ constexpr unsigned int NextCounterBinding = 13;
 constexpr std::size_t RayBytes = 32;
 constexpr std::size_t PayloadBytes = 32;
 constexpr std::size_t HitBytes = 32;
-
-/** Bounding box of a mesh's vertices. */
-std::array<double, 6> MeshBounds(const caustics::Mesh& mesh)
-{
-  std::array<double, 6> b = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
-  for (std::size_t v = 0; v + 2 < mesh.positions.size(); v += 3)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      b[2 * c] = std::min(b[2 * c], static_cast<double>(mesh.positions[v + c]));
-      b[2 * c + 1] = std::max(b[2 * c + 1], static_cast<double>(mesh.positions[v + c]));
-    }
-  }
-  return b;
-}
-
-/** True if the box may intersect the clip volume of a row-major world-to-clip matrix. */
-bool BoxInFrustum(const std::array<double, 6>& b, const double m[16])
-{
-  if (b[0] > b[1])
-  {
-    return false; // no vertex
-  }
-  // Planes w + s * clip_a >= 0 for a = x, y, z and s = +-1.
-  for (int a = 0; a < 3; ++a)
-  {
-    for (int s = -1; s <= 1; s += 2)
-    {
-      bool allOutside = true;
-      for (int corner = 0; corner < 8 && allOutside; ++corner)
-      {
-        const double p[3] = { b[(corner & 1) ? 1 : 0], b[(corner & 2) ? 3 : 2],
-          b[(corner & 4) ? 5 : 4] };
-        double w = m[15], c = m[4 * a + 3];
-        for (int k = 0; k < 3; ++k)
-        {
-          w += m[12 + k] * p[k];
-          c += m[4 * a + k] * p[k];
-        }
-        allOutside = w + s * c < 0.0;
-      }
-      if (allOutside)
-      {
-        return false;
-      }
-    }
-  }
-  return true;
-}
 
 /** True if a light can send light to the sphere bounding the specular objects. */
 bool LightReachesSpecular(const caustics::SceneData& scene, const caustics::Light& light)
@@ -145,6 +82,36 @@ bool LightReachesSpecular(const caustics::SceneData& scene, const caustics::Ligh
   const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
   const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
   return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+}
+
+/** The "Shadow" array of TraceShadowRays from the traced rays and their hits. */
+void WriteShadow(const std::vector<float>& rays, const std::vector<float>& hits,
+  const caustics::Light& source, int w, int h, vtkImageData* output)
+{
+  const int count = w * h;
+  output->Initialize();
+  output->SetDimensions(w, h, 1);
+  vtkNew<vtkFloatArray> shadow;
+  shadow->SetName("Shadow");
+  shadow->SetNumberOfTuples(count);
+  for (int i = 0; i < count; ++i)
+  {
+    const float* ray = &rays[8 * static_cast<std::size_t>(i)];
+    const float t = hits[8 * static_cast<std::size_t>(i) + 3];
+    float value = -1.0f;
+    if (ray[3] > 0.0f)
+    {
+      double reach = 1e300; // a point light: occluders beyond it cast no shadow
+      if (source.type != caustics::Light::Type::Directional)
+      {
+        reach = std::sqrt(std::pow(source.position[0] - ray[0], 2) +
+          std::pow(source.position[1] - ray[1], 2) + std::pow(source.position[2] - ray[2], 2));
+      }
+      value = t >= 0.0f && t < reach ? 1.0f : 0.0f;
+    }
+    shadow->SetValue(i, value);
+  }
+  output->GetPointData()->AddArray(shadow);
 }
 }
 
@@ -179,10 +146,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   vtkCausticsScreenSpaceLineTracer::View View;
   bool HasLayers = false;
   bool HasRefractorLayers = false;
-  double Background[3] = { 0, 0, 0 }; // the renderer's: what refracted rays see when they leave
-
-  // Per-mesh bounds for the view test, refreshed when a mesh's version changes.
-  std::vector<std::pair<unsigned long, std::array<double, 6>>> MeshBounds;
+  bool GodRaysOn = false; // this frame draws god-rays
 
   std::string Prefix(int light, int lights, int bounce) const
   {
@@ -260,210 +224,43 @@ vtkCausticsPhotonSplatter* vtkCausticsScreenSpacePhotonPass::GetSplatter()
   return this->Internal->Splatter;
 }
 
-void vtkCausticsScreenSpacePhotonPass::Render(const vtkRenderState* s)
+vtkCausticsRenderPass::CausticNeeds vtkCausticsScreenSpacePhotonPass::GetCausticNeeds()
 {
-  vtkRenderer* renderer = s->GetRenderer();
-  renderer->GetBackground(this->Internal->Background);
-  if (this->ComputeDirectIrradiance || this->KeepBuffers || !this->CannotNeedCaustics(renderer))
-  {
-    this->Superclass::Render(s);
-    return;
-  }
-  // Nothing can need caustics: plain VTK, without even the scene snapshot (whose
-  // cost grows with the scene's triangles), as the base pass's own skip path.
-  this->NumberOfRenderedProps = 0;
-  this->LastFrameHadCaustics = this->LastFrameHadDirect = this->LastFrameHadBuffers = false;
-  this->LastFrameHadTechniqueColor = this->TechniqueWroteVolume = false;
-  if (!this->DelegatePass)
-  {
-    vtkRenderStepsPass* steps = vtkRenderStepsPass::New();
-    this->SetDelegatePass(steps);
-    steps->Delete();
-  }
-  this->Timings->BeginFrame();
-  this->Timings->StartStage("vtk delegate", false); // CPU only, as the base pass's skip path
-  this->DelegatePass->Render(s);
-  this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-  this->StopStage("vtk delegate");
-  this->Timings->EndFrame();
-}
-
-bool vtkCausticsScreenSpacePhotonPass::CannotNeedCaustics(vtkRenderer* renderer)
-{
-  // Specular actors and their world bounds (VTK's own, cached), as the scene
-  // snapshot would classify them.
-  const double cutoff = this->Extractor->GetRoughnessCutoff();
-  std::vector<std::array<double, 6>> specular;
-  vtkPropCollection* props = renderer->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    if (!prop->GetVisibility())
-    {
-      continue;
-    }
-    prop->InitPathTraversal();
-    while (vtkAssemblyPath* path = prop->GetNextPath())
-    {
-      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
-      if (!actor || !actor->GetVisibility() || !actor->GetMapper())
-      {
-        continue;
-      }
-      const int role = vtkCausticsMaterial::Classify(actor, cutoff);
-      if (role == vtkCausticsMaterial::ROLE_REFLECTOR ||
-        role == vtkCausticsMaterial::ROLE_REFRACTOR)
-      {
-        const double* b = actor->GetBounds();
-        if (b && vtkMath::AreBoundsInitialized(b))
-        {
-          specular.push_back({ b[0], b[1], b[2], b[3], b[4], b[5] });
-        }
-        else
-        {
-          return false; // unknown extent: let the snapshot decide
-        }
-      }
-    }
-  }
-  if (specular.empty())
-  {
-    return true;
-  }
-  // Does any light reach them?
-  caustics::SceneData scene; // only the fields LightReachesSpecular reads
-  for (int c = 0; c < 3; ++c)
-  {
-    scene.SpecularBounds[2 * c] = VTK_DOUBLE_MAX;
-    scene.SpecularBounds[2 * c + 1] = -VTK_DOUBLE_MAX;
-    for (const auto& b : specular)
-    {
-      scene.SpecularBounds[2 * c] = std::min(scene.SpecularBounds[2 * c], b[2 * c]);
-      scene.SpecularBounds[2 * c + 1] = std::max(scene.SpecularBounds[2 * c + 1], b[2 * c + 1]);
-    }
-  }
-  bool reached = false;
-  vtkLightCollection* lights = renderer->GetLights();
-  lights->InitTraversal(it);
-  while (vtkLight* light = lights->GetNextLight(it))
-  {
-    if (!light->GetSwitch() || !(light->GetIntensity() > 0.0))
-    {
-      continue;
-    }
-    caustics::Light physical;
-    physical.radiometric = { { 1.0, 1.0, 1.0 } };
-    double position[3], focal[3], axis[3];
-    light->GetTransformedPosition(position);
-    light->GetTransformedFocalPoint(focal);
-    vtkMath::Subtract(focal, position, axis);
-    if (vtkMath::Normalize(axis) == 0.0)
-    {
-      return false; // degenerate: let the snapshot report it
-    }
-    physical.position = { { position[0], position[1], position[2] } };
-    physical.direction = { { axis[0], axis[1], axis[2] } };
-    physical.type = caustics::Light::Type::Directional;
-    if (light->GetPositional() && light->GetConeAngle() < 90.0)
-    {
-      physical.type = caustics::Light::Type::Spot;
-      physical.cosOuter = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
-    }
-    reached = reached || LightReachesSpecular(scene, physical);
-  }
-  if (!reached)
-  {
-    return true;
-  }
-  if (!this->SkipOffscreenSpecular)
-  {
-    return false;
-  }
-  // Is any of them in the camera's view?
-  int width = 0, height = 0, x = 0, y = 0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  vtkMatrix4x4* matrix = renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
-    height > 0 ? static_cast<double>(width) / height : 1.0, -1.0, 1.0);
-  for (const auto& b : specular)
-  {
-    if (BoxInFrustum(b, &matrix->Element[0][0]))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-bool vtkCausticsScreenSpacePhotonPass::NeedsCaustics()
-{
-  if (!this->Superclass::NeedsCaustics())
-  {
-    return false;
-  }
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-  bool reached = false;
-  for (const caustics::Light& light : scene.Lights)
-  {
-    reached = reached || LightReachesSpecular(scene, light);
-  }
-  if (!reached)
-  {
-    return false;
-  }
-  if (!this->SkipOffscreenSpecular)
-  {
-    return true;
-  }
-  // A specular mesh whose bounding box meets the camera's frustum (cached per mesh).
-  auto& cache = this->Internal->MeshBounds;
-  cache.resize(scene.Meshes.size(), { ~0ul, {} });
-  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
-  {
-    const caustics::Mesh& mesh = scene.Meshes[m];
-    const caustics::Role role = scene.Materials[mesh.material].role;
-    if (role != caustics::Role::Reflector && role != caustics::Role::Refractor)
-    {
-      continue;
-    }
-    if (cache[m].first != mesh.version)
-    {
-      cache[m] = { mesh.version, MeshBounds(mesh) };
-    }
-    if (BoxInFrustum(cache[m].second, scene.View.worldToClip))
-    {
-      return true;
-    }
-  }
-  return false;
+  CausticNeeds needs;
+  needs.LitSpecular = true;
+  // Traces find specular actors only in the layered depth image of the view.
+  needs.SpecularInView = this->SkipOffscreenSpecular;
+  return needs;
 }
 
 bool vtkCausticsScreenSpacePhotonPass::RenderLayers(vtkOpenGLRenderWindow* renWin)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *f.Scene;
   in.SceneLayers->SetMaximumNumberOfLayers(this->MaximumNumberOfLayers);
   in.SceneLayers->SetPerObject(this->PerObjectLayers);
-  in.SceneLayers->SetTimings(this->Timings, "ssp layers ");
-  in.HasLayers = in.SceneLayers->Render(
-    renWin, this->Geometry, scene, this->WorldToClip, this->Width, this->Height);
+  in.SceneLayers->SetTimings(this->GetTimings(), "ssp layers ");
+  in.HasLayers =
+    in.SceneLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
   in.HasRefractorLayers = false;
   if (in.HasLayers && this->RefractionTracing &&
-    this->Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) > 0)
+    f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) > 0)
   {
     in.RefractorLayers->SetMaximumNumberOfLayers(this->MaximumNumberOfLayers);
-    in.RefractorLayers->SetTimings(this->Timings, "ssp refractor layers ");
-    in.HasRefractorLayers = in.RefractorLayers->Render(
-      renWin, this->Geometry, scene, this->WorldToClip, this->Width, this->Height);
+    in.RefractorLayers->SetTimings(this->GetTimings(), "ssp refractor layers ");
+    in.HasRefractorLayers =
+      in.RefractorLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
   }
   return in.HasLayers;
 }
 
 bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin, int light)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-  if (!in.Emitter->Emit(renWin, this->LightBuffers, light, this->Geometry, scene))
+  const caustics::SceneData& scene = *f.Scene;
+  if (!in.Emitter->Emit(renWin, f.LightBuffers, light, f.Geometry, scene))
   {
     return false;
   }
@@ -495,9 +292,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   p->SetUniformi("emitDirection", units.Bind(in.Emitter->GetDirectionTexture()));
   p->SetUniformi("emitFlux", units.Bind(in.Emitter->GetFluxTexture()));
   p->SetUniformi(
-    "lightPosition", units.Bind(this->LightBuffers->GetGBuffer(light)->GetPositionTexture()));
+    "lightPosition", units.Bind(f.LightBuffers->GetGBuffer(light)->GetPositionTexture()));
   p->SetUniform2i("grid", grid[0], grid[1]);
-  p->SetUniformi("resolution", this->LightBuffers->GetResolution());
+  p->SetUniformi("resolution", f.LightBuffers->GetResolution());
   p->SetUniformi("lightType", static_cast<int>(source.type));
   p->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
@@ -523,17 +320,19 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
 bool vtkCausticsScreenSpacePhotonPass::TracePhotons(
   vtkOpenGLRenderWindow* renWin, int light, int bounce)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const int c = in.Current;
   return in.Tracer->Trace(renWin, in.View, in.Rays[c].Handle, in.Counters[c].Handle, in.Capacity,
-    in.Prefix(light, this->LightBuffers->GetNumberOfLights(), bounce));
+    in.Prefix(light, f.LightBuffers->GetNumberOfLights(), bounce));
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   vtkOpenGLRenderWindow* renWin, int light, int bounce)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *f.Scene;
   const int c = in.Current, n = 1 - c;
   in.ClearCounter(n);
   const float none[4] = { 0, 0, 0, 0 };
@@ -551,7 +350,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   in.Rays[n].BindStorage(NextRayBinding);
   in.Payloads[n].BindStorage(NextPayloadBinding);
   in.Counters[n].BindStorage(NextCounterBinding);
-  this->Geometry->BindMaterials();
+  f.Geometry->BindMaterials();
   glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, in.SplatFlux->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -559,9 +358,9 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   p->SetUniformi("capacity", in.Capacity);
   p->SetUniformi("gridWidth", in.GridWidth);
   p->SetUniformi("maxEvents", this->MaximumBounces);
-  p->SetUniformMatrix4("worldToClip", this->WorldToClip);
+  p->SetUniformMatrix4("worldToClip", f.WorldToClip);
   p->SetUniformMatrix4("clipToWorld", in.ClipToWorld);
-  p->SetUniform2f("viewport", static_cast<float>(this->Width), static_cast<float>(this->Height));
+  p->SetUniform2f("viewport", static_cast<float>(f.Width), static_cast<float>(f.Height));
   const float origin[4] = { static_cast<float>(in.View.ViewOrigin[0]),
     static_cast<float>(in.View.ViewOrigin[1]), static_cast<float>(in.View.ViewOrigin[2]),
     static_cast<float>(in.View.ViewOrigin[3]) };
@@ -593,6 +392,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
 
 bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWin, int, int)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const int* grid = in.Emitter->GetGridSize();
   // Radii from the neighbours' spacing (see glsl/vtkCausticsScreenSpacePhotonPassRadiusCS.glsl).
@@ -606,7 +406,7 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     p->SetUniform2i("grid", grid[0], grid[1]);
-    p->SetUniformi("branchRows", this->LightBuffers->GetResolution());
+    p->SetUniformi("branchRows", f.LightBuffers->GetResolution());
     p->SetUniformf("spacings", static_cast<float>(this->SplatRadiusSpacings));
     p->DispatchCovering2D(grid[0], grid[1], 16, 16);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -616,38 +416,37 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
   return in.Splatter->Splat(renWin, in.SplatPosition, in.SplatNormal, in.SplatFlux, grid[0],
-    grid[1], this->CameraGBuffer, this->WorldToClip);
+    grid[1], f.CameraGBuffer, f.WorldToClip);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin, int, int)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *f.Scene;
   vtkCausticsScreenSpaceGodRays::View view;
-  view.WorldToClip = this->WorldToClip;
+  view.WorldToClip = f.WorldToClip;
   view.ClipToWorld = in.ClipToWorld;
-  view.Width = this->Width;
-  view.Height = this->Height;
+  view.Width = f.Width;
+  view.Height = f.Height;
   std::copy(in.View.ViewOrigin, in.View.ViewOrigin + 4, view.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, view.Bounds);
   view.Medium = &scene.Participating;
-  view.OpaqueDepth = this->CameraGBuffer->GetDepthTexture();
-  view.RefractiveDepth = this->RefractiveGBuffer->GetDepthTexture();
+  view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
+  view.RefractiveDepth = f.RefractiveGBuffer->GetDepthTexture();
   const int c = in.Current;
   return in.GodRays->Draw(renWin, view, in.Rays[c].Handle, in.Payloads[c].Handle,
     in.Tracer->GetLineBuffer(), in.Tracer->GetHitBuffer(), in.Tracer->GetArgumentBuffer());
 }
 
-bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin)
+void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
 {
   auto& in = *this->Internal;
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-
-  // The frame's camera and tolerance, for every stage.
+  const caustics::SceneData& scene = *f.Scene;
   const caustics::Camera& camera = scene.View;
   caustics::gl::ToColumnMajor(camera.clipToWorld, in.ClipToWorld);
   in.View.Layers = in.SceneLayers;
-  in.View.WorldToClip = this->WorldToClip;
+  in.View.WorldToClip = f.WorldToClip;
   std::copy(scene.Bounds, scene.Bounds + 6, in.View.Bounds);
   if (camera.parallel)
   {
@@ -675,65 +474,90 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(vtkOpenGLRenderWi
   in.Tracer->SetTolerance(this->LastTolerance);
   in.Tracer->SetMinimumLineLength(this->MinimumLineLength);
   in.Tracer->SetRowsPerBatch(this->RowsPerBatch);
-  in.Tracer->SetTimings(this->Timings);
+  in.Tracer->SetTimings(this->GetTimings());
   in.GodRays->SetBlurPixels(this->GodRayBlurPixels);
+}
 
-  // 1. Layered depth image of the scene (and of the refractors, for §4).
-  if (!this->RenderLayers(renWin))
+bool vtkCausticsScreenSpacePhotonPass::TraceLight(const FrameInputs& f, int light, bool godRays)
+{
+  auto& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = f.Window;
+  const int lights = f.LightBuffers->GetNumberOfLights();
+  const std::string prefix = in.Prefix(light, lights, 0);
+  this->StartStage((prefix + "emission").c_str());
+  bool ok = this->EmitPhotons(renWin, light);
+  this->StopStage((prefix + "emission").c_str());
+  for (int bounce = 1; ok && bounce <= this->MaximumBounces; ++bounce)
   {
-    return false;
-  }
-  const caustics::Medium& medium = scene.Participating;
-  const bool godRays = this->GodRays && medium.enabled &&
-    (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
-  if (godRays)
-  {
-    in.GodRays->Begin(renWin, this->Width, this->Height);
-  }
-
-  // 2-6. Per light: emit, then trace, transfer and splat bounce after bounce.
-  bool ok = true;
-  const int lights = this->LightBuffers->GetNumberOfLights();
-  for (int light = 0; ok && light < lights; ++light)
-  {
-    if (!LightReachesSpecular(scene, scene.Lights[light]))
+    const std::string stage = in.Prefix(light, lights, bounce);
+    ok = this->TracePhotons(renWin, light, bounce);
+    if (ok && godRays)
     {
-      continue;
+      this->StartStage((stage + "god-rays").c_str());
+      ok = this->DrawGodRays(renWin, light, bounce);
+      this->StopStage((stage + "god-rays").c_str());
     }
-    const std::string prefix = in.Prefix(light, lights, 0);
-    this->StartStage((prefix + "emission").c_str());
-    ok = this->EmitPhotons(renWin, light);
-    this->StopStage((prefix + "emission").c_str());
-    for (int bounce = 1; ok && bounce <= this->MaximumBounces; ++bounce)
-    {
-      const std::string stage = in.Prefix(light, lights, bounce);
-      ok = this->TracePhotons(renWin, light, bounce);
-      if (ok && godRays)
-      {
-        this->StartStage((stage + "god-rays").c_str());
-        ok = this->DrawGodRays(renWin, light, bounce);
-        this->StopStage((stage + "god-rays").c_str());
-      }
-      this->StartStage((stage + "specular transfer").c_str());
-      ok = ok && this->TransferPhotons(renWin, light, bounce);
-      this->StopStage((stage + "specular transfer").c_str());
-      this->StartStage((stage + "splatting").c_str());
-      ok = ok && this->SplatPhotons(renWin, light, bounce);
-      this->StopStage((stage + "splatting").c_str());
-      in.Current = 1 - in.Current;
-    }
-  }
-  if (ok && godRays)
-  {
-    this->StartStage("ssp god-ray blur");
-    ok = in.GodRays->Finish(renWin, this->VolumeTexture);
-    this->StopStage("ssp god-ray blur");
-    this->TechniqueWroteVolume = ok;
+    this->StartStage((stage + "specular transfer").c_str());
+    ok = ok && this->TransferPhotons(renWin, light, bounce);
+    this->StopStage((stage + "specular transfer").c_str());
+    this->StartStage((stage + "splatting").c_str());
+    ok = ok && this->SplatPhotons(renWin, light, bounce);
+    this->StopStage((stage + "splatting").c_str());
+    in.Current = 1 - in.Current;
   }
   return ok;
 }
 
-bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(vtkOpenGLRenderWindow* renWin)
+bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs& f)
+{
+  auto& in = *this->Internal;
+  const caustics::SceneData& scene = *f.Scene;
+  in.GodRaysOn = false;
+  // The frame's camera and tolerance, for every stage.
+  this->PrepareView(f);
+
+  // 1. Layered depth image of the scene (and of the refractors, for §4).
+  if (!this->RenderLayers(f.Window))
+  {
+    return false;
+  }
+  const caustics::Medium& medium = scene.Participating;
+  in.GodRaysOn = this->GodRays && medium.enabled &&
+    (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
+  if (in.GodRaysOn)
+  {
+    in.GodRays->Begin(f.Window, f.Width, f.Height);
+  }
+
+  // 2-6. Per light: emit, then trace, transfer and splat bounce after bounce.
+  bool ok = true;
+  const int lights = f.LightBuffers->GetNumberOfLights();
+  for (int light = 0; ok && light < lights; ++light)
+  {
+    if (LightReachesSpecular(scene, scene.Lights[light]))
+    {
+      ok = this->TraceLight(f, light, in.GodRaysOn);
+    }
+  }
+  return ok;
+}
+
+bool vtkCausticsScreenSpacePhotonPass::RenderVolumeRadiance(
+  const FrameInputs& f, vtkTextureObject* target)
+{
+  // The god-rays drawn bounce after bounce, blurred (§3.2).
+  if (!this->Internal->GodRaysOn)
+  {
+    return false;
+  }
+  this->StartStage("ssp god-ray blur");
+  const bool ok = this->Internal->GodRays->Finish(f.Window, target);
+  this->StopStage("ssp god-ray blur");
+  return ok;
+}
+
+bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(
+  const FrameInputs& f, vtkTextureObject* target)
 {
   auto& in = *this->Internal;
   if (!this->RefractionTracing || !in.HasRefractorLayers)
@@ -741,41 +565,37 @@ bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(vtkOpenGLRenderWindo
     return false;
   }
   // Surfaces seen only through a refractor are shaded from their irradiance.
-  if (!this->LastFrameHadDirect)
-  {
-    this->StartStage("ssp direct irradiance for refraction");
-    this->LastFrameHadDirect = this->RenderDirectIrradiance(renWin);
-    this->StopStage("ssp direct irradiance for refraction");
-  }
+  const bool direct = this->EnsureDirectIrradiance("ssp direct irradiance for refraction");
   this->StartStage("ssp refraction tracing");
-  const caustics::SceneData& scene = this->Extractor->GetScene();
+  const caustics::SceneData& scene = *f.Scene;
   vtkCausticsScreenSpaceRefraction::Inputs inputs;
   inputs.RefractorLayers = in.RefractorLayers;
-  inputs.Opaque = this->CameraGBuffer;
-  inputs.Geometry = this->Geometry;
-  inputs.DelegateColor = this->DelegateColorTexture;
-  inputs.DelegateDepth = this->DelegateDepthTexture;
-  inputs.CausticIrradiance = this->CausticTexture;
-  inputs.DirectIrradiance = this->LastFrameHadDirect ? this->DirectTexture.GetPointer() : nullptr;
-  inputs.WorldToClip = this->WorldToClip;
-  inputs.Width = this->Width;
-  inputs.Height = this->Height;
+  inputs.Opaque = f.CameraGBuffer;
+  inputs.Geometry = f.Geometry;
+  inputs.DelegateColor = f.DelegateColor;
+  inputs.DelegateDepth = f.DelegateDepth;
+  inputs.CausticIrradiance = f.CausticIrradiance;
+  inputs.DirectIrradiance = direct ? f.DirectIrradiance : nullptr;
+  inputs.WorldToClip = f.WorldToClip;
+  inputs.Width = f.Width;
+  inputs.Height = f.Height;
   std::copy(in.View.ViewOrigin, in.View.ViewOrigin + 4, inputs.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
-  std::copy(in.Background, in.Background + 3, inputs.Background);
+  std::copy(f.Background, f.Background + 3, inputs.Background);
   inputs.Tolerance = this->LastTolerance;
   in.Refraction->SetMaximumEvents(std::max(2, this->MaximumBounces + 1));
-  const bool ok = in.Refraction->Render(renWin, inputs, this->TechniqueColorTexture);
+  const bool ok = in.Refraction->Render(f.Window, inputs, target);
   this->StopStage("ssp refraction tracing");
   return ok;
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* output)
 {
+  const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  vtkOpenGLRenderWindow* renWin = this->LastWindow;
-  const caustics::SceneData& scene = this->Extractor->GetScene();
-  if (!output || !renWin || !this->LastFrameHadCaustics || !in.HasLayers)
+  vtkOpenGLRenderWindow* renWin = this->GetLastWindow();
+  const caustics::SceneData& scene = *f.Scene;
+  if (!output || !renWin || !this->GetLastFrameHadCaustics() || !in.HasLayers)
   {
     vtkErrorMacro(<< "TraceShadowRays needs an output and a last frame that traced photons");
     return false;
@@ -787,7 +607,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
     return false;
   }
   renWin->MakeCurrent();
-  const int w = this->Width, h = this->Height, count = w * h;
+  const int w = f.Width, h = f.Height, count = w * h;
   in.Rays[0].Ensure(RayBytes * count);
   in.Counters[0].Ensure(16);
   const GLuint total = static_cast<GLuint>(count);
@@ -800,8 +620,8 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   const caustics::Light& source = scene.Lights[light];
   {
     caustics::ssp::TextureUnits units(renWin);
-    p->SetUniformi("gPosition", units.Bind(this->CameraGBuffer->GetPositionTexture()));
-    p->SetUniformi("gNormal", units.Bind(this->CameraGBuffer->GetNormalTexture()));
+    p->SetUniformi("gPosition", units.Bind(f.CameraGBuffer->GetPositionTexture()));
+    p->SetUniformi("gNormal", units.Bind(f.CameraGBuffer->GetNormalTexture()));
     p->SetUniform2i("size", w, h);
     p->SetUniformi("lightType", static_cast<int>(source.type));
     p->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
@@ -813,11 +633,11 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   p->Unbind(renWin);
-  const bool timed = this->Timings->GetEnabled();
-  this->Timings->EnabledOff();
+  const bool timed = this->GetTimings()->GetEnabled();
+  this->GetTimings()->EnabledOff();
   const bool ok = in.Tracer->Trace(
     renWin, in.View, in.Rays[0].Handle, in.Counters[0].Handle, count, "ssp shadow ");
-  this->Timings->SetEnabled(timed);
+  this->GetTimings()->SetEnabled(timed);
   if (!ok)
   {
     return false;
@@ -826,29 +646,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   std::vector<float> hits(static_cast<std::size_t>(count) * 8);
   glGetNamedBufferSubData(in.Rays[0].Handle, 0, rays.size() * 4, rays.data());
   glGetNamedBufferSubData(in.Tracer->GetHitBuffer(), 0, hits.size() * 4, hits.data());
-  output->Initialize();
-  output->SetDimensions(w, h, 1);
-  vtkNew<vtkFloatArray> shadow;
-  shadow->SetName("Shadow");
-  shadow->SetNumberOfTuples(count);
-  for (int i = 0; i < count; ++i)
-  {
-    const float* ray = &rays[8 * static_cast<std::size_t>(i)];
-    const float t = hits[8 * static_cast<std::size_t>(i) + 3];
-    float value = -1.0f;
-    if (ray[3] > 0.0f)
-    {
-      double reach = 1e300; // a point light: occluders beyond it cast no shadow
-      if (source.type != caustics::Light::Type::Directional)
-      {
-        reach = std::sqrt(std::pow(source.position[0] - ray[0], 2) +
-          std::pow(source.position[1] - ray[1], 2) + std::pow(source.position[2] - ray[2], 2));
-      }
-      value = t >= 0.0f && t < reach ? 1.0f : 0.0f;
-    }
-    shadow->SetValue(i, value);
-  }
-  output->GetPointData()->AddArray(shadow);
+  WriteShadow(rays, hits, source, w, h, output);
   // The next frame rebuilds its transfer maps: nothing else to restore.
   return true;
 }

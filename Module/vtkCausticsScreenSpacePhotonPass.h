@@ -30,8 +30,9 @@
  *    up in the scene (vtkCausticsScreenSpaceRefraction); the composite shows that
  *    colour instead of VTK's.
  * Nothing runs (plain VTK cost) when no light reaches a specular actor or, with
- * SkipOffscreenSpecular, when none is inside the camera's view. Every step is a
- * timed stage ("ssp ..."); nothing is read back during a frame.
+ * SkipOffscreenSpecular, when none is inside the camera's view: the needs this
+ * pass declares to the base pass (GetCausticNeeds()), which tests them. Every step
+ * is a timed stage ("ssp ..."); nothing is read back during a frame.
  *
  * Limits (the paper's, §1.2): surfaces outside the view frustum, seen edge-on or
  * smaller than a pixel are not hit; refraction tracing sees only what the opaque
@@ -52,7 +53,7 @@ class vtkCausticsScreenSpaceGodRays;
 class vtkCausticsScreenSpaceLineTracer;
 class vtkCausticsScreenSpaceRefraction;
 class vtkImageData;
-class vtkRenderer;
+class vtkTextureObject;
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsScreenSpacePhotonPass : public vtkCausticsRenderPass
 {
@@ -60,13 +61,6 @@ public:
   static vtkCausticsScreenSpacePhotonPass* New();
   vtkTypeMacro(vtkCausticsScreenSpacePhotonPass, vtkCausticsRenderPass);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /**
-   * Remembers the renderer's background (the refraction's environment), then
-   * renders; when the scene cannot need caustics (CannotNeedCaustics()), VTK
-   * renders alone without the base pass's scene snapshot.
-   */
-  void Render(const vtkRenderState* s) override;
 
   ///@{
   /** Most depth layers peeled from the camera, in [1, 16]. Default 8 (§2.2). */
@@ -201,19 +195,19 @@ protected:
   vtkCausticsScreenSpacePhotonPass();
   ~vtkCausticsScreenSpacePhotonPass() override;
 
-  bool NeedsCaustics() override;
-
   /**
-   * A cheap test before the scene snapshot, from VTK's own actor bounds and lights:
-   * true when no specular actor is visible, no light reaches one, or (with
-   * SkipOffscreenSpecular) none is in the camera's view. False when in doubt.
+   * A light must reach a specular actor and, with SkipOffscreenSpecular, one must
+   * be inside the camera's view; the base pass tests both (before the snapshot too).
    */
-  bool CannotNeedCaustics(vtkRenderer* renderer);
-  bool RenderCausticIrradiance(vtkOpenGLRenderWindow* renWin) override;
-  bool RenderTechniqueColor(vtkOpenGLRenderWindow* renWin) override;
+  CausticNeeds GetCausticNeeds() override;
+  bool RenderCausticIrradiance(const FrameInputs& in) override;
+  bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
+  bool RenderTechniqueColor(const FrameInputs& in, vtkTextureObject* target) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   // Steps (see the class description).
+  void PrepareView(const FrameInputs& in);
+  bool TraceLight(const FrameInputs& in, int light, bool godRays);
   bool RenderLayers(vtkOpenGLRenderWindow* renWin);
   bool EmitPhotons(vtkOpenGLRenderWindow* renWin, int light);
   bool TracePhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);

@@ -1,0 +1,106 @@
+#include "vtkCausticsStraightPhotonPass.h"
+
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonSplatter.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsStraightPhotonPassCS.h" // The transport shader
+#include "vtkObjectFactory.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+vtkStandardNewMacro(vtkCausticsStraightPhotonPass);
+
+struct vtkCausticsStraightPhotonPass::Internals
+{
+  vtkNew<vtkCausticsPhotonEmitter> Emitter;   // emission (shared)
+  vtkNew<vtkCausticsGBuffer> Receivers;       // transport: receivers seen from the light
+  vtkNew<vtkCausticsShaderProgram> Program;   // transport: the hit records
+  vtkNew<vtkCausticsPhotonSplatter> Splatter; // reconstruction (shared)
+  vtkNew<vtkTextureObject> Hits[3];           // position, normal + radius, flux
+};
+
+vtkCausticsStraightPhotonPass::vtkCausticsStraightPhotonPass()
+  : Internal(new Internals)
+{
+  this->Internal->Program->SetName("straight photon transport");
+  this->Internal->Program->SetComputeSource(vtkCausticsStraightPhotonPassCS);
+}
+
+vtkCausticsStraightPhotonPass::~vtkCausticsStraightPhotonPass() = default;
+
+vtkCausticsRenderPass::CausticNeeds vtkCausticsStraightPhotonPass::GetCausticNeeds()
+{
+  return { true, false, true }; // a light must reach a specular actor; early skip allowed
+}
+
+bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
+{
+  auto& s = *this->Internal;
+  bool ok = true;
+  for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
+  {
+    const int* grid = s.Emitter->GetGridSize(); // filled by Emit()
+    ok = !in.LightBuffers->GetView(light).valid ||
+      (s.Emitter->Emit(in.Window, in.LightBuffers, light, in.Geometry, *in.Scene) &&
+        this->Transport(in, light) &&
+        s.Splatter->Splat(in.Window, s.Hits[0], s.Hits[1], s.Hits[2], grid[0], grid[1],
+          in.CameraGBuffer, in.WorldToClip));
+  }
+  return ok;
+}
+
+bool vtkCausticsStraightPhotonPass::Transport(const FrameInputs& in, int light)
+{
+  auto& s = *this->Internal;
+  const int* grid = s.Emitter->GetGridSize();
+  const int n = in.LightBuffers->GetResolution();
+  float lightToClip[16];
+  caustics::gl::ToColumnMajor(in.LightBuffers->GetView(light).worldToClip, lightToClip);
+  const int receiver = vtkCausticsSceneGeometry::RoleBit(1);
+  if (!s.Receivers->Render(in.Window, in.Geometry, lightToClip, n, n, receiver) ||
+    !s.Program->Bind(in.Window))
+  {
+    return false;
+  }
+  // Image units 0-4: the photons and the receivers (normals are RGBA16F); 5-7: hits.
+  vtkTextureObject* images[] = { s.Emitter->GetPositionTexture(), s.Emitter->GetDirectionTexture(),
+    s.Emitter->GetFluxTexture(), s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture(),
+    s.Hits[0], s.Hits[1], s.Hits[2] };
+  for (int i = 0; i < 8; ++i)
+  {
+    if (i >= 5)
+    {
+      caustics::gl::EnsureTexture(images[i], in.Window, grid[0], grid[1], GL_RGBA32F);
+    }
+    glBindImageTexture(i, images[i]->GetHandle(), 0, GL_FALSE, 0,
+      i < 5 ? GL_READ_ONLY : GL_WRITE_ONLY, i == 4 ? GL_RGBA16F : GL_RGBA32F);
+  }
+  const caustics::Light& source = in.Scene->Lights[light];
+  const bool directional = source.type == caustics::Light::Type::Directional;
+  const caustics::Vec3& v = directional ? source.direction : source.position;
+  const float lightVector[4] = { float(v[0]), float(v[1]), float(v[2]), directional ? 0.f : 1.f };
+  s.Program->SetUniform2i("grid", grid[0], grid[1]);
+  s.Program->SetUniformi("resolution", n);
+  s.Program->SetUniform4f("light", lightVector);
+  s.Program->SetUniformf("spacings", 2.0f); // kernel radius in photon spacings
+  s.Program->DispatchCovering2D(grid[0], grid[1], 16, 16);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  s.Program->Unbind(in.Window);
+  return true;
+}
+
+void vtkCausticsStraightPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
+{
+  auto& s = *this->Internal;
+  s.Emitter->ReleaseGraphicsResources(w);
+  s.Receivers->ReleaseGraphicsResources(w);
+  s.Program->ReleaseGraphicsResources(w);
+  s.Splatter->ReleaseGraphicsResources(w);
+  s.Hits[0]->ReleaseGraphicsResources(w);
+  s.Hits[1]->ReleaseGraphicsResources(w);
+  s.Hits[2]->ReleaseGraphicsResources(w);
+}
