@@ -175,11 +175,9 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
       static_cast<float>(std::max(clusterRadiusPixels, this->MinimumSplatRadius)));
     program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
     program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
-    glBindBufferBase(
-      GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, hierarchy->GetNodeBuffer());
-    glBindBufferBase(
-      GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, hierarchy->GetSplatBuffer());
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer());
+    hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
+    hierarchy->GetSplatBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer().Handle());
     glBindVertexArray(this->VertexArray);
     for (int j = 0; j < this->NumberOfLevels; ++j)
     {

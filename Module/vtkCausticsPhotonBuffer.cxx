@@ -37,6 +37,8 @@ double Diagonal(const double bounds[6])
 struct vtkCausticsPhotonBuffer::Internals
 {
   caustics::hcm::ReceiverBoundsCache Receivers;
+  caustics::gl::StorageBuffer Statistics; // STAT_* counters
+  caustics::gl::StorageBuffer Lists;      // control words, then two work lists
 };
 
 vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
@@ -63,7 +65,7 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
 
 vtkCausticsPhotonBuffer::~vtkCausticsPhotonBuffer()
 {
-  if (this->StatisticsBuffer || this->ListBuffer)
+  if (this->Internal->Statistics.Handle() || this->Internal->Lists.Handle())
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): statistics buffer leaked");
   }
@@ -127,30 +129,14 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   caustics::gl::EnsureTexture(this->HitPosition, renWin, width, height, GL_RGBA32F);
   caustics::gl::EnsureTexture(this->HitNormal, renWin, width, height, GL_RGBA32F);
   caustics::gl::EnsureTexture(this->HitFlux, renWin, width, height, GL_RGBA32F);
-  if (!this->StatisticsBuffer)
-  {
-    glCreateBuffers(1, &this->StatisticsBuffer);
-    glNamedBufferData(this->StatisticsBuffer, caustics::hcm::StatSize * sizeof(std::uint32_t),
-      nullptr, GL_DYNAMIC_COPY);
-  }
-  glClearNamedBufferData(
-    this->StatisticsBuffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  using Usage = caustics::gl::StorageBuffer::Usage;
+  this->Internal->Statistics.Allocate(caustics::hcm::StatSize * sizeof(std::uint32_t), Usage::Copy);
+  this->Internal->Statistics.Clear();
   // Work lists (control words, then two lists of up to one entry per texel).
   const std::size_t capacity = static_cast<std::size_t>(width) * height;
   const std::size_t listBytes = (caustics::hcm::ControlSize + 2 * capacity) * sizeof(std::uint32_t);
-  if (!this->ListBuffer)
-  {
-    glCreateBuffers(1, &this->ListBuffer);
-    this->ListCapacity = 0;
-  }
-  if (listBytes > this->ListCapacity)
-  {
-    glNamedBufferData(
-      this->ListBuffer, static_cast<GLsizeiptr>(listBytes), nullptr, GL_DYNAMIC_COPY);
-    this->ListCapacity = listBytes;
-  }
-  glClearNamedBufferSubData(this->ListBuffer, GL_R32UI, 0,
-    caustics::hcm::ControlSize * sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  this->Internal->Lists.Allocate(listBytes, Usage::Copy);
+  this->Internal->Lists.Clear(0, caustics::hcm::ControlSize * sizeof(std::uint32_t));
 
   // 3. One thread per photon, in two phases (inside the refractors, then in air).
   vtkTextureObject* inputs[] = { emitter->GetPositionTexture(), emitter->GetDirectionTexture(),
@@ -178,10 +164,9 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   {
     glBindImageTexture(i, outputs[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   }
-  glBindBufferBase(
-    GL_SHADER_STORAGE_BUFFER, caustics::hcm::StatisticsBinding, this->StatisticsBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding, this->ListBuffer);
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->ListBuffer);
+  this->Internal->Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::StatisticsBinding);
+  this->Internal->Lists.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Internal->Lists.Handle());
   geometry->BindMaterials();
   bool ok = true;
   vtkCausticsShaderProgram* phases[] = { this->SortProgram, this->InsideProgram, this->AirProgram };
@@ -261,14 +246,13 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
 bool vtkCausticsPhotonBuffer::GetStatistics(Statistics& statistics)
 {
   statistics = Statistics();
-  if (!this->StatisticsBuffer)
+  if (!this->Internal->Statistics.Handle())
   {
     vtkErrorMacro(<< "GetStatistics: no photon buffer was rendered");
     return false;
   }
   std::vector<std::uint32_t> words(caustics::hcm::StatSize, 0);
-  glGetNamedBufferSubData(
-    this->StatisticsBuffer, 0, words.size() * sizeof(std::uint32_t), words.data());
+  this->Internal->Statistics.Read(0, words.size() * sizeof(std::uint32_t), words.data());
   statistics.Photons = words[caustics::hcm::StatPhotons];
   statistics.Hits = words[caustics::hcm::StatHits];
   statistics.LostInside = words[caustics::hcm::StatLostInside];
@@ -296,17 +280,8 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
   this->InsideProgram->ReleaseGraphicsResources(win);
   this->AirProgram->ReleaseGraphicsResources(win);
   this->ArgumentsProgram->ReleaseGraphicsResources(win);
-  if (this->ListBuffer)
-  {
-    glDeleteBuffers(1, &this->ListBuffer);
-    this->ListBuffer = 0;
-    this->ListCapacity = 0;
-  }
-  if (this->StatisticsBuffer)
-  {
-    glDeleteBuffers(1, &this->StatisticsBuffer);
-    this->StatisticsBuffer = 0;
-  }
+  this->Internal->Lists.Release();
+  this->Internal->Statistics.Release();
   this->GridSize[0] = this->GridSize[1] = 0;
 }
 

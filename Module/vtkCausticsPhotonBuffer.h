@@ -51,8 +51,7 @@
 
 #include "vtkNew.h" // For vtkNew members
 
-#include <cstddef> // For std::size_t
-#include <memory>  // For std::unique_ptr
+#include <memory> // For std::unique_ptr
 
 class vtkCausticsGBuffer;
 class vtkCausticsPhotonEmitter;
@@ -176,14 +175,11 @@ protected:
   int GridSize[2] = { 0, 0 };
   int BranchRows = 0;
   double FluxUnit = 1.0;
-  unsigned int StatisticsBuffer = 0;
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;
   vtkNew<vtkTextureObject> HitPosition;
   vtkNew<vtkTextureObject> HitNormal;
   vtkNew<vtkTextureObject> HitFlux;
-  unsigned int ListBuffer = 0;
-  std::size_t ListCapacity = 0; // bytes
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;

@@ -29,21 +29,7 @@ constexpr int StageFlat = 0;  // STAGE_* of the gather shader
 constexpr int StageNodes = 1;
 constexpr int StagePhotons = 2;
 
-/** Grows `buffer` to at least `bytes` (never shrinks, never reallocates per frame). */
-void EnsureBuffer(unsigned int& buffer, std::size_t& capacity, std::size_t bytes)
-{
-  bytes = std::max<std::size_t>(bytes, 16);
-  if (!buffer)
-  {
-    glCreateBuffers(1, &buffer);
-    capacity = 0;
-  }
-  if (bytes > capacity)
-  {
-    glNamedBufferData(buffer, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_COPY);
-    capacity = bytes;
-  }
-}
+using Usage = caustics::gl::StorageBuffer::Usage;
 
 /** Work groups covering `items`, folded into two dimensions of at most 65535. */
 void Groups(std::size_t items, unsigned int& x, unsigned int& y)
@@ -54,7 +40,16 @@ void Groups(std::size_t items, unsigned int& x, unsigned int& y)
 }
 }
 
+struct vtkCausticsPhotonBufferHierarchy::Internals
+{
+  caustics::gl::StorageBuffer Nodes;   // validity mipmap, levels 1..S
+  caustics::gl::StorageBuffer Control; // counters and indirect arguments (CONTROL_*)
+  caustics::gl::StorageBuffer Work;    // traversal work lists, one per level
+  caustics::gl::StorageBuffer Splats;  // splat entries, one region per caustic map level
+};
+
 vtkCausticsPhotonBufferHierarchy::vtkCausticsPhotonBufferHierarchy()
+  : Internal(new Internals)
 {
   const std::string common = vtkCausticsPhotonBufferCommon;
   this->BuildProgram->SetName("validity mipmap");
@@ -77,10 +72,26 @@ vtkCausticsPhotonBufferHierarchy::vtkCausticsPhotonBufferHierarchy()
 
 vtkCausticsPhotonBufferHierarchy::~vtkCausticsPhotonBufferHierarchy()
 {
-  if (this->NodeBuffer || this->ControlBuffer || this->WorkBuffer || this->SplatBuffer)
+  const Internals& in = *this->Internal;
+  if (in.Nodes.Handle() || in.Control.Handle() || in.Work.Handle() || in.Splats.Handle())
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL buffers leaked");
   }
+}
+
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBufferHierarchy::GetControlBuffer() const
+{
+  return this->Internal->Control;
+}
+
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBufferHierarchy::GetSplatBuffer() const
+{
+  return this->Internal->Splats;
+}
+
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBufferHierarchy::GetNodeBuffer() const
+{
+  return this->Internal->Nodes;
 }
 
 unsigned int vtkCausticsPhotonBufferHierarchy::GetNodeOffset(int k) const
@@ -129,11 +140,11 @@ void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
       nodes += count;
     }
   }
-  EnsureBuffer(this->NodeBuffer, this->NodeCapacity, static_cast<std::size_t>(nodes) * NodeBytes);
-  EnsureBuffer(this->WorkBuffer, this->WorkCapacity, static_cast<std::size_t>(list) * 4);
+  this->Internal->Nodes.Allocate(static_cast<std::size_t>(nodes) * NodeBytes, Usage::Copy);
+  this->Internal->Work.Allocate(static_cast<std::size_t>(list) * 4, Usage::Copy);
   this->SplatRegion = static_cast<unsigned int>(width) * static_cast<unsigned int>(height);
-  EnsureBuffer(this->SplatBuffer, this->SplatCapacity,
-    static_cast<std::size_t>(this->SplatRegion) * 4 * caustics::hcm::MapLevels);
+  this->Internal->Splats.Allocate(
+    static_cast<std::size_t>(this->SplatRegion) * 4 * caustics::hcm::MapLevels, Usage::Copy);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
@@ -170,12 +181,8 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   const int first = flat ? 0 : this->StartLevel;
   control[caustics::hcm::ControlListCount + first] = static_cast<std::uint32_t>(
     static_cast<std::size_t>(this->LevelWidth[first]) * this->LevelHeight[first]);
-  if (!this->ControlBuffer)
-  {
-    glCreateBuffers(1, &this->ControlBuffer);
-    glNamedBufferData(this->ControlBuffer, sizeof(control), nullptr, GL_DYNAMIC_COPY);
-  }
-  glNamedBufferSubData(this->ControlBuffer, 0, sizeof(control), control);
+  this->Internal->Control.Allocate(sizeof(control), Usage::Copy);
+  this->Internal->Control.Write(0, sizeof(control), control);
 
   if (!flat && !this->BuildMipmap(renWin, photons, mapView, mapResolution))
   {
@@ -203,7 +210,7 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
   program->SetUniformi("hitPosition", position->GetTextureUnit());
   program->SetUniformi("hitFlux", flux->GetTextureUnit());
   caustics::hcm::SetViewUniforms(program, "mapView", mapView, mapResolution, mapResolution);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, this->NodeBuffer);
+  this->Internal->Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
   for (int k = 1; k <= this->StartLevel; ++k)
   {
     program->SetUniformi("level", k);
@@ -233,11 +240,12 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   }
   const int* grid = photons->GetGridSize();
   glBindImageTexture(0, this->SplatRadius->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, this->NodeBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding, this->ControlBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::WorkBinding, this->WorkBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, this->SplatBuffer);
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->ControlBuffer);
+  Internals& in = *this->Internal;
+  in.Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
+  in.Control.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding);
+  in.Work.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::WorkBinding);
+  in.Splats.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Control.Handle());
 
   const bool flat = this->GatherMode == GATHER_FLAT;
   const int start = flat ? 0 : this->StartLevel;
@@ -328,13 +336,13 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
 bool vtkCausticsPhotonBufferHierarchy::GetCounters(Counters& counters)
 {
   counters = Counters();
-  if (!this->ControlBuffer)
+  if (!this->Internal->Control.Handle())
   {
     vtkErrorMacro(<< "GetCounters: no gather ran");
     return false;
   }
   std::uint32_t words[caustics::hcm::ControlSize];
-  glGetNamedBufferSubData(this->ControlBuffer, 0, sizeof(words), words);
+  this->Internal->Control.Read(0, sizeof(words), words);
   const bool flat = this->LastGatherMode == GATHER_FLAT;
   counters.StartLevel = flat ? 0 : this->StartLevel;
   for (int k = 0; k <= counters.StartLevel; ++k)
@@ -374,16 +382,11 @@ void vtkCausticsPhotonBufferHierarchy::ReleaseGraphicsResources(vtkWindow* win)
   }
   this->ArgumentsProgram->ReleaseGraphicsResources(win);
   this->SplatRadius->ReleaseGraphicsResources(win);
-  for (unsigned int* buffer :
-    { &this->NodeBuffer, &this->ControlBuffer, &this->WorkBuffer, &this->SplatBuffer })
+  Internals& in = *this->Internal;
+  for (caustics::gl::StorageBuffer* buffer : { &in.Nodes, &in.Control, &in.Work, &in.Splats })
   {
-    if (*buffer)
-    {
-      glDeleteBuffers(1, buffer);
-      *buffer = 0;
-    }
+    buffer->Release();
   }
-  this->NodeCapacity = this->WorkCapacity = this->SplatCapacity = 0;
 }
 
 void vtkCausticsPhotonBufferHierarchy::PrintSelf(ostream& os, vtkIndent indent)

@@ -54,6 +54,7 @@
 
 #include "vtkNew.h" // For vtkNew members
 
+#include <memory> // For std::unique_ptr
 #include <vector> // For std::vector
 
 class vtkCausticsPhotonBuffer;
@@ -66,6 +67,10 @@ namespace caustics
 {
 struct Camera;
 struct LightView;
+namespace gl
+{
+class StorageBuffer;
+}
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonBufferHierarchy : public vtkObject
@@ -207,18 +212,9 @@ public:
 
   ///@{
   /** GPU lists for vtkCausticsCausticMap (valid after Gather()). */
-  unsigned int GetControlBuffer() const
-  {
-    return this->ControlBuffer;
-  }
-  unsigned int GetSplatBuffer() const
-  {
-    return this->SplatBuffer;
-  }
-  unsigned int GetNodeBuffer() const
-  {
-    return this->NodeBuffer;
-  }
+  const caustics::gl::StorageBuffer& GetControlBuffer() const;
+  const caustics::gl::StorageBuffer& GetSplatBuffer() const;
+  const caustics::gl::StorageBuffer& GetNodeBuffer() const;
   /** Entries reserved per caustic map level in the splat buffer. */
   unsigned int GetSplatRegion() const
   {
@@ -258,11 +254,6 @@ protected:
   vtkNew<vtkCausticsShaderProgram> GatherPrograms[3]; // flat, traversal nodes, photons
   vtkNew<vtkCausticsShaderProgram> ArgumentsProgram;
   vtkNew<vtkTextureObject> SplatRadius;
-  unsigned int NodeBuffer = 0;
-  unsigned int ControlBuffer = 0;
-  unsigned int WorkBuffer = 0;
-  unsigned int SplatBuffer = 0;
-  std::size_t NodeCapacity = 0, WorkCapacity = 0, SplatCapacity = 0; // bytes
   unsigned int SplatRegion = 0;
   double FluxUnit = 1.0;
   int LastGatherMode = GATHER_HIERARCHICAL;
@@ -273,6 +264,9 @@ protected:
 private:
   vtkCausticsPhotonBufferHierarchy(const vtkCausticsPhotonBufferHierarchy&) = delete;
   void operator=(const vtkCausticsPhotonBufferHierarchy&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal; // the GPU buffers
 
   void Layout(int width, int height);
   bool BuildMipmap(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,

@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceLineTracer.h"
 
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
@@ -43,9 +44,9 @@ constexpr float GuardPixels = 2.0f;
 
 struct vtkCausticsScreenSpaceLineTracer::Internals
 {
-  caustics::ssp::Buffer Lines;
-  caustics::ssp::Buffer Hits;
-  caustics::ssp::Buffer Arguments;
+  caustics::gl::StorageBuffer Lines;
+  caustics::gl::StorageBuffer Hits;
+  caustics::gl::StorageBuffer Arguments;
   caustics::ssp::Texture Rows; // RG32UI: t bits, stamp << 16 | layer
   caustics::ssp::Framebuffer RowFramebuffer;
   unsigned int EmptyVertexArray = 0;
@@ -96,7 +97,7 @@ vtkCausticsScreenSpaceLineTracer::vtkCausticsScreenSpaceLineTracer()
 
 vtkCausticsScreenSpaceLineTracer::~vtkCausticsScreenSpaceLineTracer()
 {
-  if (this->Internal->Hits.Handle || this->Internal->EmptyVertexArray)
+  if (this->Internal->Hits.Handle() || this->Internal->EmptyVertexArray)
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL objects leaked");
   }
@@ -122,9 +123,9 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   const int rows = std::max(1, std::min(this->RowsPerBatch, caustics::ssp::MaxTextureSize()));
   const int batches = capacity > 0 ? (capacity + rows - 1) / rows : 0;
   in.Batches = batches;
-  in.Lines.Ensure(LineBytes * std::max(capacity, 1));
-  in.Hits.Ensure(HitBytes * std::max(capacity, 1));
-  in.Arguments.Ensure(4 * (8 + 8 * static_cast<std::size_t>(batches)));
+  in.Lines.Allocate(LineBytes * std::max(capacity, 1));
+  in.Hits.Allocate(HitBytes * std::max(capacity, 1));
+  in.Arguments.Allocate(4 * (8 + 8 * static_cast<std::size_t>(batches)));
   if (in.Rows.Ensure(rowWidth, rows, 0, GL_RG32UI))
   {
     in.Stamp = 0;
@@ -148,7 +149,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   if (ok)
   {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
-    in.Arguments.BindStorage(ArgumentBinding);
+    in.Arguments.BindBase(GL_SHADER_STORAGE_BUFFER, ArgumentBinding);
     in.PrepareProgram->SetUniformi("rowsPerBatch", rows);
     in.PrepareProgram->SetUniformi("batches", batches);
     in.PrepareProgram->SetUniformi("capacity", capacity);
@@ -162,7 +163,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-    in.Lines.BindStorage(LineBinding);
+    in.Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
     vtkCausticsShaderProgram* p = in.SetupProgram;
     p->SetUniformMatrix4("worldToClip", view.WorldToClip);
     p->SetUniform2f("viewport", static_cast<float>(width), static_cast<float>(height));
@@ -176,7 +177,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
     p->SetUniformf("maximumLength", static_cast<float>(rowWidth - 1));
     p->SetUniformf("guardPixels", GuardPixels);
     p->SetUniformi("capacity", capacity);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle());
     glDispatchComputeIndirect(0);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -223,7 +224,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
     {
       vtkCausticsShaderProgram* p = in.LineProgram;
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-      in.Lines.BindStorage(LineBinding);
+      in.Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TableBinding, tableBuffer);
       p->SetUniformi("batchBase", b * rows);
       p->SetUniform2f("target", static_cast<float>(rowWidth), static_cast<float>(rows));
@@ -239,7 +240,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
       p->SetUniformf("pixelScale", pixelScale);
       p->SetUniformu("stamp", in.Stamp);
       glBindVertexArray(in.EmptyVertexArray);
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.Arguments.Handle);
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.Arguments.Handle());
       glDrawArraysIndirect(
         GL_LINES, reinterpret_cast<const void*>(static_cast<std::uintptr_t>(argumentBytes)));
       glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -251,8 +252,8 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
       vtkCausticsShaderProgram* p = in.ReduceProgram;
       glBindTextureUnit(rowUnit, in.Rows.Handle);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-      in.Lines.BindStorage(LineBinding);
-      in.Hits.BindStorage(HitBinding);
+      in.Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
+      in.Hits.BindBase(GL_SHADER_STORAGE_BUFFER, HitBinding);
       p->SetUniformi("rowHits", rowUnit);
       p->SetUniformMatrix4("worldToClip", view.WorldToClip);
       p->SetUniformf("pixelScale", pixelScale);
@@ -263,7 +264,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
       p->SetUniformi("capacity", capacity);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
       p->SetUniformu("stamp", in.Stamp);
-      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle);
+      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle());
       glDispatchComputeIndirect(static_cast<GLintptr>(argumentBytes + 16));
       glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -282,15 +283,15 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
 
 unsigned int vtkCausticsScreenSpaceLineTracer::GetHitBuffer() const
 {
-  return this->Internal->Hits.Handle;
+  return this->Internal->Hits.Handle();
 }
 unsigned int vtkCausticsScreenSpaceLineTracer::GetLineBuffer() const
 {
-  return this->Internal->Lines.Handle;
+  return this->Internal->Lines.Handle();
 }
 unsigned int vtkCausticsScreenSpaceLineTracer::GetArgumentBuffer() const
 {
-  return this->Internal->Arguments.Handle;
+  return this->Internal->Arguments.Handle();
 }
 int vtkCausticsScreenSpaceLineTracer::GetNumberOfBatches() const
 {

@@ -163,9 +163,9 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   vtkNew<vtkCausticsShaderProgram> RadiusProgram;
 
   // Transfer maps (photon lists) and their counters, ping-ponged between bounces.
-  caustics::ssp::Buffer Rays[2];
-  caustics::ssp::Buffer Payloads[2];
-  caustics::ssp::Buffer Counters[2];
+  caustics::gl::StorageBuffer Rays[2];
+  caustics::gl::StorageBuffer Payloads[2];
+  caustics::gl::StorageBuffer Counters[2];
   int Current = 0;
   int Capacity = 0;
   int GridWidth = 0;
@@ -198,12 +198,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
     return prefix;
   }
 
-  void ClearCounter(int which)
-  {
-    const GLuint zero = 0;
-    glClearNamedBufferData(
-      this->Counters[which].Handle, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  }
+  void ClearCounter(int which) { this->Counters[which].Clear(); }
 };
 
 vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
@@ -233,7 +228,7 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
 
 vtkCausticsScreenSpacePhotonPass::~vtkCausticsScreenSpacePhotonPass()
 {
-  if (this->Internal->Rays[0].Handle)
+  if (this->Internal->Rays[0].Handle())
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL objects leaked");
   }
@@ -472,9 +467,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   in.Capacity = grid[0] * grid[1];
   for (int k = 0; k < 2; ++k)
   {
-    in.Rays[k].Ensure(RayBytes * in.Capacity);
-    in.Payloads[k].Ensure(PayloadBytes * in.Capacity);
-    in.Counters[k].Ensure(16);
+    in.Rays[k].Allocate(RayBytes * in.Capacity);
+    in.Payloads[k].Allocate(PayloadBytes * in.Capacity);
+    in.Counters[k].Allocate(16);
   }
   caustics::gl::EnsureTexture(in.SplatPosition, renWin, grid[0], grid[1], GL_RGBA32F);
   caustics::gl::EnsureTexture(in.SplatNormal, renWin, grid[0], grid[1], GL_RGBA32F);
@@ -511,9 +506,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
   p->SetUniform3f("boundsMax", static_cast<float>(scene.Bounds[1]),
     static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
-  in.Rays[0].BindStorage(NextRayBinding);
-  in.Payloads[0].BindStorage(NextPayloadBinding);
-  in.Counters[0].BindStorage(NextCounterBinding);
+  in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
+  in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
+  in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
   p->DispatchCovering2D(grid[0], grid[1], 16, 16);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   p->Unbind(renWin);
@@ -525,8 +520,8 @@ bool vtkCausticsScreenSpacePhotonPass::TracePhotons(
 {
   auto& in = *this->Internal;
   const int c = in.Current;
-  return in.Tracer->Trace(renWin, in.View, in.Rays[c].Handle, in.Counters[c].Handle, in.Capacity,
-    in.Prefix(light, this->LightBuffers->GetNumberOfLights(), bounce));
+  return in.Tracer->Trace(renWin, in.View, in.Rays[c].Handle(), in.Counters[c].Handle(),
+    in.Capacity, in.Prefix(light, this->LightBuffers->GetNumberOfLights(), bounce));
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
@@ -544,13 +539,13 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   {
     return false;
   }
-  in.Counters[c].BindStorage(CounterBinding);
-  in.Rays[c].BindStorage(RayBinding);
-  in.Payloads[c].BindStorage(PayloadBinding);
+  in.Counters[c].BindBase(GL_SHADER_STORAGE_BUFFER, CounterBinding);
+  in.Rays[c].BindBase(GL_SHADER_STORAGE_BUFFER, RayBinding);
+  in.Payloads[c].BindBase(GL_SHADER_STORAGE_BUFFER, PayloadBinding);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HitBinding, in.Tracer->GetHitBuffer());
-  in.Rays[n].BindStorage(NextRayBinding);
-  in.Payloads[n].BindStorage(NextPayloadBinding);
-  in.Counters[n].BindStorage(NextCounterBinding);
+  in.Rays[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
+  in.Payloads[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
+  in.Counters[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
   this->Geometry->BindMaterials();
   glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -634,7 +629,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   view.OpaqueDepth = this->CameraGBuffer->GetDepthTexture();
   view.RefractiveDepth = this->RefractiveGBuffer->GetDepthTexture();
   const int c = in.Current;
-  return in.GodRays->Draw(renWin, view, in.Rays[c].Handle, in.Payloads[c].Handle,
+  return in.GodRays->Draw(renWin, view, in.Rays[c].Handle(), in.Payloads[c].Handle(),
     in.Tracer->GetLineBuffer(), in.Tracer->GetHitBuffer(), in.Tracer->GetArgumentBuffer());
 }
 
@@ -788,10 +783,10 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   }
   renWin->MakeCurrent();
   const int w = this->Width, h = this->Height, count = w * h;
-  in.Rays[0].Ensure(RayBytes * count);
-  in.Counters[0].Ensure(16);
+  in.Rays[0].Allocate(RayBytes * count);
+  in.Counters[0].Allocate(16);
   const GLuint total = static_cast<GLuint>(count);
-  glNamedBufferSubData(in.Counters[0].Handle, 0, 4, &total);
+  glNamedBufferSubData(in.Counters[0].Handle(), 0, 4, &total);
   vtkCausticsShaderProgram* p = in.ShadowProgram;
   if (!p->Bind(renWin))
   {
@@ -808,7 +803,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
       static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
     p->SetUniform3f("lightDirection", static_cast<float>(source.direction[0]),
       static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
-    in.Rays[0].BindStorage(NextRayBinding);
+    in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
     p->DispatchCovering2D(w, h, 16, 16);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -816,7 +811,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   const bool timed = this->Timings->GetEnabled();
   this->Timings->EnabledOff();
   const bool ok = in.Tracer->Trace(
-    renWin, in.View, in.Rays[0].Handle, in.Counters[0].Handle, count, "ssp shadow ");
+    renWin, in.View, in.Rays[0].Handle(), in.Counters[0].Handle(), count, "ssp shadow ");
   this->Timings->SetEnabled(timed);
   if (!ok)
   {
@@ -824,7 +819,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   }
   std::vector<float> rays(static_cast<std::size_t>(count) * 8);
   std::vector<float> hits(static_cast<std::size_t>(count) * 8);
-  glGetNamedBufferSubData(in.Rays[0].Handle, 0, rays.size() * 4, rays.data());
+  glGetNamedBufferSubData(in.Rays[0].Handle(), 0, rays.size() * 4, rays.data());
   glGetNamedBufferSubData(in.Tracer->GetHitBuffer(), 0, hits.size() * 4, hits.data());
   output->Initialize();
   output->SetDimensions(w, h, 1);
