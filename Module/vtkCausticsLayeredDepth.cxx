@@ -82,11 +82,11 @@ struct vtkCausticsLayeredDepth::Internals
   caustics::ssp::Texture Normal;     // RGBA16F array
   caustics::ssp::Texture Depth;      // R32F array
   caustics::ssp::Texture PeelDepth[2];
-  caustics::ssp::Buffer Table;
-  caustics::ssp::Buffer ObjectMap;
-  caustics::ssp::Buffer CommandInfo;
-  caustics::ssp::Buffer DrawCommands;
-  caustics::ssp::Buffer ClearCommands;
+  caustics::gl::StorageBuffer Table;
+  caustics::gl::StorageBuffer ObjectMap;
+  caustics::gl::StorageBuffer CommandInfo;
+  caustics::gl::StorageBuffer DrawCommands;
+  caustics::gl::StorageBuffer ClearCommands;
   caustics::ssp::Framebuffer CountFramebuffer;
   caustics::ssp::Framebuffer PeelFramebuffer;
   unsigned int VertexArray = 0;
@@ -259,7 +259,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
       signature.push_back(range.Count);
     }
   }
-  const bool layoutChanged = signature != in.StaticSignature || !in.DrawCommands.Handle;
+  const bool layoutChanged = signature != in.StaticSignature || !in.DrawCommands.Handle();
   if (layoutChanged)
   {
     in.ObjectCommandCount.assign(objects, 0);
@@ -290,24 +290,24 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
       objectMap[scene.Meshes[m].material] = static_cast<std::uint32_t>(std::max(meshObject[m], 0));
     }
     in.Commands = static_cast<int>(info.size());
-    in.DrawCommands.Ensure(draw.size() * 4);
-    in.CommandInfo.Ensure(info.size() * 4);
-    in.ClearCommands.Ensure(clear.size() * 4);
-    in.ObjectMap.Ensure(objectMap.size() * 4);
+    in.DrawCommands.Allocate(draw.size() * 4);
+    in.CommandInfo.Allocate(info.size() * 4);
+    in.ClearCommands.Allocate(clear.size() * 4);
+    in.ObjectMap.Allocate(objectMap.size() * 4);
     if (!draw.empty())
     {
-      glNamedBufferSubData(in.DrawCommands.Handle, 0, draw.size() * 4, draw.data());
-      glNamedBufferSubData(in.CommandInfo.Handle, 0, info.size() * 4, info.data());
+      in.DrawCommands.Write(0, draw.size() * 4, draw.data());
+      in.CommandInfo.Write(0, info.size() * 4, info.data());
     }
-    glNamedBufferSubData(in.ClearCommands.Handle, 0, clear.size() * 4, clear.data());
-    glNamedBufferSubData(in.ObjectMap.Handle, 0, objectMap.size() * 4, objectMap.data());
+    in.ClearCommands.Write(0, clear.size() * 4, clear.data());
+    in.ObjectMap.Write(0, objectMap.size() * 4, objectMap.data());
     in.StaticSignature = signature;
   }
   in.Objects = objects;
   in.Layers = layers;
   in.Width = width;
   in.Height = height;
-  in.Table.Ensure(16 * (1 + static_cast<std::size_t>(objects)));
+  in.Table.Allocate(16 * (1 + static_cast<std::size_t>(objects)));
 
   // Targets (reallocated only when the size, cap or object count changes).
   GLint maxLayers = 0;
@@ -360,7 +360,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   in.Start("depth complexity");
   const GLuint zero[4] = { 0, 0, 0, 0 };
   glClearTexImage(in.Complexity.Handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
-  glClearNamedBufferData(in.Table.Handle, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+  glClearNamedBufferData(in.Table.Handle(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
   const GLuint countFramebuffer = in.CountFramebuffer.Get();
   glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
   glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
@@ -373,7 +373,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   {
     in.CountProgram->SetUniformMatrix4("worldToClip", worldToClip);
     glBindImageTexture(0, in.Complexity.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    in.ObjectMap.BindStorage(ObjectMapBinding);
+    in.ObjectMap.BindBase(GL_SHADER_STORAGE_BUFFER, ObjectMapBinding);
     geometry->Draw(this->RoleMask);
     in.CountProgram->Unbind(renWin);
   }
@@ -384,7 +384,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   if (ok)
   {
     glBindImageTexture(0, in.Complexity.Handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    in.Table.BindStorage(TableBinding);
+    in.Table.BindBase(GL_SHADER_STORAGE_BUFFER, TableBinding);
     in.ReduceProgram->SetUniform2i("size", width, height);
     in.ReduceProgram->SetUniformi("objectCount", objects);
     in.ReduceProgram->DispatchCovering2D(width, height, 16, 16);
@@ -397,10 +397,10 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   ok = ok && in.FinalizeProgram->Bind(renWin);
   if (ok)
   {
-    in.Table.BindStorage(TableBinding);
-    in.CommandInfo.BindStorage(CommandInfoBinding);
-    in.DrawCommands.BindStorage(DrawCommandBinding);
-    in.ClearCommands.BindStorage(ClearCommandBinding);
+    in.Table.BindBase(GL_SHADER_STORAGE_BUFFER, TableBinding);
+    in.CommandInfo.BindBase(GL_SHADER_STORAGE_BUFFER, CommandInfoBinding);
+    in.DrawCommands.BindBase(GL_SHADER_STORAGE_BUFFER, DrawCommandBinding);
+    in.ClearCommands.BindBase(GL_SHADER_STORAGE_BUFFER, ClearCommandBinding);
     in.FinalizeProgram->SetUniformi("objectCount", objects);
     in.FinalizeProgram->SetUniformi("maxLayers", layers);
     in.FinalizeProgram->SetUniformi("commandCount", in.Commands);
@@ -437,7 +437,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
         peelFramebuffer, GL_DEPTH_ATTACHMENT, in.PeelDepth[k % 2].Handle, 0);
 
       // Clear the layer and its depth buffer, only if it will be peeled.
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.ClearCommands.Handle);
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.ClearCommands.Handle());
       state->vtkglDepthFunc(GL_ALWAYS);
       ok = in.ClearProgram->Bind(renWin);
       if (!ok)
@@ -461,7 +461,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
       in.PeelProgram->SetUniformi("firstLayer", k == 0 ? 1 : 0);
       in.PeelProgram->SetUniformMatrix4("worldToClip", worldToClip);
       geometry->BindMaterials();
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.DrawCommands.Handle);
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.DrawCommands.Handle());
       glBindVertexArray(in.VertexArray);
       const int first = in.ObjectCommandFirst[o] + k * in.ObjectCommandCount[o];
       if (in.ObjectCommandCount[o] > 0)
@@ -503,7 +503,7 @@ unsigned int vtkCausticsLayeredDepth::GetComplexityTexture() const
 }
 unsigned int vtkCausticsLayeredDepth::GetTableBuffer() const
 {
-  return this->Internal->Table.Handle;
+  return this->Internal->Table.Handle();
 }
 int vtkCausticsLayeredDepth::GetNumberOfObjects() const
 {
@@ -524,23 +524,23 @@ int vtkCausticsLayeredDepth::GetHeight() const
 
 int vtkCausticsLayeredDepth::ReadDepthComplexity()
 {
-  if (!this->Internal->Table.Handle)
+  if (!this->Internal->Table.Handle())
   {
     return 0;
   }
   std::uint32_t header[4] = { 0, 0, 0, 0 };
-  glGetNamedBufferSubData(this->Internal->Table.Handle, 0, sizeof(header), header);
+  glGetNamedBufferSubData(this->Internal->Table.Handle(), 0, sizeof(header), header);
   return static_cast<int>(header[2]);
 }
 
 int vtkCausticsLayeredDepth::ReadNumberOfPeeledLayers(int object)
 {
-  if (!this->Internal->Table.Handle || object < 0 || object >= this->Internal->Objects)
+  if (!this->Internal->Table.Handle() || object < 0 || object >= this->Internal->Objects)
   {
     return 0;
   }
   std::uint32_t entry[4] = { 0, 0, 0, 0 };
-  glGetNamedBufferSubData(this->Internal->Table.Handle, 16 * (1 + object), sizeof(entry), entry);
+  glGetNamedBufferSubData(this->Internal->Table.Handle(), 16 * (1 + object), sizeof(entry), entry);
   return static_cast<int>(entry[1]);
 }
 
@@ -611,7 +611,7 @@ void vtkCausticsLayeredDepth::ReleaseGraphicsResources(vtkWindow* win)
   {
     texture->Release();
   }
-  for (caustics::ssp::Buffer* buffer :
+  for (caustics::gl::StorageBuffer* buffer :
     { &in.Table, &in.ObjectMap, &in.CommandInfo, &in.DrawCommands, &in.ClearCommands })
   {
     buffer->Release();
