@@ -5,6 +5,7 @@
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
@@ -96,9 +97,9 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
   return ok;
 }
 
-bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-  vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels,
-  const caustics::Camera* camera)
+bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBuffer* photons, vtkCausticsPhotonBufferHierarchy* hierarchy,
+  double clusterRadiusPixels, const caustics::Camera* camera)
 {
   if (!this->Internal->HasView || !photons || !hierarchy)
   {
@@ -153,7 +154,7 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
       inputs[i]->Activate();
       program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
-    program->SetUniformi("gridWidth", photons->GetGridSize()[0]);
+    program->SetUniformi("gridWidth", grid.Width);
     for (int k = 0; k < caustics::hcm::MaxTraversalLevels; ++k)
     {
       const std::string index = "[" + std::to_string(k) + "]";

@@ -47,6 +47,7 @@ namespace caustics
 {
 struct Camera;
 struct LightView;
+struct PhotonGrid;
 namespace gl
 {
 class FullScreenTriangle;
@@ -93,15 +94,15 @@ public:
     const caustics::LightView& view);
 
   /**
-   * Clears the levels and draws the splat lists of `hierarchy` (gathered from
-   * `photons`) into them. Clusters get clusterRadiusPixels, and no less than the
-   * hierarchy's MinimumCameraSplatRadius pixel footprints of `camera` (may be null:
+   * Clears the levels and draws the splat lists of `hierarchy` (gathered from the
+   * photons of `grid`, traced into `photons`) into them. Clusters get clusterRadiusPixels, and no
+   * less than the hierarchy's MinimumCameraSplatRadius pixel footprints of `camera` (may be null:
    * no floor).
    * False if a program failed.
    */
-  bool Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels,
-    const caustics::Camera* camera);
+  bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    vtkCausticsPhotonBuffer* photons, vtkCausticsPhotonBufferHierarchy* hierarchy,
+    double clusterRadiusPixels, const caustics::Camera* camera);
 
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of

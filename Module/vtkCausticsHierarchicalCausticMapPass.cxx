@@ -7,6 +7,7 @@
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -233,18 +234,18 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     this->BeginStage("hcm emit");
     light.Traced = light.Emitter->Emit(renWin, this->LightBuffers, index, this->Geometry, scene);
     this->EndStage("hcm emit");
+    const caustics::PhotonGrid& grid = light.Emitter->GetGrid();
     // The receivers the caustic map sees, and the refractors' faces from the light.
     this->BeginStage("hcm light layers");
     light.Traced = light.Traced &&
       light.Map->RenderReceivers(renWin, this->Geometry, light.MapView) &&
-      light.Photons->RenderLayers(
-        renWin, this->Geometry, photonView, light.Emitter->GetGridSize()[0]);
+      light.Photons->RenderLayers(renWin, this->Geometry, photonView, grid);
     this->EndStage("hcm light layers");
     // Where each photon lands.
     this->BeginStage("hcm trace");
     light.Traced = light.Traced &&
-      light.Photons->Trace(renWin, this->Geometry, scene, index, light.Emitter, photonView,
-        light.MapView, light.Map->GetReceivers(0));
+      light.Photons->Trace(
+        renWin, this->Geometry, scene, grid, photonView, light.MapView, light.Map->GetReceivers(0));
     this->EndStage("hcm trace");
     ok = ok && light.Traced;
   }
@@ -265,13 +266,14 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
     {
       continue;
     }
+    const caustics::PhotonGrid& grid = light.Emitter->GetGrid();
     this->BeginStage("hcm traversal");
-    const bool gathered = light.Hierarchy->Gather(renWin, light.Photons, light.MapView,
+    const bool gathered = light.Hierarchy->Gather(renWin, grid, light.Photons, light.MapView,
       this->CausticMapResolution, static_cast<int>(scene.Lights[i].type), &scene.View);
     this->EndStage("hcm traversal");
     this->BeginStage("hcm splat");
     light.Traced = gathered &&
-      light.Map->Splat(renWin, light.Photons, light.Hierarchy, clusterRadius, &scene.View);
+      light.Map->Splat(renWin, grid, light.Photons, light.Hierarchy, clusterRadius, &scene.View);
     this->EndStage("hcm splat");
     ok = ok && light.Traced;
   }

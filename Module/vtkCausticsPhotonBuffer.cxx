@@ -3,7 +3,7 @@
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
-#include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
@@ -72,18 +72,20 @@ vtkCausticsPhotonBuffer::~vtkCausticsPhotonBuffer()
 }
 
 bool vtkCausticsPhotonBuffer::Render(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, int light,
-  vtkCausticsPhotonEmitter* emitter, const caustics::LightView& photonView,
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+  const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
   const caustics::LightView& mapView, vtkCausticsGBuffer* receivers)
 {
-  const int resolution = emitter ? emitter->GetGridSize()[0] : 0;
-  return this->RenderLayers(renWin, geometry, photonView, resolution) &&
-    this->Trace(renWin, geometry, scene, light, emitter, photonView, mapView, receivers);
+  return this->RenderLayers(renWin, geometry, photonView, grid) &&
+    this->Trace(renWin, geometry, scene, grid, photonView, mapView, receivers);
 }
 
 bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::LightView& photonView, int resolution)
+  vtkCausticsSceneGeometry* geometry, const caustics::LightView& photonView,
+  const caustics::PhotonGrid& grid)
 {
+  // The layers are the light buffers' size, N x N: one texel per photon of a branch.
+  const int resolution = grid.Width;
   if (resolution <= 0)
   {
     vtkErrorMacro(<< "RenderLayers needs a positive resolution (emit photons first)");
@@ -102,28 +104,25 @@ bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
 }
 
 bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, int light,
-  vtkCausticsPhotonEmitter* emitter, const caustics::LightView& photonView,
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+  const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
   const caustics::LightView& mapView, vtkCausticsGBuffer* receivers)
 {
-  if (!emitter || !receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
+  const int light = grid.Light;
+  if (!receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
   {
-    vtkErrorMacro(<< "Trace needs an emitter, a receiver G-buffer and a valid light index");
+    vtkErrorMacro(<< "Trace needs emitted photons, a receiver G-buffer and a valid light index");
     return false;
   }
-  const int width = emitter->GetGridSize()[0];
-  const int height = emitter->GetGridSize()[1];
-  if (width <= 0 || height <= 0 || this->FrontLayer->GetSize()[0] != width)
+  const int width = grid.Width;
+  const int height = grid.Height;
+  if (grid.IsEmpty() || this->FrontLayer->GetSize()[0] != width)
   {
     vtkErrorMacro(<< "Trace needs emitted photons and layers of their resolution");
     return false;
   }
-  this->GridSize[0] = width;
-  this->GridSize[1] = height;
-  this->BranchRows = width;
   const caustics::Light& source = scene.Lights[light];
-  this->FluxUnit =
-    caustics::hcm::TexelFluxBound(source, photonView, width) / caustics::hcm::UnitsPerTexelFlux;
+  this->FluxUnit = caustics::hcm::FluxUnit(grid);
 
   // 2. Outputs and counters: allocated when the size changes, cleared every frame.
   caustics::gl::EnsureTexture(this->HitPosition, renWin, width, height, GL_RGBA32F);
@@ -139,11 +138,10 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   this->Internal->Lists.Clear(0, caustics::hcm::ControlSize * sizeof(std::uint32_t));
 
   // 3. One thread per photon, in two phases (inside the refractors, then in air).
-  vtkTextureObject* inputs[] = { emitter->GetPositionTexture(), emitter->GetDirectionTexture(),
-    emitter->GetFluxTexture(), this->FrontLayer->GetPositionTexture(),
-    this->FrontLayer->GetNormalTexture(), this->BackLayer->GetPositionTexture(),
-    this->BackLayer->GetNormalTexture(), receivers->GetPositionTexture(),
-    receivers->GetNormalTexture() };
+  vtkTextureObject* inputs[] = { grid.Position, grid.Direction, grid.Flux,
+    this->FrontLayer->GetPositionTexture(), this->FrontLayer->GetNormalTexture(),
+    this->BackLayer->GetPositionTexture(), this->BackLayer->GetNormalTexture(),
+    receivers->GetPositionTexture(), receivers->GetNormalTexture() };
   const char* names[] = { "photonPosition", "photonDirection", "photonFlux", "frontPosition",
     "frontNormal", "backPosition", "backNormal", "receiverPosition", "receiverNormal" };
   for (vtkTextureObject* input : inputs)
@@ -282,7 +280,6 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
   this->ArgumentsProgram->ReleaseGraphicsResources(win);
   this->Internal->Lists.Release();
   this->Internal->Statistics.Release();
-  this->GridSize[0] = this->GridSize[1] = 0;
 }
 
 void vtkCausticsPhotonBuffer::PrintSelf(ostream& os, vtkIndent indent)
@@ -290,6 +287,5 @@ void vtkCausticsPhotonBuffer::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MaximumInternalEvents: " << this->MaximumInternalEvents << "\n";
   os << indent << "MarchSteps: " << this->MarchSteps << "\n";
-  os << indent << "GridSize: " << this->GridSize[0] << " x " << this->GridSize[1] << "\n";
   os << indent << "FluxUnit: " << this->FluxUnit << " W\n";
 }

@@ -30,7 +30,7 @@
  *    layer shows where the estimate projects, until the estimate stops moving:
  *    exact in one step on planar receivers), else a march of MarchSteps samples
  *    that brackets the first change of side, bisection and a last plane step.
- * Outputs, textures of the emitter's grid size (RGBA32F), one texel per photon:
+ * Outputs, textures of the photon grid's size (RGBA32F), one texel per photon:
  * - HitPosition: xyz of the hit, w = path length from the light d_i (m; for a
  *   directional light, from the view's eye plane); w > 0 marks a valid photon;
  * - HitNormal: receiver normal as modelled, w = |N.D_i| (cosine of incidence);
@@ -54,7 +54,6 @@
 #include <memory> // For std::unique_ptr
 
 class vtkCausticsGBuffer;
-class vtkCausticsPhotonEmitter;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkOpenGLRenderWindow;
@@ -64,6 +63,7 @@ class vtkWindow;
 namespace caustics
 {
 struct LightView;
+struct PhotonGrid;
 struct SceneData;
 }
 
@@ -91,23 +91,22 @@ public:
 
 #ifndef __VTK_WRAP__
   /**
-   * Renders the refractor layers in `photonView` (the view the emitter's texels come
-   * from) and traces the photons of `emitter` (emitted for light `light` of `scene`)
-   * to the receivers of `receivers`, a receiver-only G-buffer seen through
-   * `mapView`. The geometry's material table must be current. Returns false if a
-   * program failed.
+   * Renders the refractor layers in `photonView` (the view the grid's texels come
+   * from) and traces the photons of `grid` (emitted for its light of `scene`) to the
+   * receivers of `receivers`, a receiver-only G-buffer seen through `mapView`. The
+   * geometry's material table must be current. Returns false if a program failed.
    */
   bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene, int light, vtkCausticsPhotonEmitter* emitter,
+    const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
     const caustics::LightView& photonView, const caustics::LightView& mapView,
     vtkCausticsGBuffer* receivers);
 
   ///@{
   /** Render() in its two steps: the refractor layers (N x N), then the trace. */
   bool RenderLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::LightView& photonView, int resolution);
+    const caustics::LightView& photonView, const caustics::PhotonGrid& grid);
   bool Trace(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene, int light, vtkCausticsPhotonEmitter* emitter,
+    const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
     const caustics::LightView& photonView, const caustics::LightView& mapView,
     vtkCausticsGBuffer* receivers);
   ///@}
@@ -155,15 +154,6 @@ public:
   }
   ///@}
 
-  /** Photon grid of the last Render() (the emitter's): width N, height N or 2N. */
-  vtkGetVector2Macro(GridSize, int);
-
-  /** Rows per emission branch (N): neighbours in the grid never cross a branch. */
-  vtkGetMacro(BranchRows, int);
-
-  /** W per unit of the GPU flux counters (set by the last Render()). */
-  vtkGetMacro(FluxUnit, double);
-
   void ReleaseGraphicsResources(vtkWindow* win);
 
 protected:
@@ -172,9 +162,7 @@ protected:
 
   int MaximumInternalEvents = 8;
   int MarchSteps = 64;
-  int GridSize[2] = { 0, 0 };
-  int BranchRows = 0;
-  double FluxUnit = 1.0;
+  double FluxUnit = 1.0; // W per unit of the GPU flux counters, set by Trace()
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;
   vtkNew<vtkTextureObject> HitPosition;

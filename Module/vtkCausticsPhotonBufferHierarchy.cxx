@@ -3,6 +3,7 @@
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
@@ -148,12 +149,13 @@ void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
-  int lightType, const caustics::Camera* camera)
+  const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+  const caustics::LightView& mapView, int mapResolution, int lightType,
+  const caustics::Camera* camera)
 {
-  const int width = photons ? photons->GetGridSize()[0] : 0;
-  const int height = photons ? photons->GetGridSize()[1] : 0;
-  if (width <= 0 || height <= 0 || mapResolution <= 0)
+  const int width = grid.Width;
+  const int height = grid.Height;
+  if (!photons || grid.IsEmpty() || mapResolution <= 0)
   {
     vtkErrorMacro(<< "Gather needs a rendered photon buffer and a caustic map resolution");
     return false;
@@ -167,7 +169,7 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   }
   this->Layout(width, height);
   this->LastGatherMode = this->GatherMode;
-  this->FluxUnit = photons->GetFluxUnit();
+  this->FluxUnit = caustics::hcm::FluxUnit(grid);
   caustics::gl::EnsureTexture(this->SplatRadius, renWin, width, height, GL_R32F);
 
   // Control block: counters zero, one instance per indirect draw, and the length
@@ -188,7 +190,7 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   {
     return false;
   }
-  return this->Traverse(renWin, photons, mapView, mapResolution, lightType, camera);
+  return this->Traverse(renWin, grid, photons, mapView, mapResolution, lightType, camera);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin,
@@ -228,8 +230,9 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
-  int lightType, const caustics::Camera* camera)
+  const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+  const caustics::LightView& mapView, int mapResolution, int lightType,
+  const caustics::Camera* camera)
 {
   vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
     photons->GetHitFluxTexture() };
@@ -238,7 +241,6 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   {
     input->Activate();
   }
-  const int* grid = photons->GetGridSize();
   glBindImageTexture(0, this->SplatRadius->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   Internals& in = *this->Internal;
   in.Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
@@ -283,8 +285,8 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
     }
     gather->SetUniformf("minimumCameraRadiusPixels",
       camera ? static_cast<float>(this->MinimumCameraSplatRadius) : 0.0f);
-    gather->SetUniform2i("gridSize", grid[0], grid[1]);
-    gather->SetUniformi("branchRows", std::max(photons->GetBranchRows(), 1));
+    gather->SetUniform2i("gridSize", grid.Width, grid.Height);
+    gather->SetUniformi("branchRows", std::max(grid.BranchRows, 1));
     gather->SetUniformu("splatRegion", this->SplatRegion);
     gather->SetUniformi("lightType", lightType);
     gather->SetUniformi("splatMode", this->SplatMode);

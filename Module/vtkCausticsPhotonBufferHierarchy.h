@@ -67,6 +67,7 @@ namespace caustics
 {
 struct Camera;
 struct LightView;
+struct PhotonGrid;
 namespace gl
 {
 class StorageBuffer;
@@ -179,14 +180,15 @@ public:
 
 #ifndef __VTK_WRAP__
   /**
-   * Gathers the photons of `photons` into splat lists for a caustic map seen
-   * through `mapView` at `mapResolution` (finest level) texels per side;
-   * `lightType` is caustics::Light::Type; `camera` (may be null: no camera floor) is
-   * the view MinimumCameraSplatRadius refers to. Returns false if a program failed.
+   * Gathers the photons of `grid`, traced into `photons`, into splat lists for a
+   * caustic map seen through `mapView` at `mapResolution` (finest level) texels per
+   * side; `lightType` is caustics::Light::Type; `camera` (may be null: no camera
+   * floor) is the view MinimumCameraSplatRadius refers to. Returns false if a
+   * program failed.
    */
-  bool Gather(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    const caustics::LightView& mapView, int mapResolution, int lightType,
-    const caustics::Camera* camera);
+  bool Gather(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
+    int lightType, const caustics::Camera* camera);
 
   /** GPU counters of the last Gather(); flux in W summed over RGB. */
   struct Counters
@@ -271,9 +273,9 @@ private:
   void Layout(int width, int height);
   bool BuildMipmap(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
     const caustics::LightView& mapView, int mapResolution);
-  bool Traverse(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    const caustics::LightView& mapView, int mapResolution, int lightType,
-    const caustics::Camera* camera);
+  bool Traverse(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
+    int lightType, const caustics::Camera* camera);
 };
 
 #endif

@@ -10,6 +10,7 @@
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -168,7 +169,6 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   caustics::gl::StorageBuffer Counters[2];
   int Current = 0;
   int Capacity = 0;
-  int GridWidth = 0;
   // Splat records of the photons that ended on receivers this bounce.
   vtkNew<vtkTextureObject> SplatPosition;
   vtkNew<vtkTextureObject> SplatNormal;
@@ -462,18 +462,17 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   {
     return false;
   }
-  const int* grid = in.Emitter->GetGridSize();
-  in.GridWidth = grid[0];
-  in.Capacity = grid[0] * grid[1];
+  const caustics::PhotonGrid& grid = in.Emitter->GetGrid();
+  in.Capacity = static_cast<int>(grid.Count());
   for (int k = 0; k < 2; ++k)
   {
     in.Rays[k].Allocate(RayBytes * in.Capacity);
     in.Payloads[k].Allocate(PayloadBytes * in.Capacity);
     in.Counters[k].Allocate(16);
   }
-  caustics::gl::EnsureTexture(in.SplatPosition, renWin, grid[0], grid[1], GL_RGBA32F);
-  caustics::gl::EnsureTexture(in.SplatNormal, renWin, grid[0], grid[1], GL_RGBA32F);
-  caustics::gl::EnsureTexture(in.SplatFlux, renWin, grid[0], grid[1], GL_RGBA32F);
+  caustics::gl::EnsureTexture(in.SplatPosition, renWin, grid.Width, grid.Height, GL_RGBA32F);
+  caustics::gl::EnsureTexture(in.SplatNormal, renWin, grid.Width, grid.Height, GL_RGBA32F);
+  caustics::gl::EnsureTexture(in.SplatFlux, renWin, grid.Width, grid.Height, GL_RGBA32F);
 
   // Compact the emitter's grid into the first transfer map.
   in.Current = 0;
@@ -486,13 +485,13 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   const caustics::Light& source = scene.Lights[light];
   const caustics::Medium& medium = scene.Participating;
   caustics::ssp::TextureUnits units(renWin);
-  p->SetUniformi("emitPosition", units.Bind(in.Emitter->GetPositionTexture()));
-  p->SetUniformi("emitDirection", units.Bind(in.Emitter->GetDirectionTexture()));
-  p->SetUniformi("emitFlux", units.Bind(in.Emitter->GetFluxTexture()));
+  p->SetUniformi("emitPosition", units.Bind(grid.Position));
+  p->SetUniformi("emitDirection", units.Bind(grid.Direction));
+  p->SetUniformi("emitFlux", units.Bind(grid.Flux));
   p->SetUniformi(
     "lightPosition", units.Bind(this->LightBuffers->GetGBuffer(light)->GetPositionTexture()));
-  p->SetUniform2i("grid", grid[0], grid[1]);
-  p->SetUniformi("resolution", this->LightBuffers->GetResolution());
+  p->SetUniform2i("grid", grid.Width, grid.Height);
+  p->SetUniformi("resolution", grid.BranchRows);
   p->SetUniformi("lightType", static_cast<int>(source.type));
   p->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
@@ -509,7 +508,7 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
   in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
   in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
-  p->DispatchCovering2D(grid[0], grid[1], 16, 16);
+  p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   p->Unbind(renWin);
   return true;
@@ -552,7 +551,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   glBindImageTexture(2, in.SplatFlux->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   const caustics::Medium& medium = scene.Participating;
   p->SetUniformi("capacity", in.Capacity);
-  p->SetUniformi("gridWidth", in.GridWidth);
+  p->SetUniformi("gridWidth", in.Emitter->GetGrid().Width);
   p->SetUniformi("maxEvents", this->MaximumBounces);
   p->SetUniformMatrix4("worldToClip", this->WorldToClip);
   p->SetUniformMatrix4("clipToWorld", in.ClipToWorld);
@@ -589,7 +588,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
 bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWin, int, int)
 {
   auto& in = *this->Internal;
-  const int* grid = in.Emitter->GetGridSize();
+  const caustics::PhotonGrid& grid = in.Emitter->GetGrid();
   // Radii from the neighbours' spacing (see glsl/vtkCausticsScreenSpacePhotonPassRadiusCS.glsl).
   if (this->SplatRadius <= 0.0 && this->SplatRadiusSpacings > 0.0)
   {
@@ -600,18 +599,18 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     }
     glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    p->SetUniform2i("grid", grid[0], grid[1]);
-    p->SetUniformi("branchRows", this->LightBuffers->GetResolution());
+    p->SetUniform2i("grid", grid.Width, grid.Height);
+    p->SetUniformi("branchRows", grid.BranchRows);
     p->SetUniformf("spacings", static_cast<float>(this->SplatRadiusSpacings));
-    p->DispatchCovering2D(grid[0], grid[1], 16, 16);
+    p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     p->Unbind(renWin);
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
-  return in.Splatter->Splat(renWin, in.SplatPosition, in.SplatNormal, in.SplatFlux, grid[0],
-    grid[1], this->CameraGBuffer, this->WorldToClip);
+  return in.Splatter->Splat(renWin, grid, in.SplatPosition, in.SplatNormal, in.SplatFlux,
+    this->CameraGBuffer, this->WorldToClip);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin, int, int)
@@ -871,7 +870,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   in.SplatPosition->ReleaseGraphicsResources(w);
   in.SplatNormal->ReleaseGraphicsResources(w);
   in.SplatFlux->ReleaseGraphicsResources(w);
-  in.Capacity = in.GridWidth = 0;
+  in.Capacity = 0;
   in.HasLayers = in.HasRefractorLayers = false;
 }
 
