@@ -1,5 +1,6 @@
 #include "vtkCausticsCausticMap.h"
 
+#include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
@@ -80,8 +81,11 @@ vtkCausticsGBuffer* vtkCausticsCausticMap::GetReceivers(int j)
 }
 
 bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::LightView& view)
+  const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
+  const caustics::LightView& view)
 {
+  this->Resolution = settings.CausticMapResolution;
+  this->NumberOfLevels = settings.NumberOfLevels();
   this->Internal->View = view;
   this->Internal->HasView = true;
   float matrix[16];
@@ -97,9 +101,10 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
   return ok;
 }
 
-bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
   vtkCausticsPhotonBuffer* photons, vtkCausticsPhotonBufferHierarchy* hierarchy,
-  double clusterRadiusPixels, const caustics::Camera* camera)
+  const caustics::Camera* camera)
 {
   if (!this->Internal->HasView || !photons || !hierarchy)
   {
@@ -163,17 +168,17 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, const caustics:
     }
     // Clusters get the hierarchy's camera floor too (its photons' kernels have it).
     const bool cameraFloor =
-      camera && hierarchy->GetSplatMode() != vtkCausticsPhotonBufferHierarchy::SPLAT_CONSTANT;
+      camera && settings.SplatMode != caustics::CausticMapSettings::SPLAT_CONSTANT;
     if (camera)
     {
       caustics::hcm::SetCameraViewUniforms(program, "cameraView", *camera);
     }
     program->SetUniformf("minimumCameraRadiusPixels",
-      cameraFloor ? static_cast<float>(hierarchy->GetMinimumCameraSplatRadius()) : 0.0f);
-    program->SetUniformf("minimumRadiusPixels", static_cast<float>(this->MinimumSplatRadius));
-    program->SetUniformf("maximumRadiusPixels", static_cast<float>(this->MaximumSplatRadius));
+      cameraFloor ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
+    program->SetUniformf("minimumRadiusPixels", static_cast<float>(settings.MinimumSplatRadius));
+    program->SetUniformf("maximumRadiusPixels", static_cast<float>(settings.MaximumSplatRadius));
     program->SetUniformf("clusterRadiusPixels",
-      static_cast<float>(std::max(clusterRadiusPixels, this->MinimumSplatRadius)));
+      static_cast<float>(std::max(settings.ClusterRadius(), settings.MinimumSplatRadius)));
     program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
     program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
     hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
@@ -286,8 +291,6 @@ void vtkCausticsCausticMap::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
-  os << indent << "MinimumSplatRadius: " << this->MinimumSplatRadius << " px\n";
-  os << indent << "MaximumSplatRadius: " << this->MaximumSplatRadius << " px\n";
   os << indent << "PlaneTolerance: " << this->PlaneTolerance << " radii\n";
   os << indent << "NormalTolerance: " << this->NormalTolerance << "\n";
   os << indent << "HasView: " << this->Internal->HasView << "\n";

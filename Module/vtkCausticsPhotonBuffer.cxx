@@ -1,5 +1,6 @@
 #include "vtkCausticsPhotonBuffer.h"
 
+#include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
@@ -72,12 +73,13 @@ vtkCausticsPhotonBuffer::~vtkCausticsPhotonBuffer()
 }
 
 bool vtkCausticsPhotonBuffer::Render(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
-  const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
-  const caustics::LightView& mapView, vtkCausticsGBuffer* receivers)
+  const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
+  const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
+  const caustics::LightView& photonView, const caustics::LightView& mapView,
+  vtkCausticsGBuffer* receivers)
 {
   return this->RenderLayers(renWin, geometry, photonView, grid) &&
-    this->Trace(renWin, geometry, scene, grid, photonView, mapView, receivers);
+    this->Trace(renWin, settings, geometry, scene, grid, photonView, mapView, receivers);
 }
 
 bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
@@ -104,9 +106,10 @@ bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
 }
 
 bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
-  const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
-  const caustics::LightView& mapView, vtkCausticsGBuffer* receivers)
+  const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
+  const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
+  const caustics::LightView& photonView, const caustics::LightView& mapView,
+  vtkCausticsGBuffer* receivers)
 {
   const int light = grid.Light;
   if (!receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
@@ -199,8 +202,8 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
     program->SetUniformi("lightType", static_cast<int>(source.type));
     program->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
       static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
-    program->SetUniformi("maximumInternalEvents", this->MaximumInternalEvents);
-    program->SetUniformi("marchSteps", this->MarchSteps);
+    program->SetUniformi("maximumInternalEvents", settings.MaximumInternalEvents);
+    program->SetUniformi("marchSteps", settings.MarchSteps);
     // Longest straight paths: across the refractors' bounds, and across the scene.
     program->SetUniformf("chordLength", static_cast<float>(1.01 * Diagonal(scene.SpecularBounds)));
     program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(scene.Bounds)));
@@ -285,7 +288,5 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
 void vtkCausticsPhotonBuffer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "MaximumInternalEvents: " << this->MaximumInternalEvents << "\n";
-  os << indent << "MarchSteps: " << this->MarchSteps << "\n";
   os << indent << "FluxUnit: " << this->FluxUnit << " W\n";
 }

@@ -38,9 +38,11 @@
  *   sr point/spot), as Eq. 2 of §3.3 needs.
  * GPU counters (photons and flux in, landed, lost inside, escaped, internally
  * reflected, absorbed) are kept every frame and read only on request
- * (GetStatistics, which stalls). Limits: photons are not occluded by specular
- * objects after their last interface, a refractor is one slab between its nearest
- * and farthest surfaces seen from the light (nested or overlapping refractors need
+ * (GetStatistics, which stalls). MaximumInternalEvents and MarchSteps are members
+ * of caustics::CausticMapSettings, which Render() and Trace() take. Limits:
+ * photons are not occluded by specular objects after their last interface, a
+ * refractor is one slab between its nearest and farthest surfaces seen from the
+ * light (nested or overlapping refractors need
  * layered depth images), and only receivers the caustic map's view sees can be hit.
  */
 #ifndef vtkCausticsPhotonBuffer_h
@@ -62,6 +64,7 @@ class vtkWindow;
 
 namespace caustics
 {
+struct CausticMapSettings;
 struct LightView;
 struct PhotonGrid;
 struct SceneData;
@@ -74,41 +77,27 @@ public:
   vtkTypeMacro(vtkCausticsPhotonBuffer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /**
-   * Refractive interfaces a photon may meet inside a refractor after entering it
-   * (total internal reflections + the exit), in [1, 32]. Default 8.
-   */
-  vtkSetClampMacro(MaximumInternalEvents, int, 1, 32);
-  vtkGetMacro(MaximumInternalEvents, int);
-  ///@}
-
-  ///@{
-  /** Samples of the fallback march along a photon's path, in [4, 1024]. Default 64. */
-  vtkSetClampMacro(MarchSteps, int, 4, 1024);
-  vtkGetMacro(MarchSteps, int);
-  ///@}
-
 #ifndef __VTK_WRAP__
   /**
    * Renders the refractor layers in `photonView` (the view the grid's texels come
    * from) and traces the photons of `grid` (emitted for its light of `scene`) to the
-   * receivers of `receivers`, a receiver-only G-buffer seen through `mapView`. The
-   * geometry's material table must be current. Returns false if a program failed.
+   * receivers of `receivers`, a receiver-only G-buffer seen through `mapView`, with
+   * the settings' MaximumInternalEvents and MarchSteps. The geometry's material
+   * table must be current. Returns false if a program failed.
    */
-  bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
-    const caustics::LightView& photonView, const caustics::LightView& mapView,
-    vtkCausticsGBuffer* receivers);
+  bool Render(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+    const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers);
 
   ///@{
   /** Render() in its two steps: the refractor layers (N x N), then the trace. */
   bool RenderLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
     const caustics::LightView& photonView, const caustics::PhotonGrid& grid);
-  bool Trace(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
-    const caustics::LightView& photonView, const caustics::LightView& mapView,
-    vtkCausticsGBuffer* receivers);
+  bool Trace(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+    const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers);
   ///@}
 
   /** GPU counters of the last Render(); flux in W summed over RGB. */
@@ -160,8 +149,6 @@ protected:
   vtkCausticsPhotonBuffer();
   ~vtkCausticsPhotonBuffer() override;
 
-  int MaximumInternalEvents = 8;
-  int MarchSteps = 64;
   double FluxUnit = 1.0; // W per unit of the GPU flux counters, set by Trace()
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;

@@ -1,5 +1,6 @@
 #include "vtkCausticsPhotonBufferHierarchy.h"
 
+#include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
@@ -31,6 +32,7 @@ constexpr int StageNodes = 1;
 constexpr int StagePhotons = 2;
 
 using Usage = caustics::gl::StorageBuffer::Usage;
+using Settings = caustics::CausticMapSettings;
 
 /** Work groups covering `items`, folded into two dimensions of at most 65535. */
 void Groups(std::size_t items, unsigned int& x, unsigned int& y)
@@ -110,14 +112,14 @@ unsigned int vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(int j)
   return static_cast<unsigned int>((caustics::hcm::ControlDraw + 4 * j) * sizeof(std::uint32_t));
 }
 
-void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
+void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height, int startResolution)
 {
   // Level k covers 2^k x 2^k photons; the traversal starts at the first level at
-  // most StartResolution nodes wide (the emitter's branches are square, so the
+  // most startResolution nodes wide (the emitter's branches are square, so the
   // width decides; a 2N-high buffer starts from two stacked squares).
   int start = 0;
-  while (start + 1 < caustics::hcm::MaxTraversalLevels &&
-    ((width - 1) >> start) + 1 > this->StartResolution)
+  while (
+    start + 1 < caustics::hcm::MaxTraversalLevels && ((width - 1) >> start) + 1 > startResolution)
   {
     ++start;
   }
@@ -149,10 +151,11 @@ void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
-  const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
-  const caustics::LightView& mapView, int mapResolution, int lightType,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
   const caustics::Camera* camera)
 {
+  const int mapResolution = settings.CausticMapResolution;
   const int width = grid.Width;
   const int height = grid.Height;
   if (!photons || grid.IsEmpty() || mapResolution <= 0)
@@ -167,8 +170,10 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
                   << " too large for 28-bit splat entries");
     return false;
   }
-  this->Layout(width, height);
-  this->LastGatherMode = this->GatherMode;
+  this->Layout(width, height, settings.TraversalStartResolution);
+  const bool flat = settings.GatherMode == Settings::GATHER_FLAT;
+  this->LastGatherFlat = flat;
+  this->LastDropCoarseSplats = settings.DropCoarseSplats;
   this->FluxUnit = caustics::hcm::FluxUnit(grid);
   caustics::gl::EnsureTexture(this->SplatRadius, renWin, width, height, GL_R32F);
 
@@ -179,7 +184,6 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   {
     control[caustics::hcm::ControlDraw + 4 * j + 1] = 1;
   }
-  const bool flat = this->GatherMode == GATHER_FLAT;
   const int first = flat ? 0 : this->StartLevel;
   control[caustics::hcm::ControlListCount + first] = static_cast<std::uint32_t>(
     static_cast<std::size_t>(this->LevelWidth[first]) * this->LevelHeight[first]);
@@ -190,7 +194,7 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   {
     return false;
   }
-  return this->Traverse(renWin, grid, photons, mapView, mapResolution, lightType, camera);
+  return this->Traverse(renWin, settings, grid, photons, mapView, lightType, camera);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin,
@@ -230,10 +234,11 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
-  const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
-  const caustics::LightView& mapView, int mapResolution, int lightType,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
   const caustics::Camera* camera)
 {
+  const int mapResolution = settings.CausticMapResolution;
   vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
     photons->GetHitFluxTexture() };
   const char* names[] = { "hitPosition", "hitNormal", "hitFlux" };
@@ -249,7 +254,7 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   in.Splats.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Control.Handle());
 
-  const bool flat = this->GatherMode == GATHER_FLAT;
+  const bool flat = settings.GatherMode == Settings::GATHER_FLAT;
   const int start = flat ? 0 : this->StartLevel;
   bool ok = true;
   for (int k = start; k >= 0 && ok; --k)
@@ -284,16 +289,16 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
       caustics::hcm::SetCameraViewUniforms(gather, "cameraView", *camera);
     }
     gather->SetUniformf("minimumCameraRadiusPixels",
-      camera ? static_cast<float>(this->MinimumCameraSplatRadius) : 0.0f);
+      camera ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
     gather->SetUniform2i("gridSize", grid.Width, grid.Height);
     gather->SetUniformi("branchRows", std::max(grid.BranchRows, 1));
     gather->SetUniformu("splatRegion", this->SplatRegion);
     gather->SetUniformi("lightType", lightType);
-    gather->SetUniformi("splatMode", this->SplatMode);
-    gather->SetUniformf("splatScale", static_cast<float>(this->SplatScale));
-    gather->SetUniformf("constantRadiusPixels", static_cast<float>(this->ConstantSplatRadius));
-    gather->SetUniformf("splatSizeThreshold", static_cast<float>(this->SplatSizeThreshold));
-    gather->SetUniformi("dropCoarseSplats", this->DropCoarseSplats ? 1 : 0);
+    gather->SetUniformi("splatMode", settings.SplatMode);
+    gather->SetUniformf("splatScale", static_cast<float>(settings.SplatScale));
+    gather->SetUniformf("constantRadiusPixels", static_cast<float>(settings.ConstantSplatRadius));
+    gather->SetUniformf("splatSizeThreshold", static_cast<float>(settings.SplatSizeThreshold));
+    gather->SetUniformi("dropCoarseSplats", settings.DropCoarseSplats ? 1 : 0);
     gather->SetUniformf("fluxUnit", static_cast<float>(this->FluxUnit));
     gather->SetUniformi("level", k);
     gather->SetUniformi("implicitList", implicit ? 1 : 0);
@@ -304,8 +309,8 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
     gather->SetUniformu("listOffset", this->ListOffset[k]);
     gather->SetUniformu("childListOffset", k > 0 ? this->ListOffset[k - 1] : 0u);
     const bool test = k > 0 &&
-      (this->ClusterMode == CLUSTER_ALL_LEVELS ||
-        (this->ClusterMode == CLUSTER_LAST_LEVEL && k == 1));
+      (settings.ClusterMode == Settings::CLUSTER_ALL_LEVELS ||
+        (settings.ClusterMode == Settings::CLUSTER_LAST_LEVEL && k == 1));
     gather->SetUniformi("testConvergence", test ? 1 : 0);
     // The start level holds every valid photon; the flat gather meets each one.
     gather->SetUniformi("countValid", implicit ? 1 : 0);
@@ -345,8 +350,7 @@ bool vtkCausticsPhotonBufferHierarchy::GetCounters(Counters& counters)
   }
   std::uint32_t words[caustics::hcm::ControlSize];
   this->Internal->Control.Read(0, sizeof(words), words);
-  const bool flat = this->LastGatherMode == GATHER_FLAT;
-  counters.StartLevel = flat ? 0 : this->StartLevel;
+  counters.StartLevel = this->LastGatherFlat ? 0 : this->StartLevel;
   for (int k = 0; k <= counters.StartLevel; ++k)
   {
     counters.Processed[k] = words[caustics::hcm::ControlListCount + k];
@@ -366,12 +370,12 @@ bool vtkCausticsPhotonBufferHierarchy::GetCounters(Counters& counters)
   }
   counters.CoarseFlux =
     caustics::hcm::FluxFromWords(&words[caustics::hcm::ControlCoarseFlux], this->FluxUnit);
-  if (this->DropCoarseSplats)
+  if (this->LastDropCoarseSplats)
   {
     gathered += counters.CoarseFlux;
   }
   counters.CoarseFluxFraction = gathered > 0.0 ? counters.CoarseFlux / gathered : 0.0;
-  counters.DroppedFluxFraction = this->DropCoarseSplats ? counters.CoarseFluxFraction : 0.0;
+  counters.DroppedFluxFraction = this->LastDropCoarseSplats ? counters.CoarseFluxFraction : 0.0;
   return true;
 }
 
@@ -394,18 +398,7 @@ void vtkCausticsPhotonBufferHierarchy::ReleaseGraphicsResources(vtkWindow* win)
 void vtkCausticsPhotonBufferHierarchy::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* gathers[] = { "flat", "hierarchical" };
-  const char* clusters[] = { "none", "last level", "all levels" };
-  const char* splats[] = { "constant", "varying, single map", "varying, multi-resolution" };
-  os << indent << "GatherMode: " << gathers[this->GatherMode] << "\n";
-  os << indent << "ClusterMode: " << clusters[this->ClusterMode] << "\n";
-  os << indent << "SplatMode: " << splats[this->SplatMode] << "\n";
-  os << indent << "StartResolution: " << this->StartResolution << "\n";
-  os << indent << "SplatScale: " << this->SplatScale << "\n";
-  os << indent << "ConstantSplatRadius: " << this->ConstantSplatRadius << " px\n";
-  os << indent << "SplatSizeThreshold: " << this->SplatSizeThreshold << " px\n";
-  os << indent << "DropCoarseSplats: " << this->DropCoarseSplats << "\n";
-  os << indent << "MinimumCameraSplatRadius: " << this->MinimumCameraSplatRadius
-     << " camera pixel footprints\n";
+  os << indent << "Last gather: " << (this->LastGatherFlat ? "flat" : "hierarchical") << "\n";
   os << indent << "StartLevel: " << this->StartLevel << "\n";
+  os << indent << "SplatRegion: " << this->SplatRegion << " entries per map level\n";
 }
