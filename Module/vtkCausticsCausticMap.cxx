@@ -123,22 +123,7 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
   state->vtkglDisable(GL_DEPTH_TEST);
 
   // Clear every level first (levels left out this frame must read zero).
-  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-  for (int j = 0; j < 4; ++j)
-  {
-    const int size = j < this->NumberOfLevels ? this->GetLevelResolution(j) : 1;
-    const bool resized =
-      caustics::gl::EnsureTexture(this->Irradiance[j], renWin, size, size, GL_RGBA32F);
-    vtkOpenGLFramebufferObject* framebuffer = this->Framebuffers[j];
-    framebuffer->SetContext(renWin);
-    framebuffer->Bind();
-    if (resized || framebuffer->GetNumberOfColorAttachments() != 1)
-    {
-      framebuffer->AddColorAttachment(0, this->Irradiance[j]);
-    }
-    framebuffer->ActivateDrawBuffers(1);
-    glClearBufferfv(GL_COLOR, 0, zero);
-  }
+  this->ClearLevels(renWin);
 
   vtkCausticsShaderProgram* program = this->SplatProgram;
   bool ok = program->Bind(renWin);
@@ -159,54 +144,12 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
       inputs[i]->Activate();
       program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
-    program->SetUniformi("gridWidth", grid.Width);
-    for (int k = 0; k < caustics::hcm::MaxTraversalLevels; ++k)
-    {
-      const std::string index = "[" + std::to_string(k) + "]";
-      program->SetUniformu(("nodeOffsets" + index).c_str(), hierarchy->GetNodeOffset(k));
-      program->SetUniformi(("nodeRowLength" + index).c_str(), hierarchy->GetNodeRowLength(k));
-    }
-    // Clusters get the hierarchy's camera floor too (its photons' kernels have it).
-    const bool cameraFloor =
-      camera && settings.SplatMode != caustics::CausticMapSettings::SPLAT_CONSTANT;
-    if (camera)
-    {
-      caustics::hcm::SetCameraViewUniforms(program, "cameraView", *camera);
-    }
-    program->SetUniformf("minimumCameraRadiusPixels",
-      cameraFloor ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
-    program->SetUniformf("minimumRadiusPixels", static_cast<float>(settings.MinimumSplatRadius));
-    program->SetUniformf("maximumRadiusPixels", static_cast<float>(settings.MaximumSplatRadius));
-    program->SetUniformf("clusterRadiusPixels",
-      static_cast<float>(std::max(settings.ClusterRadius(), settings.MinimumSplatRadius)));
-    program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
-    program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+    this->SetSplatUniforms(program, settings, grid, hierarchy, camera);
     hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
     hierarchy->GetSplatBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer().Handle());
     glBindVertexArray(this->VertexArray);
-    for (int j = 0; j < this->NumberOfLevels; ++j)
-    {
-      const int size = this->GetLevelResolution(j);
-      vtkCausticsGBuffer* target = this->Receivers[j];
-      vtkTextureObject* targetPosition = target->GetPositionTexture();
-      vtkTextureObject* targetNormal = target->GetNormalTexture();
-      targetPosition->Activate();
-      targetNormal->Activate();
-      program->SetUniformi("targetPosition", targetPosition->GetTextureUnit());
-      program->SetUniformi("targetNormal", targetNormal->GetTextureUnit());
-      caustics::hcm::SetViewUniforms(program, "targetView", this->Internal->View, size, size);
-      program->SetUniformu(
-        "listOffset", static_cast<unsigned int>(j) * hierarchy->GetSplatRegion());
-      this->Framebuffers[j]->Bind();
-      this->Framebuffers[j]->ActivateDrawBuffers(1);
-      state->vtkglViewport(0, 0, size, size);
-      glDrawArraysIndirect(GL_POINTS,
-        reinterpret_cast<const void*>(
-          static_cast<std::size_t>(vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(j))));
-      targetPosition->Deactivate();
-      targetNormal->Deactivate();
-    }
+    this->DrawLevels(state, program, hierarchy);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     for (vtkTextureObject* input : inputs)
@@ -217,6 +160,80 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
   }
   state->PopFramebufferBindings();
   return ok;
+}
+
+void vtkCausticsCausticMap::ClearLevels(vtkOpenGLRenderWindow* renWin)
+{
+  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  for (int j = 0; j < 4; ++j)
+  {
+    const int size = j < this->NumberOfLevels ? this->GetLevelResolution(j) : 1;
+    const bool resized =
+      caustics::gl::EnsureTexture(this->Irradiance[j], renWin, size, size, GL_RGBA32F);
+    vtkOpenGLFramebufferObject* framebuffer = this->Framebuffers[j];
+    framebuffer->SetContext(renWin);
+    framebuffer->Bind();
+    if (resized || framebuffer->GetNumberOfColorAttachments() != 1)
+    {
+      framebuffer->AddColorAttachment(0, this->Irradiance[j]);
+    }
+    framebuffer->ActivateDrawBuffers(1);
+    glClearBufferfv(GL_COLOR, 0, zero);
+  }
+}
+
+void vtkCausticsCausticMap::SetSplatUniforms(vtkCausticsShaderProgram* program,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera)
+{
+  program->SetUniformi("gridWidth", grid.Width);
+  for (int k = 0; k < caustics::hcm::MaxTraversalLevels; ++k)
+  {
+    const std::string index = "[" + std::to_string(k) + "]";
+    program->SetUniformu(("nodeOffsets" + index).c_str(), hierarchy->GetNodeOffset(k));
+    program->SetUniformi(("nodeRowLength" + index).c_str(), hierarchy->GetNodeRowLength(k));
+  }
+  // Clusters get the hierarchy's camera floor too (its photons' kernels have it).
+  const bool cameraFloor =
+    camera && settings.SplatMode != caustics::CausticMapSettings::SPLAT_CONSTANT;
+  if (camera)
+  {
+    caustics::hcm::SetCameraViewUniforms(program, "cameraView", *camera);
+  }
+  program->SetUniformf("minimumCameraRadiusPixels",
+    cameraFloor ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
+  program->SetUniformf("minimumRadiusPixels", static_cast<float>(settings.MinimumSplatRadius));
+  program->SetUniformf("maximumRadiusPixels", static_cast<float>(settings.MaximumSplatRadius));
+  program->SetUniformf("clusterRadiusPixels",
+    static_cast<float>(std::max(settings.ClusterRadius(), settings.MinimumSplatRadius)));
+  program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
+  program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+}
+
+void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
+  vtkCausticsPhotonBufferHierarchy* hierarchy)
+{
+  for (int j = 0; j < this->NumberOfLevels; ++j)
+  {
+    const int size = this->GetLevelResolution(j);
+    vtkCausticsGBuffer* target = this->Receivers[j];
+    vtkTextureObject* targetPosition = target->GetPositionTexture();
+    vtkTextureObject* targetNormal = target->GetNormalTexture();
+    targetPosition->Activate();
+    targetNormal->Activate();
+    program->SetUniformi("targetPosition", targetPosition->GetTextureUnit());
+    program->SetUniformi("targetNormal", targetNormal->GetTextureUnit());
+    caustics::hcm::SetViewUniforms(program, "targetView", this->Internal->View, size, size);
+    program->SetUniformu("listOffset", static_cast<unsigned int>(j) * hierarchy->GetSplatRegion());
+    this->Framebuffers[j]->Bind();
+    this->Framebuffers[j]->ActivateDrawBuffers(1);
+    state->vtkglViewport(0, 0, size, size);
+    glDrawArraysIndirect(GL_POINTS,
+      reinterpret_cast<const void*>(
+        static_cast<std::size_t>(vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(j))));
+    targetPosition->Deactivate();
+    targetNormal->Deactivate();
+  }
 }
 
 bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera)

@@ -41,6 +41,7 @@ class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
+class vtkOpenGLState;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -128,6 +129,14 @@ protected:
 private:
   vtkCausticsCausticMap(const vtkCausticsCausticMap&) = delete;
   void operator=(const vtkCausticsCausticMap&) = delete;
+
+  // Splat() in steps.
+  void ClearLevels(vtkOpenGLRenderWindow* renWin);
+  void SetSplatUniforms(vtkCausticsShaderProgram* program,
+    const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+    vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
+  void DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
+    vtkCausticsPhotonBufferHierarchy* hierarchy);
 
   struct Internals;
   std::unique_ptr<Internals> Internal; // the view of the last RenderReceivers()

@@ -53,7 +53,8 @@
 
 #include "vtkNew.h" // For vtkNew members
 
-#include <memory> // For std::unique_ptr
+#include <cstddef> // For std::size_t
+#include <memory>  // For std::unique_ptr
 
 class vtkCausticsGBuffer;
 class vtkCausticsSceneGeometry;
@@ -166,6 +167,19 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+public:
+#ifndef __VTK_WRAP__
+  struct TraceUniforms; // what every phase of one trace reads (the .cxx defines it)
+#endif
+
+private:
+  // Trace() in steps.
+  std::size_t AllocateOutputs(vtkOpenGLRenderWindow* renWin, int width, int height);
+  void DescribeTrace(const caustics::CausticMapSettings& settings, const caustics::SceneData& scene,
+    const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers, TraceUniforms& trace);
+  void BindTraceOutputs(vtkCausticsSceneGeometry* geometry);
 };
 
 #endif

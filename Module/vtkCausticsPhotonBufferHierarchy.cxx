@@ -238,7 +238,6 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
   const caustics::Camera* camera)
 {
-  const int mapResolution = settings.CausticMapResolution;
   vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
     photons->GetHitFluxTexture() };
   const char* names[] = { "hitPosition", "hitNormal", "hitFlux" };
@@ -283,37 +282,8 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
     {
       gather->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
-    caustics::hcm::SetViewUniforms(gather, "mapView", mapView, mapResolution, mapResolution);
-    if (camera)
-    {
-      caustics::hcm::SetCameraViewUniforms(gather, "cameraView", *camera);
-    }
-    gather->SetUniformf("minimumCameraRadiusPixels",
-      camera ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
-    gather->SetUniform2i("gridSize", grid.Width, grid.Height);
-    gather->SetUniformi("branchRows", std::max(grid.BranchRows, 1));
-    gather->SetUniformu("splatRegion", this->SplatRegion);
-    gather->SetUniformi("lightType", lightType);
-    gather->SetUniformi("splatMode", settings.SplatMode);
-    gather->SetUniformf("splatScale", static_cast<float>(settings.SplatScale));
-    gather->SetUniformf("constantRadiusPixels", static_cast<float>(settings.ConstantSplatRadius));
-    gather->SetUniformf("splatSizeThreshold", static_cast<float>(settings.SplatSizeThreshold));
-    gather->SetUniformi("dropCoarseSplats", settings.DropCoarseSplats ? 1 : 0);
-    gather->SetUniformf("fluxUnit", static_cast<float>(this->FluxUnit));
-    gather->SetUniformi("level", k);
-    gather->SetUniformi("implicitList", implicit ? 1 : 0);
-    gather->SetUniform2i("levelSize", this->LevelWidth[k], this->LevelHeight[k]);
-    gather->SetUniform2i(
-      "childSize", this->LevelWidth[std::max(k - 1, 0)], this->LevelHeight[std::max(k - 1, 0)]);
-    gather->SetUniformu("nodeOffset", k > 0 ? this->NodeOffset[k] : 0u);
-    gather->SetUniformu("listOffset", this->ListOffset[k]);
-    gather->SetUniformu("childListOffset", k > 0 ? this->ListOffset[k - 1] : 0u);
-    const bool test = k > 0 &&
-      (settings.ClusterMode == Settings::CLUSTER_ALL_LEVELS ||
-        (settings.ClusterMode == Settings::CLUSTER_LAST_LEVEL && k == 1));
-    gather->SetUniformi("testConvergence", test ? 1 : 0);
-    // The start level holds every valid photon; the flat gather meets each one.
-    gather->SetUniformi("countValid", implicit ? 1 : 0);
+    this->SetGatherUniforms(gather, settings, grid, mapView, lightType, camera);
+    this->SetLevelUniforms(gather, settings, k, implicit);
     if (implicit)
     {
       unsigned int x, y;
@@ -338,6 +308,49 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
     input->Deactivate();
   }
   return ok;
+}
+
+void vtkCausticsPhotonBufferHierarchy::SetGatherUniforms(vtkCausticsShaderProgram* gather,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  const caustics::LightView& mapView, int lightType, const caustics::Camera* camera)
+{
+  caustics::hcm::SetViewUniforms(
+    gather, "mapView", mapView, settings.CausticMapResolution, settings.CausticMapResolution);
+  if (camera)
+  {
+    caustics::hcm::SetCameraViewUniforms(gather, "cameraView", *camera);
+  }
+  gather->SetUniformf("minimumCameraRadiusPixels",
+    camera ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
+  gather->SetUniform2i("gridSize", grid.Width, grid.Height);
+  gather->SetUniformi("branchRows", std::max(grid.BranchRows, 1));
+  gather->SetUniformu("splatRegion", this->SplatRegion);
+  gather->SetUniformi("lightType", lightType);
+  gather->SetUniformi("splatMode", settings.SplatMode);
+  gather->SetUniformf("splatScale", static_cast<float>(settings.SplatScale));
+  gather->SetUniformf("constantRadiusPixels", static_cast<float>(settings.ConstantSplatRadius));
+  gather->SetUniformf("splatSizeThreshold", static_cast<float>(settings.SplatSizeThreshold));
+  gather->SetUniformi("dropCoarseSplats", settings.DropCoarseSplats ? 1 : 0);
+  gather->SetUniformf("fluxUnit", static_cast<float>(this->FluxUnit));
+}
+
+void vtkCausticsPhotonBufferHierarchy::SetLevelUniforms(vtkCausticsShaderProgram* gather,
+  const caustics::CausticMapSettings& settings, int k, bool implicit)
+{
+  gather->SetUniformi("level", k);
+  gather->SetUniformi("implicitList", implicit ? 1 : 0);
+  gather->SetUniform2i("levelSize", this->LevelWidth[k], this->LevelHeight[k]);
+  gather->SetUniform2i(
+    "childSize", this->LevelWidth[std::max(k - 1, 0)], this->LevelHeight[std::max(k - 1, 0)]);
+  gather->SetUniformu("nodeOffset", k > 0 ? this->NodeOffset[k] : 0u);
+  gather->SetUniformu("listOffset", this->ListOffset[k]);
+  gather->SetUniformu("childListOffset", k > 0 ? this->ListOffset[k - 1] : 0u);
+  const bool test = k > 0 &&
+    (settings.ClusterMode == Settings::CLUSTER_ALL_LEVELS ||
+      (settings.ClusterMode == Settings::CLUSTER_LAST_LEVEL && k == 1));
+  gather->SetUniformi("testConvergence", test ? 1 : 0);
+  // The start level holds every valid photon; the flat gather meets each one.
+  gather->SetUniformi("countValid", implicit ? 1 : 0);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::GetCounters(Counters& counters)

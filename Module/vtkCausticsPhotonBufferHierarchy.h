@@ -175,6 +175,12 @@ private:
   bool Traverse(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
     const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
     const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
+  /** Traverse() in steps: the uniforms of every level, and those of level k. */
+  void SetGatherUniforms(vtkCausticsShaderProgram* gather,
+    const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+    const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
+  void SetLevelUniforms(vtkCausticsShaderProgram* gather,
+    const caustics::CausticMapSettings& settings, int k, bool implicit);
 };
 
 #endif
