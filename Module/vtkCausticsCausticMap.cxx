@@ -1,10 +1,12 @@
 #include "vtkCausticsCausticMap.h"
 
+#include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
@@ -79,8 +81,11 @@ vtkCausticsGBuffer* vtkCausticsCausticMap::GetReceivers(int j)
 }
 
 bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::LightView& view)
+  const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
+  const caustics::LightView& view)
 {
+  this->Resolution = settings.CausticMapResolution;
+  this->NumberOfLevels = settings.NumberOfLevels();
   this->Internal->View = view;
   this->Internal->HasView = true;
   float matrix[16];
@@ -96,8 +101,9 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
   return ok;
 }
 
-bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-  vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels,
+bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBuffer* photons, vtkCausticsPhotonBufferHierarchy* hierarchy,
   const caustics::Camera* camera)
 {
   if (!this->Internal->HasView || !photons || !hierarchy)
@@ -117,22 +123,7 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
   state->vtkglDisable(GL_DEPTH_TEST);
 
   // Clear every level first (levels left out this frame must read zero).
-  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-  for (int j = 0; j < 4; ++j)
-  {
-    const int size = j < this->NumberOfLevels ? this->GetLevelResolution(j) : 1;
-    const bool resized =
-      caustics::gl::EnsureTexture(this->Irradiance[j], renWin, size, size, GL_RGBA32F);
-    vtkOpenGLFramebufferObject* framebuffer = this->Framebuffers[j];
-    framebuffer->SetContext(renWin);
-    framebuffer->Bind();
-    if (resized || framebuffer->GetNumberOfColorAttachments() != 1)
-    {
-      framebuffer->AddColorAttachment(0, this->Irradiance[j]);
-    }
-    framebuffer->ActivateDrawBuffers(1);
-    glClearBufferfv(GL_COLOR, 0, zero);
-  }
+  this->ClearLevels(renWin);
 
   vtkCausticsShaderProgram* program = this->SplatProgram;
   bool ok = program->Bind(renWin);
@@ -153,56 +144,12 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
       inputs[i]->Activate();
       program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
-    program->SetUniformi("gridWidth", photons->GetGridSize()[0]);
-    for (int k = 0; k < caustics::hcm::MaxTraversalLevels; ++k)
-    {
-      const std::string index = "[" + std::to_string(k) + "]";
-      program->SetUniformu(("nodeOffsets" + index).c_str(), hierarchy->GetNodeOffset(k));
-      program->SetUniformi(("nodeRowLength" + index).c_str(), hierarchy->GetNodeRowLength(k));
-    }
-    // Clusters get the hierarchy's camera floor too (its photons' kernels have it).
-    const bool cameraFloor =
-      camera && hierarchy->GetSplatMode() != vtkCausticsPhotonBufferHierarchy::SPLAT_CONSTANT;
-    if (camera)
-    {
-      caustics::hcm::SetCameraViewUniforms(program, "cameraView", *camera);
-    }
-    program->SetUniformf("minimumCameraRadiusPixels",
-      cameraFloor ? static_cast<float>(hierarchy->GetMinimumCameraSplatRadius()) : 0.0f);
-    program->SetUniformf("minimumRadiusPixels", static_cast<float>(this->MinimumSplatRadius));
-    program->SetUniformf("maximumRadiusPixels", static_cast<float>(this->MaximumSplatRadius));
-    program->SetUniformf("clusterRadiusPixels",
-      static_cast<float>(std::max(clusterRadiusPixels, this->MinimumSplatRadius)));
-    program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
-    program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
-    glBindBufferBase(
-      GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, hierarchy->GetNodeBuffer());
-    glBindBufferBase(
-      GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, hierarchy->GetSplatBuffer());
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer());
+    this->SetSplatUniforms(program, settings, grid, hierarchy, camera);
+    hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
+    hierarchy->GetSplatBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer().Handle());
     glBindVertexArray(this->VertexArray);
-    for (int j = 0; j < this->NumberOfLevels; ++j)
-    {
-      const int size = this->GetLevelResolution(j);
-      vtkCausticsGBuffer* target = this->Receivers[j];
-      vtkTextureObject* targetPosition = target->GetPositionTexture();
-      vtkTextureObject* targetNormal = target->GetNormalTexture();
-      targetPosition->Activate();
-      targetNormal->Activate();
-      program->SetUniformi("targetPosition", targetPosition->GetTextureUnit());
-      program->SetUniformi("targetNormal", targetNormal->GetTextureUnit());
-      caustics::hcm::SetViewUniforms(program, "targetView", this->Internal->View, size, size);
-      program->SetUniformu(
-        "listOffset", static_cast<unsigned int>(j) * hierarchy->GetSplatRegion());
-      this->Framebuffers[j]->Bind();
-      this->Framebuffers[j]->ActivateDrawBuffers(1);
-      state->vtkglViewport(0, 0, size, size);
-      glDrawArraysIndirect(GL_POINTS,
-        reinterpret_cast<const void*>(
-          static_cast<std::size_t>(vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(j))));
-      targetPosition->Deactivate();
-      targetNormal->Deactivate();
-    }
+    this->DrawLevels(state, program, hierarchy);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     for (vtkTextureObject* input : inputs)
@@ -213,6 +160,80 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
   }
   state->PopFramebufferBindings();
   return ok;
+}
+
+void vtkCausticsCausticMap::ClearLevels(vtkOpenGLRenderWindow* renWin)
+{
+  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  for (int j = 0; j < 4; ++j)
+  {
+    const int size = j < this->NumberOfLevels ? this->GetLevelResolution(j) : 1;
+    const bool resized =
+      caustics::gl::EnsureTexture(this->Irradiance[j], renWin, size, size, GL_RGBA32F);
+    vtkOpenGLFramebufferObject* framebuffer = this->Framebuffers[j];
+    framebuffer->SetContext(renWin);
+    framebuffer->Bind();
+    if (resized || framebuffer->GetNumberOfColorAttachments() != 1)
+    {
+      framebuffer->AddColorAttachment(0, this->Irradiance[j]);
+    }
+    framebuffer->ActivateDrawBuffers(1);
+    glClearBufferfv(GL_COLOR, 0, zero);
+  }
+}
+
+void vtkCausticsCausticMap::SetSplatUniforms(vtkCausticsShaderProgram* program,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera)
+{
+  program->SetUniformi("gridWidth", grid.Width);
+  for (int k = 0; k < caustics::hcm::MaxTraversalLevels; ++k)
+  {
+    const std::string index = "[" + std::to_string(k) + "]";
+    program->SetUniformu(("nodeOffsets" + index).c_str(), hierarchy->GetNodeOffset(k));
+    program->SetUniformi(("nodeRowLength" + index).c_str(), hierarchy->GetNodeRowLength(k));
+  }
+  // Clusters get the hierarchy's camera floor too (its photons' kernels have it).
+  const bool cameraFloor =
+    camera && settings.SplatMode != caustics::CausticMapSettings::SPLAT_CONSTANT;
+  if (camera)
+  {
+    caustics::hcm::SetCameraViewUniforms(program, "cameraView", *camera);
+  }
+  program->SetUniformf("minimumCameraRadiusPixels",
+    cameraFloor ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
+  program->SetUniformf("minimumRadiusPixels", static_cast<float>(settings.MinimumSplatRadius));
+  program->SetUniformf("maximumRadiusPixels", static_cast<float>(settings.MaximumSplatRadius));
+  program->SetUniformf("clusterRadiusPixels",
+    static_cast<float>(std::max(settings.ClusterRadius(), settings.MinimumSplatRadius)));
+  program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
+  program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+}
+
+void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
+  vtkCausticsPhotonBufferHierarchy* hierarchy)
+{
+  for (int j = 0; j < this->NumberOfLevels; ++j)
+  {
+    const int size = this->GetLevelResolution(j);
+    vtkCausticsGBuffer* target = this->Receivers[j];
+    vtkTextureObject* targetPosition = target->GetPositionTexture();
+    vtkTextureObject* targetNormal = target->GetNormalTexture();
+    targetPosition->Activate();
+    targetNormal->Activate();
+    program->SetUniformi("targetPosition", targetPosition->GetTextureUnit());
+    program->SetUniformi("targetNormal", targetNormal->GetTextureUnit());
+    caustics::hcm::SetViewUniforms(program, "targetView", this->Internal->View, size, size);
+    program->SetUniformu("listOffset", static_cast<unsigned int>(j) * hierarchy->GetSplatRegion());
+    this->Framebuffers[j]->Bind();
+    this->Framebuffers[j]->ActivateDrawBuffers(1);
+    state->vtkglViewport(0, 0, size, size);
+    glDrawArraysIndirect(GL_POINTS,
+      reinterpret_cast<const void*>(
+        static_cast<std::size_t>(vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(j))));
+    targetPosition->Deactivate();
+    targetNormal->Deactivate();
+  }
 }
 
 bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera)
@@ -287,8 +308,6 @@ void vtkCausticsCausticMap::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
-  os << indent << "MinimumSplatRadius: " << this->MinimumSplatRadius << " px\n";
-  os << indent << "MaximumSplatRadius: " << this->MaximumSplatRadius << " px\n";
   os << indent << "PlaneTolerance: " << this->PlaneTolerance << " radii\n";
   os << indent << "NormalTolerance: " << this->NormalTolerance << "\n";
   os << indent << "HasView: " << this->Internal->HasView << "\n";

@@ -4,8 +4,9 @@
  *
  * The caustic map of 001_7c07a484f7a872bb.txt (§2 and §3.3, Fig. 6): a light-space
  * image of caustic irradiance, projected onto the receivers like a shadow map.
- * 1. RenderReceivers: for each of NumberOfLevels levels (level j has Resolution /
- *    2^j texels per side), a vtkCausticsGBuffer of the receivers alone seen from
+ * 1. RenderReceivers: for each of NumberOfLevels levels (level j has
+ *    CausticMapResolution / 2^j texels per side, both from the technique's
+ *    caustics::CausticMapSettings), a vtkCausticsGBuffer of the receivers alone seen from
  *    the light (the view of caustics::ComputeLightView aimed at the whole scene):
  *    where splats land, and the depth test of the final render. Specular actors
  *    are left out so that caustics can land where they hide the floor.
@@ -40,13 +41,16 @@ class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
+class vtkOpenGLState;
 class vtkTextureObject;
 class vtkWindow;
 
 namespace caustics
 {
 struct Camera;
+struct CausticMapSettings;
 struct LightView;
+struct PhotonGrid;
 namespace gl
 {
 class FullScreenTriangle;
@@ -61,47 +65,32 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Texels per side of the finest level, in [16, 8192]. Default 512. */
-  vtkSetClampMacro(Resolution, int, 16, 8192);
+  /**
+   * Texels per side of the finest level and levels of the pyramid (4 for the
+   * multi-resolution map), as the last RenderReceivers() took them from its settings.
+   */
   vtkGetMacro(Resolution, int);
-  ///@}
-
-  ///@{
-  /** Levels of the pyramid, in [1, 4] (4 for the multi-resolution map). Default 4. */
-  vtkSetClampMacro(NumberOfLevels, int, 1, 4);
   vtkGetMacro(NumberOfLevels, int);
   ///@}
 
-  ///@{
-  /**
-   * Smallest splat radius in pixels of its level, in [1, 16]: a narrower kernel
-   * falls between pixel centres and loses energy. Default 1.5.
-   */
-  vtkSetClampMacro(MinimumSplatRadius, double, 1.0, 16.0);
-  vtkGetMacro(MinimumSplatRadius, double);
-  ///@}
-
-  ///@{
-  /** Largest splat radius in pixels of its level (bounds the cost), in [2, 360]. Default 32. */
-  vtkSetClampMacro(MaximumSplatRadius, double, 2.0, 360.0);
-  vtkGetMacro(MaximumSplatRadius, double);
-  ///@}
-
 #ifndef __VTK_WRAP__
-  /** Renders the receivers of every level as `view` sees them. */
-  bool RenderReceivers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::LightView& view);
+  /**
+   * Renders the receivers of every level (the settings' CausticMapResolution and
+   * NumberOfLevels()) as `view` sees them.
+   */
+  bool RenderReceivers(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    vtkCausticsSceneGeometry* geometry, const caustics::LightView& view);
 
   /**
-   * Clears the levels and draws the splat lists of `hierarchy` (gathered from
-   * `photons`) into them. Clusters get clusterRadiusPixels, and no less than the
-   * hierarchy's MinimumCameraSplatRadius pixel footprints of `camera` (may be null:
-   * no floor).
-   * False if a program failed.
+   * Clears the levels and draws the splat lists of `hierarchy` (gathered from the
+   * photons of `grid`, traced into `photons`) into them, each kernel's radius within
+   * the settings' MinimumSplatRadius and MaximumSplatRadius. Clusters get the
+   * settings' ClusterRadius(), and no less than MinimumCameraSplatRadius pixel
+   * footprints of `camera` (may be null: no floor). False if a program failed.
    */
-  bool Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    vtkCausticsPhotonBufferHierarchy* hierarchy, double clusterRadiusPixels,
-    const caustics::Camera* camera);
+  bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+    vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
 
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of
@@ -125,8 +114,6 @@ protected:
 
   int Resolution = 512;
   int NumberOfLevels = 4;
-  double MinimumSplatRadius = 1.5;
-  double MaximumSplatRadius = 32.0;
   // The splat kernel's receiver tests, as vtkCausticsPhotonSplatter's defaults:
   // within half a radius of the photon's tangent plane, normals within ~37 degrees.
   double PlaneTolerance = 0.5;
@@ -142,6 +129,14 @@ protected:
 private:
   vtkCausticsCausticMap(const vtkCausticsCausticMap&) = delete;
   void operator=(const vtkCausticsCausticMap&) = delete;
+
+  // Splat() in steps.
+  void ClearLevels(vtkOpenGLRenderWindow* renWin);
+  void SetSplatUniforms(vtkCausticsShaderProgram* program,
+    const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+    vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
+  void DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
+    vtkCausticsPhotonBufferHierarchy* hierarchy);
 
   struct Internals;
   std::unique_ptr<Internals> Internal; // the view of the last RenderReceivers()

@@ -5,6 +5,7 @@
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
+#include "vtkSetGet.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
@@ -144,6 +145,100 @@ vtkSmartPointer<vtkImageData> ReadTexture(
   }
   image->GetPointData()->AddArray(array);
   return image;
+}
+
+StorageBuffer::~StorageBuffer()
+{
+  if (this->Name)
+  {
+    vtkGenericWarningMacro(<< "caustics::gl::StorageBuffer destroyed before Release(): GL buffer "
+                           << this->Name << " leaked");
+  }
+}
+
+StorageBuffer::StorageBuffer(StorageBuffer&& other) noexcept
+  : Name(other.Name)
+  , Size(other.Size)
+  , Use(other.Use)
+{
+  other.Name = 0;
+  other.Size = 0;
+}
+
+StorageBuffer& StorageBuffer::operator=(StorageBuffer&& other) noexcept
+{
+  if (this != &other)
+  {
+    if (this->Name)
+    {
+      vtkGenericWarningMacro(<< "caustics::gl::StorageBuffer overwritten before Release(): GL "
+                             << "buffer " << this->Name << " leaked");
+    }
+    this->Name = other.Name;
+    this->Size = other.Size;
+    this->Use = other.Use;
+    other.Name = 0;
+    other.Size = 0;
+  }
+  return *this;
+}
+
+bool StorageBuffer::Allocate(std::size_t bytes, Usage usage)
+{
+  bytes = bytes < 16 ? 16 : bytes;
+  if (!this->Name)
+  {
+    glCreateBuffers(1, &this->Name);
+    this->Size = 0;
+  }
+  else if (this->Size >= bytes && this->Use == usage)
+  {
+    return false;
+  }
+  bytes = bytes > this->Size ? bytes : this->Size; // a new usage keeps the size
+  glNamedBufferData(this->Name, static_cast<GLsizeiptr>(bytes), nullptr,
+    usage == Usage::Copy ? GL_DYNAMIC_COPY : GL_DYNAMIC_DRAW);
+  this->Size = bytes;
+  this->Use = usage;
+  return true;
+}
+
+void StorageBuffer::BindBase(unsigned int target, unsigned int binding) const
+{
+  glBindBufferBase(target, binding, this->Name);
+}
+
+void StorageBuffer::Clear()
+{
+  glClearNamedBufferData(this->Name, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
+void StorageBuffer::Clear(std::size_t offset, std::size_t bytes)
+{
+  glClearNamedBufferSubData(this->Name, GL_R32UI, static_cast<GLintptr>(offset),
+    static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
+void StorageBuffer::Write(std::size_t offset, std::size_t bytes, const void* data)
+{
+  glNamedBufferSubData(
+    this->Name, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+void StorageBuffer::Read(std::size_t offset, std::size_t bytes, void* data) const
+{
+  glGetNamedBufferSubData(
+    this->Name, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+void StorageBuffer::Release()
+{
+  if (this->Name)
+  {
+    glDeleteBuffers(1, &this->Name);
+  }
+  this->Name = 0;
+  this->Size = 0;
 }
 
 FullScreenTriangle::~FullScreenTriangle() = default;

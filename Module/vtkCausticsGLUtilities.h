@@ -2,9 +2,10 @@
  * @file   vtkCausticsGLUtilities.h
  * @brief  Small GL helpers shared by the caustics stages (not wrapped).
  *
- * Textures are (re)allocated only when their size or format changes, so the
- * stages create no GL objects per frame; read-back turns a texture into a
- * vtkImageData array for tests and debugging (never used in the render path).
+ * Textures are (re)allocated only when their size or format changes, and buffer
+ * objects (StorageBuffer, the one buffer class of the module) only when they must
+ * grow, so the stages create no GL objects per frame; read-back turns a texture
+ * into a vtkImageData array for tests and debugging (never used in the render path).
  */
 #ifndef vtkCausticsGLUtilities_h
 #define vtkCausticsGLUtilities_h
@@ -12,7 +13,8 @@
 #include "vtkRenderingCausticsModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For vtkSmartPointer
 
-#include <string> // For std::string
+#include <cstddef> // For std::size_t
+#include <string>  // For std::string
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
@@ -40,6 +42,69 @@ VTKRENDERINGCAUSTICS_EXPORT void ToColumnMajor(const double rowMajor[16], float 
  */
 VTKRENDERINGCAUSTICS_EXPORT vtkSmartPointer<vtkImageData> ReadTexture(
   vtkTextureObject* texture, const std::string& arrayName, int components);
+
+/**
+ * A GL buffer object: shader storage, vertices, indices, indirect commands. The one
+ * buffer class of the caustics stages.
+ * - Allocate() creates the buffer on first use and gives it new storage only when
+ *   it must grow or its usage changes, never shrinking: in a steady scene no frame
+ *   allocates. Its name stays the same, so vertex arrays that refer to it stay
+ *   valid; its contents are undefined after a reallocation.
+ * - Release() deletes it. The destructor makes no GL call (no context need be
+ *   current then) and reports a buffer that was not released, as VTK's
+ *   vtkToneMappingPass does for its resources.
+ * Non-copyable (one owner per GL name), movable.
+ */
+class VTKRENDERINGCAUSTICS_EXPORT StorageBuffer
+{
+public:
+  /** The GL usage hint of the storage. */
+  enum class Usage
+  {
+    Draw, ///< GL_DYNAMIC_DRAW: written by the CPU, read by the GPU
+    Copy  ///< GL_DYNAMIC_COPY: written and read by the GPU (lists, counters)
+  };
+
+  StorageBuffer() = default;
+  ~StorageBuffer();
+  StorageBuffer(const StorageBuffer&) = delete;
+  StorageBuffer& operator=(const StorageBuffer&) = delete;
+  StorageBuffer(StorageBuffer&& other) noexcept;
+  /** Takes over `other`'s buffer; this one must have been released (else reported). */
+  StorageBuffer& operator=(StorageBuffer&& other) noexcept;
+
+  /**
+   * Makes the buffer at least `bytes` long (16 at least) with the given usage.
+   * Returns true when it (re)allocated, which leaves the contents undefined.
+   */
+  bool Allocate(std::size_t bytes, Usage usage = Usage::Draw);
+
+  /** The GL name (0 before the first Allocate() or after Release()). */
+  unsigned int Handle() const { return this->Name; }
+  /** Bytes of storage the buffer has. */
+  std::size_t Bytes() const { return this->Size; }
+
+  /** Binds the whole buffer to indexed binding `binding` of `target` (GL_SHADER_STORAGE_BUFFER,
+   * ...). */
+  void BindBase(unsigned int target, unsigned int binding) const;
+
+  /** Sets every byte (or `bytes` bytes from `offset`) to zero, on the GPU. */
+  void Clear();
+  void Clear(std::size_t offset, std::size_t bytes);
+
+  /** Copies `bytes` bytes from `data` into the buffer at `offset`. */
+  void Write(std::size_t offset, std::size_t bytes, const void* data);
+  /** Copies `bytes` bytes at `offset` into `data` (stalls: tests and statistics only). */
+  void Read(std::size_t offset, std::size_t bytes, void* data) const;
+
+  /** Deletes the buffer (needs the context current); Allocate() makes a new one. */
+  void Release();
+
+private:
+  unsigned int Name = 0;
+  std::size_t Size = 0;
+  Usage Use = Usage::Draw;
+};
 
 /** A vertex array with no attributes, for drawing a full-screen triangle from gl_VertexID. */
 class VTKRENDERINGCAUSTICS_EXPORT FullScreenTriangle

@@ -7,6 +7,7 @@
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -180,24 +181,6 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
       this->GetLightBuffers()->GetView(index).valid && light.MapView.valid &&
       LightReachesSpecular(scene, scene.Lights[i]);
-
-    light.Emitter->SetSplitFresnel(this->SplitFresnel);
-    light.Photons->SetMaximumInternalEvents(this->MaximumInternalEvents);
-    vtkCausticsPhotonBufferHierarchy* hierarchy = light.Hierarchy;
-    hierarchy->SetGatherMode(this->GatherMode);
-    hierarchy->SetClusterMode(this->ClusterMode);
-    hierarchy->SetSplatMode(this->SplatMode);
-    hierarchy->SetStartResolution(this->TraversalStartResolution);
-    hierarchy->SetSplatScale(this->SplatScale);
-    hierarchy->SetConstantSplatRadius(this->ConstantSplatRadius);
-    hierarchy->SetSplatSizeThreshold(this->SplatSizeThreshold);
-    hierarchy->SetDropCoarseSplats(this->DropCoarseSplats);
-    hierarchy->SetMinimumCameraSplatRadius(this->MinimumCameraSplatRadius);
-    vtkCausticsCausticMap* map = light.Map;
-    map->SetResolution(this->CausticMapResolution);
-    map->SetNumberOfLevels(this->SplatMode == SPLAT_VARYING_MULTIRES ? 4 : 1);
-    map->SetMinimumSplatRadius(this->MinimumSplatRadius);
-    map->SetMaximumSplatRadius(this->MaximumSplatRadius);
   }
 }
 
@@ -214,22 +197,24 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     }
     const int index = static_cast<int>(i);
     const caustics::LightView& photonView = this->GetLightBuffers()->GetView(index);
-    // Photons after the first specular interaction (the shared stage).
+    // Photons after the first specular interaction (the shared stage, whose one
+    // knob is the technique's).
+    light.Emitter->SetSplitFresnel(this->Settings.SplitFresnel);
     this->BeginStage("hcm emit");
     light.Traced =
       light.Emitter->Emit(renWin, this->GetLightBuffers(), index, this->GetGeometry(), scene);
     this->EndStage("hcm emit");
+    const caustics::PhotonGrid& grid = light.Emitter->GetGrid();
     // The receivers the caustic map sees, and the refractors' faces from the light.
     this->BeginStage("hcm light layers");
     light.Traced = light.Traced &&
-      light.Map->RenderReceivers(renWin, this->GetGeometry(), light.MapView) &&
-      light.Photons->RenderLayers(
-        renWin, this->GetGeometry(), photonView, light.Emitter->GetGridSize()[0]);
+      light.Map->RenderReceivers(renWin, this->Settings, this->GetGeometry(), light.MapView) &&
+      light.Photons->RenderLayers(renWin, this->GetGeometry(), photonView, grid);
     this->EndStage("hcm light layers");
     // Where each photon lands.
     this->BeginStage("hcm trace");
     light.Traced = light.Traced &&
-      light.Photons->Trace(renWin, this->GetGeometry(), scene, index, light.Emitter, photonView,
+      light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
         light.MapView, light.Map->GetReceivers(0));
     this->EndStage("hcm trace");
     ok = ok && light.Traced;
@@ -240,9 +225,6 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
 bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWindow* renWin)
 {
   const caustics::SceneData& scene = *this->GetFrameInputs().Scene;
-  // Clusters land in one texel: the smallest splat (or the constant one).
-  const double clusterRadius =
-    this->SplatMode == SPLAT_CONSTANT ? this->ConstantSplatRadius : this->MinimumSplatRadius;
   bool ok = true;
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {
@@ -251,13 +233,14 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
     {
       continue;
     }
+    const caustics::PhotonGrid& grid = light.Emitter->GetGrid();
     this->BeginStage("hcm traversal");
-    const bool gathered = light.Hierarchy->Gather(renWin, light.Photons, light.MapView,
-      this->CausticMapResolution, static_cast<int>(scene.Lights[i].type), &scene.View);
+    const bool gathered = light.Hierarchy->Gather(renWin, this->Settings, grid, light.Photons,
+      light.MapView, static_cast<int>(scene.Lights[i].type), &scene.View);
     this->EndStage("hcm traversal");
     this->BeginStage("hcm splat");
     light.Traced = gathered &&
-      light.Map->Splat(renWin, light.Photons, light.Hierarchy, clusterRadius, &scene.View);
+      light.Map->Splat(renWin, this->Settings, grid, light.Photons, light.Hierarchy, &scene.View);
     this->EndStage("hcm splat");
     ok = ok && light.Traced;
   }
@@ -418,24 +401,25 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   const char* gathers[] = { "flat (Wyman & Davis 2006)", "hierarchical (3.1)" };
   const char* clusters[] = { "none", "last level (3.2)", "all levels (3.2)" };
   const char* splats[] = { "constant", "varying, single map", "varying, multi-resolution (3.3)" };
-  os << indent << "GatherMode: " << gathers[this->GatherMode] << "\n";
-  os << indent << "ClusterMode: " << clusters[this->ClusterMode] << "\n";
-  os << indent << "SplatMode: " << splats[this->SplatMode] << "\n";
+  const caustics::CausticMapSettings& knobs = this->Settings;
+  os << indent << "GatherMode: " << gathers[knobs.GatherMode] << "\n";
+  os << indent << "ClusterMode: " << clusters[knobs.ClusterMode] << "\n";
+  os << indent << "SplatMode: " << splats[knobs.SplatMode] << "\n";
   os << indent
      << "PhotonBufferResolution (LightBufferResolution): " << this->GetLightBufferResolution()
      << "\n";
-  os << indent << "CausticMapResolution: " << this->CausticMapResolution << "\n";
-  os << indent << "TraversalStartResolution: " << this->TraversalStartResolution << "\n";
-  os << indent << "SplatScale: " << this->SplatScale << "\n";
-  os << indent << "ConstantSplatRadius: " << this->ConstantSplatRadius << " px\n";
-  os << indent << "SplatSizeThreshold: " << this->SplatSizeThreshold << " px\n";
-  os << indent << "MinimumSplatRadius: " << this->MinimumSplatRadius << " px\n";
-  os << indent << "MinimumCameraSplatRadius: " << this->MinimumCameraSplatRadius
+  os << indent << "CausticMapResolution: " << knobs.CausticMapResolution << "\n";
+  os << indent << "TraversalStartResolution: " << knobs.TraversalStartResolution << "\n";
+  os << indent << "SplatScale: " << knobs.SplatScale << "\n";
+  os << indent << "ConstantSplatRadius: " << knobs.ConstantSplatRadius << " px\n";
+  os << indent << "SplatSizeThreshold: " << knobs.SplatSizeThreshold << " px\n";
+  os << indent << "MinimumSplatRadius: " << knobs.MinimumSplatRadius << " px\n";
+  os << indent << "MinimumCameraSplatRadius: " << knobs.MinimumCameraSplatRadius
      << " camera pixel footprints\n";
-  os << indent << "MaximumSplatRadius: " << this->MaximumSplatRadius << " px\n";
-  os << indent << "DropCoarseSplats: " << this->DropCoarseSplats << "\n";
-  os << indent << "MaximumInternalEvents: " << this->MaximumInternalEvents << "\n";
-  os << indent << "SplitFresnel: " << this->SplitFresnel << "\n";
+  os << indent << "MaximumSplatRadius: " << knobs.MaximumSplatRadius << " px\n";
+  os << indent << "DropCoarseSplats: " << knobs.DropCoarseSplats << "\n";
+  os << indent << "MaximumInternalEvents: " << knobs.MaximumInternalEvents << "\n";
+  os << indent << "SplitFresnel: " << knobs.SplitFresnel << "\n";
   os << indent << "Lights: " << this->Internal->Lights.size() << "\n";
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {

@@ -39,6 +39,8 @@
 #include "vtkCausticsRenderPass.h"
 #include "vtkRenderingCausticsModule.h" // For export macro
 
+#include "vtkCausticsCausticMapSettings.h" // For caustics::CausticMapSettings
+
 #include <memory> // For std::unique_ptr
 
 class vtkCausticsCausticMap;
@@ -54,44 +56,54 @@ public:
   vtkTypeMacro(vtkCausticsHierarchicalCausticMapPass, vtkCausticsRenderPass);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  // Values as vtkCausticsPhotonBufferHierarchy's GatherModes, ClusterModes, SplatModes.
+  // The modes of caustics::CausticMapSettings (documented there), for the VTK API.
   enum GatherModes
   {
-    GATHER_FLAT = 0,        ///< every photon: Wyman & Davis 2006 (with §4's improvements)
-    GATHER_HIERARCHICAL = 1 ///< validity mipmap traversal (§3.1)
+    GATHER_FLAT = caustics::CausticMapSettings::GATHER_FLAT,
+    GATHER_HIERARCHICAL = caustics::CausticMapSettings::GATHER_HIERARCHICAL
   };
   enum ClusterModes
   {
-    CLUSTER_NONE = 0,
-    CLUSTER_LAST_LEVEL = 1, ///< convergence tested at mipmap level 1 only (§3.2)
-    CLUSTER_ALL_LEVELS = 2  ///< convergence tested at every level (§3.2)
+    CLUSTER_NONE = caustics::CausticMapSettings::CLUSTER_NONE,
+    CLUSTER_LAST_LEVEL = caustics::CausticMapSettings::CLUSTER_LAST_LEVEL,
+    CLUSTER_ALL_LEVELS = caustics::CausticMapSettings::CLUSTER_ALL_LEVELS
   };
   enum SplatModes
   {
-    SPLAT_CONSTANT = 0,        ///< baseline: ConstantSplatRadius pixels, one map
-    SPLAT_VARYING_SINGLE = 1,  ///< Eq. 2 radius, one map
-    SPLAT_VARYING_MULTIRES = 2 ///< Eq. 2 radius, multi-resolution map (§3.3)
+    SPLAT_CONSTANT = caustics::CausticMapSettings::SPLAT_CONSTANT,
+    SPLAT_VARYING_SINGLE = caustics::CausticMapSettings::SPLAT_VARYING_SINGLE,
+    SPLAT_VARYING_MULTIRES = caustics::CausticMapSettings::SPLAT_VARYING_MULTIRES
   };
 
+  // The knobs below live in one caustics::CausticMapSettings value, which the
+  // stages take by const reference each frame (GetSettings()).
+
   ///@{
-  /** How the photon buffer is gathered. Default GATHER_HIERARCHICAL. */
-  vtkSetClampMacro(GatherMode, int, GATHER_FLAT, GATHER_HIERARCHICAL);
-  vtkGetMacro(GatherMode, int);
+  /**
+   * How the photon buffer is gathered: GATHER_HIERARCHICAL (the validity mipmap's
+   * traversal, §3.1) or GATHER_FLAT (every photon, the Wyman & Davis 2006
+   * baseline). Default GATHER_HIERARCHICAL.
+   */
+  vtkCausticsSettingClampMacro(Settings, GatherMode, int, GATHER_FLAT, GATHER_HIERARCHICAL);
   ///@}
 
   ///@{
   /**
-   * Clustering of converging photons (hierarchical gather only). Default
-   * CLUSTER_LAST_LEVEL (the paper's fastest).
+   * Clustering of converging photons (hierarchical gather only): CLUSTER_NONE,
+   * CLUSTER_LAST_LEVEL or CLUSTER_ALL_LEVELS (§3.2). Default CLUSTER_LAST_LEVEL
+   * (the paper's fastest).
    */
-  vtkSetClampMacro(ClusterMode, int, CLUSTER_NONE, CLUSTER_ALL_LEVELS);
-  vtkGetMacro(ClusterMode, int);
+  vtkCausticsSettingClampMacro(Settings, ClusterMode, int, CLUSTER_NONE, CLUSTER_ALL_LEVELS);
   ///@}
 
   ///@{
-  /** Splat sizes. Default SPLAT_VARYING_MULTIRES. */
-  vtkSetClampMacro(SplatMode, int, SPLAT_CONSTANT, SPLAT_VARYING_MULTIRES);
-  vtkGetMacro(SplatMode, int);
+  /**
+   * Splat sizes: SPLAT_CONSTANT (ConstantSplatRadius pixels, one map level, the
+   * paper's baseline), SPLAT_VARYING_SINGLE (Eq. 2 radius, one level) or
+   * SPLAT_VARYING_MULTIRES (Eq. 2 radius into the multi-resolution map, §3.3).
+   * Default SPLAT_VARYING_MULTIRES.
+   */
+  vtkCausticsSettingClampMacro(Settings, SplatMode, int, SPLAT_CONSTANT, SPLAT_VARYING_MULTIRES);
   ///@}
 
   ///@{
@@ -99,85 +111,102 @@ public:
    * Texels per side of each light's caustic map (its finest level), in [16, 8192].
    * The map looks at the whole scene from the light. Default 512.
    */
-  vtkSetClampMacro(CausticMapResolution, int, 16, 8192);
-  vtkGetMacro(CausticMapResolution, int);
-  ///@}
-
-  ///@{
-  /** Nodes per side of the mipmap level the traversal starts from, in [1, 4096]. Default 16. */
-  vtkSetClampMacro(TraversalStartResolution, int, 1, 4096);
-  vtkGetMacro(TraversalStartResolution, int);
+  vtkCausticsSettingClampMacro(Settings, CausticMapResolution, int, 16, 8192);
   ///@}
 
   ///@{
   /**
-   * Kernel radius over the photon spacing on the receiver (Eq. 2), in [0.25, 16].
-   * Default 2: on a regular photon grid the summed kernels then ripple by 8 % peak
-   * to peak (1.5: 17 %, 1: 66 %), see docs/technique-caustic-maps.md.
+   * Nodes per side of the mipmap level the traversal starts from (the first level
+   * at most this wide; the paper's 16^2), in [1, 4096]. Default 16.
    */
-  vtkSetClampMacro(SplatScale, double, 0.25, 16.0);
-  vtkGetMacro(SplatScale, double);
-  ///@}
-
-  ///@{
-  /** Kernel radius of SPLAT_CONSTANT, in caustic map pixels, in [0.5, 64]. Default 1.5. */
-  vtkSetClampMacro(ConstantSplatRadius, double, 0.5, 64.0);
-  vtkGetMacro(ConstantSplatRadius, double);
-  ///@}
-
-  ///@{
-  /** Largest splat diameter in pixels of a map level before the next (§3.3), in [1, 64]. Default 5.
-   */
-  vtkSetClampMacro(SplatSizeThreshold, double, 1.0, 64.0);
-  vtkGetMacro(SplatSizeThreshold, double);
-  ///@}
-
-  ///@{
-  /** Smallest splat radius in pixels of its map level, in [1, 16]. Default 1.5. */
-  vtkSetClampMacro(MinimumSplatRadius, double, 1.0, 16.0);
-  vtkGetMacro(MinimumSplatRadius, double);
+  vtkCausticsSettingClampMacro(Settings, TraversalStartResolution, int, 1, 4096);
   ///@}
 
   ///@{
   /**
-   * Smallest radius of the varying splats in camera pixel footprints (the square root
-   * of a pixel's area on the receiver where the photon lands), in [0, 16]; 0: off.
-   * Default 1: detail finer than the image would alias in the final render, which
-   * samples the map once per pixel (vtkCausticsPhotonBufferHierarchy::
-   * SetMinimumCameraSplatRadius).
+   * Kernel radius over the photon spacing on the receiver (Eq. 2's radius in units
+   * of the unoccluded footprint's), in [0.25, 16]. Default 2: on a regular photon
+   * grid the summed kernels then ripple by 8 % peak to peak (1.5: 17 %, 1: 66 %),
+   * see docs/technique-caustic-maps.md.
    */
-  vtkSetClampMacro(MinimumCameraSplatRadius, double, 0.0, 16.0);
-  vtkGetMacro(MinimumCameraSplatRadius, double);
+  vtkCausticsSettingClampMacro(Settings, SplatScale, double, 0.25, 16.0);
   ///@}
 
   ///@{
-  /** Largest splat radius in pixels of its map level, in [2, 360]. Default 32. */
-  vtkSetClampMacro(MaximumSplatRadius, double, 2.0, 360.0);
-  vtkGetMacro(MaximumSplatRadius, double);
+  /**
+   * Kernel radius of SPLAT_CONSTANT, in finest-level caustic map pixels, in
+   * [0.5, 64]. Default 1.5 (the paper's 3^2-pixel splats).
+   */
+  vtkCausticsSettingClampMacro(Settings, ConstantSplatRadius, double, 0.5, 64.0);
+  ///@}
+
+  ///@{
+  /**
+   * Largest splat diameter, in pixels of its caustic map level, before it moves one
+   * level coarser (§3.3: 5.0 "gave the best performance"), in [1, 64]. Default 5.
+   */
+  vtkCausticsSettingClampMacro(Settings, SplatSizeThreshold, double, 1.0, 64.0);
+  ///@}
+
+  ///@{
+  /**
+   * Smallest splat radius in pixels of its map level, in [1, 16]: a narrower kernel
+   * falls between pixel centres and loses energy. Clusters get this radius (the
+   * constant one with SPLAT_CONSTANT). Default 1.5.
+   */
+  vtkCausticsSettingClampMacro(Settings, MinimumSplatRadius, double, 1.0, 16.0);
+  ///@}
+
+  ///@{
+  /**
+   * Smallest radius of the varying splats and of the clusters, in pixel footprints
+   * of the camera (the square root of a pixel's area on the receiver where the
+   * photon lands, as the reference's kernel), in [0, 16]; 0 turns it off. Default 1.
+   * A kernel narrower than a camera pixel puts detail into the caustic map that the
+   * image cannot show: the final render samples the map at one point per pixel, so
+   * that detail aliases into noise, the more the finer the map. With this floor the
+   * map is filtered to the image's resolution and its result no longer depends on
+   * the map's (SPLAT_CONSTANT, the paper's baseline, ignores it).
+   */
+  vtkCausticsSettingClampMacro(Settings, MinimumCameraSplatRadius, double, 0.0, 16.0);
+  ///@}
+
+  ///@{
+  /** Largest splat radius in pixels of its map level (bounds the cost), in [2, 360]. Default 32. */
+  vtkCausticsSettingClampMacro(Settings, MaximumSplatRadius, double, 2.0, 360.0);
   ///@}
 
   ///@{
   /**
    * Drop splats that need map level 4 or coarser, as the paper does, instead of
-   * splatting them into level 3; GetCounters reports their flux. Default off.
+   * splatting them into level 3; their flux is counted either way (GetCounters).
+   * Default off.
    */
-  vtkSetMacro(DropCoarseSplats, bool);
-  vtkGetMacro(DropCoarseSplats, bool);
+  vtkCausticsSettingMacro(Settings, DropCoarseSplats, bool);
   vtkBooleanMacro(DropCoarseSplats, bool);
   ///@}
 
   ///@{
-  /** Refractive interfaces a photon may meet inside a refractor, in [1, 32]. Default 8. */
-  vtkSetClampMacro(MaximumInternalEvents, int, 1, 32);
-  vtkGetMacro(MaximumInternalEvents, int);
+  /**
+   * Refractive interfaces a photon may meet inside a refractor after entering it
+   * (total internal reflections + the exit), in [1, 32]. Default 8.
+   */
+  vtkCausticsSettingClampMacro(Settings, MaximumInternalEvents, int, 1, 32);
   ///@}
 
   ///@{
   /** Emit a refractor's Fresnel-reflected part as a second photon branch. Default on. */
-  vtkSetMacro(SplitFresnel, bool);
-  vtkGetMacro(SplitFresnel, bool);
+  vtkCausticsSettingMacro(Settings, SplitFresnel, bool);
   vtkBooleanMacro(SplitFresnel, bool);
   ///@}
+
+#ifndef __VTK_WRAP__
+  /** All the knobs above, as the stages receive them. */
+  const caustics::CausticMapSettings& GetSettings() const
+  {
+    return this->Settings;
+  }
+#endif
 
   /** Lights of the last frame (traced or not). */
   int GetNumberOfLights() const;
@@ -267,20 +296,7 @@ protected:
   bool GatherCausticMaps(vtkOpenGLRenderWindow* renWin);
   bool RenderFinal(vtkOpenGLRenderWindow* renWin);
 
-  int GatherMode = GATHER_HIERARCHICAL;
-  int ClusterMode = CLUSTER_LAST_LEVEL;
-  int SplatMode = SPLAT_VARYING_MULTIRES;
-  int CausticMapResolution = 512;
-  int TraversalStartResolution = 16;
-  double SplatScale = 2.0;
-  double ConstantSplatRadius = 1.5;
-  double SplatSizeThreshold = 5.0;
-  double MinimumSplatRadius = 1.5;
-  double MinimumCameraSplatRadius = 1.0;
-  double MaximumSplatRadius = 32.0;
-  bool DropCoarseSplats = false;
-  int MaximumInternalEvents = 8;
-  bool SplitFresnel = true;
+  caustics::CausticMapSettings Settings;
 
 private:
   vtkCausticsHierarchicalCausticMapPass(const vtkCausticsHierarchicalCausticMapPass&) = delete;

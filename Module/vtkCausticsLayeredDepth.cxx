@@ -209,11 +209,11 @@ struct vtkCausticsLayeredDepth::Internals
   caustics::ssp::Texture Normal;     // RGBA16F array
   caustics::ssp::Texture Depth;      // R32F array
   caustics::ssp::Texture PeelDepth[2];
-  caustics::ssp::Buffer Table;
-  caustics::ssp::Buffer ObjectMap;
-  caustics::ssp::Buffer CommandInfo;
-  caustics::ssp::Buffer DrawCommands;
-  caustics::ssp::Buffer ClearCommands;
+  caustics::gl::StorageBuffer Table;
+  caustics::gl::StorageBuffer ObjectMap;
+  caustics::gl::StorageBuffer CommandInfo;
+  caustics::gl::StorageBuffer DrawCommands;
+  caustics::gl::StorageBuffer ClearCommands;
   caustics::ssp::Framebuffer CountFramebuffer;
   caustics::ssp::Framebuffer PeelFramebuffer;
   unsigned int VertexArray = 0;
@@ -271,7 +271,7 @@ void vtkCausticsLayeredDepth::Internals::UpdateCommands(
   const ObjectLayout& layout, int layers, const caustics::SceneData& scene)
 {
   std::vector<std::uint32_t> signature = LayoutSignature(layout, layers, scene.Materials.size());
-  const bool layoutChanged = signature != this->StaticSignature || !this->DrawCommands.Handle;
+  const bool layoutChanged = signature != this->StaticSignature || !this->DrawCommands.Handle();
   if (layoutChanged)
   {
     this->UploadCommands(layout, layers, scene);
@@ -306,17 +306,17 @@ void vtkCausticsLayeredDepth::Internals::UploadCommands(
   const std::vector<std::uint32_t> clear = ClearCommandList(objects * layers);
   const std::vector<std::uint32_t> objectMap = MaterialObjects(scene, layout);
   this->Commands = static_cast<int>(info.size());
-  this->DrawCommands.Ensure(draw.size() * 4);
-  this->CommandInfo.Ensure(info.size() * 4);
-  this->ClearCommands.Ensure(clear.size() * 4);
-  this->ObjectMap.Ensure(objectMap.size() * 4);
+  this->DrawCommands.Allocate(draw.size() * 4);
+  this->CommandInfo.Allocate(info.size() * 4);
+  this->ClearCommands.Allocate(clear.size() * 4);
+  this->ObjectMap.Allocate(objectMap.size() * 4);
   if (!draw.empty())
   {
-    glNamedBufferSubData(this->DrawCommands.Handle, 0, draw.size() * 4, draw.data());
-    glNamedBufferSubData(this->CommandInfo.Handle, 0, info.size() * 4, info.data());
+    this->DrawCommands.Write(0, draw.size() * 4, draw.data());
+    this->CommandInfo.Write(0, info.size() * 4, info.data());
   }
-  glNamedBufferSubData(this->ClearCommands.Handle, 0, clear.size() * 4, clear.data());
-  glNamedBufferSubData(this->ObjectMap.Handle, 0, objectMap.size() * 4, objectMap.data());
+  this->ClearCommands.Write(0, clear.size() * 4, clear.data());
+  this->ObjectMap.Write(0, objectMap.size() * 4, objectMap.data());
 }
 
 /** Makes the vertex arrays once and points them at the geometry's current buffers. */
@@ -348,7 +348,7 @@ bool vtkCausticsLayeredDepth::Internals::CountFragments(vtkOpenGLRenderWindow* r
   vtkOpenGLState* state = renWin->GetState();
   const GLuint zero[4] = { 0, 0, 0, 0 };
   glClearTexImage(this->Complexity.Handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
-  glClearNamedBufferData(this->Table.Handle, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+  glClearNamedBufferData(this->Table.Handle(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
   const GLuint countFramebuffer = this->CountFramebuffer.Get();
   glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, this->Width);
   glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, this->Height);
@@ -361,7 +361,7 @@ bool vtkCausticsLayeredDepth::Internals::CountFragments(vtkOpenGLRenderWindow* r
   {
     this->CountProgram->SetUniformMatrix4("worldToClip", worldToClip);
     glBindImageTexture(0, this->Complexity.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    this->ObjectMap.BindStorage(ObjectMapBinding);
+    this->ObjectMap.BindBase(GL_SHADER_STORAGE_BUFFER, ObjectMapBinding);
     geometry->Draw(roleMask);
     this->CountProgram->Unbind(renWin);
   }
@@ -377,7 +377,7 @@ bool vtkCausticsLayeredDepth::Internals::ReduceComplexity(vtkOpenGLRenderWindow*
     return false;
   }
   glBindImageTexture(0, this->Complexity.Handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-  this->Table.BindStorage(TableBinding);
+  this->Table.BindBase(GL_SHADER_STORAGE_BUFFER, TableBinding);
   this->ReduceProgram->SetUniform2i("size", this->Width, this->Height);
   this->ReduceProgram->SetUniformi("objectCount", this->Objects);
   this->ReduceProgram->DispatchCovering2D(this->Width, this->Height, 16, 16);
@@ -393,10 +393,10 @@ bool vtkCausticsLayeredDepth::Internals::GateLayers(vtkOpenGLRenderWindow* renWi
   {
     return false;
   }
-  this->Table.BindStorage(TableBinding);
-  this->CommandInfo.BindStorage(CommandInfoBinding);
-  this->DrawCommands.BindStorage(DrawCommandBinding);
-  this->ClearCommands.BindStorage(ClearCommandBinding);
+  this->Table.BindBase(GL_SHADER_STORAGE_BUFFER, TableBinding);
+  this->CommandInfo.BindBase(GL_SHADER_STORAGE_BUFFER, CommandInfoBinding);
+  this->DrawCommands.BindBase(GL_SHADER_STORAGE_BUFFER, DrawCommandBinding);
+  this->ClearCommands.BindBase(GL_SHADER_STORAGE_BUFFER, ClearCommandBinding);
   this->FinalizeProgram->SetUniformi("objectCount", this->Objects);
   this->FinalizeProgram->SetUniformi("maxLayers", this->Layers);
   this->FinalizeProgram->SetUniformi("commandCount", this->Commands);
@@ -453,7 +453,7 @@ void vtkCausticsLayeredDepth::Internals::AttachLayer(int layer, int k)
 /** Clears the layer and its depth buffer, only if it will be peeled (gated command). */
 bool vtkCausticsLayeredDepth::Internals::ClearLayer(vtkOpenGLRenderWindow* renWin, int layer)
 {
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->ClearCommands.Handle);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->ClearCommands.Handle());
   renWin->GetState()->vtkglDepthFunc(GL_ALWAYS);
   if (!this->ClearProgram->Bind(renWin))
   {
@@ -486,7 +486,7 @@ bool vtkCausticsLayeredDepth::Internals::PeelLayer(vtkOpenGLRenderWindow* renWin
   this->PeelProgram->SetUniformi("firstLayer", k == 0 ? 1 : 0);
   this->PeelProgram->SetUniformMatrix4("worldToClip", worldToClip);
   geometry->BindMaterials();
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->DrawCommands.Handle);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->DrawCommands.Handle());
   glBindVertexArray(this->VertexArray);
   const int count = this->ObjectCommandCount[object];
   const int first = this->ObjectCommandFirst[object] + k * count;
@@ -632,7 +632,7 @@ bool vtkCausticsLayeredDepth::AllocateTargets(int objects, int layers, int width
   in.Layers = layers;
   in.Width = width;
   in.Height = height;
-  in.Table.Ensure(16 * (1 + static_cast<std::size_t>(objects)));
+  in.Table.Allocate(16 * (1 + static_cast<std::size_t>(objects)));
 
   // Reallocated only when the size, cap or object count changes.
   GLint maxLayers = 0;
@@ -670,7 +670,7 @@ unsigned int vtkCausticsLayeredDepth::GetComplexityTexture() const
 }
 unsigned int vtkCausticsLayeredDepth::GetTableBuffer() const
 {
-  return this->Internal->Table.Handle;
+  return this->Internal->Table.Handle();
 }
 int vtkCausticsLayeredDepth::GetNumberOfObjects() const
 {
@@ -691,23 +691,23 @@ int vtkCausticsLayeredDepth::GetHeight() const
 
 int vtkCausticsLayeredDepth::ReadDepthComplexity()
 {
-  if (!this->Internal->Table.Handle)
+  if (!this->Internal->Table.Handle())
   {
     return 0;
   }
   std::uint32_t header[4] = { 0, 0, 0, 0 };
-  glGetNamedBufferSubData(this->Internal->Table.Handle, 0, sizeof(header), header);
+  glGetNamedBufferSubData(this->Internal->Table.Handle(), 0, sizeof(header), header);
   return static_cast<int>(header[2]);
 }
 
 int vtkCausticsLayeredDepth::ReadNumberOfPeeledLayers(int object)
 {
-  if (!this->Internal->Table.Handle || object < 0 || object >= this->Internal->Objects)
+  if (!this->Internal->Table.Handle() || object < 0 || object >= this->Internal->Objects)
   {
     return 0;
   }
   std::uint32_t entry[4] = { 0, 0, 0, 0 };
-  glGetNamedBufferSubData(this->Internal->Table.Handle, 16 * (1 + object), sizeof(entry), entry);
+  glGetNamedBufferSubData(this->Internal->Table.Handle(), 16 * (1 + object), sizeof(entry), entry);
   return static_cast<int>(entry[1]);
 }
 
@@ -778,7 +778,7 @@ void vtkCausticsLayeredDepth::ReleaseGraphicsResources(vtkWindow* win)
   {
     texture->Release();
   }
-  for (caustics::ssp::Buffer* buffer :
+  for (caustics::gl::StorageBuffer* buffer :
     { &in.Table, &in.ObjectMap, &in.CommandInfo, &in.DrawCommands, &in.ClearCommands })
   {
     buffer->Release();

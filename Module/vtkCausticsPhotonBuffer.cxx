@@ -1,9 +1,10 @@
 #include "vtkCausticsPhotonBuffer.h"
 
+#include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
-#include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
@@ -34,9 +35,101 @@ double Diagonal(const double bounds[6])
 }
 }
 
+/** What every phase of one trace reads besides its program (see Trace()). */
+struct vtkCausticsPhotonBuffer::TraceUniforms
+{
+  const caustics::CausticMapSettings* Settings = nullptr;
+  const caustics::Light* Source = nullptr;
+  const caustics::LightView* PhotonView = nullptr;
+  const caustics::LightView* MapView = nullptr;
+  const int* MapSize = nullptr;
+  int Width = 0, Height = 0;
+  std::size_t Capacity = 0;
+  double ChordLength = 0.0, AirLength = 0.0, FluxUnit = 1.0;
+  double ReceiverLow[3] = { 0, 0, 0 }, ReceiverHigh[3] = { 0, 0, 0 };
+  vtkTextureObject* Inputs[9] = { nullptr };
+};
+
+namespace
+{
+const char* const TraceInputNames[9] = { "photonPosition", "photonDirection", "photonFlux",
+  "frontPosition", "frontNormal", "backPosition", "backNormal", "receiverPosition",
+  "receiverNormal" };
+
+void SetTraceUniforms(
+  vtkCausticsShaderProgram* program, const vtkCausticsPhotonBuffer::TraceUniforms& trace)
+{
+  for (int i = 0; i < 9; ++i)
+  {
+    program->SetUniformi(TraceInputNames[i], trace.Inputs[i]->GetTextureUnit());
+  }
+  const caustics::Light& source = *trace.Source;
+  caustics::hcm::SetViewUniforms(
+    program, "photonView", *trace.PhotonView, trace.Width, trace.Width);
+  caustics::hcm::SetViewUniforms(
+    program, "mapView", *trace.MapView, trace.MapSize[0], trace.MapSize[1]);
+  program->SetUniform2i("gridSize", trace.Width, trace.Height);
+  program->SetUniformu("listCapacity", static_cast<unsigned int>(trace.Capacity));
+  program->SetUniformi("lightType", static_cast<int>(source.type));
+  program->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
+    static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
+  program->SetUniformi("maximumInternalEvents", trace.Settings->MaximumInternalEvents);
+  program->SetUniformi("marchSteps", trace.Settings->MarchSteps);
+  program->SetUniformf("chordLength", static_cast<float>(trace.ChordLength));
+  program->SetUniformf("airLength", static_cast<float>(trace.AirLength));
+  program->SetUniformf("fluxUnit", static_cast<float>(trace.FluxUnit));
+  program->SetUniform3f("receiverLow", static_cast<float>(trace.ReceiverLow[0]),
+    static_cast<float>(trace.ReceiverLow[1]), static_cast<float>(trace.ReceiverLow[2]));
+  program->SetUniform3f("receiverHigh", static_cast<float>(trace.ReceiverHigh[0]),
+    static_cast<float>(trace.ReceiverHigh[1]), static_cast<float>(trace.ReceiverHigh[2]));
+}
+
+/**
+ * The trace's three compute phases: the sort over every texel, then one indirect
+ * dispatch per work list (inside the refractors, in air), whose lengths are on the
+ * GPU and become dispatch arguments there.
+ */
+bool RunPhases(vtkOpenGLRenderWindow* renWin, vtkCausticsShaderProgram* const phases[3],
+  vtkCausticsShaderProgram* arguments, const vtkCausticsPhotonBuffer::TraceUniforms& trace)
+{
+  for (int phase = 0; phase < 3; ++phase)
+  {
+    if (phase > 0)
+    {
+      if (!arguments->Bind(renWin))
+      {
+        return false;
+      }
+      arguments->SetUniformi("level", phase - 1);
+      arguments->Dispatch(1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+    vtkCausticsShaderProgram* program = phases[phase];
+    if (!program->Bind(renWin))
+    {
+      return false;
+    }
+    SetTraceUniforms(program, trace);
+    if (phase == 0)
+    {
+      program->DispatchCovering2D(trace.Width, trace.Height, 8, 8);
+    }
+    else
+    {
+      glDispatchComputeIndirect(static_cast<GLintptr>(
+        (caustics::hcm::ControlDispatch + 3 * (phase - 1)) * sizeof(std::uint32_t)));
+    }
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  return true;
+}
+}
+
 struct vtkCausticsPhotonBuffer::Internals
 {
   caustics::hcm::ReceiverBoundsCache Receivers;
+  caustics::gl::StorageBuffer Statistics; // STAT_* counters
+  caustics::gl::StorageBuffer Lists;      // control words, then two work lists
 };
 
 vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
@@ -63,25 +156,28 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
 
 vtkCausticsPhotonBuffer::~vtkCausticsPhotonBuffer()
 {
-  if (this->StatisticsBuffer || this->ListBuffer)
+  if (this->Internal->Statistics.Handle() || this->Internal->Lists.Handle())
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): statistics buffer leaked");
   }
 }
 
 bool vtkCausticsPhotonBuffer::Render(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, int light,
-  vtkCausticsPhotonEmitter* emitter, const caustics::LightView& photonView,
-  const caustics::LightView& mapView, vtkCausticsGBuffer* receivers)
+  const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
+  const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
+  const caustics::LightView& photonView, const caustics::LightView& mapView,
+  vtkCausticsGBuffer* receivers)
 {
-  const int resolution = emitter ? emitter->GetGridSize()[0] : 0;
-  return this->RenderLayers(renWin, geometry, photonView, resolution) &&
-    this->Trace(renWin, geometry, scene, light, emitter, photonView, mapView, receivers);
+  return this->RenderLayers(renWin, geometry, photonView, grid) &&
+    this->Trace(renWin, settings, geometry, scene, grid, photonView, mapView, receivers);
 }
 
 bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::LightView& photonView, int resolution)
+  vtkCausticsSceneGeometry* geometry, const caustics::LightView& photonView,
+  const caustics::PhotonGrid& grid)
 {
+  // The layers are the light buffers' size, N x N: one texel per photon of a branch.
+  const int resolution = grid.Width;
   if (resolution <= 0)
   {
     vtkErrorMacro(<< "RenderLayers needs a positive resolution (emit photons first)");
@@ -100,145 +196,37 @@ bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
 }
 
 bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene, int light,
-  vtkCausticsPhotonEmitter* emitter, const caustics::LightView& photonView,
-  const caustics::LightView& mapView, vtkCausticsGBuffer* receivers)
+  const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
+  const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
+  const caustics::LightView& photonView, const caustics::LightView& mapView,
+  vtkCausticsGBuffer* receivers)
 {
-  if (!emitter || !receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
+  const int light = grid.Light;
+  if (!receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
   {
-    vtkErrorMacro(<< "Trace needs an emitter, a receiver G-buffer and a valid light index");
+    vtkErrorMacro(<< "Trace needs emitted photons, a receiver G-buffer and a valid light index");
     return false;
   }
-  const int width = emitter->GetGridSize()[0];
-  const int height = emitter->GetGridSize()[1];
-  if (width <= 0 || height <= 0 || this->FrontLayer->GetSize()[0] != width)
+  if (grid.IsEmpty() || this->FrontLayer->GetSize()[0] != grid.Width)
   {
     vtkErrorMacro(<< "Trace needs emitted photons and layers of their resolution");
     return false;
   }
-  this->GridSize[0] = width;
-  this->GridSize[1] = height;
-  this->BranchRows = width;
-  const caustics::Light& source = scene.Lights[light];
-  this->FluxUnit =
-    caustics::hcm::TexelFluxBound(source, photonView, width) / caustics::hcm::UnitsPerTexelFlux;
+  this->FluxUnit = caustics::hcm::FluxUnit(grid);
 
   // 2. Outputs and counters: allocated when the size changes, cleared every frame.
-  caustics::gl::EnsureTexture(this->HitPosition, renWin, width, height, GL_RGBA32F);
-  caustics::gl::EnsureTexture(this->HitNormal, renWin, width, height, GL_RGBA32F);
-  caustics::gl::EnsureTexture(this->HitFlux, renWin, width, height, GL_RGBA32F);
-  if (!this->StatisticsBuffer)
-  {
-    glCreateBuffers(1, &this->StatisticsBuffer);
-    glNamedBufferData(this->StatisticsBuffer, caustics::hcm::StatSize * sizeof(std::uint32_t),
-      nullptr, GL_DYNAMIC_COPY);
-  }
-  glClearNamedBufferData(
-    this->StatisticsBuffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-  // Work lists (control words, then two lists of up to one entry per texel).
-  const std::size_t capacity = static_cast<std::size_t>(width) * height;
-  const std::size_t listBytes = (caustics::hcm::ControlSize + 2 * capacity) * sizeof(std::uint32_t);
-  if (!this->ListBuffer)
-  {
-    glCreateBuffers(1, &this->ListBuffer);
-    this->ListCapacity = 0;
-  }
-  if (listBytes > this->ListCapacity)
-  {
-    glNamedBufferData(
-      this->ListBuffer, static_cast<GLsizeiptr>(listBytes), nullptr, GL_DYNAMIC_COPY);
-    this->ListCapacity = listBytes;
-  }
-  glClearNamedBufferSubData(this->ListBuffer, GL_R32UI, 0,
-    caustics::hcm::ControlSize * sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  TraceUniforms trace;
+  trace.Capacity = this->AllocateOutputs(renWin, grid.Width, grid.Height);
 
   // 3. One thread per photon, in two phases (inside the refractors, then in air).
-  vtkTextureObject* inputs[] = { emitter->GetPositionTexture(), emitter->GetDirectionTexture(),
-    emitter->GetFluxTexture(), this->FrontLayer->GetPositionTexture(),
-    this->FrontLayer->GetNormalTexture(), this->BackLayer->GetPositionTexture(),
-    this->BackLayer->GetNormalTexture(), receivers->GetPositionTexture(),
-    receivers->GetNormalTexture() };
-  const char* names[] = { "photonPosition", "photonDirection", "photonFlux", "frontPosition",
-    "frontNormal", "backPosition", "backNormal", "receiverPosition", "receiverNormal" };
-  for (vtkTextureObject* input : inputs)
+  this->DescribeTrace(settings, scene, grid, photonView, mapView, receivers, trace);
+  for (vtkTextureObject* input : trace.Inputs)
   {
     input->Activate();
   }
-  // Photons in air can only land inside the receivers' bounds: the search is
-  // clipped to them (photons that never enter them cost one box test).
-  double receiverBounds[6];
-  if (!this->Internal->Receivers.Compute(scene, receiverBounds))
-  {
-    std::copy(scene.Bounds, scene.Bounds + 6, receiverBounds);
-  }
-  const double margin = 1e-3 * Diagonal(scene.Bounds);
-  const int* mapSize = receivers->GetSize();
-  vtkTextureObject* outputs[] = { this->HitPosition, this->HitNormal, this->HitFlux };
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    glBindImageTexture(i, outputs[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  }
-  glBindBufferBase(
-    GL_SHADER_STORAGE_BUFFER, caustics::hcm::StatisticsBinding, this->StatisticsBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding, this->ListBuffer);
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->ListBuffer);
-  geometry->BindMaterials();
-  bool ok = true;
+  this->BindTraceOutputs(geometry);
   vtkCausticsShaderProgram* phases[] = { this->SortProgram, this->InsideProgram, this->AirProgram };
-  for (int phase = 0; phase < 3 && ok; ++phase)
-  {
-    vtkCausticsShaderProgram* program = phases[phase];
-    if (phase > 0)
-    {
-      // The list's length is on the GPU: turn it into dispatch arguments there.
-      ok = this->ArgumentsProgram->Bind(renWin);
-      if (!ok)
-      {
-        break;
-      }
-      this->ArgumentsProgram->SetUniformi("level", phase - 1);
-      this->ArgumentsProgram->Dispatch(1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    }
-    if (!program->Bind(renWin))
-    {
-      ok = false;
-      break;
-    }
-    for (int i = 0; i < 9; ++i)
-    {
-      program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
-    }
-    caustics::hcm::SetViewUniforms(program, "photonView", photonView, width, width);
-    caustics::hcm::SetViewUniforms(program, "mapView", mapView, mapSize[0], mapSize[1]);
-    program->SetUniform2i("gridSize", width, height);
-    program->SetUniformu("listCapacity", static_cast<unsigned int>(capacity));
-    program->SetUniformi("lightType", static_cast<int>(source.type));
-    program->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
-      static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
-    program->SetUniformi("maximumInternalEvents", this->MaximumInternalEvents);
-    program->SetUniformi("marchSteps", this->MarchSteps);
-    // Longest straight paths: across the refractors' bounds, and across the scene.
-    program->SetUniformf("chordLength", static_cast<float>(1.01 * Diagonal(scene.SpecularBounds)));
-    program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(scene.Bounds)));
-    program->SetUniformf("fluxUnit", static_cast<float>(this->FluxUnit));
-    program->SetUniform3f("receiverLow", static_cast<float>(receiverBounds[0] - margin),
-      static_cast<float>(receiverBounds[2] - margin),
-      static_cast<float>(receiverBounds[4] - margin));
-    program->SetUniform3f("receiverHigh", static_cast<float>(receiverBounds[1] + margin),
-      static_cast<float>(receiverBounds[3] + margin),
-      static_cast<float>(receiverBounds[5] + margin));
-    if (phase == 0)
-    {
-      program->DispatchCovering2D(width, height, 8, 8);
-    }
-    else
-    {
-      glDispatchComputeIndirect(static_cast<GLintptr>(
-        (caustics::hcm::ControlDispatch + 3 * (phase - 1)) * sizeof(std::uint32_t)));
-    }
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  }
+  const bool ok = RunPhases(renWin, phases, this->ArgumentsProgram, trace);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   if (ok)
   {
@@ -251,24 +239,89 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   {
     glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   }
-  for (vtkTextureObject* input : inputs)
+  for (vtkTextureObject* input : trace.Inputs)
   {
     input->Deactivate();
   }
   return ok;
 }
 
+std::size_t vtkCausticsPhotonBuffer::AllocateOutputs(
+  vtkOpenGLRenderWindow* renWin, int width, int height)
+{
+  caustics::gl::EnsureTexture(this->HitPosition, renWin, width, height, GL_RGBA32F);
+  caustics::gl::EnsureTexture(this->HitNormal, renWin, width, height, GL_RGBA32F);
+  caustics::gl::EnsureTexture(this->HitFlux, renWin, width, height, GL_RGBA32F);
+  using Usage = caustics::gl::StorageBuffer::Usage;
+  this->Internal->Statistics.Allocate(caustics::hcm::StatSize * sizeof(std::uint32_t), Usage::Copy);
+  this->Internal->Statistics.Clear();
+  // Work lists (control words, then two lists of up to one entry per texel).
+  const std::size_t capacity = static_cast<std::size_t>(width) * height;
+  const std::size_t listBytes = (caustics::hcm::ControlSize + 2 * capacity) * sizeof(std::uint32_t);
+  this->Internal->Lists.Allocate(listBytes, Usage::Copy);
+  this->Internal->Lists.Clear(0, caustics::hcm::ControlSize * sizeof(std::uint32_t));
+  return capacity;
+}
+
+void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& settings,
+  const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
+  const caustics::LightView& photonView, const caustics::LightView& mapView,
+  vtkCausticsGBuffer* receivers, TraceUniforms& trace)
+{
+  trace.Settings = &settings;
+  trace.Source = &scene.Lights[grid.Light];
+  trace.PhotonView = &photonView;
+  trace.MapView = &mapView;
+  trace.MapSize = receivers->GetSize();
+  trace.Width = grid.Width;
+  trace.Height = grid.Height;
+  // Longest straight paths: across the refractors' bounds, and across the scene.
+  trace.ChordLength = 1.01 * Diagonal(scene.SpecularBounds);
+  trace.AirLength = 1.01 * Diagonal(scene.Bounds);
+  trace.FluxUnit = this->FluxUnit;
+  vtkTextureObject* inputs[] = { grid.Position, grid.Direction, grid.Flux,
+    this->FrontLayer->GetPositionTexture(), this->FrontLayer->GetNormalTexture(),
+    this->BackLayer->GetPositionTexture(), this->BackLayer->GetNormalTexture(),
+    receivers->GetPositionTexture(), receivers->GetNormalTexture() };
+  std::copy(inputs, inputs + 9, trace.Inputs);
+  // Photons in air can only land inside the receivers' bounds: the search is
+  // clipped to them (photons that never enter them cost one box test).
+  double receiverBounds[6];
+  if (!this->Internal->Receivers.Compute(scene, receiverBounds))
+  {
+    std::copy(scene.Bounds, scene.Bounds + 6, receiverBounds);
+  }
+  const double margin = 1e-3 * Diagonal(scene.Bounds);
+  for (int c = 0; c < 3; ++c)
+  {
+    trace.ReceiverLow[c] = receiverBounds[2 * c] - margin;
+    trace.ReceiverHigh[c] = receiverBounds[2 * c + 1] + margin;
+  }
+}
+
+void vtkCausticsPhotonBuffer::BindTraceOutputs(vtkCausticsSceneGeometry* geometry)
+{
+  vtkTextureObject* outputs[] = { this->HitPosition, this->HitNormal, this->HitFlux };
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    glBindImageTexture(i, outputs[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  }
+  this->Internal->Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::StatisticsBinding);
+  this->Internal->Lists.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Internal->Lists.Handle());
+  geometry->BindMaterials();
+}
+
 bool vtkCausticsPhotonBuffer::GetStatistics(Statistics& statistics)
 {
   statistics = Statistics();
-  if (!this->StatisticsBuffer)
+  if (!this->Internal->Statistics.Handle())
   {
     vtkErrorMacro(<< "GetStatistics: no photon buffer was rendered");
     return false;
   }
   std::vector<std::uint32_t> words(caustics::hcm::StatSize, 0);
-  glGetNamedBufferSubData(
-    this->StatisticsBuffer, 0, words.size() * sizeof(std::uint32_t), words.data());
+  this->Internal->Statistics.Read(0, words.size() * sizeof(std::uint32_t), words.data());
   statistics.Photons = words[caustics::hcm::StatPhotons];
   statistics.Hits = words[caustics::hcm::StatHits];
   statistics.LostInside = words[caustics::hcm::StatLostInside];
@@ -296,25 +349,12 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
   this->InsideProgram->ReleaseGraphicsResources(win);
   this->AirProgram->ReleaseGraphicsResources(win);
   this->ArgumentsProgram->ReleaseGraphicsResources(win);
-  if (this->ListBuffer)
-  {
-    glDeleteBuffers(1, &this->ListBuffer);
-    this->ListBuffer = 0;
-    this->ListCapacity = 0;
-  }
-  if (this->StatisticsBuffer)
-  {
-    glDeleteBuffers(1, &this->StatisticsBuffer);
-    this->StatisticsBuffer = 0;
-  }
-  this->GridSize[0] = this->GridSize[1] = 0;
+  this->Internal->Lists.Release();
+  this->Internal->Statistics.Release();
 }
 
 void vtkCausticsPhotonBuffer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "MaximumInternalEvents: " << this->MaximumInternalEvents << "\n";
-  os << indent << "MarchSteps: " << this->MarchSteps << "\n";
-  os << indent << "GridSize: " << this->GridSize[0] << " x " << this->GridSize[1] << "\n";
   os << indent << "FluxUnit: " << this->FluxUnit << " W\n";
 }

@@ -30,7 +30,7 @@
  *    layer shows where the estimate projects, until the estimate stops moving:
  *    exact in one step on planar receivers), else a march of MarchSteps samples
  *    that brackets the first change of side, bisection and a last plane step.
- * Outputs, textures of the emitter's grid size (RGBA32F), one texel per photon:
+ * Outputs, textures of the photon grid's size (RGBA32F), one texel per photon:
  * - HitPosition: xyz of the hit, w = path length from the light d_i (m; for a
  *   directional light, from the view's eye plane); w > 0 marks a valid photon;
  * - HitNormal: receiver normal as modelled, w = |N.D_i| (cosine of incidence);
@@ -38,9 +38,11 @@
  *   sr point/spot), as Eq. 2 of §3.3 needs.
  * GPU counters (photons and flux in, landed, lost inside, escaped, internally
  * reflected, absorbed) are kept every frame and read only on request
- * (GetStatistics, which stalls). Limits: photons are not occluded by specular
- * objects after their last interface, a refractor is one slab between its nearest
- * and farthest surfaces seen from the light (nested or overlapping refractors need
+ * (GetStatistics, which stalls). MaximumInternalEvents and MarchSteps are members
+ * of caustics::CausticMapSettings, which Render() and Trace() take. Limits:
+ * photons are not occluded by specular objects after their last interface, a
+ * refractor is one slab between its nearest and farthest surfaces seen from the
+ * light (nested or overlapping refractors need
  * layered depth images), and only receivers the caustic map's view sees can be hit.
  */
 #ifndef vtkCausticsPhotonBuffer_h
@@ -55,7 +57,6 @@
 #include <memory>  // For std::unique_ptr
 
 class vtkCausticsGBuffer;
-class vtkCausticsPhotonEmitter;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkOpenGLRenderWindow;
@@ -64,7 +65,9 @@ class vtkWindow;
 
 namespace caustics
 {
+struct CausticMapSettings;
 struct LightView;
+struct PhotonGrid;
 struct SceneData;
 }
 
@@ -75,42 +78,27 @@ public:
   vtkTypeMacro(vtkCausticsPhotonBuffer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /**
-   * Refractive interfaces a photon may meet inside a refractor after entering it
-   * (total internal reflections + the exit), in [1, 32]. Default 8.
-   */
-  vtkSetClampMacro(MaximumInternalEvents, int, 1, 32);
-  vtkGetMacro(MaximumInternalEvents, int);
-  ///@}
-
-  ///@{
-  /** Samples of the fallback march along a photon's path, in [4, 1024]. Default 64. */
-  vtkSetClampMacro(MarchSteps, int, 4, 1024);
-  vtkGetMacro(MarchSteps, int);
-  ///@}
-
 #ifndef __VTK_WRAP__
   /**
-   * Renders the refractor layers in `photonView` (the view the emitter's texels come
-   * from) and traces the photons of `emitter` (emitted for light `light` of `scene`)
-   * to the receivers of `receivers`, a receiver-only G-buffer seen through
-   * `mapView`. The geometry's material table must be current. Returns false if a
-   * program failed.
+   * Renders the refractor layers in `photonView` (the view the grid's texels come
+   * from) and traces the photons of `grid` (emitted for its light of `scene`) to the
+   * receivers of `receivers`, a receiver-only G-buffer seen through `mapView`, with
+   * the settings' MaximumInternalEvents and MarchSteps. The geometry's material
+   * table must be current. Returns false if a program failed.
    */
-  bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene, int light, vtkCausticsPhotonEmitter* emitter,
-    const caustics::LightView& photonView, const caustics::LightView& mapView,
-    vtkCausticsGBuffer* receivers);
+  bool Render(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+    const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers);
 
   ///@{
   /** Render() in its two steps: the refractor layers (N x N), then the trace. */
   bool RenderLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::LightView& photonView, int resolution);
-  bool Trace(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene, int light, vtkCausticsPhotonEmitter* emitter,
-    const caustics::LightView& photonView, const caustics::LightView& mapView,
-    vtkCausticsGBuffer* receivers);
+    const caustics::LightView& photonView, const caustics::PhotonGrid& grid);
+  bool Trace(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+    const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers);
   ///@}
 
   /** GPU counters of the last Render(); flux in W summed over RGB. */
@@ -156,34 +144,18 @@ public:
   }
   ///@}
 
-  /** Photon grid of the last Render() (the emitter's): width N, height N or 2N. */
-  vtkGetVector2Macro(GridSize, int);
-
-  /** Rows per emission branch (N): neighbours in the grid never cross a branch. */
-  vtkGetMacro(BranchRows, int);
-
-  /** W per unit of the GPU flux counters (set by the last Render()). */
-  vtkGetMacro(FluxUnit, double);
-
   void ReleaseGraphicsResources(vtkWindow* win);
 
 protected:
   vtkCausticsPhotonBuffer();
   ~vtkCausticsPhotonBuffer() override;
 
-  int MaximumInternalEvents = 8;
-  int MarchSteps = 64;
-  int GridSize[2] = { 0, 0 };
-  int BranchRows = 0;
-  double FluxUnit = 1.0;
-  unsigned int StatisticsBuffer = 0;
+  double FluxUnit = 1.0; // W per unit of the GPU flux counters, set by Trace()
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;
   vtkNew<vtkTextureObject> HitPosition;
   vtkNew<vtkTextureObject> HitNormal;
   vtkNew<vtkTextureObject> HitFlux;
-  unsigned int ListBuffer = 0;
-  std::size_t ListCapacity = 0; // bytes
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;
@@ -195,6 +167,19 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+public:
+#ifndef __VTK_WRAP__
+  struct TraceUniforms; // what every phase of one trace reads (the .cxx defines it)
+#endif
+
+private:
+  // Trace() in steps.
+  std::size_t AllocateOutputs(vtkOpenGLRenderWindow* renWin, int width, int height);
+  void DescribeTrace(const caustics::CausticMapSettings& settings, const caustics::SceneData& scene,
+    const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers, TraceUniforms& trace);
+  void BindTraceOutputs(vtkCausticsSceneGeometry* geometry);
 };
 
 #endif

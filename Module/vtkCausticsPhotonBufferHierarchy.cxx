@@ -1,8 +1,10 @@
 #include "vtkCausticsPhotonBufferHierarchy.h"
 
+#include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
@@ -29,21 +31,8 @@ constexpr int StageFlat = 0;  // STAGE_* of the gather shader
 constexpr int StageNodes = 1;
 constexpr int StagePhotons = 2;
 
-/** Grows `buffer` to at least `bytes` (never shrinks, never reallocates per frame). */
-void EnsureBuffer(unsigned int& buffer, std::size_t& capacity, std::size_t bytes)
-{
-  bytes = std::max<std::size_t>(bytes, 16);
-  if (!buffer)
-  {
-    glCreateBuffers(1, &buffer);
-    capacity = 0;
-  }
-  if (bytes > capacity)
-  {
-    glNamedBufferData(buffer, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_COPY);
-    capacity = bytes;
-  }
-}
+using Usage = caustics::gl::StorageBuffer::Usage;
+using Settings = caustics::CausticMapSettings;
 
 /** Work groups covering `items`, folded into two dimensions of at most 65535. */
 void Groups(std::size_t items, unsigned int& x, unsigned int& y)
@@ -54,7 +43,16 @@ void Groups(std::size_t items, unsigned int& x, unsigned int& y)
 }
 }
 
+struct vtkCausticsPhotonBufferHierarchy::Internals
+{
+  caustics::gl::StorageBuffer Nodes;   // validity mipmap, levels 1..S
+  caustics::gl::StorageBuffer Control; // counters and indirect arguments (CONTROL_*)
+  caustics::gl::StorageBuffer Work;    // traversal work lists, one per level
+  caustics::gl::StorageBuffer Splats;  // splat entries, one region per caustic map level
+};
+
 vtkCausticsPhotonBufferHierarchy::vtkCausticsPhotonBufferHierarchy()
+  : Internal(new Internals)
 {
   const std::string common = vtkCausticsPhotonBufferCommon;
   this->BuildProgram->SetName("validity mipmap");
@@ -77,10 +75,26 @@ vtkCausticsPhotonBufferHierarchy::vtkCausticsPhotonBufferHierarchy()
 
 vtkCausticsPhotonBufferHierarchy::~vtkCausticsPhotonBufferHierarchy()
 {
-  if (this->NodeBuffer || this->ControlBuffer || this->WorkBuffer || this->SplatBuffer)
+  const Internals& in = *this->Internal;
+  if (in.Nodes.Handle() || in.Control.Handle() || in.Work.Handle() || in.Splats.Handle())
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL buffers leaked");
   }
+}
+
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBufferHierarchy::GetControlBuffer() const
+{
+  return this->Internal->Control;
+}
+
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBufferHierarchy::GetSplatBuffer() const
+{
+  return this->Internal->Splats;
+}
+
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBufferHierarchy::GetNodeBuffer() const
+{
+  return this->Internal->Nodes;
 }
 
 unsigned int vtkCausticsPhotonBufferHierarchy::GetNodeOffset(int k) const
@@ -98,14 +112,14 @@ unsigned int vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(int j)
   return static_cast<unsigned int>((caustics::hcm::ControlDraw + 4 * j) * sizeof(std::uint32_t));
 }
 
-void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
+void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height, int startResolution)
 {
   // Level k covers 2^k x 2^k photons; the traversal starts at the first level at
-  // most StartResolution nodes wide (the emitter's branches are square, so the
+  // most startResolution nodes wide (the emitter's branches are square, so the
   // width decides; a 2N-high buffer starts from two stacked squares).
   int start = 0;
-  while (start + 1 < caustics::hcm::MaxTraversalLevels &&
-    ((width - 1) >> start) + 1 > this->StartResolution)
+  while (
+    start + 1 < caustics::hcm::MaxTraversalLevels && ((width - 1) >> start) + 1 > startResolution)
   {
     ++start;
   }
@@ -129,20 +143,22 @@ void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height)
       nodes += count;
     }
   }
-  EnsureBuffer(this->NodeBuffer, this->NodeCapacity, static_cast<std::size_t>(nodes) * NodeBytes);
-  EnsureBuffer(this->WorkBuffer, this->WorkCapacity, static_cast<std::size_t>(list) * 4);
+  this->Internal->Nodes.Allocate(static_cast<std::size_t>(nodes) * NodeBytes, Usage::Copy);
+  this->Internal->Work.Allocate(static_cast<std::size_t>(list) * 4, Usage::Copy);
   this->SplatRegion = static_cast<unsigned int>(width) * static_cast<unsigned int>(height);
-  EnsureBuffer(this->SplatBuffer, this->SplatCapacity,
-    static_cast<std::size_t>(this->SplatRegion) * 4 * caustics::hcm::MapLevels);
+  this->Internal->Splats.Allocate(
+    static_cast<std::size_t>(this->SplatRegion) * 4 * caustics::hcm::MapLevels, Usage::Copy);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
-  int lightType, const caustics::Camera* camera)
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
+  const caustics::Camera* camera)
 {
-  const int width = photons ? photons->GetGridSize()[0] : 0;
-  const int height = photons ? photons->GetGridSize()[1] : 0;
-  if (width <= 0 || height <= 0 || mapResolution <= 0)
+  const int mapResolution = settings.CausticMapResolution;
+  const int width = grid.Width;
+  const int height = grid.Height;
+  if (!photons || grid.IsEmpty() || mapResolution <= 0)
   {
     vtkErrorMacro(<< "Gather needs a rendered photon buffer and a caustic map resolution");
     return false;
@@ -154,9 +170,11 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
                   << " too large for 28-bit splat entries");
     return false;
   }
-  this->Layout(width, height);
-  this->LastGatherMode = this->GatherMode;
-  this->FluxUnit = photons->GetFluxUnit();
+  this->Layout(width, height, settings.TraversalStartResolution);
+  const bool flat = settings.GatherMode == Settings::GATHER_FLAT;
+  this->LastGatherFlat = flat;
+  this->LastDropCoarseSplats = settings.DropCoarseSplats;
+  this->FluxUnit = caustics::hcm::FluxUnit(grid);
   caustics::gl::EnsureTexture(this->SplatRadius, renWin, width, height, GL_R32F);
 
   // Control block: counters zero, one instance per indirect draw, and the length
@@ -166,22 +184,17 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   {
     control[caustics::hcm::ControlDraw + 4 * j + 1] = 1;
   }
-  const bool flat = this->GatherMode == GATHER_FLAT;
   const int first = flat ? 0 : this->StartLevel;
   control[caustics::hcm::ControlListCount + first] = static_cast<std::uint32_t>(
     static_cast<std::size_t>(this->LevelWidth[first]) * this->LevelHeight[first]);
-  if (!this->ControlBuffer)
-  {
-    glCreateBuffers(1, &this->ControlBuffer);
-    glNamedBufferData(this->ControlBuffer, sizeof(control), nullptr, GL_DYNAMIC_COPY);
-  }
-  glNamedBufferSubData(this->ControlBuffer, 0, sizeof(control), control);
+  this->Internal->Control.Allocate(sizeof(control), Usage::Copy);
+  this->Internal->Control.Write(0, sizeof(control), control);
 
   if (!flat && !this->BuildMipmap(renWin, photons, mapView, mapResolution))
   {
     return false;
   }
-  return this->Traverse(renWin, photons, mapView, mapResolution, lightType, camera);
+  return this->Traverse(renWin, settings, grid, photons, mapView, lightType, camera);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin,
@@ -203,7 +216,7 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
   program->SetUniformi("hitPosition", position->GetTextureUnit());
   program->SetUniformi("hitFlux", flux->GetTextureUnit());
   caustics::hcm::SetViewUniforms(program, "mapView", mapView, mapResolution, mapResolution);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, this->NodeBuffer);
+  this->Internal->Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
   for (int k = 1; k <= this->StartLevel; ++k)
   {
     program->SetUniformi("level", k);
@@ -221,8 +234,9 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
 }
 
 bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution,
-  int lightType, const caustics::Camera* camera)
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
+  const caustics::Camera* camera)
 {
   vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
     photons->GetHitFluxTexture() };
@@ -231,15 +245,15 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   {
     input->Activate();
   }
-  const int* grid = photons->GetGridSize();
   glBindImageTexture(0, this->SplatRadius->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, this->NodeBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding, this->ControlBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::WorkBinding, this->WorkBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, this->SplatBuffer);
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->ControlBuffer);
+  Internals& in = *this->Internal;
+  in.Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
+  in.Control.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding);
+  in.Work.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::WorkBinding);
+  in.Splats.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Control.Handle());
 
-  const bool flat = this->GatherMode == GATHER_FLAT;
+  const bool flat = settings.GatherMode == Settings::GATHER_FLAT;
   const int start = flat ? 0 : this->StartLevel;
   bool ok = true;
   for (int k = start; k >= 0 && ok; --k)
@@ -268,37 +282,8 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
     {
       gather->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
-    caustics::hcm::SetViewUniforms(gather, "mapView", mapView, mapResolution, mapResolution);
-    if (camera)
-    {
-      caustics::hcm::SetCameraViewUniforms(gather, "cameraView", *camera);
-    }
-    gather->SetUniformf("minimumCameraRadiusPixels",
-      camera ? static_cast<float>(this->MinimumCameraSplatRadius) : 0.0f);
-    gather->SetUniform2i("gridSize", grid[0], grid[1]);
-    gather->SetUniformi("branchRows", std::max(photons->GetBranchRows(), 1));
-    gather->SetUniformu("splatRegion", this->SplatRegion);
-    gather->SetUniformi("lightType", lightType);
-    gather->SetUniformi("splatMode", this->SplatMode);
-    gather->SetUniformf("splatScale", static_cast<float>(this->SplatScale));
-    gather->SetUniformf("constantRadiusPixels", static_cast<float>(this->ConstantSplatRadius));
-    gather->SetUniformf("splatSizeThreshold", static_cast<float>(this->SplatSizeThreshold));
-    gather->SetUniformi("dropCoarseSplats", this->DropCoarseSplats ? 1 : 0);
-    gather->SetUniformf("fluxUnit", static_cast<float>(this->FluxUnit));
-    gather->SetUniformi("level", k);
-    gather->SetUniformi("implicitList", implicit ? 1 : 0);
-    gather->SetUniform2i("levelSize", this->LevelWidth[k], this->LevelHeight[k]);
-    gather->SetUniform2i(
-      "childSize", this->LevelWidth[std::max(k - 1, 0)], this->LevelHeight[std::max(k - 1, 0)]);
-    gather->SetUniformu("nodeOffset", k > 0 ? this->NodeOffset[k] : 0u);
-    gather->SetUniformu("listOffset", this->ListOffset[k]);
-    gather->SetUniformu("childListOffset", k > 0 ? this->ListOffset[k - 1] : 0u);
-    const bool test = k > 0 &&
-      (this->ClusterMode == CLUSTER_ALL_LEVELS ||
-        (this->ClusterMode == CLUSTER_LAST_LEVEL && k == 1));
-    gather->SetUniformi("testConvergence", test ? 1 : 0);
-    // The start level holds every valid photon; the flat gather meets each one.
-    gather->SetUniformi("countValid", implicit ? 1 : 0);
+    this->SetGatherUniforms(gather, settings, grid, mapView, lightType, camera);
+    this->SetLevelUniforms(gather, settings, k, implicit);
     if (implicit)
     {
       unsigned int x, y;
@@ -325,18 +310,60 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   return ok;
 }
 
+void vtkCausticsPhotonBufferHierarchy::SetGatherUniforms(vtkCausticsShaderProgram* gather,
+  const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+  const caustics::LightView& mapView, int lightType, const caustics::Camera* camera)
+{
+  caustics::hcm::SetViewUniforms(
+    gather, "mapView", mapView, settings.CausticMapResolution, settings.CausticMapResolution);
+  if (camera)
+  {
+    caustics::hcm::SetCameraViewUniforms(gather, "cameraView", *camera);
+  }
+  gather->SetUniformf("minimumCameraRadiusPixels",
+    camera ? static_cast<float>(settings.MinimumCameraSplatRadius) : 0.0f);
+  gather->SetUniform2i("gridSize", grid.Width, grid.Height);
+  gather->SetUniformi("branchRows", std::max(grid.BranchRows, 1));
+  gather->SetUniformu("splatRegion", this->SplatRegion);
+  gather->SetUniformi("lightType", lightType);
+  gather->SetUniformi("splatMode", settings.SplatMode);
+  gather->SetUniformf("splatScale", static_cast<float>(settings.SplatScale));
+  gather->SetUniformf("constantRadiusPixels", static_cast<float>(settings.ConstantSplatRadius));
+  gather->SetUniformf("splatSizeThreshold", static_cast<float>(settings.SplatSizeThreshold));
+  gather->SetUniformi("dropCoarseSplats", settings.DropCoarseSplats ? 1 : 0);
+  gather->SetUniformf("fluxUnit", static_cast<float>(this->FluxUnit));
+}
+
+void vtkCausticsPhotonBufferHierarchy::SetLevelUniforms(vtkCausticsShaderProgram* gather,
+  const caustics::CausticMapSettings& settings, int k, bool implicit)
+{
+  gather->SetUniformi("level", k);
+  gather->SetUniformi("implicitList", implicit ? 1 : 0);
+  gather->SetUniform2i("levelSize", this->LevelWidth[k], this->LevelHeight[k]);
+  gather->SetUniform2i(
+    "childSize", this->LevelWidth[std::max(k - 1, 0)], this->LevelHeight[std::max(k - 1, 0)]);
+  gather->SetUniformu("nodeOffset", k > 0 ? this->NodeOffset[k] : 0u);
+  gather->SetUniformu("listOffset", this->ListOffset[k]);
+  gather->SetUniformu("childListOffset", k > 0 ? this->ListOffset[k - 1] : 0u);
+  const bool test = k > 0 &&
+    (settings.ClusterMode == Settings::CLUSTER_ALL_LEVELS ||
+      (settings.ClusterMode == Settings::CLUSTER_LAST_LEVEL && k == 1));
+  gather->SetUniformi("testConvergence", test ? 1 : 0);
+  // The start level holds every valid photon; the flat gather meets each one.
+  gather->SetUniformi("countValid", implicit ? 1 : 0);
+}
+
 bool vtkCausticsPhotonBufferHierarchy::GetCounters(Counters& counters)
 {
   counters = Counters();
-  if (!this->ControlBuffer)
+  if (!this->Internal->Control.Handle())
   {
     vtkErrorMacro(<< "GetCounters: no gather ran");
     return false;
   }
   std::uint32_t words[caustics::hcm::ControlSize];
-  glGetNamedBufferSubData(this->ControlBuffer, 0, sizeof(words), words);
-  const bool flat = this->LastGatherMode == GATHER_FLAT;
-  counters.StartLevel = flat ? 0 : this->StartLevel;
+  this->Internal->Control.Read(0, sizeof(words), words);
+  counters.StartLevel = this->LastGatherFlat ? 0 : this->StartLevel;
   for (int k = 0; k <= counters.StartLevel; ++k)
   {
     counters.Processed[k] = words[caustics::hcm::ControlListCount + k];
@@ -356,12 +383,12 @@ bool vtkCausticsPhotonBufferHierarchy::GetCounters(Counters& counters)
   }
   counters.CoarseFlux =
     caustics::hcm::FluxFromWords(&words[caustics::hcm::ControlCoarseFlux], this->FluxUnit);
-  if (this->DropCoarseSplats)
+  if (this->LastDropCoarseSplats)
   {
     gathered += counters.CoarseFlux;
   }
   counters.CoarseFluxFraction = gathered > 0.0 ? counters.CoarseFlux / gathered : 0.0;
-  counters.DroppedFluxFraction = this->DropCoarseSplats ? counters.CoarseFluxFraction : 0.0;
+  counters.DroppedFluxFraction = this->LastDropCoarseSplats ? counters.CoarseFluxFraction : 0.0;
   return true;
 }
 
@@ -374,33 +401,17 @@ void vtkCausticsPhotonBufferHierarchy::ReleaseGraphicsResources(vtkWindow* win)
   }
   this->ArgumentsProgram->ReleaseGraphicsResources(win);
   this->SplatRadius->ReleaseGraphicsResources(win);
-  for (unsigned int* buffer :
-    { &this->NodeBuffer, &this->ControlBuffer, &this->WorkBuffer, &this->SplatBuffer })
+  Internals& in = *this->Internal;
+  for (caustics::gl::StorageBuffer* buffer : { &in.Nodes, &in.Control, &in.Work, &in.Splats })
   {
-    if (*buffer)
-    {
-      glDeleteBuffers(1, buffer);
-      *buffer = 0;
-    }
+    buffer->Release();
   }
-  this->NodeCapacity = this->WorkCapacity = this->SplatCapacity = 0;
 }
 
 void vtkCausticsPhotonBufferHierarchy::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* gathers[] = { "flat", "hierarchical" };
-  const char* clusters[] = { "none", "last level", "all levels" };
-  const char* splats[] = { "constant", "varying, single map", "varying, multi-resolution" };
-  os << indent << "GatherMode: " << gathers[this->GatherMode] << "\n";
-  os << indent << "ClusterMode: " << clusters[this->ClusterMode] << "\n";
-  os << indent << "SplatMode: " << splats[this->SplatMode] << "\n";
-  os << indent << "StartResolution: " << this->StartResolution << "\n";
-  os << indent << "SplatScale: " << this->SplatScale << "\n";
-  os << indent << "ConstantSplatRadius: " << this->ConstantSplatRadius << " px\n";
-  os << indent << "SplatSizeThreshold: " << this->SplatSizeThreshold << " px\n";
-  os << indent << "DropCoarseSplats: " << this->DropCoarseSplats << "\n";
-  os << indent << "MinimumCameraSplatRadius: " << this->MinimumCameraSplatRadius
-     << " camera pixel footprints\n";
+  os << indent << "Last gather: " << (this->LastGatherFlat ? "flat" : "hierarchical") << "\n";
   os << indent << "StartLevel: " << this->StartLevel << "\n";
+  os << indent << "SplatRegion: " << this->SplatRegion << " entries per map level\n";
 }

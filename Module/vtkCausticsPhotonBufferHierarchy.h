@@ -8,8 +8,8 @@
  *    stores how many are valid (landed on a receiver), the bounding box of the
  *    caustic map texels they land in, and their mean flux and hit position over
  *    the 4^k slots.
- *    Levels 1..S are built, S the first level at most StartResolution nodes wide
- *    (16: the paper's 16^2 start).
+ *    Levels 1..S are built, S the first level at most TraversalStartResolution
+ *    nodes wide (16: the paper's 16^2 start).
  * 2. Traversal (§3.1), breadth first from level S down: a node with no valid
  *    photon discards its subtree; otherwise its four children are appended to
  *    the work list of level k - 1, whose length sets the indirect dispatch of that
@@ -42,6 +42,9 @@
  * glDrawTransformFeedback or a query read back per level, and geometry shaders
  * that emit variable output are slow on both.
  *
+ * The knobs named above (ClusterMode, SplatScale, ...) are members of
+ * caustics::CausticMapSettings, which Gather() takes by const reference.
+ *
  * GPU counters (items processed per level, valid photons, clusters, splats per
  * level, coarse splats and flux per level) are kept every frame in the control
  * buffer and read back only by GetCounters(), which stalls.
@@ -54,6 +57,7 @@
 
 #include "vtkNew.h" // For vtkNew members
 
+#include <memory> // For std::unique_ptr
 #include <vector> // For std::vector
 
 class vtkCausticsPhotonBuffer;
@@ -65,7 +69,13 @@ class vtkWindow;
 namespace caustics
 {
 struct Camera;
+struct CausticMapSettings;
 struct LightView;
+struct PhotonGrid;
+namespace gl
+{
+class StorageBuffer;
+}
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonBufferHierarchy : public vtkObject
@@ -75,113 +85,18 @@ public:
   vtkTypeMacro(vtkCausticsPhotonBufferHierarchy, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum GatherModes
-  {
-    GATHER_FLAT = 0,        ///< every photon (Wyman & Davis 2006, §4 improvements)
-    GATHER_HIERARCHICAL = 1 ///< validity mipmap traversal (§3.1)
-  };
-  enum ClusterModes
-  {
-    CLUSTER_NONE = 0,       ///< no clustering
-    CLUSTER_LAST_LEVEL = 1, ///< convergence tested at mipmap level 1 only (§3.2)
-    CLUSTER_ALL_LEVELS = 2  ///< convergence tested at every level (§3.2)
-  };
-  enum SplatModes
-  {
-    SPLAT_CONSTANT = 0,        ///< ConstantSplatRadius pixels, finest map level
-    SPLAT_VARYING_SINGLE = 1,  ///< Eq. 2 radius, finest map level only
-    SPLAT_VARYING_MULTIRES = 2 ///< Eq. 2 radius, map level by splat size (§3.3)
-  };
-
-  ///@{
-  /** How photons are gathered. Default GATHER_HIERARCHICAL. */
-  vtkSetClampMacro(GatherMode, int, GATHER_FLAT, GATHER_HIERARCHICAL);
-  vtkGetMacro(GatherMode, int);
-  ///@}
-
-  ///@{
-  /** Clustering of converging photons (hierarchical gather only). Default CLUSTER_LAST_LEVEL. */
-  vtkSetClampMacro(ClusterMode, int, CLUSTER_NONE, CLUSTER_ALL_LEVELS);
-  vtkGetMacro(ClusterMode, int);
-  ///@}
-
-  ///@{
-  /** Splat sizes. Default SPLAT_VARYING_MULTIRES. */
-  vtkSetClampMacro(SplatMode, int, SPLAT_CONSTANT, SPLAT_VARYING_MULTIRES);
-  vtkGetMacro(SplatMode, int);
-  ///@}
-
-  ///@{
-  /** Width in nodes of the mipmap level the traversal starts from, in [1, 4096]. Default 16. */
-  vtkSetClampMacro(StartResolution, int, 1, 4096);
-  vtkGetMacro(StartResolution, int);
-  ///@}
-
-  ///@{
-  /**
-   * Kernel radius over the photon spacing on the receiver (Eq. 2's radius in
-   * units of the unoccluded footprint's), in [0.25, 16]. Default 2 (the summed
-   * kernels of a regular grid then ripple by 8 % peak to peak).
-   */
-  vtkSetClampMacro(SplatScale, double, 0.25, 16.0);
-  vtkGetMacro(SplatScale, double);
-  ///@}
-
-  ///@{
-  /**
-   * Kernel radius of SPLAT_CONSTANT, in finest-level caustic map pixels, in [0.5, 64].
-   * Default 1.5 (the paper's 3^2-pixel splats).
-   */
-  vtkSetClampMacro(ConstantSplatRadius, double, 0.5, 64.0);
-  vtkGetMacro(ConstantSplatRadius, double);
-  ///@}
-
-  ///@{
-  /**
-   * Largest splat diameter, in pixels of its caustic map level, before it moves one
-   * level coarser (§3.3: 5.0 "gave the best performance"), in [1, 64]. Default 5.
-   */
-  vtkSetClampMacro(SplatSizeThreshold, double, 1.0, 64.0);
-  vtkGetMacro(SplatSizeThreshold, double);
-  ///@}
-
-  ///@{
-  /**
-   * Drop splats that would need caustic map level 4 or coarser, as the paper does,
-   * instead of splatting them into level 3. Their flux is counted either way
-   * (GetCounters). Default off.
-   */
-  vtkSetMacro(DropCoarseSplats, bool);
-  vtkGetMacro(DropCoarseSplats, bool);
-  vtkBooleanMacro(DropCoarseSplats, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Smallest kernel radius of the varying splats, in pixel footprints of the camera
-   * that will look at the caustic (the square root of a pixel's area on the receiver
-   * where the photon lands, as the reference's kernel), in [0, 16]; 0 turns it off.
-   * Default 1. A kernel narrower than a camera pixel puts
-   * detail into the caustic map that the image cannot show: the final render samples
-   * the map at one point per pixel, so that detail aliases into noise, the more the
-   * finer the map. With this floor the map is filtered to the image's resolution and
-   * its result no longer depends on the map's (SPLAT_CONSTANT, the paper's baseline,
-   * ignores it).
-   */
-  vtkSetClampMacro(MinimumCameraSplatRadius, double, 0.0, 16.0);
-  vtkGetMacro(MinimumCameraSplatRadius, double);
-  ///@}
-
 #ifndef __VTK_WRAP__
   /**
-   * Gathers the photons of `photons` into splat lists for a caustic map seen
-   * through `mapView` at `mapResolution` (finest level) texels per side;
-   * `lightType` is caustics::Light::Type; `camera` (may be null: no camera floor) is
-   * the view MinimumCameraSplatRadius refers to. Returns false if a program failed.
+   * Gathers the photons of `grid`, traced into `photons`, into splat lists for a
+   * caustic map seen through `mapView` (CausticMapResolution texels per side at the
+   * finest level) as `settings` says (the gather, cluster and splat modes and
+   * sizes); `lightType` is caustics::Light::Type; `camera` (may be null: no camera
+   * floor) is the view MinimumCameraSplatRadius refers to. Returns false if a
+   * program failed.
    */
-  bool Gather(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    const caustics::LightView& mapView, int mapResolution, int lightType,
-    const caustics::Camera* camera);
+  bool Gather(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+    const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
 
   /** GPU counters of the last Gather(); flux in W summed over RGB. */
   struct Counters
@@ -198,7 +113,7 @@ public:
     double CoarseFlux = 0.0;                      ///< flux of the coarse splats
     /** Flux of the coarse splats over all gathered flux (dropped or not). */
     double CoarseFluxFraction = 0.0;
-    /** Flux dropped (DropCoarseSplats) over all gathered flux; 0 when they are kept. */
+    /** Flux dropped (settings' DropCoarseSplats) over all gathered flux; 0 when kept. */
     double DroppedFluxFraction = 0.0;
   };
 
@@ -207,18 +122,9 @@ public:
 
   ///@{
   /** GPU lists for vtkCausticsCausticMap (valid after Gather()). */
-  unsigned int GetControlBuffer() const
-  {
-    return this->ControlBuffer;
-  }
-  unsigned int GetSplatBuffer() const
-  {
-    return this->SplatBuffer;
-  }
-  unsigned int GetNodeBuffer() const
-  {
-    return this->NodeBuffer;
-  }
+  const caustics::gl::StorageBuffer& GetControlBuffer() const;
+  const caustics::gl::StorageBuffer& GetSplatBuffer() const;
+  const caustics::gl::StorageBuffer& GetNodeBuffer() const;
   /** Entries reserved per caustic map level in the splat buffer. */
   unsigned int GetSplatRegion() const
   {
@@ -244,28 +150,14 @@ protected:
   vtkCausticsPhotonBufferHierarchy();
   ~vtkCausticsPhotonBufferHierarchy() override;
 
-  int GatherMode = GATHER_HIERARCHICAL;
-  int ClusterMode = CLUSTER_LAST_LEVEL;
-  int SplatMode = SPLAT_VARYING_MULTIRES;
-  int StartResolution = 16;
-  double SplatScale = 2.0;
-  double ConstantSplatRadius = 1.5;
-  double SplatSizeThreshold = 5.0;
-  bool DropCoarseSplats = false;
-  double MinimumCameraSplatRadius = 1.0;
-
   vtkNew<vtkCausticsShaderProgram> BuildProgram;
   vtkNew<vtkCausticsShaderProgram> GatherPrograms[3]; // flat, traversal nodes, photons
   vtkNew<vtkCausticsShaderProgram> ArgumentsProgram;
   vtkNew<vtkTextureObject> SplatRadius;
-  unsigned int NodeBuffer = 0;
-  unsigned int ControlBuffer = 0;
-  unsigned int WorkBuffer = 0;
-  unsigned int SplatBuffer = 0;
-  std::size_t NodeCapacity = 0, WorkCapacity = 0, SplatCapacity = 0; // bytes
   unsigned int SplatRegion = 0;
   double FluxUnit = 1.0;
-  int LastGatherMode = GATHER_HIERARCHICAL;
+  bool LastGatherFlat = false;       // the last Gather()'s mode, for GetCounters()
+  bool LastDropCoarseSplats = false; // and whether it dropped the coarse splats
   int StartLevel = 0;
   std::vector<int> LevelWidth, LevelHeight; // level k: nodes (k >= 1) or photons (k = 0)
   std::vector<unsigned int> NodeOffset, ListOffset;
@@ -274,12 +166,21 @@ private:
   vtkCausticsPhotonBufferHierarchy(const vtkCausticsPhotonBufferHierarchy&) = delete;
   void operator=(const vtkCausticsPhotonBufferHierarchy&) = delete;
 
-  void Layout(int width, int height);
+  struct Internals;
+  std::unique_ptr<Internals> Internal; // the GPU buffers
+
+  void Layout(int width, int height, int startResolution);
   bool BuildMipmap(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
     const caustics::LightView& mapView, int mapResolution);
-  bool Traverse(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
-    const caustics::LightView& mapView, int mapResolution, int lightType,
-    const caustics::Camera* camera);
+  bool Traverse(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
+    const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+    const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
+  /** Traverse() in steps: the uniforms of every level, and those of level k. */
+  void SetGatherUniforms(vtkCausticsShaderProgram* gather,
+    const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
+    const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
+  void SetLevelUniforms(vtkCausticsShaderProgram* gather,
+    const caustics::CausticMapSettings& settings, int k, bool implicit);
 };
 
 #endif

@@ -1,6 +1,7 @@
 #include "vtkCausticsPhotonBufferUtilities.h"
 
 #include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkMath.h"
 
@@ -63,15 +64,9 @@ void SetCameraViewUniforms(
     height, 2.0 * halfHeight / height, !camera.parallel);
 }
 
-double TexelFluxBound(const caustics::Light& light, const caustics::LightView& view, int resolution)
+double FluxUnit(const caustics::PhotonGrid& grid)
 {
-  const double power = std::max(0.0, light.radiometric[0]) + std::max(0.0, light.radiometric[1]) +
-    std::max(0.0, light.radiometric[2]);
-  const double texel = 2.0 * view.halfExtent / std::max(resolution, 1);
-  // Directional: W/m^2 x texel area. Point/spot: W/sr x the largest texel solid
-  // angle, at the frustum's centre (texel^2 on the unit image plane); spot falloff <= 1.
-  const double bound = power * texel * texel;
-  return bound > 0.0 ? bound : 1.0;
+  return grid.MaximumPhotonFlux / UnitsPerTexelFlux;
 }
 
 bool ReceiverBoundsCache::Compute(const caustics::SceneData& scene, double bounds[6])

@@ -20,6 +20,8 @@ class vtkCausticsShaderProgram;
 
 namespace caustics
 {
+struct PhotonGrid;
+
 namespace hcm
 {
 // Shader storage binding points (vtkCausticsPhotonBufferCommon.glsl).
@@ -72,14 +74,12 @@ void SetCameraViewUniforms(
   vtkCausticsShaderProgram* program, const std::string& name, const caustics::Camera& camera);
 
 /**
- * Upper bound of the flux (W, summed over RGB) one texel of a light view of the
- * given resolution carries: the unit of the GPU flux statistics is this / 2^20,
- * so a photon is rounded to within 5e-7 of that bound (a float holds its units
- * exactly) and 64-bit sums never overflow (2^23 photons x 2^20 units x 4^9 for
- * the largest clusters < 2^64).
+ * W per unit of the GPU flux statistics for the photons of `grid`: its
+ * MaximumPhotonFlux / 2^20, so a photon is rounded to within 5e-7 of that bound (a
+ * float holds its units exactly) and 64-bit sums never overflow (2^23 photons x
+ * 2^20 units x 4^9 for the largest clusters < 2^64).
  */
-double TexelFluxBound(
-  const caustics::Light& light, const caustics::LightView& view, int resolution);
+double FluxUnit(const caustics::PhotonGrid& grid);
 
 /**
  * Axis-aligned bounds of the meshes whose role is receiver (xmin, xmax, ymin, ...),
@@ -103,7 +103,7 @@ private:
   std::vector<Entry> Entries;
 };
 
-/** Units per bound texel flux in the statistics (see TexelFluxBound). */
+/** Units per maximum photon flux in the statistics (see FluxUnit). */
 constexpr double UnitsPerTexelFlux = 1048576.0;
 
 /** 64-bit fixed-point flux (two words, low first) in W, given the unit in W. */

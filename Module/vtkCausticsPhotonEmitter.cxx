@@ -51,8 +51,7 @@ bool vtkCausticsPhotonEmitter::Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLi
   resized |= caustics::gl::EnsureTexture(this->PositionTexture, renWin, width, height, GL_RGBA32F);
   resized |= caustics::gl::EnsureTexture(this->DirectionTexture, renWin, width, height, GL_RGBA32F);
   resized |= caustics::gl::EnsureTexture(this->FluxTexture, renWin, width, height, GL_RGBA32F);
-  this->GridSize[0] = width;
-  this->GridSize[1] = height;
+  this->DescribeGrid(scene.Lights[light], lights->GetView(light), light, n);
 
   vtkOpenGLState* state = renWin->GetState();
   state->PushFramebufferBindings();
@@ -105,6 +104,20 @@ bool vtkCausticsPhotonEmitter::Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLi
   return ok;
 }
 
+void vtkCausticsPhotonEmitter::DescribeGrid(
+  const caustics::Light& source, const caustics::LightView& view, int light, int resolution)
+{
+  caustics::PhotonGrid& grid = this->Grid;
+  grid.Light = light;
+  grid.Width = resolution;
+  grid.BranchRows = resolution;
+  grid.Height = this->SplitFresnel ? 2 * resolution : resolution;
+  grid.MaximumPhotonFlux = caustics::MaximumTexelFlux(source, view, resolution);
+  grid.Position = this->PositionTexture;
+  grid.Direction = this->DirectionTexture;
+  grid.Flux = this->FluxTexture;
+}
+
 void vtkCausticsPhotonEmitter::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->PositionTexture->ReleaseGraphicsResources(win);
@@ -113,12 +126,13 @@ void vtkCausticsPhotonEmitter::ReleaseGraphicsResources(vtkWindow* win)
   this->Framebuffer->ReleaseGraphicsResources(win);
   this->Program->ReleaseGraphicsResources(win);
   this->Triangle->Release();
-  this->GridSize[0] = this->GridSize[1] = 0;
+  this->Grid = caustics::PhotonGrid();
 }
 
 void vtkCausticsPhotonEmitter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SplitFresnel: " << this->SplitFresnel << "\n";
-  os << indent << "GridSize: " << this->GridSize[0] << " x " << this->GridSize[1] << "\n";
+  os << indent << "Grid: " << this->Grid.Width << " x " << this->Grid.Height << " (light "
+     << this->Grid.Light << ")\n";
 }

@@ -19,7 +19,9 @@
  *      (0 none, 1 travelling in air, 2 inside a refractor);
  *    - Direction: xyz unit direction, w = the texel's measure (m^2 for
  *      directional lights, sr for point/spot lights);
- *    - Flux: rgb W after the Fresnel weight, a = specular events so far (1).
+ *    - Flux: rgb W after the Fresnel weight, a = specular events so far (1);
+ * 4. GetGrid(): the caustics::PhotonGrid value the later stages take (size,
+ *    branches, light, flux bound, these textures).
  */
 #ifndef vtkCausticsPhotonEmitter_h
 #define vtkCausticsPhotonEmitter_h
@@ -27,7 +29,8 @@
 #include "vtkObject.h"
 #include "vtkRenderingCausticsModule.h" // For export macro
 
-#include "vtkNew.h" // For vtkNew members
+#include "vtkCausticsPhotonGrid.h" // For caustics::PhotonGrid
+#include "vtkNew.h"                // For vtkNew members
 
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneGeometry;
@@ -85,8 +88,13 @@ public:
   }
   ///@}
 
-  /** Photon grid of the last Emit(): width N, height N or 2N. */
-  vtkGetVector2Macro(GridSize, int);
+#ifndef __VTK_WRAP__
+  /** The photons of the last Emit(), for the later stages (empty before). */
+  const caustics::PhotonGrid& GetGrid() const
+  {
+    return this->Grid;
+  }
+#endif
 
   void ReleaseGraphicsResources(vtkWindow* win);
 
@@ -95,7 +103,7 @@ protected:
   ~vtkCausticsPhotonEmitter() override;
 
   bool SplitFresnel = true;
-  int GridSize[2] = { 0, 0 };
+  caustics::PhotonGrid Grid;
   vtkNew<vtkTextureObject> PositionTexture;
   vtkNew<vtkTextureObject> DirectionTexture;
   vtkNew<vtkTextureObject> FluxTexture;
@@ -105,6 +113,10 @@ protected:
 private:
   vtkCausticsPhotonEmitter(const vtkCausticsPhotonEmitter&) = delete;
   void operator=(const vtkCausticsPhotonEmitter&) = delete;
+
+  /** Fills Grid for the photons of light `light` just emitted. */
+  void DescribeGrid(
+    const caustics::Light& source, const caustics::LightView& view, int light, int resolution);
 
   caustics::gl::FullScreenTriangle* Triangle;
 };

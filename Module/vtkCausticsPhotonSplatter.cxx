@@ -1,6 +1,7 @@
 #include "vtkCausticsPhotonSplatter.h"
 
 #include "vtkCausticsGBuffer.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -29,11 +30,11 @@ vtkCausticsPhotonSplatter::~vtkCausticsPhotonSplatter()
   }
 }
 
-bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin, vtkTextureObject* hitPosition,
-  vtkTextureObject* hitNormal, vtkTextureObject* hitFlux, int hitWidth, int hitHeight,
-  vtkCausticsGBuffer* target, const float worldToClip[16])
+bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonGrid& grid, vtkTextureObject* hitPosition, vtkTextureObject* hitNormal,
+  vtkTextureObject* hitFlux, vtkCausticsGBuffer* target, const float worldToClip[16])
 {
-  if (hitWidth <= 0 || hitHeight <= 0)
+  if (grid.IsEmpty())
   {
     return true; // no photons: nothing to deposit
   }
@@ -64,7 +65,7 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin, vtkTextureO
     this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
   }
   const int* size = target->GetSize();
-  this->Program->SetUniformi("hitWidth", hitWidth);
+  this->Program->SetUniformi("hitWidth", grid.Width);
   this->Program->SetUniformMatrix4("worldToClip", worldToClip);
   this->Program->SetUniform2f("viewport", static_cast<float>(size[0]), static_cast<float>(size[1]));
   this->Program->SetUniformf("minimumRadiusPixels", static_cast<float>(this->MinimumRadiusPixels));
@@ -72,7 +73,7 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin, vtkTextureO
   this->Program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
   this->Program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
   glBindVertexArray(this->VertexArray);
-  glDrawArrays(GL_POINTS, 0, hitWidth * hitHeight);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(grid.Count()));
   glBindVertexArray(0);
   for (vtkTextureObject* input : inputs)
   {

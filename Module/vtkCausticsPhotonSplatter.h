@@ -33,6 +33,11 @@ class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
 
+namespace caustics
+{
+struct PhotonGrid;
+}
+
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonSplatter : public vtkObject
 {
 public:
@@ -65,15 +70,18 @@ public:
   vtkGetMacro(NormalTolerance, double);
   ///@}
 
+#ifndef __VTK_WRAP__
   /**
-   * Splats hitWidth x hitHeight hits read from the three textures (position xyz with
-   * w > 0 for a hit; normal xyz with w = radius in m; flux rgb in W) into the bound
-   * framebuffer, whose pixels' surfaces are in `target` (same size), seen through
-   * worldToClip (column-major). Returns false if the program failed.
+   * Splats the hits of the photons of `grid`, one per grid texel, read from the
+   * three textures of the grid's size (position xyz with w > 0 for a hit; normal
+   * xyz with w = radius in m; flux rgb in W) into the bound framebuffer, whose
+   * pixels' surfaces are in `target` (same size), seen through worldToClip
+   * (column-major). Returns false if the program failed.
    */
-  bool Splat(vtkOpenGLRenderWindow* renWin, vtkTextureObject* hitPosition,
-    vtkTextureObject* hitNormal, vtkTextureObject* hitFlux, int hitWidth, int hitHeight,
+  bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    vtkTextureObject* hitPosition, vtkTextureObject* hitNormal, vtkTextureObject* hitFlux,
     vtkCausticsGBuffer* target, const float worldToClip[16]);
+#endif
 
   void ReleaseGraphicsResources(vtkWindow* win);
 

@@ -1,5 +1,6 @@
 #include "vtkCausticsSceneGeometry.h"
 
+#include "vtkCausticsGLUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtk_glew.h"
@@ -98,7 +99,8 @@ bool SameLayout(const std::vector<MeshSlot>& slots, const std::vector<MeshSlot>&
  * Sends one mesh to its slot: interleaved vertices, and indices stored absolute
  * so that compute stages need no base vertex. Returns the bytes sent.
  */
-std::size_t UploadMesh(GLuint vertexBuffer, GLuint indexBuffer, const caustics::Mesh& mesh,
+std::size_t UploadMesh(caustics::gl::StorageBuffer& vertexBuffer,
+  caustics::gl::StorageBuffer& indexBuffer, const caustics::Mesh& mesh,
   const MeshSlot& slot, std::vector<float>& staging)
 {
   staging.resize(slot.vertexCount * WordsPerVertex);
@@ -111,14 +113,13 @@ std::size_t UploadMesh(GLuint vertexBuffer, GLuint indexBuffer, const caustics::
     std::memcpy(out + 6, &material, 4);
   }
   const std::size_t vertexBytes = staging.size() * 4;
-  glNamedBufferSubData(
-    vertexBuffer, slot.firstVertex * WordsPerVertex * 4, vertexBytes, staging.data());
+  vertexBuffer.Write(slot.firstVertex * WordsPerVertex * 4, vertexBytes, staging.data());
   std::vector<std::uint32_t> shifted(mesh.indices.size());
   for (std::size_t k = 0; k < shifted.size(); ++k)
   {
     shifted[k] = mesh.indices[k] + static_cast<std::uint32_t>(slot.firstVertex);
   }
-  glNamedBufferSubData(indexBuffer, slot.firstIndex * 4, shifted.size() * 4, shifted.data());
+  indexBuffer.Write(slot.firstIndex * 4, shifted.size() * 4, shifted.data());
   return vertexBytes + shifted.size() * 4;
 }
 
@@ -168,10 +169,9 @@ std::vector<GPUMaterial> PackMaterials(const caustics::SceneData& scene)
 struct vtkCausticsSceneGeometry::Internals
 {
   GLuint VertexArray = 0;
-  GLuint VertexBuffer = 0;
-  GLuint IndexBuffer = 0;
-  GLuint MaterialBuffer = 0;
-  std::size_t VertexCapacity = 0, IndexCapacity = 0, MaterialCapacity = 0;
+  caustics::gl::StorageBuffer VertexBuffer;
+  caustics::gl::StorageBuffer IndexBuffer;
+  caustics::gl::StorageBuffer MaterialBuffer;
   std::vector<MeshSlot> Slots;
   std::vector<Range> Ranges;
   std::vector<GPUMaterial> Materials;
@@ -186,7 +186,7 @@ vtkCausticsSceneGeometry::vtkCausticsSceneGeometry()
 
 vtkCausticsSceneGeometry::~vtkCausticsSceneGeometry()
 {
-  if (this->Internal->VertexBuffer || this->Internal->VertexArray)
+  if (this->Internal->VertexBuffer.Handle() || this->Internal->VertexArray)
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL buffers leaked");
   }
@@ -199,16 +199,10 @@ void vtkCausticsSceneGeometry::ReleaseGraphicsResources(vtkWindow*)
   {
     glDeleteVertexArrays(1, &in.VertexArray);
   }
-  GLuint buffers[3] = { in.VertexBuffer, in.IndexBuffer, in.MaterialBuffer };
-  for (GLuint buffer : buffers)
-  {
-    if (buffer)
-    {
-      glDeleteBuffers(1, &buffer);
-    }
-  }
-  in.VertexArray = in.VertexBuffer = in.IndexBuffer = in.MaterialBuffer = 0;
-  in.VertexCapacity = in.IndexCapacity = in.MaterialCapacity = 0;
+  in.VertexBuffer.Release();
+  in.IndexBuffer.Release();
+  in.MaterialBuffer.Release();
+  in.VertexArray = 0;
   in.Slots.clear();
   in.Ranges.clear();
   in.Materials.clear(); // the material buffer is gone: the next Upload() must resend them
@@ -251,11 +245,12 @@ void vtkCausticsSceneGeometry::CreateBuffers()
   if (!in.VertexArray)
   {
     glCreateVertexArrays(1, &in.VertexArray);
-    glCreateBuffers(1, &in.VertexBuffer);
-    glCreateBuffers(1, &in.IndexBuffer);
-    glCreateBuffers(1, &in.MaterialBuffer);
-    glVertexArrayVertexBuffer(in.VertexArray, 0, in.VertexBuffer, 0, WordsPerVertex * 4);
-    glVertexArrayElementBuffer(in.VertexArray, in.IndexBuffer);
+    // The buffers keep their names when they grow: the vertex array stays valid.
+    in.VertexBuffer.Allocate(0);
+    in.IndexBuffer.Allocate(0);
+    in.MaterialBuffer.Allocate(0);
+    glVertexArrayVertexBuffer(in.VertexArray, 0, in.VertexBuffer.Handle(), 0, WordsPerVertex * 4);
+    glVertexArrayElementBuffer(in.VertexArray, in.IndexBuffer.Handle());
     glEnableVertexArrayAttrib(in.VertexArray, 0);
     glEnableVertexArrayAttrib(in.VertexArray, 1);
     glEnableVertexArrayAttrib(in.VertexArray, 2);
@@ -273,16 +268,8 @@ void vtkCausticsSceneGeometry::ReserveMeshBuffers(std::size_t vertices, std::siz
   auto& in = *this->Internal;
   const std::size_t vertexBytes = std::max<std::size_t>(vertices * WordsPerVertex * 4, 4);
   const std::size_t indexBytes = std::max<std::size_t>(indices * 4, 4);
-  if (vertexBytes > in.VertexCapacity)
-  {
-    glNamedBufferData(in.VertexBuffer, vertexBytes, nullptr, GL_DYNAMIC_DRAW);
-    in.VertexCapacity = vertexBytes;
-  }
-  if (indexBytes > in.IndexCapacity)
-  {
-    glNamedBufferData(in.IndexBuffer, indexBytes, nullptr, GL_DYNAMIC_DRAW);
-    in.IndexCapacity = indexBytes;
-  }
+  in.VertexBuffer.Allocate(vertexBytes);
+  in.IndexBuffer.Allocate(indexBytes);
 }
 
 void vtkCausticsSceneGeometry::UploadMaterials(const caustics::SceneData& scene)
@@ -296,15 +283,10 @@ void vtkCausticsSceneGeometry::UploadMaterials(const caustics::SceneData& scene)
     (!materials.empty() &&
       std::memcmp(materials.data(), in.Materials.data(), materials.size() * sizeof(GPUMaterial)) !=
         0);
-  if (materialBytes > in.MaterialCapacity)
-  {
-    glNamedBufferData(in.MaterialBuffer, materialBytes, nullptr, GL_DYNAMIC_DRAW);
-    in.MaterialCapacity = materialBytes;
-  }
+  in.MaterialBuffer.Allocate(materialBytes);
   if (materialsChanged && !materials.empty())
   {
-    glNamedBufferSubData(
-      in.MaterialBuffer, 0, materials.size() * sizeof(GPUMaterial), materials.data());
+    in.MaterialBuffer.Write(0, materials.size() * sizeof(GPUMaterial), materials.data());
     in.LastUploadBytes += static_cast<vtkIdType>(materials.size() * sizeof(GPUMaterial));
   }
   in.Materials = std::move(materials);
@@ -312,7 +294,7 @@ void vtkCausticsSceneGeometry::UploadMaterials(const caustics::SceneData& scene)
 
 void vtkCausticsSceneGeometry::BindMaterials()
 {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, this->Internal->MaterialBuffer);
+  this->Internal->MaterialBuffer.BindBase(GL_SHADER_STORAGE_BUFFER, 0);
 }
 
 void vtkCausticsSceneGeometry::Draw(int roleMask)
@@ -349,15 +331,15 @@ vtkIdType vtkCausticsSceneGeometry::GetNumberOfTriangles(int roleMask) const
 
 unsigned int vtkCausticsSceneGeometry::GetVertexBuffer() const
 {
-  return this->Internal->VertexBuffer;
+  return this->Internal->VertexBuffer.Handle();
 }
 unsigned int vtkCausticsSceneGeometry::GetIndexBuffer() const
 {
-  return this->Internal->IndexBuffer;
+  return this->Internal->IndexBuffer.Handle();
 }
 unsigned int vtkCausticsSceneGeometry::GetMaterialBuffer() const
 {
-  return this->Internal->MaterialBuffer;
+  return this->Internal->MaterialBuffer.Handle();
 }
 vtkIdType vtkCausticsSceneGeometry::GetLastUploadBytes() const
 {
@@ -371,6 +353,6 @@ void vtkCausticsSceneGeometry::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Triangles: receivers " << this->GetNumberOfTriangles(RoleBit(1))
      << ", reflectors " << this->GetNumberOfTriangles(RoleBit(2)) << ", refractors "
      << this->GetNumberOfTriangles(RoleBit(3)) << "\n";
-  os << indent << "VertexBytes: " << this->Internal->VertexCapacity << "\n";
+  os << indent << "VertexBytes: " << this->Internal->VertexBuffer.Bytes() << "\n";
   os << indent << "LastUploadBytes: " << this->Internal->LastUploadBytes << "\n";
 }

@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceLineTracer.h"
 
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
@@ -41,11 +42,28 @@ constexpr float GuardPixels = 2.0f;
 
 }
 
+/** One Trace(): its inputs and the sizes derived from them. */
+struct vtkCausticsScreenSpaceLineTracer::Batch
+{
+  const View* Against = nullptr; // what the rays are traced against
+  unsigned int Rays = 0, Counter = 0;
+  int Capacity = 0;
+  int Width = 0, Height = 0; // of the layered depth image
+  int RowWidth = 0;          // fragments of the longest line, + 1
+  int Rows = 0;              // rays per batch
+  int Batches = 0;
+  float Tolerance = 0.0f, PixelScale = 0.0f, MinimumLength = 0.0f;
+  int PositionUnit = -1, NormalUnit = -1, RowUnit = -1;
+
+  /** Byte offset of batch b's draw arguments (its reduction's dispatch: + 16). */
+  static std::size_t ArgumentBytes(int b) { return 4 * (8 + 8 * static_cast<std::size_t>(b)); }
+};
+
 struct vtkCausticsScreenSpaceLineTracer::Internals
 {
-  caustics::ssp::Buffer Lines;
-  caustics::ssp::Buffer Hits;
-  caustics::ssp::Buffer Arguments;
+  caustics::gl::StorageBuffer Lines;
+  caustics::gl::StorageBuffer Hits;
+  caustics::gl::StorageBuffer Arguments;
   caustics::ssp::Texture Rows; // RG32UI: t bits, stamp << 16 | layer
   caustics::ssp::Framebuffer RowFramebuffer;
   unsigned int EmptyVertexArray = 0;
@@ -71,7 +89,156 @@ struct vtkCausticsScreenSpaceLineTracer::Internals
       this->Timings->StopStage(stage.c_str());
     }
   }
+
+  // Trace() in steps.
+  void Allocate(const Batch& batch);
+  void NextStamp();
+  bool PrepareArguments(vtkOpenGLRenderWindow* renWin, const Batch& batch);
+  bool SetupLines(vtkOpenGLRenderWindow* renWin, const Batch& batch);
+  bool RasterizeRows(vtkOpenGLRenderWindow* renWin, const Batch& batch, int b);
+  bool ReduceRows(vtkOpenGLRenderWindow* renWin, const Batch& batch, int b);
 };
+
+void vtkCausticsScreenSpaceLineTracer::Internals::Allocate(const Batch& batch)
+{
+  this->Batches = batch.Batches;
+  this->Lines.Allocate(LineBytes * std::max(batch.Capacity, 1));
+  this->Hits.Allocate(HitBytes * std::max(batch.Capacity, 1));
+  this->Arguments.Allocate(Batch::ArgumentBytes(batch.Batches));
+  if (this->Rows.Ensure(batch.RowWidth, batch.Rows, 0, GL_RG32UI))
+  {
+    this->Stamp = 0;
+    const GLuint zero[2] = { 0, 0 };
+    glClearTexImage(this->Rows.Handle, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, zero);
+  }
+  if (!this->EmptyVertexArray)
+  {
+    glCreateVertexArrays(1, &this->EmptyVertexArray);
+  }
+}
+
+void vtkCausticsScreenSpaceLineTracer::Internals::NextStamp()
+{
+  // A new stamp per batch: texels not written by this batch read as misses.
+  this->Stamp = (this->Stamp + 1) & 0xffffu;
+  if (this->Stamp == 0)
+  {
+    const GLuint zero[2] = { 0, 0 };
+    glClearTexImage(this->Rows.Handle, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, zero);
+    this->Stamp = 1;
+  }
+}
+
+bool vtkCausticsScreenSpaceLineTracer::Internals::PrepareArguments(
+  vtkOpenGLRenderWindow* renWin, const Batch& batch)
+{
+  if (!this->PrepareProgram->Bind(renWin))
+  {
+    return false;
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, batch.Counter);
+  this->Arguments.BindBase(GL_SHADER_STORAGE_BUFFER, ArgumentBinding);
+  this->PrepareProgram->SetUniformi("rowsPerBatch", batch.Rows);
+  this->PrepareProgram->SetUniformi("batches", batch.Batches);
+  this->PrepareProgram->SetUniformi("capacity", batch.Capacity);
+  this->PrepareProgram->Dispatch(1);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  return true;
+}
+
+bool vtkCausticsScreenSpaceLineTracer::Internals::SetupLines(
+  vtkOpenGLRenderWindow* renWin, const Batch& batch)
+{
+  vtkCausticsShaderProgram* p = this->SetupProgram;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  const View& view = *batch.Against;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, batch.Counter);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, batch.Rays);
+  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
+  p->SetUniformMatrix4("worldToClip", view.WorldToClip);
+  p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
+  p->SetUniform3f("boundsMin", static_cast<float>(view.Bounds[0]),
+    static_cast<float>(view.Bounds[2]), static_cast<float>(view.Bounds[4]));
+  p->SetUniform3f("boundsMax", static_cast<float>(view.Bounds[1]),
+    static_cast<float>(view.Bounds[3]), static_cast<float>(view.Bounds[5]));
+  p->SetUniformf("tolerance", batch.Tolerance);
+  p->SetUniformf("pixelScale", batch.PixelScale);
+  p->SetUniformf("minimumLength", batch.MinimumLength);
+  p->SetUniformf("maximumLength", static_cast<float>(batch.RowWidth - 1));
+  p->SetUniformf("guardPixels", GuardPixels);
+  p->SetUniformi("capacity", batch.Capacity);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Arguments.Handle());
+  glDispatchComputeIndirect(0);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  return true;
+}
+
+bool vtkCausticsScreenSpaceLineTracer::Internals::RasterizeRows(
+  vtkOpenGLRenderWindow* renWin, const Batch& batch, int b)
+{
+  vtkCausticsShaderProgram* p = this->LineProgram;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  const View& view = *batch.Against;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, batch.Rays);
+  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TableBinding, view.Layers->GetTableBuffer());
+  p->SetUniformi("batchBase", b * batch.Rows);
+  p->SetUniform2f("target", static_cast<float>(batch.RowWidth), static_cast<float>(batch.Rows));
+  p->SetUniformi("ldiPosition", batch.PositionUnit);
+  p->SetUniformi("ldiNormal", batch.NormalUnit);
+  p->SetUniformMatrix4("worldToClip", view.WorldToClip);
+  p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
+  const float origin[4] = { static_cast<float>(view.ViewOrigin[0]),
+    static_cast<float>(view.ViewOrigin[1]), static_cast<float>(view.ViewOrigin[2]),
+    static_cast<float>(view.ViewOrigin[3]) };
+  p->SetUniform4f("viewOrigin", origin);
+  p->SetUniformf("tolerance", batch.Tolerance);
+  p->SetUniformf("pixelScale", batch.PixelScale);
+  p->SetUniformu("stamp", this->Stamp);
+  glBindVertexArray(this->EmptyVertexArray);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->Arguments.Handle());
+  glDrawArraysIndirect(
+    GL_LINES, reinterpret_cast<const void*>(static_cast<std::uintptr_t>(Batch::ArgumentBytes(b))));
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  glBindVertexArray(0);
+  return true;
+}
+
+bool vtkCausticsScreenSpaceLineTracer::Internals::ReduceRows(
+  vtkOpenGLRenderWindow* renWin, const Batch& batch, int b)
+{
+  vtkCausticsShaderProgram* p = this->ReduceProgram;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  glBindTextureUnit(batch.RowUnit, this->Rows.Handle);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, batch.Rays);
+  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
+  this->Hits.BindBase(GL_SHADER_STORAGE_BUFFER, HitBinding);
+  p->SetUniformi("rowHits", batch.RowUnit);
+  p->SetUniformMatrix4("worldToClip", batch.Against->WorldToClip);
+  p->SetUniformf("pixelScale", batch.PixelScale);
+  p->SetUniformi("ldiPosition", batch.PositionUnit);
+  p->SetUniformi("ldiNormal", batch.NormalUnit);
+  p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
+  p->SetUniformi("batchBase", b * batch.Rows);
+  p->SetUniformi("capacity", batch.Capacity);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, batch.Counter);
+  p->SetUniformu("stamp", this->Stamp);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Arguments.Handle());
+  glDispatchComputeIndirect(static_cast<GLintptr>(Batch::ArgumentBytes(b) + 16));
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  return true;
+}
 
 vtkCausticsScreenSpaceLineTracer::vtkCausticsScreenSpaceLineTracer()
   : Internal(new Internals)
@@ -96,7 +263,7 @@ vtkCausticsScreenSpaceLineTracer::vtkCausticsScreenSpaceLineTracer()
 
 vtkCausticsScreenSpaceLineTracer::~vtkCausticsScreenSpaceLineTracer()
 {
-  if (this->Internal->Hits.Handle || this->Internal->EmptyVertexArray)
+  if (this->Internal->Hits.Handle() || this->Internal->EmptyVertexArray)
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL objects leaked");
   }
@@ -117,70 +284,28 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
     vtkErrorMacro(<< "Trace needs a layered depth image, its matrix, rays and a counter");
     return false;
   }
-  const int width = layers->GetWidth(), height = layers->GetHeight();
-  const int rowWidth = std::max(std::max(width, height), this->MinimumLineLength) + 1;
-  const int rows = std::max(1, std::min(this->RowsPerBatch, caustics::ssp::MaxTextureSize()));
-  const int batches = capacity > 0 ? (capacity + rows - 1) / rows : 0;
-  in.Batches = batches;
-  in.Lines.Ensure(LineBytes * std::max(capacity, 1));
-  in.Hits.Ensure(HitBytes * std::max(capacity, 1));
-  in.Arguments.Ensure(4 * (8 + 8 * static_cast<std::size_t>(batches)));
-  if (in.Rows.Ensure(rowWidth, rows, 0, GL_RG32UI))
-  {
-    in.Stamp = 0;
-    const GLuint zero[2] = { 0, 0 };
-    glClearTexImage(in.Rows.Handle, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, zero);
-  }
-  if (!in.EmptyVertexArray)
-  {
-    glCreateVertexArrays(1, &in.EmptyVertexArray);
-  }
+  Batch batch;
+  batch.Against = &view;
+  batch.Rays = rayBuffer;
+  batch.Counter = counterBuffer;
+  batch.Capacity = capacity;
+  batch.Width = layers->GetWidth();
+  batch.Height = layers->GetHeight();
+  batch.RowWidth = std::max(std::max(batch.Width, batch.Height), this->MinimumLineLength) + 1;
+  batch.Rows = std::max(1, std::min(this->RowsPerBatch, caustics::ssp::MaxTextureSize()));
+  batch.Batches = capacity > 0 ? (capacity + batch.Rows - 1) / batch.Rows : 0;
+  batch.Tolerance = static_cast<float>(this->Tolerance);
+  batch.PixelScale = caustics::ssp::PixelScale(view.WorldToClip, batch.Width, batch.Height);
+  batch.MinimumLength = static_cast<float>(this->MinimumLineLength);
+  in.Allocate(batch);
   if (capacity == 0)
   {
     return true;
   }
-  const float tolerance = static_cast<float>(this->Tolerance);
-  const float pixelScale = caustics::ssp::PixelScale(view.WorldToClip, width, height);
 
-  // 1. Indirect arguments from the GPU's ray count.
+  // 1. Indirect arguments from the GPU's ray count. 2. Line setup, one thread per ray.
   in.Start(stagePrefix + "line setup");
-  bool ok = in.PrepareProgram->Bind(renWin);
-  if (ok)
-  {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
-    in.Arguments.BindStorage(ArgumentBinding);
-    in.PrepareProgram->SetUniformi("rowsPerBatch", rows);
-    in.PrepareProgram->SetUniformi("batches", batches);
-    in.PrepareProgram->SetUniformi("capacity", capacity);
-    in.PrepareProgram->Dispatch(1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  }
-
-  // 2. Line setup, one thread per ray.
-  ok = ok && in.SetupProgram->Bind(renWin);
-  if (ok)
-  {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-    in.Lines.BindStorage(LineBinding);
-    vtkCausticsShaderProgram* p = in.SetupProgram;
-    p->SetUniformMatrix4("worldToClip", view.WorldToClip);
-    p->SetUniform2f("viewport", static_cast<float>(width), static_cast<float>(height));
-    p->SetUniform3f("boundsMin", static_cast<float>(view.Bounds[0]),
-      static_cast<float>(view.Bounds[2]), static_cast<float>(view.Bounds[4]));
-    p->SetUniform3f("boundsMax", static_cast<float>(view.Bounds[1]),
-      static_cast<float>(view.Bounds[3]), static_cast<float>(view.Bounds[5]));
-    p->SetUniformf("tolerance", tolerance);
-    p->SetUniformf("pixelScale", pixelScale);
-    p->SetUniformf("minimumLength", static_cast<float>(this->MinimumLineLength));
-    p->SetUniformf("maximumLength", static_cast<float>(rowWidth - 1));
-    p->SetUniformf("guardPixels", GuardPixels);
-    p->SetUniformi("capacity", capacity);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle);
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  }
+  bool ok = in.PrepareArguments(renWin, batch) && in.SetupLines(renWin, batch);
   in.Stop(stagePrefix + "line setup");
 
   // 3-4. Per batch: rasterize the rows, then reduce them.
@@ -196,81 +321,22 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   const GLuint framebuffer = in.RowFramebuffer.Get();
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, in.Rows.Handle, 0);
   glNamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
-  const GLuint tableBuffer = layers->GetTableBuffer();
   caustics::ssp::TextureUnits units(renWin);
-  const int positionUnit = units.Bind(layers->GetPositionTexture());
-  const int normalUnit = units.Bind(layers->GetNormalTexture());
-  const int rowUnit = units.Bind(0u);
+  batch.PositionUnit = units.Bind(layers->GetPositionTexture());
+  batch.NormalUnit = units.Bind(layers->GetNormalTexture());
+  batch.RowUnit = units.Bind(0u);
   // One timed stage for both steps: the reductions run between the batches' draws.
   in.Start(stagePrefix + "line tracing");
-  for (int b = 0; ok && b < batches; ++b)
+  for (int b = 0; ok && b < batch.Batches; ++b)
   {
-    // A new stamp per batch: texels not written by this batch read as misses.
-    in.Stamp = (in.Stamp + 1) & 0xffffu;
-    if (in.Stamp == 0)
-    {
-      const GLuint zero[2] = { 0, 0 };
-      glClearTexImage(in.Rows.Handle, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, zero);
-      in.Stamp = 1;
-    }
-    const std::size_t argumentBytes = 4 * (8 + 8 * static_cast<std::size_t>(b));
-
-    glBindTextureUnit(rowUnit, 0);
+    in.NextStamp();
+    glBindTextureUnit(batch.RowUnit, 0);
     state->vtkglBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    state->vtkglViewport(0, 0, rowWidth, rows);
-    ok = in.LineProgram->Bind(renWin);
-    if (ok)
-    {
-      vtkCausticsShaderProgram* p = in.LineProgram;
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-      in.Lines.BindStorage(LineBinding);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TableBinding, tableBuffer);
-      p->SetUniformi("batchBase", b * rows);
-      p->SetUniform2f("target", static_cast<float>(rowWidth), static_cast<float>(rows));
-      p->SetUniformi("ldiPosition", positionUnit);
-      p->SetUniformi("ldiNormal", normalUnit);
-      p->SetUniformMatrix4("worldToClip", view.WorldToClip);
-      p->SetUniform2f("viewport", static_cast<float>(width), static_cast<float>(height));
-      const float origin[4] = { static_cast<float>(view.ViewOrigin[0]),
-        static_cast<float>(view.ViewOrigin[1]), static_cast<float>(view.ViewOrigin[2]),
-        static_cast<float>(view.ViewOrigin[3]) };
-      p->SetUniform4f("viewOrigin", origin);
-      p->SetUniformf("tolerance", tolerance);
-      p->SetUniformf("pixelScale", pixelScale);
-      p->SetUniformu("stamp", in.Stamp);
-      glBindVertexArray(in.EmptyVertexArray);
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.Arguments.Handle);
-      glDrawArraysIndirect(
-        GL_LINES, reinterpret_cast<const void*>(static_cast<std::uintptr_t>(argumentBytes)));
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-      glBindVertexArray(0);
-    }
-    ok = ok && in.ReduceProgram->Bind(renWin);
-    if (ok)
-    {
-      vtkCausticsShaderProgram* p = in.ReduceProgram;
-      glBindTextureUnit(rowUnit, in.Rows.Handle);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-      in.Lines.BindStorage(LineBinding);
-      in.Hits.BindStorage(HitBinding);
-      p->SetUniformi("rowHits", rowUnit);
-      p->SetUniformMatrix4("worldToClip", view.WorldToClip);
-      p->SetUniformf("pixelScale", pixelScale);
-      p->SetUniformi("ldiPosition", positionUnit);
-      p->SetUniformi("ldiNormal", normalUnit);
-      p->SetUniform2f("viewport", static_cast<float>(width), static_cast<float>(height));
-      p->SetUniformi("batchBase", b * rows);
-      p->SetUniformi("capacity", capacity);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
-      p->SetUniformu("stamp", in.Stamp);
-      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle);
-      glDispatchComputeIndirect(static_cast<GLintptr>(argumentBytes + 16));
-      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    }
+    state->vtkglViewport(0, 0, batch.RowWidth, batch.Rows);
+    ok = in.RasterizeRows(renWin, batch, b) && in.ReduceRows(renWin, batch, b);
   }
   in.Stop(stagePrefix + "line tracing");
-  glBindTextureUnit(rowUnit, 0);
+  glBindTextureUnit(batch.RowUnit, 0);
   in.ReduceProgram->Unbind(renWin);
   state->PopFramebufferBindings();
   if (!ok)
@@ -282,15 +348,15 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
 
 unsigned int vtkCausticsScreenSpaceLineTracer::GetHitBuffer() const
 {
-  return this->Internal->Hits.Handle;
+  return this->Internal->Hits.Handle();
 }
 unsigned int vtkCausticsScreenSpaceLineTracer::GetLineBuffer() const
 {
-  return this->Internal->Lines.Handle;
+  return this->Internal->Lines.Handle();
 }
 unsigned int vtkCausticsScreenSpaceLineTracer::GetArgumentBuffer() const
 {
-  return this->Internal->Arguments.Handle;
+  return this->Internal->Arguments.Handle();
 }
 int vtkCausticsScreenSpaceLineTracer::GetNumberOfBatches() const
 {

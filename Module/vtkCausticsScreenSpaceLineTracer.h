@@ -127,6 +127,7 @@ private:
   vtkCausticsScreenSpaceLineTracer(const vtkCausticsScreenSpaceLineTracer&) = delete;
   void operator=(const vtkCausticsScreenSpaceLineTracer&) = delete;
 
+  struct Batch; // one Trace()'s inputs and sizes
   struct Internals;
   std::unique_ptr<Internals> Internal;
 };

@@ -5,6 +5,7 @@
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -130,12 +131,11 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   vtkNew<vtkCausticsShaderProgram> RadiusProgram;
 
   // Transfer maps (photon lists) and their counters, ping-ponged between bounces.
-  caustics::ssp::Buffer Rays[2];
-  caustics::ssp::Buffer Payloads[2];
-  caustics::ssp::Buffer Counters[2];
+  caustics::gl::StorageBuffer Rays[2];
+  caustics::gl::StorageBuffer Payloads[2];
+  caustics::gl::StorageBuffer Counters[2];
   int Current = 0;
   int Capacity = 0;
-  int GridWidth = 0;
   // Splat records of the photons that ended on receivers this bounce.
   vtkNew<vtkTextureObject> SplatPosition;
   vtkNew<vtkTextureObject> SplatNormal;
@@ -162,12 +162,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
     return prefix;
   }
 
-  void ClearCounter(int which)
-  {
-    const GLuint zero = 0;
-    glClearNamedBufferData(
-      this->Counters[which].Handle, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  }
+  void ClearCounter(int which) { this->Counters[which].Clear(); }
 };
 
 vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
@@ -197,7 +192,7 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
 
 vtkCausticsScreenSpacePhotonPass::~vtkCausticsScreenSpacePhotonPass()
 {
-  if (this->Internal->Rays[0].Handle)
+  if (this->Internal->Rays[0].Handle())
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL objects leaked");
   }
@@ -264,18 +259,17 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   {
     return false;
   }
-  const int* grid = in.Emitter->GetGridSize();
-  in.GridWidth = grid[0];
-  in.Capacity = grid[0] * grid[1];
+  const caustics::PhotonGrid& grid = in.Emitter->GetGrid();
+  in.Capacity = static_cast<int>(grid.Count());
   for (int k = 0; k < 2; ++k)
   {
-    in.Rays[k].Ensure(RayBytes * in.Capacity);
-    in.Payloads[k].Ensure(PayloadBytes * in.Capacity);
-    in.Counters[k].Ensure(16);
+    in.Rays[k].Allocate(RayBytes * in.Capacity);
+    in.Payloads[k].Allocate(PayloadBytes * in.Capacity);
+    in.Counters[k].Allocate(16);
   }
-  caustics::gl::EnsureTexture(in.SplatPosition, renWin, grid[0], grid[1], GL_RGBA32F);
-  caustics::gl::EnsureTexture(in.SplatNormal, renWin, grid[0], grid[1], GL_RGBA32F);
-  caustics::gl::EnsureTexture(in.SplatFlux, renWin, grid[0], grid[1], GL_RGBA32F);
+  caustics::gl::EnsureTexture(in.SplatPosition, renWin, grid.Width, grid.Height, GL_RGBA32F);
+  caustics::gl::EnsureTexture(in.SplatNormal, renWin, grid.Width, grid.Height, GL_RGBA32F);
+  caustics::gl::EnsureTexture(in.SplatFlux, renWin, grid.Width, grid.Height, GL_RGBA32F);
 
   // Compact the emitter's grid into the first transfer map.
   in.Current = 0;
@@ -288,13 +282,13 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   const caustics::Light& source = scene.Lights[light];
   const caustics::Medium& medium = scene.Participating;
   caustics::ssp::TextureUnits units(renWin);
-  p->SetUniformi("emitPosition", units.Bind(in.Emitter->GetPositionTexture()));
-  p->SetUniformi("emitDirection", units.Bind(in.Emitter->GetDirectionTexture()));
-  p->SetUniformi("emitFlux", units.Bind(in.Emitter->GetFluxTexture()));
+  p->SetUniformi("emitPosition", units.Bind(grid.Position));
+  p->SetUniformi("emitDirection", units.Bind(grid.Direction));
+  p->SetUniformi("emitFlux", units.Bind(grid.Flux));
   p->SetUniformi(
     "lightPosition", units.Bind(f.LightBuffers->GetGBuffer(light)->GetPositionTexture()));
-  p->SetUniform2i("grid", grid[0], grid[1]);
-  p->SetUniformi("resolution", f.LightBuffers->GetResolution());
+  p->SetUniform2i("grid", grid.Width, grid.Height);
+  p->SetUniformi("resolution", grid.BranchRows);
   p->SetUniformi("lightType", static_cast<int>(source.type));
   p->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
@@ -308,10 +302,10 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
   p->SetUniform3f("boundsMax", static_cast<float>(scene.Bounds[1]),
     static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
-  in.Rays[0].BindStorage(NextRayBinding);
-  in.Payloads[0].BindStorage(NextPayloadBinding);
-  in.Counters[0].BindStorage(NextCounterBinding);
-  p->DispatchCovering2D(grid[0], grid[1], 16, 16);
+  in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
+  in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
+  in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
+  p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   p->Unbind(renWin);
   return true;
@@ -323,8 +317,8 @@ bool vtkCausticsScreenSpacePhotonPass::TracePhotons(
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const int c = in.Current;
-  return in.Tracer->Trace(renWin, in.View, in.Rays[c].Handle, in.Counters[c].Handle, in.Capacity,
-    in.Prefix(light, f.LightBuffers->GetNumberOfLights(), bounce));
+  return in.Tracer->Trace(renWin, in.View, in.Rays[c].Handle(), in.Counters[c].Handle(),
+    in.Capacity, in.Prefix(light, f.LightBuffers->GetNumberOfLights(), bounce));
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
@@ -343,20 +337,20 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   {
     return false;
   }
-  in.Counters[c].BindStorage(CounterBinding);
-  in.Rays[c].BindStorage(RayBinding);
-  in.Payloads[c].BindStorage(PayloadBinding);
+  in.Counters[c].BindBase(GL_SHADER_STORAGE_BUFFER, CounterBinding);
+  in.Rays[c].BindBase(GL_SHADER_STORAGE_BUFFER, RayBinding);
+  in.Payloads[c].BindBase(GL_SHADER_STORAGE_BUFFER, PayloadBinding);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HitBinding, in.Tracer->GetHitBuffer());
-  in.Rays[n].BindStorage(NextRayBinding);
-  in.Payloads[n].BindStorage(NextPayloadBinding);
-  in.Counters[n].BindStorage(NextCounterBinding);
+  in.Rays[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
+  in.Payloads[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
+  in.Counters[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
   f.Geometry->BindMaterials();
   glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, in.SplatFlux->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   const caustics::Medium& medium = scene.Participating;
   p->SetUniformi("capacity", in.Capacity);
-  p->SetUniformi("gridWidth", in.GridWidth);
+  p->SetUniformi("gridWidth", in.Emitter->GetGrid().Width);
   p->SetUniformi("maxEvents", this->MaximumBounces);
   p->SetUniformMatrix4("worldToClip", f.WorldToClip);
   p->SetUniformMatrix4("clipToWorld", in.ClipToWorld);
@@ -394,7 +388,7 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
 {
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  const int* grid = in.Emitter->GetGridSize();
+  const caustics::PhotonGrid& grid = in.Emitter->GetGrid();
   // Radii from the neighbours' spacing (see glsl/vtkCausticsScreenSpacePhotonPassRadiusCS.glsl).
   if (this->SplatRadius <= 0.0 && this->SplatRadiusSpacings > 0.0)
   {
@@ -405,18 +399,18 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     }
     glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    p->SetUniform2i("grid", grid[0], grid[1]);
-    p->SetUniformi("branchRows", f.LightBuffers->GetResolution());
+    p->SetUniform2i("grid", grid.Width, grid.Height);
+    p->SetUniformi("branchRows", grid.BranchRows);
     p->SetUniformf("spacings", static_cast<float>(this->SplatRadiusSpacings));
-    p->DispatchCovering2D(grid[0], grid[1], 16, 16);
+    p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     p->Unbind(renWin);
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
-  return in.Splatter->Splat(renWin, in.SplatPosition, in.SplatNormal, in.SplatFlux, grid[0],
-    grid[1], f.CameraGBuffer, f.WorldToClip);
+  return in.Splatter->Splat(renWin, grid, in.SplatPosition, in.SplatNormal, in.SplatFlux,
+    f.CameraGBuffer, f.WorldToClip);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin, int, int)
@@ -435,7 +429,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
   view.RefractiveDepth = f.RefractiveGBuffer->GetDepthTexture();
   const int c = in.Current;
-  return in.GodRays->Draw(renWin, view, in.Rays[c].Handle, in.Payloads[c].Handle,
+  return in.GodRays->Draw(renWin, view, in.Rays[c].Handle(), in.Payloads[c].Handle(),
     in.Tracer->GetLineBuffer(), in.Tracer->GetHitBuffer(), in.Tracer->GetArgumentBuffer());
 }
 
@@ -608,10 +602,10 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   }
   renWin->MakeCurrent();
   const int w = f.Width, h = f.Height, count = w * h;
-  in.Rays[0].Ensure(RayBytes * count);
-  in.Counters[0].Ensure(16);
+  in.Rays[0].Allocate(RayBytes * count);
+  in.Counters[0].Allocate(16);
   const GLuint total = static_cast<GLuint>(count);
-  glNamedBufferSubData(in.Counters[0].Handle, 0, 4, &total);
+  glNamedBufferSubData(in.Counters[0].Handle(), 0, 4, &total);
   vtkCausticsShaderProgram* p = in.ShadowProgram;
   if (!p->Bind(renWin))
   {
@@ -628,7 +622,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
       static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
     p->SetUniform3f("lightDirection", static_cast<float>(source.direction[0]),
       static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
-    in.Rays[0].BindStorage(NextRayBinding);
+    in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
     p->DispatchCovering2D(w, h, 16, 16);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -636,7 +630,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   const bool timed = this->GetTimings()->GetEnabled();
   this->GetTimings()->EnabledOff();
   const bool ok = in.Tracer->Trace(
-    renWin, in.View, in.Rays[0].Handle, in.Counters[0].Handle, count, "ssp shadow ");
+    renWin, in.View, in.Rays[0].Handle(), in.Counters[0].Handle(), count, "ssp shadow ");
   this->GetTimings()->SetEnabled(timed);
   if (!ok)
   {
@@ -644,7 +638,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   }
   std::vector<float> rays(static_cast<std::size_t>(count) * 8);
   std::vector<float> hits(static_cast<std::size_t>(count) * 8);
-  glGetNamedBufferSubData(in.Rays[0].Handle, 0, rays.size() * 4, rays.data());
+  glGetNamedBufferSubData(in.Rays[0].Handle(), 0, rays.size() * 4, rays.data());
   glGetNamedBufferSubData(in.Tracer->GetHitBuffer(), 0, hits.size() * 4, hits.data());
   WriteShadow(rays, hits, source, w, h, output);
   // The next frame rebuilds its transfer maps: nothing else to restore.
@@ -674,7 +668,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   in.SplatPosition->ReleaseGraphicsResources(w);
   in.SplatNormal->ReleaseGraphicsResources(w);
   in.SplatFlux->ReleaseGraphicsResources(w);
-  in.Capacity = in.GridWidth = 0;
+  in.Capacity = 0;
   in.HasLayers = in.HasRefractorLayers = false;
 }
 

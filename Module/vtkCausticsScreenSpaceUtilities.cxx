@@ -72,45 +72,6 @@ void Texture::Release()
   this->Format = 0;
 }
 
-Buffer::~Buffer()
-{
-  if (this->Handle)
-  {
-    ReportLeak("buffer");
-  }
-}
-
-bool Buffer::Ensure(std::size_t bytes)
-{
-  bytes = bytes < 16 ? 16 : bytes;
-  if (!this->Handle)
-  {
-    glCreateBuffers(1, &this->Handle);
-  }
-  else if (this->Size >= bytes)
-  {
-    return false;
-  }
-  glNamedBufferData(this->Handle, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
-  this->Size = bytes;
-  return true;
-}
-
-void Buffer::BindStorage(unsigned int binding) const
-{
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, this->Handle);
-}
-
-void Buffer::Release()
-{
-  if (this->Handle)
-  {
-    glDeleteBuffers(1, &this->Handle);
-  }
-  this->Handle = 0;
-  this->Size = 0;
-}
-
 Framebuffer::~Framebuffer()
 {
   if (this->Handle)

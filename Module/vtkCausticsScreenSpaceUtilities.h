@@ -4,8 +4,8 @@
  *
  * The layered depth images and the line tracer need GL objects that
  * vtkTextureObject does not make (2D array textures with layered attachments,
- * storage and indirect-command buffers, framebuffers without attachments), so
- * these stages own raw GL names through the small classes below:
+ * framebuffers without attachments), so these stages own raw GL names through
+ * the small classes below (buffer objects: caustics::gl::StorageBuffer):
  * - each object is created on first use and reallocated only when its size or
  *   format changes (never per frame);
  * - Release() deletes it; a destructor that finds a live name reports the leak
@@ -19,8 +19,7 @@
 
 #include "vtkRenderingCausticsModule.h" // For export macro
 
-#include <cstddef> // For std::size_t
-#include <vector>  // For std::vector
+#include <vector> // For std::vector
 
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
@@ -49,25 +48,6 @@ public:
   unsigned int Handle = 0;
   int Width = 0, Height = 0, Layers = 0;
   unsigned int Format = 0;
-};
-
-/** A buffer object (storage, indirect commands). */
-class VTKRENDERINGCAUSTICS_EXPORT Buffer
-{
-public:
-  Buffer() = default;
-  ~Buffer();
-  Buffer(const Buffer&) = delete;
-  Buffer& operator=(const Buffer&) = delete;
-
-  /** Makes the buffer at least `bytes` long (contents undefined after a reallocation). */
-  bool Ensure(std::size_t bytes);
-  /** Binds the whole buffer to an indexed shader storage binding point. */
-  void BindStorage(unsigned int binding) const;
-  void Release();
-
-  unsigned int Handle = 0;
-  std::size_t Size = 0;
 };
 
 /** A framebuffer object whose attachments the owner sets. */

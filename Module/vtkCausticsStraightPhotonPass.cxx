@@ -43,11 +43,10 @@ bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& i
   bool ok = true;
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
-    const int* grid = s.Emitter->GetGridSize(); // filled by Emit()
     ok = !in.LightBuffers->GetView(light).valid ||
       (s.Emitter->Emit(in.Window, in.LightBuffers, light, in.Geometry, *in.Scene) &&
         this->Transport(in, light) &&
-        s.Splatter->Splat(in.Window, s.Hits[0], s.Hits[1], s.Hits[2], grid[0], grid[1],
+        s.Splatter->Splat(in.Window, s.Emitter->GetGrid(), s.Hits[0], s.Hits[1], s.Hits[2],
           in.CameraGBuffer, in.WorldToClip));
   }
   return ok;
@@ -56,8 +55,8 @@ bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& i
 bool vtkCausticsStraightPhotonPass::Transport(const FrameInputs& in, int light)
 {
   auto& s = *this->Internal;
-  const int* grid = s.Emitter->GetGridSize();
-  const int n = in.LightBuffers->GetResolution();
+  const caustics::PhotonGrid& grid = s.Emitter->GetGrid();
+  const int n = grid.BranchRows;
   float lightToClip[16];
   caustics::gl::ToColumnMajor(in.LightBuffers->GetView(light).worldToClip, lightToClip);
   const int receiver = vtkCausticsSceneGeometry::RoleBit(1);
@@ -67,14 +66,14 @@ bool vtkCausticsStraightPhotonPass::Transport(const FrameInputs& in, int light)
     return false;
   }
   // Image units 0-4: the photons and the receivers (normals are RGBA16F); 5-7: hits.
-  vtkTextureObject* images[] = { s.Emitter->GetPositionTexture(), s.Emitter->GetDirectionTexture(),
-    s.Emitter->GetFluxTexture(), s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture(),
-    s.Hits[0], s.Hits[1], s.Hits[2] };
+  vtkTextureObject* images[] = { grid.Position, grid.Direction, grid.Flux,
+    s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture(), s.Hits[0], s.Hits[1],
+    s.Hits[2] };
   for (int i = 0; i < 8; ++i)
   {
     if (i >= 5)
     {
-      caustics::gl::EnsureTexture(images[i], in.Window, grid[0], grid[1], GL_RGBA32F);
+      caustics::gl::EnsureTexture(images[i], in.Window, grid.Width, grid.Height, GL_RGBA32F);
     }
     glBindImageTexture(i, images[i]->GetHandle(), 0, GL_FALSE, 0,
       i < 5 ? GL_READ_ONLY : GL_WRITE_ONLY, i == 4 ? GL_RGBA16F : GL_RGBA32F);
@@ -83,11 +82,11 @@ bool vtkCausticsStraightPhotonPass::Transport(const FrameInputs& in, int light)
   const bool directional = source.type == caustics::Light::Type::Directional;
   const caustics::Vec3& v = directional ? source.direction : source.position;
   const float lightVector[4] = { float(v[0]), float(v[1]), float(v[2]), directional ? 0.f : 1.f };
-  s.Program->SetUniform2i("grid", grid[0], grid[1]);
+  s.Program->SetUniform2i("grid", grid.Width, grid.Height);
   s.Program->SetUniformi("resolution", n);
   s.Program->SetUniform4f("light", lightVector);
   s.Program->SetUniformf("spacings", 2.0f); // kernel radius in photon spacings
-  s.Program->DispatchCovering2D(grid[0], grid[1], 16, 16);
+  s.Program->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   s.Program->Unbind(in.Window);
   return true;

@@ -69,8 +69,8 @@ TEST(PhotonEmitter, ConservesFluxAndRefractsAtNormalIncidence)
   vtkNew<vtkCausticsPhotonEmitter> emitter;
   const auto& scene = f.Pass->GetSceneExtractor()->GetScene();
   ASSERT_TRUE(emitter->Emit(f.GL(), f.Pass->GetLightBuffers(), 0, f.Pass->GetGeometry(), scene));
-  EXPECT_EQ(emitter->GetGridSize()[0], 128);
-  EXPECT_EQ(emitter->GetGridSize()[1], 256);
+  EXPECT_EQ(emitter->GetGrid().Width, 128);
+  EXPECT_EQ(emitter->GetGrid().Height, 256);
   auto position = caustics::gl::ReadTexture(emitter->GetPositionTexture(), "p", 4);
   auto direction = caustics::gl::ReadTexture(emitter->GetDirectionTexture(), "d", 4);
   auto flux = caustics::gl::ReadTexture(emitter->GetFluxTexture(), "f", 4);
@@ -166,7 +166,10 @@ TEST(PhotonSplatter, DepositsEachPhotonsFlux)
   state->vtkglViewport(0, 0, size, size);
   state->vtkglDisable(GL_SCISSOR_TEST);
   vtkNew<vtkCausticsPhotonSplatter> splatter;
-  ASSERT_TRUE(splatter->Splat(f.GL(), position, normal, flux, 3, 1, view, matrix));
+  caustics::PhotonGrid grid; // three hits in one row
+  grid.Width = 3;
+  grid.Height = grid.BranchRows = 1;
+  ASSERT_TRUE(splatter->Splat(f.GL(), grid, position, normal, flux, view, matrix));
   state->PopFramebufferBindings();
 
   auto irradiance = caustics::gl::ReadTexture(target, "E", 4);

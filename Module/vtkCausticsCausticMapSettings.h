@@ -1,0 +1,107 @@
+/**
+ * @file   vtkCausticsCausticMapSettings.h
+ * @brief  The knobs of the hierarchical caustic map technique, as one value (not wrapped).
+ *
+ * vtkCausticsHierarchicalCausticMapPass owns one CausticMapSettings; its Set/Get
+ * methods (documented, with their ranges, on the pass) write into it, and the
+ * technique's stages (vtkCausticsPhotonBuffer, vtkCausticsPhotonBufferHierarchy,
+ * vtkCausticsCausticMap) take it by const reference when they run, so nothing is
+ * copied into them per frame and each knob has one name from the pass to the
+ * shaders. Section numbers are those of 001_7c07a484f7a872bb.txt (Wyman 2008).
+ *
+ * vtkCausticsSettingMacro and vtkCausticsSettingClampMacro are vtkSetMacro /
+ * vtkSetClampMacro and vtkGetMacro for a member of such a settings struct, so that
+ * a pass keeps VTK's Set/Get API (and its wrapping) over a plain value.
+ */
+#ifndef vtkCausticsCausticMapSettings_h
+#define vtkCausticsCausticMapSettings_h
+
+namespace caustics
+{
+struct CausticMapSettings
+{
+  enum GatherModes
+  {
+    GATHER_FLAT = 0,        ///< every photon: Wyman & Davis 2006 (with §4's improvements)
+    GATHER_HIERARCHICAL = 1 ///< validity mipmap traversal (§3.1)
+  };
+  enum ClusterModes
+  {
+    CLUSTER_NONE = 0,       ///< no clustering
+    CLUSTER_LAST_LEVEL = 1, ///< convergence tested at mipmap level 1 only (§3.2)
+    CLUSTER_ALL_LEVELS = 2  ///< convergence tested at every level (§3.2)
+  };
+  enum SplatModes
+  {
+    SPLAT_CONSTANT = 0,        ///< baseline: ConstantSplatRadius pixels, finest map level only
+    SPLAT_VARYING_SINGLE = 1,  ///< Eq. 2 radius, finest map level only
+    SPLAT_VARYING_MULTIRES = 2 ///< Eq. 2 radius, map level by splat size (§3.3)
+  };
+
+  int GatherMode = GATHER_HIERARCHICAL;   ///< GatherModes
+  int ClusterMode = CLUSTER_LAST_LEVEL;   ///< ClusterModes (hierarchical gather only)
+  int SplatMode = SPLAT_VARYING_MULTIRES; ///< SplatModes
+  int CausticMapResolution = 512;         ///< texels per side of the finest level, [16, 8192]
+  int TraversalStartResolution = 16;      ///< nodes per side of the first level, [1, 4096]
+  double SplatScale = 2.0;                ///< Eq. 2 radius / photon spacing, [0.25, 16]
+  double ConstantSplatRadius = 1.5;       ///< SPLAT_CONSTANT radius, finest pixels, [0.5, 64]
+  double SplatSizeThreshold = 5.0;        ///< diameter, level pixels, before the next, [1, 64]
+  double MinimumSplatRadius = 1.5;        ///< level pixels, [1, 16]
+  double MinimumCameraSplatRadius = 1.0;  ///< camera pixel footprints, [0, 16]; 0: off
+  double MaximumSplatRadius = 32.0;       ///< level pixels, [2, 360]
+  bool DropCoarseSplats = false;          ///< drop splats needing level 4+ (else level 3)
+  int MaximumInternalEvents = 8;          ///< interfaces met inside a refractor, [1, 32]
+  bool SplitFresnel = true;               ///< emit a refractor's reflected part too
+  int MarchSteps = 64; ///< samples of the photon trace's fallback march, [4, 1024] (no setter)
+
+  /** Levels of the caustic map: 4 for the multi-resolution map (§3.3), else 1. */
+  int NumberOfLevels() const { return this->SplatMode == SPLAT_VARYING_MULTIRES ? 4 : 1; }
+
+  /** Radius of a cluster's splat, in level pixels: it lands in one texel (§3.2). */
+  double ClusterRadius() const
+  {
+    return this->SplatMode == SPLAT_CONSTANT ? this->ConstantSplatRadius : this->MinimumSplatRadius;
+  }
+};
+}
+
+/** vtkSetMacro + vtkGetMacro for member `name` of the settings struct `settings`. */
+#define vtkCausticsSettingMacro(settings, name, type)                                              \
+  virtual void Set##name(type _arg)                                                                \
+  {                                                                                                \
+    if (this->settings.name != _arg)                                                               \
+    {                                                                                              \
+      this->settings.name = _arg;                                                                  \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  virtual type Get##name()                                                                         \
+  {                                                                                                \
+    return this->settings.name;                                                                    \
+  }
+
+/** vtkSetClampMacro + vtkGetMacro for member `name` of the settings struct `settings`. */
+#define vtkCausticsSettingClampMacro(settings, name, type, min, max)                               \
+  virtual void Set##name(type _arg)                                                                \
+  {                                                                                                \
+    const type value = _arg < (min) ? (min) : (_arg > (max) ? (max) : _arg);                       \
+    if (this->settings.name != value)                                                              \
+    {                                                                                              \
+      this->settings.name = value;                                                                 \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  virtual type Get##name##MinValue()                                                               \
+  {                                                                                                \
+    return (min);                                                                                  \
+  }                                                                                                \
+  virtual type Get##name##MaxValue()                                                               \
+  {                                                                                                \
+    return (max);                                                                                  \
+  }                                                                                                \
+  virtual type Get##name()                                                                         \
+  {                                                                                                \
+    return this->settings.name;                                                                    \
+  }
+
+#endif
