@@ -14,6 +14,8 @@
 //
 // Every error is one line on stderr naming the problem, and a non-zero exit:
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "CausticsCommandLine.h"
+
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
@@ -301,42 +303,10 @@ struct Options
   std::string CommandLine;
 };
 
-/** A user mistake: reported as one line, exit code 2. */
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-/** No OpenGL window can be made here (no display, no EGL): exit code 3. */
-struct NoWindowError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-double ParseNumber(const std::string& option, const std::string& text)
-{
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
-  {
-    throw UsageError(option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
-
-/** An integer in [low, high]; accepts 1e6-style notation for photon counts. */
-double ParseCount(const std::string& option, const std::string& text, double low, double high)
-{
-  const double value = ParseNumber(option, text);
-  if (value != std::floor(value) || value < low || value > high)
-  {
-    std::ostringstream message;
-    message << option << " expects an integer in [" << low << ", " << high << "], got '" << text
-            << "'";
-    throw UsageError(message.str());
-  }
-  return value;
-}
+using caustics_cli::NoWindowError;
+using caustics_cli::ParseCount;
+using caustics_cli::ParseNumber;
+using caustics_cli::UsageError;
 
 std::vector<std::string> SplitList(const std::string& option, const std::string& text)
 {
@@ -403,38 +373,20 @@ std::vector<std::string> DefaultTechniques()
   return names;
 }
 
-Options Parse(int argc, char* argv[])
+/** The integer option that sets `field`, in [low, high]. */
+caustics_cli::Arguments::ValueHandler Count(int& field, double low, double high)
 {
-  Options options;
-  options.Scenes = vtkCausticsBuiltinScene::GetSceneNames();
-  options.Techniques = DefaultTechniques();
-  bool ladderGiven = false;
-  for (int i = 0; i < argc; ++i)
-  {
-    options.CommandLine += (i ? " " : "") + ShellQuote(argv[i]);
-  }
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string
+  return [&field, low, high](const std::string& option, const std::string& value)
+  { field = static_cast<int>(ParseCount(option, value, low, high)); };
+}
+
+void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Flag("--list", [&options] { options.List = true; });
+  arguments.Value("--scenes",
+    [&options](const std::string& option, const std::string& value)
     {
-      if (i + 1 >= argc)
-      {
-        throw UsageError(arg + " needs a value");
-      }
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      options.Help = true;
-    }
-    else if (arg == "--list")
-    {
-      options.List = true;
-    }
-    else if (arg == "--scenes")
-    {
-      options.Scenes = SplitList(arg, value());
+      options.Scenes = SplitList(option, value);
       for (const auto& scene : options.Scenes)
       {
         if (!vtkCausticsBuiltinScene::IsSceneName(scene))
@@ -443,115 +395,95 @@ Options Parse(int argc, char* argv[])
             "' (built-in: " + Join(vtkCausticsBuiltinScene::GetSceneNames()) + ")");
         }
       }
-    }
-    else if (arg == "--techniques")
+    });
+  arguments.Value("--techniques",
+    [&options](const std::string& option, const std::string& value)
     {
-      options.Techniques = SplitList(arg, value());
+      options.Techniques = SplitList(option, value);
       for (auto& technique : options.Techniques)
       {
-        if (technique == "best")
-        {
-          technique = vtkCausticsTechniques::GetBestName();
-        }
+        technique = technique == "best" ? vtkCausticsTechniques::GetBestName() : technique;
         if (!vtkCausticsTechniques::Create(technique))
         {
           throw UsageError("unknown technique '" + technique +
             "' (known: " + Join(vtkCausticsTechniques::GetNames()) + ", best)");
         }
       }
-    }
-    else if (arg == "--size")
-    {
-      options.Size = static_cast<int>(ParseCount(arg, value(), 16, 4096));
-    }
-    else if (arg == "--frames")
-    {
-      options.Frames = static_cast<int>(ParseCount(arg, value(), 5, 1000));
-    }
-    else if (arg == "--warmup")
-    {
-      options.Warmup = static_cast<int>(ParseCount(arg, value(), 2, 100));
-    }
-    else if (arg == "--reference-photons")
-    {
-      options.ReferencePhotons = ParseCount(arg, value(), 1000, 1e10);
-    }
-    else if (arg == "--reference-ladder")
+    });
+}
+
+void DeclareMeasurementOptions(caustics_cli::Arguments& arguments, Options& options, bool& ladderGiven)
+{
+  arguments.Value("--size", Count(options.Size, 16, 4096));
+  arguments.Value("--frames", Count(options.Frames, 5, 1000));
+  arguments.Value("--warmup", Count(options.Warmup, 2, 100));
+  arguments.Value("--reference-photons", [&options](const std::string& option, const std::string& value)
+    { options.ReferencePhotons = ParseCount(option, value, 1000, 1e10); });
+  arguments.Value("--reference-ladder",
+    [&options, &ladderGiven](const std::string& option, const std::string& value)
     {
       options.Ladder.clear();
-      for (const auto& count : SplitList(arg, value()))
+      for (const auto& count : SplitList(option, value))
       {
-        options.Ladder.push_back(ParseCount(arg, count, 100, 1e10));
+        options.Ladder.push_back(ParseCount(option, count, 100, 1e10));
       }
       std::sort(options.Ladder.begin(), options.Ladder.end());
       ladderGiven = true;
-    }
-    else if (arg == "--reference-kernel")
+    });
+  arguments.Value("--reference-kernel",
+    [&options](const std::string& option, const std::string& value)
     {
-      options.ReferenceKernel = ParseNumber(arg, value());
+      options.ReferenceKernel = ParseNumber(option, value);
       if (options.ReferenceKernel < 0.25 || options.ReferenceKernel > 64.0)
       {
-        throw UsageError(arg + " expects a radius in [0.25, 64] pixel footprints");
+        throw UsageError(option + " expects a radius in [0.25, 64] pixel footprints");
       }
-    }
-    else if (arg == "--reference-repeats")
+    });
+  arguments.Value("--reference-repeats", Count(options.ReferenceRepeats, 1, 20));
+}
+
+void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Value("--output",
+    [&options](const std::string&, const std::string& value)
     {
-      options.ReferenceRepeats = static_cast<int>(ParseCount(arg, value(), 1, 20));
-    }
-    else if (arg == "--output")
-    {
-      options.Output = value();
+      options.Output = value;
       if (options.Output.empty())
       {
         throw UsageError("--output needs a folder name");
       }
-    }
-    else if (arg == "--no-plot")
-    {
-      options.Plot = false;
-    }
-    else if (arg == "--images")
-    {
-      options.Images = true;
-    }
-    else if (arg == "--python")
-    {
-      options.Python = value();
-    }
-    else if (arg == "--update-docs")
-    {
-      options.UpdateDocs = true;
-    }
-    else if (arg == "--docs")
-    {
-      options.Docs = value();
-    }
-    else if (arg == "--smoke")
-    {
-      options.Smoke = true;
-    }
-    else
-    {
-      throw UsageError("unknown option '" + arg + "' (see --help)");
-    }
-  }
-  if (options.Smoke)
+    });
+  arguments.Flag("--no-plot", [&options] { options.Plot = false; });
+  arguments.Flag("--images", [&options] { options.Images = true; });
+  arguments.Value("--python",
+    [&options](const std::string&, const std::string& value) { options.Python = value; });
+  arguments.Flag("--update-docs", [&options] { options.UpdateDocs = true; });
+  arguments.Value("--docs",
+    [&options](const std::string&, const std::string& value) { options.Docs = value; });
+  arguments.Flag("--smoke", [&options] { options.Smoke = true; });
+}
+
+/** --smoke: the first scene at 64 x 64, few frames, a small reference and ladder. */
+void ApplySmoke(Options& options, bool ladderGiven)
+{
+  if (options.UpdateDocs)
   {
-    if (options.UpdateDocs)
-    {
-      throw UsageError("--update-docs cannot be combined with --smoke (the docs show full runs)");
-    }
-    options.Scenes.resize(1);
-    options.Size = 64;
-    options.Warmup = 1;
-    options.Frames = 2;
-    options.ReferencePhotons = 1e5;
-    if (!ladderGiven)
-    {
-      options.Ladder = { 1e4, 3e4 };
-    }
-    options.ReferenceRepeats = 1;
+    throw UsageError("--update-docs cannot be combined with --smoke (the docs show full runs)");
   }
+  options.Scenes.resize(1);
+  options.Size = 64;
+  options.Warmup = 1;
+  options.Frames = 2;
+  options.ReferencePhotons = 1e5;
+  if (!ladderGiven)
+  {
+    options.Ladder = { 1e4, 3e4 };
+  }
+  options.ReferenceRepeats = 1;
+}
+
+void CheckLadder(const Options& options)
+{
   for (double count : options.Ladder)
   {
     if (count >= options.ReferencePhotons)
@@ -564,20 +496,45 @@ Options Parse(int argc, char* argv[])
       throw UsageError(message.str());
     }
   }
-  if (options.Python.empty())
+}
+
+/** $CAUSTICS_PYTHON, else Debian's python3 (it has python3-matplotlib), else python3. */
+std::string DefaultPython()
+{
+  const char* fromEnvironment = std::getenv("CAUSTICS_PYTHON");
+  if (fromEnvironment && *fromEnvironment)
   {
-    // Debian's python3 has python3-matplotlib; a python3 earlier on PATH may not.
-    const char* fromEnvironment = std::getenv("CAUSTICS_PYTHON");
-    if (fromEnvironment && *fromEnvironment)
-    {
-      options.Python = fromEnvironment;
-    }
-    else
-    {
-      const bool debian = vtksys::SystemTools::FileExists("/usr/bin/python3");
-      options.Python = debian ? "/usr/bin/python3" : "python3";
-    }
+    return fromEnvironment;
   }
+  return vtksys::SystemTools::FileExists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+Options Parse(int argc, char* argv[])
+{
+  Options options;
+  options.Scenes = vtkCausticsBuiltinScene::GetSceneNames();
+  options.Techniques = DefaultTechniques();
+  for (int i = 0; i < argc; ++i)
+  {
+    options.CommandLine += (i ? " " : "") + ShellQuote(argv[i]);
+  }
+  bool ladderGiven = false;
+  caustics_cli::Arguments arguments;
+  arguments.Flag("--help", [&options] { options.Help = true; });
+  arguments.Flag("-h", [&options] { options.Help = true; });
+  DeclareSelectionOptions(arguments, options);
+  DeclareMeasurementOptions(arguments, options, ladderGiven);
+  DeclareOutputOptions(arguments, options);
+  for (const auto& positional : arguments.Parse(argc, argv))
+  {
+    throw UsageError("unknown option '" + positional + "' (see --help)");
+  }
+  if (options.Smoke)
+  {
+    ApplySmoke(options, ladderGiven);
+  }
+  CheckLadder(options);
+  options.Python = options.Python.empty() ? DefaultPython() : options.Python;
   if (options.Docs.empty())
   {
     options.Docs = std::string(CAUSTICS_SOURCE_DIR) + "/docs/benchmarks.md";
