@@ -40,6 +40,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -650,12 +651,30 @@ void DescribeGL(vtkRenderWindow* window, Machine& machine)
 // Measurements.
 // ---------------------------------------------------------------------------
 
-/** Median times of one stage. GPU is NaN for CPU-only stages (the reference). */
+/**
+ * Median times of one stage. GPU is NaN for CPU-only stages (the reference). Its
+ * throughput comes from the counted frames after the timed ones (CountWork): the
+ * stage's wall time there (its CPU time between glFinish brackets) and its work.
+ */
 struct Stage
 {
   std::string Name;
   double GPUMilliseconds = NaN;
   double CPUMilliseconds = NaN;
+  double CountedMilliseconds = NaN; // median wall time in the counted frames
+  long long Fragments = -1;         // fragments written (splat, line fragments, ...)
+  long long Invocations = -1;       // compute shader invocations
+  long long Primitives = -1;        // points, lines, triangles drawn
+  double Photons = NaN;             // photons offered to the stage, where known
+
+  /** `count` per second of the stage's counted wall time; NaN when either is unknown. */
+  double PerSecond(double count) const
+  {
+    return count >= 0.0 && this->CountedMilliseconds > 0.0
+      ? count / (this->CountedMilliseconds / 1000.0)
+      : NaN;
+  }
+  bool HasWork() const { return this->Fragments > 0 || this->Invocations > 0 || this->Photons > 0; }
 };
 
 /** One row of benchmarks.csv: a configuration of a technique, or a reference run. */
@@ -854,6 +873,61 @@ void WriteIrradiance(const Options& options, vtkImageData* image, std::string na
 }
 
 /**
+ * Photons offered to a stage, where known: the photon grid of one light (N x N
+ * light-buffer texels) for the per-light stages that take every photon of the grid
+ * (emission, the caustic map's trace, the first bounce's line tracing); NaN elsewhere.
+ */
+double PhotonsOfStage(const std::string& name, int grid)
+{
+  auto endsWith = [&name](const std::string& end)
+  { return name.size() >= end.size() && name.compare(name.size() - end.size(), end.size(), end) == 0; };
+  const bool perPhoton = endsWith("emission") || name == "hcm emit" || name == "hcm trace" ||
+    endsWith("bounce 1 line tracing");
+  return perPhoton ? static_cast<double>(grid) * grid : NaN;
+}
+
+/**
+ * Frames after the timed ones with vtkCausticsTimings::CountWork on (it waits at
+ * every stage boundary, so these frames are not timed): each stage's median wall
+ * time in them and the work of the last one, for its throughput.
+ */
+void CountStageWork(
+  const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass, std::vector<Stage>& stages)
+{
+  vtkCausticsTimings* timings = pass->GetTimings();
+  timings->CountWorkOn();
+  std::map<std::string, std::vector<double>> wall;
+  std::map<std::string, std::array<long long, 3>> work;
+  for (int frame = 0; frame < (options.Smoke ? 1 : 3); ++frame)
+  {
+    window->Render();
+    window->WaitForCompletion();
+    for (int s = 0; s < timings->GetNumberOfStages(); ++s)
+    {
+      if (timings->GetStageTimedOnGPU(s))
+      {
+        wall[timings->GetStageName(s)].push_back(timings->GetStageCPUMilliseconds(s));
+        work[timings->GetStageName(s)] = { timings->GetStageWork(s, vtkCausticsTimings::FRAGMENTS_WRITTEN),
+          timings->GetStageWork(s, vtkCausticsTimings::COMPUTE_SHADER_INVOCATIONS),
+          timings->GetStageWork(s, vtkCausticsTimings::PRIMITIVES_SUBMITTED) };
+      }
+    }
+  }
+  timings->CountWorkOff();
+  for (Stage& stage : stages)
+  {
+    if (work.count(stage.Name))
+    {
+      stage.CountedMilliseconds = Median(wall[stage.Name]);
+      stage.Fragments = work[stage.Name][0];
+      stage.Invocations = work[stage.Name][1];
+      stage.Primitives = work[stage.Name][2];
+      stage.Photons = PhotonsOfStage(stage.Name, pass->GetLightBufferResolution());
+    }
+  }
+}
+
+/**
  * One configuration: a new pass of the technique with the configuration applied;
  * Warmup untimed frames, then Frames timed ones (each: Render and wait for the GPU to
  * finish; stage GPU times from synchronous timer queries); the last frame's caustic
@@ -940,6 +1014,7 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
       {
         row.Status = "no caustic stage ran";
       }
+      CountStageWork(options, window, pass, row.Stages);
     }
     catch (const std::exception& e)
     {
@@ -1007,12 +1082,18 @@ public:
     };
     this->RowsPath = folder + "/benchmarks.csv";
     this->StagesPath = folder + "/benchmark-stages.csv";
+    this->ThroughputPath = folder + "/benchmark-throughput.csv";
     open(this->Rows, this->RowsPath);
     open(this->Stages, this->StagesPath);
+    open(this->Throughput, this->ThroughputPath);
     // Units: ms per frame (reference: per render), error columns as in docs/accuracy.md.
     this->Rows << "scene,technique,knobs,width,height,frames,wall_ms,gpu_ms,rel_l2,flux_ratio,"
                   "peak_error_px,psnr_db,rmse,nonfinite_px,compared_px,status\n";
     this->Stages << "scene,technique,knobs,stage,gpu_ms,cpu_ms\n";
+    // Work of one counted frame; rates per second of the stage's counted wall time.
+    this->Throughput << "scene,technique,knobs,stage,counted_wall_ms,fragments,compute_invocations,"
+                        "primitives,photons,fragments_per_s,invocations_per_s,primitives_per_s,"
+                        "photons_per_s\n";
   }
   void Write(const Row& row, int size)
   {
@@ -1032,17 +1113,40 @@ public:
                    << (std::isnan(stage.GPUMilliseconds) ? "" : Number(stage.GPUMilliseconds))
                    << ',' << Number(stage.CPUMilliseconds) << '\n';
     }
+    this->WriteThroughput(row);
     this->Rows.flush();
     this->Stages.flush();
-    if (!this->Rows || !this->Stages)
+    this->Throughput.flush();
+    if (!this->Rows || !this->Stages || !this->Throughput)
     {
       throw std::runtime_error("cannot write " + this->RowsPath + " (disk full?)");
     }
   }
-  std::string RowsPath, StagesPath;
+  std::string RowsPath, StagesPath, ThroughputPath;
 
 private:
-  std::ofstream Rows, Stages;
+  void WriteThroughput(const Row& row)
+  {
+    auto count = [](long long value) { return value < 0 ? std::string() : std::to_string(value); };
+    for (const auto& stage : row.Stages)
+    {
+      if (std::isnan(stage.CountedMilliseconds))
+      {
+        continue;
+      }
+      this->Throughput << CSVField(row.Scene) << ',' << CSVField(row.Technique) << ','
+                       << CSVField(row.Knobs) << ',' << CSVField(stage.Name) << ','
+                       << Number(stage.CountedMilliseconds) << ',' << count(stage.Fragments) << ','
+                       << count(stage.Invocations) << ',' << count(stage.Primitives) << ','
+                       << (std::isnan(stage.Photons) ? "" : Number(stage.Photons)) << ','
+                       << Number(stage.PerSecond(stage.Fragments)) << ','
+                       << Number(stage.PerSecond(stage.Invocations)) << ','
+                       << Number(stage.PerSecond(stage.Primitives)) << ','
+                       << Number(stage.PerSecond(stage.Photons)) << '\n';
+    }
+  }
+
+  std::ofstream Rows, Stages, Throughput;
 };
 
 /**
@@ -1335,6 +1439,32 @@ void UpdateDocs(const std::string& path, const std::string& section)
 // The run.
 // ---------------------------------------------------------------------------
 
+/** "12.3 M" (or "-" when not a finite number). */
+std::string Rate(double perSecond)
+{
+  return std::isfinite(perSecond) ? Fixed(perSecond / 1e6, perSecond >= 1e7 ? 1 : 2) + " M" : "-";
+}
+
+/** Each stage that did counted work: its time beside its throughput. */
+void PrintThroughput(const Row& row)
+{
+  for (const auto& stage : row.Stages)
+  {
+    if (std::isnan(stage.CountedMilliseconds) || !stage.HasWork())
+    {
+      continue;
+    }
+    std::cout << "      " << std::left << std::setw(36) << stage.Name << std::right << std::setw(9)
+              << FormatTime(stage.GPUMilliseconds) << " gpu" << std::setw(10)
+              << FormatTime(stage.CountedMilliseconds) << " counted  "
+              << Rate(stage.PerSecond(stage.Fragments)) << " fragments/s  "
+              << Rate(stage.PerSecond(stage.Invocations)) << " invocations/s  "
+              << Rate(stage.PerSecond(stage.Primitives)) << " primitives/s"
+              << (std::isnan(stage.Photons) ? "" : "  " + Rate(stage.PerSecond(stage.Photons)) + " photons/s")
+              << std::endl;
+  }
+}
+
 void PrintRow(const Row& row)
 {
   std::cout << "  " << std::left << std::setw(13) << row.Technique << std::setw(34) << row.Knobs
@@ -1342,6 +1472,7 @@ void PrintRow(const Row& row)
             << "  gpu " << std::setw(9) << FormatTime(row.GPUMilliseconds) << "  relL2 "
             << Fixed(row.Error.RelativeL2Error, 4) << "  flux " << Fixed(row.Error.FluxRatio, 3)
             << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
+  PrintThroughput(row);
 }
 
 int Run(const Options& options, OneLineOutputWindow* messages)
@@ -1453,7 +1584,8 @@ int Run(const Options& options, OneLineOutputWindow* messages)
     }
     window->RemoveRenderer(renderer);
   }
-  std::cout << "wrote " << csv.RowsPath << " and " << csv.StagesPath << std::endl;
+  std::cout << "wrote " << csv.RowsPath << ", " << csv.StagesPath << " and " << csv.ThroughputPath
+            << std::endl;
 
   std::string plot, plotSkipped = "--no-plot";
   if (options.Plot)
