@@ -44,7 +44,8 @@ inline double ParseNumber(const std::string& option, const std::string& text)
 }
 
 /** An integer in [low, high]; accepts 1e6-style notation (photon counts). */
-inline double ParseCount(const std::string& option, const std::string& text, double low, double high)
+inline double ParseCount(
+  const std::string& option, const std::string& text, double low, double high)
 {
   const double value = ParseNumber(option, text);
   if (value != std::floor(value) || value < low || value > high)
@@ -135,8 +136,8 @@ private:
     ValueHandler Handler;
   };
 
-  void Add(const char* name, vtksys::CommandLineArguments::ArgumentTypeEnum type,
-    ValueHandler handler)
+  void Add(
+    const char* name, vtksys::CommandLineArguments::ArgumentTypeEnum type, ValueHandler handler)
   {
     this->Options.push_back({ this, std::move(handler) });
     // The help string must not be null (vtksys formats its own help as options come).

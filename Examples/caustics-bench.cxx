@@ -50,6 +50,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -98,60 +99,87 @@ std::function<bool(vtkCausticsRenderPass*)> Set(std::function<void(PassType*)> s
 }
 
 /**
- * The sweep of every technique, in the order the CSV and the docs list them. A
- * technique registered in vtkCausticsTechniques without entries here runs once with
- * its defaults (knobs "default").
+ * Screen-space photon tracing (docs/technique-screen-space.md): the photon grid
+ * N x N per light at the default layer cap, then the layer cap at N = 256, then its
+ * splat kernel.
  */
-std::vector<Configuration> MakeConfigurations()
+void AddScreenSpaceConfigurations(std::vector<Configuration>& table)
 {
-  std::vector<Configuration> table;
-
-  // Screen-space photon tracing (docs/technique-screen-space.md): the photon grid
-  // N x N per light at the default layer cap, then the layer cap at N = 256.
-  for (int grid : { 64, 128, 256, 512 })
+  auto add = [&table](int grid, int layers, double splat)
   {
-    table.push_back({ "screen-space", "grid=" + std::to_string(grid) + " layers=8",
+    std::string knobs = "grid=" + std::to_string(grid) + " layers=" + std::to_string(layers);
+    knobs += splat > 0.0 ? " splat=1" : "";
+    table.push_back({ "screen-space", knobs,
       Set<vtkCausticsScreenSpacePhotonPass>(
-        [grid](vtkCausticsScreenSpacePhotonPass* pass)
+        [grid, layers, splat](vtkCausticsScreenSpacePhotonPass* pass)
         {
           pass->SetLightBufferResolution(grid);
-          pass->SetMaximumNumberOfLayers(8);
+          pass->SetMaximumNumberOfLayers(layers);
+          if (splat > 0.0)
+          {
+            pass->SetSplatRadiusPixels(splat);
+          }
         }) });
+  };
+  for (int grid : { 64, 128, 256, 512 })
+  {
+    add(grid, 8, 0.0);
   }
   for (int layers : { 1, 2, 4 })
   {
-    table.push_back({ "screen-space", "grid=256 layers=" + std::to_string(layers),
-      Set<vtkCausticsScreenSpacePhotonPass>(
-        [layers](vtkCausticsScreenSpacePhotonPass* pass)
-        {
-          pass->SetLightBufferResolution(256);
-          pass->SetMaximumNumberOfLayers(layers);
-        }) });
+    add(256, layers, 0.0);
   }
-  // Its splat kernel: the default radius of 2 pixel footprints against 1 (sharper, noisier)
-  // at N = 256 and 512, since the ground truth's own kernel is 1 footprint.
+  // The default radius of 2 pixel footprints against 1 (sharper, noisier) at N = 256
+  // and 512, since the ground truth's own kernel is 1 footprint.
   for (int grid : { 256, 512 })
   {
-    table.push_back({ "screen-space", "grid=" + std::to_string(grid) + " layers=8 splat=1",
-      Set<vtkCausticsScreenSpacePhotonPass>(
-        [grid](vtkCausticsScreenSpacePhotonPass* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetMaximumNumberOfLayers(8);
-          pass->SetSplatRadiusPixels(1.0);
-        }) });
+    add(grid, 8, 1.0);
   }
+}
 
-  // Hierarchical caustic maps (docs/technique-caustic-maps.md): the variants of the
-  // paper's Table 3. The default (hierarchical gather, clustering at the last level,
-  // Eq. 2 splats into the multi-resolution map) over photon buffers 256^2..2048^2;
-  // the baselines and the other clustering variants at 256^2 and 1024^2.
-  using HCM = vtkCausticsHierarchicalCausticMapPass;
-  struct Variant
-  {
-    const char* Name;
-    int Gather, Cluster, Splat;
-  };
+using HCM = vtkCausticsHierarchicalCausticMapPass;
+
+/** A variant of the hierarchical caustic map (the paper's Table 3). */
+struct Variant
+{
+  const char* Name;
+  int Gather, Cluster, Splat;
+};
+
+/**
+ * A caustic-map configuration. map: caustic-map resolution (0: the pass's default);
+ * cameraFloor: its MinimumCameraSplatRadius (the default 1 is not named in the knobs).
+ */
+void AddCausticMap(std::vector<Configuration>& table, int grid, const Variant& variant, int map = 0,
+  double cameraFloor = 1.0)
+{
+  std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
+  knobs += map > 0 ? " map=" + std::to_string(map) : "";
+  knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
+  table.push_back({ "caustic-maps", knobs,
+    Set<HCM>(
+      [grid, variant, map, cameraFloor](HCM* pass)
+      {
+        pass->SetLightBufferResolution(grid);
+        pass->SetGatherMode(variant.Gather);
+        pass->SetClusterMode(variant.Cluster);
+        pass->SetSplatMode(variant.Splat);
+        if (map > 0)
+        {
+          pass->SetCausticMapResolution(map);
+        }
+        pass->SetMinimumCameraSplatRadius(cameraFloor);
+      }) });
+}
+
+/**
+ * Hierarchical caustic maps (docs/technique-caustic-maps.md): the default
+ * (hierarchical gather, clustering at the last level, Eq. 2 splats into the
+ * multi-resolution map) over photon buffers 256^2..2048^2; the baselines and the
+ * other clustering variants at 256^2 and 1024^2; then the map's own resolution.
+ */
+void AddCausticMapConfigurations(std::vector<Configuration>& table)
+{
   const Variant defaultVariant = { "varying-multires", HCM::GATHER_HIERARCHICAL,
     HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_VARYING_MULTIRES };
   const Variant variants[] = {
@@ -160,38 +188,15 @@ std::vector<Configuration> MakeConfigurations()
     { "combine-last", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_CONSTANT },
     { "combine-all", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_ALL_LEVELS, HCM::SPLAT_CONSTANT },
   };
-  // map: caustic-map resolution (0: the pass's default); cameraFloor: its
-  // MinimumCameraSplatRadius (the default 1 is not named in the knobs).
-  auto addCausticMap = [&table](
-                         int grid, const Variant& variant, int map = 0, double cameraFloor = 1.0)
-  {
-    std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
-    knobs += map > 0 ? " map=" + std::to_string(map) : "";
-    knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
-    table.push_back({ "caustic-maps", knobs,
-      Set<HCM>(
-        [grid, variant, map, cameraFloor](HCM* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetGatherMode(variant.Gather);
-          pass->SetClusterMode(variant.Cluster);
-          pass->SetSplatMode(variant.Splat);
-          if (map > 0)
-          {
-            pass->SetCausticMapResolution(map);
-          }
-          pass->SetMinimumCameraSplatRadius(cameraFloor);
-        }) });
-  };
   for (int grid : { 256, 512, 1024, 2048 })
   {
-    addCausticMap(grid, defaultVariant);
+    AddCausticMap(table, grid, defaultVariant);
   }
   for (int grid : { 256, 1024 })
   {
     for (const Variant& variant : variants)
     {
-      addCausticMap(grid, variant);
+      AddCausticMap(table, grid, variant);
     }
   }
   // The caustic map's own resolution (the default 512^2 texels over the light's view of
@@ -207,10 +212,21 @@ std::vector<Configuration> MakeConfigurations()
       {
         continue; // the defaults: "grid=1024 variant=varying-multires" above
       }
-      addCausticMap(1024, defaultVariant, map, cameraFloor);
+      AddCausticMap(table, 1024, defaultVariant, map, cameraFloor);
     }
   }
+}
 
+/**
+ * The sweep of every technique, in the order the CSV and the docs list them. A
+ * technique registered in vtkCausticsTechniques without entries here runs once with
+ * its defaults (knobs "default").
+ */
+std::vector<Configuration> MakeConfigurations()
+{
+  std::vector<Configuration> table;
+  AddScreenSpaceConfigurations(table);
+  AddCausticMapConfigurations(table);
   // "none": the shared stages (snapshot, VTK delegate, G-buffers, light buffers,
   // composite) with no technique. Its cost at each photon-grid size the techniques
   // use is their cost floor; its error (1: no caustic light) is the ceiling.
@@ -241,6 +257,8 @@ Selection:
   --scenes A,B,...           built-in scenes (default: ball-lens,pool,ring,bunny)
   --techniques A,B,...       techniques (default: every registered one, then none)
   --list                     print the scenes, techniques and configurations, and exit
+  --defaults                 each technique once with its own defaults (knobs
+                             "default") instead of its configurations
 
 Measurement:
   --size N                   image size N x N pixels, 16..4096 (default 256)
@@ -299,6 +317,7 @@ struct Options
   bool UpdateDocs = false;
   std::string Docs;
   bool Smoke = false;
+  bool Defaults = false;
   bool List = false;
   bool Help = false;
   std::string CommandLine;
@@ -384,6 +403,7 @@ caustics_cli::Arguments::ValueHandler Count(int& field, double low, double high)
 void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& options)
 {
   arguments.Flag("--list", [&options] { options.List = true; });
+  arguments.Flag("--defaults", [&options] { options.Defaults = true; });
   arguments.Value("--scenes",
     [&options](const std::string& option, const std::string& value)
     {
@@ -413,12 +433,14 @@ void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& option
     });
 }
 
-void DeclareMeasurementOptions(caustics_cli::Arguments& arguments, Options& options, bool& ladderGiven)
+void DeclareMeasurementOptions(
+  caustics_cli::Arguments& arguments, Options& options, bool& ladderGiven)
 {
   arguments.Value("--size", Count(options.Size, 16, 4096));
   arguments.Value("--frames", Count(options.Frames, 5, 1000));
   arguments.Value("--warmup", Count(options.Warmup, 2, 100));
-  arguments.Value("--reference-photons", [&options](const std::string& option, const std::string& value)
+  arguments.Value("--reference-photons",
+    [&options](const std::string& option, const std::string& value)
     { options.ReferencePhotons = ParseCount(option, value, 1000, 1e10); });
   arguments.Value("--reference-ladder",
     [&options, &ladderGiven](const std::string& option, const std::string& value)
@@ -459,8 +481,8 @@ void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
   arguments.Value("--python",
     [&options](const std::string&, const std::string& value) { options.Python = value; });
   arguments.Flag("--update-docs", [&options] { options.UpdateDocs = true; });
-  arguments.Value("--docs",
-    [&options](const std::string&, const std::string& value) { options.Docs = value; });
+  arguments.Value(
+    "--docs", [&options](const std::string&, const std::string& value) { options.Docs = value; });
   arguments.Flag("--smoke", [&options] { options.Smoke = true; });
 }
 
@@ -880,7 +902,10 @@ void WriteIrradiance(const Options& options, vtkImageData* image, std::string na
 double PhotonsOfStage(const std::string& name, int grid)
 {
   auto endsWith = [&name](const std::string& end)
-  { return name.size() >= end.size() && name.compare(name.size() - end.size(), end.size(), end) == 0; };
+  {
+    return name.size() >= end.size() &&
+      name.compare(name.size() - end.size(), end.size(), end) == 0;
+  };
   const bool perPhoton = endsWith("emission") || name == "hcm emit" || name == "hcm trace" ||
     endsWith("bounce 1 line tracing");
   return perPhoton ? static_cast<double>(grid) * grid : NaN;
@@ -891,8 +916,8 @@ double PhotonsOfStage(const std::string& name, int grid)
  * every stage boundary, so these frames are not timed): each stage's median wall
  * time in them and the work of the last one, for its throughput.
  */
-void CountStageWork(
-  const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass, std::vector<Stage>& stages)
+void CountStageWork(const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass,
+  std::vector<Stage>& stages)
 {
   vtkCausticsTimings* timings = pass->GetTimings();
   timings->CountWorkOn();
@@ -907,7 +932,8 @@ void CountStageWork(
       if (timings->GetStageTimedOnGPU(s))
       {
         wall[timings->GetStageName(s)].push_back(timings->GetStageCPUMilliseconds(s));
-        work[timings->GetStageName(s)] = { timings->GetStageWork(s, vtkCausticsTimings::FRAGMENTS_WRITTEN),
+        work[timings->GetStageName(s)] = { timings->GetStageWork(
+                                             s, vtkCausticsTimings::FRAGMENTS_WRITTEN),
           timings->GetStageWork(s, vtkCausticsTimings::COMPUTE_SHADER_INVOCATIONS),
           timings->GetStageWork(s, vtkCausticsTimings::PRIMITIVES_SUBMITTED) };
       }
@@ -927,20 +953,9 @@ void CountStageWork(
   }
 }
 
-/**
- * One configuration: a new pass of the technique with the configuration applied;
- * Warmup untimed frames, then Frames timed ones (each: Render and wait for the GPU to
- * finish; stage GPU times from synchronous timer queries); the last frame's caustic
- * irradiance against the ground truth.
- */
-Row MeasureConfiguration(const Options& options, const std::string& scene,
-  const Configuration& configuration, vtkRenderWindow* window, vtkOpenGLRenderer* renderer,
-  vtkImageData* truth, OneLineOutputWindow* messages)
+/** A new pass of the configuration's technique with the configuration applied. */
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Configuration& configuration)
 {
-  Row row;
-  row.Scene = scene;
-  row.Technique = configuration.Technique;
-  row.Knobs = configuration.Knobs;
   vtkSmartPointer<vtkCausticsRenderPass> pass =
     vtkCausticsTechniques::Create(configuration.Technique);
   if (!configuration.Apply(pass))
@@ -949,11 +964,20 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
       configuration.Technique + "' than " + pass->GetClassName());
   }
   pass->GetTimings()->SynchronousOn();
-  renderer->SetPass(pass);
+  return pass;
+}
 
+/**
+ * Warmup untimed frames, then Frames timed ones (each: Render and wait for the GPU
+ * to finish; stage GPU times from synchronous timer queries): the row's medians.
+ */
+void TimeFrames(
+  const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass, Row& row)
+{
   std::vector<double> wall, gpuTotal;
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> gpu, cpu;
+  vtkCausticsTimings* timings = pass->GetTimings();
   for (int frame = 0; frame < options.Warmup + options.Frames; ++frame)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -965,7 +989,6 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
       continue;
     }
     wall.push_back(elapsed);
-    vtkCausticsTimings* timings = pass->GetTimings();
     double total = 0.0;
     for (int s = 0; s < timings->GetNumberOfStages(); ++s)
     {
@@ -979,15 +1002,12 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
         order.push_back(name);
       }
       cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
-      if (!timings->GetStageTimedOnGPU(s))
-      {
-        gpu[name].push_back(NaN); // CPU work (e.g. the scene snapshot): no GPU time
-        continue;
-      }
+      // CPU work (e.g. the scene snapshot) has no GPU time; -1: the timer query had no
+      // result (it would wrongly lower the total).
       const double milliseconds = timings->GetStageGPUMilliseconds(s);
-      // -1: the timer query had no result (it would wrongly lower the total).
-      gpu[name].push_back(milliseconds >= 0.0 ? milliseconds : NaN);
-      total += gpu[name].back();
+      gpu[name].push_back(
+        timings->GetStageTimedOnGPU(s) && milliseconds >= 0.0 ? milliseconds : NaN);
+      total += timings->GetStageTimedOnGPU(s) ? gpu[name].back() : 0.0;
     }
     gpuTotal.push_back(total);
   }
@@ -998,28 +1018,57 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
   {
     row.Stages.push_back({ name, Median(gpu[name]), Median(cpu[name]) });
   }
+}
+
+/**
+ * The last timed frame's caustic irradiance against the ground truth (and, with
+ * --images, written out); then the counted frames. Returns the error, "" if none.
+ */
+std::string CompareAndCount(const Options& options, const Configuration& configuration,
+  vtkRenderWindow* window, vtkCausticsRenderPass* pass, vtkImageData* truth, Row& row)
+{
+  try
+  {
+    vtkSmartPointer<vtkImageData> irradiance = ReadCausticIrradiance(pass, options.Size);
+    row.Error = CompareWithReference(irradiance, truth);
+    if (options.Images)
+    {
+      WriteIrradiance(
+        options, irradiance, row.Scene + "_" + configuration.Technique + "_" + configuration.Knobs);
+    }
+    if (!pass->GetLastFrameHadCaustics())
+    {
+      row.Status = "no caustic stage ran";
+    }
+    CountStageWork(options, window, pass, row.Stages);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+/**
+ * One configuration: a new pass of the technique with the configuration applied,
+ * its timed frames, the last one's error against the ground truth, then the
+ * counted frames for the stages' throughput.
+ */
+Row MeasureConfiguration(const Options& options, const std::string& scene,
+  const Configuration& configuration, vtkRenderWindow* window, vtkOpenGLRenderer* renderer,
+  vtkImageData* truth, OneLineOutputWindow* messages)
+{
+  Row row;
+  row.Scene = scene;
+  row.Technique = configuration.Technique;
+  row.Knobs = configuration.Knobs;
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(configuration);
+  renderer->SetPass(pass);
+  TimeFrames(options, window, pass, row);
   std::string error = messages->TakeError();
   if (error.empty())
   {
-    try
-    {
-      vtkSmartPointer<vtkImageData> irradiance = ReadCausticIrradiance(pass, options.Size);
-      row.Error = CompareWithReference(irradiance, truth);
-      if (options.Images)
-      {
-        WriteIrradiance(
-          options, irradiance, scene + "_" + configuration.Technique + "_" + configuration.Knobs);
-      }
-      if (!pass->GetLastFrameHadCaustics())
-      {
-        row.Status = "no caustic stage ran";
-      }
-      CountStageWork(options, window, pass, row.Stages);
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
+    error = CompareAndCount(options, configuration, window, pass, truth, row);
   }
   const std::string late = messages->TakeError();
   if (!error.empty() || !late.empty())
@@ -1267,12 +1316,10 @@ std::string OfflineEquivalent(
   return "–";
 }
 
-/** The generated section of docs/benchmarks.md. */
-std::string MakeDocsSection(const Options& options, const Machine& machine,
-  const std::vector<TruthRecord>& truths, const std::vector<Row>& rows, const std::string& plot,
-  const std::string& plotSkipped, double runSeconds)
+/** The generated section's header: the command and a table of the run's conditions. */
+void WriteDocsHeader(std::ostream& md, const Options& options, const Machine& machine,
+  const std::vector<TruthRecord>& truths, double runSeconds)
 {
-  std::ostringstream md;
   std::string cwd = vtksys::SystemTools::GetCurrentWorkingDirectory();
   std::string relative = vtksys::SystemTools::RelativePath(
     vtksys::SystemTools::GetRealPath(CAUSTICS_SOURCE_DIR), vtksys::SystemTools::GetRealPath(cwd));
@@ -1299,85 +1346,108 @@ std::string MakeDocsSection(const Options& options, const Machine& machine,
   md << "| reference ladder | seed 2, cache off, median of up to " << options.ReferenceRepeats
      << " renders per count (fewer once a count took 30 s) |\n";
   md << "| run time | " << Fixed(runSeconds, 0) << " s in all |\n\n";
+}
 
+/** One scene's table of rows: time, error, offline equivalent, Pareto front. */
+void WriteDocsSceneTable(std::ostream& md, const std::vector<const Row*>& sceneRows)
+{
+  std::vector<const Row*> ladder;
+  std::copy_if(sceneRows.begin(), sceneRows.end(), std::back_inserter(ladder),
+    [](const Row* row) { return row->IsReference(); });
+  const std::vector<const Row*> front = ParetoFront(sceneRows);
+  md << "| technique | knobs | wall / frame | GPU / frame | rel. L2 | flux ratio | peak err "
+        "(px) | PSNR (dB) | non-finite px | reference time for this error | speed-up | Pareto "
+        "front |\n";
+  md << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|:-:|\n";
+  for (const Row* row : sceneRows)
+  {
+    const auto& e = row->Error;
+    double speedUp = NaN;
+    const std::string offline = row->IsReference()
+      ? "–"
+      : OfflineEquivalent(ladder, e.RelativeL2Error, row->WallMilliseconds, speedUp);
+    md << "| " << row->Technique << (row->Status == "ok" ? "" : " (" + row->Status + ")") << " | "
+       << row->Knobs << " | " << FormatTime(row->WallMilliseconds) << " | "
+       << FormatTime(row->GPUMilliseconds) << " | " << Fixed(e.RelativeL2Error, 4) << " | "
+       << Fixed(e.FluxRatio, 3) << " | "
+       << (e.TestFlux == 0.0 ? "–" : Fixed(e.PeakPositionError, 1)) << " | " << Fixed(e.PSNR, 1)
+       << " | " << e.NonFinitePixels << " | " << offline << " | "
+       << (std::isnan(speedUp) ? "–" : Fixed(speedUp, 1) + "x") << " | "
+       << (std::count(front.begin(), front.end(), row) ? "◆" : "") << " |\n";
+  }
+}
+
+/** One scene's GPU time per stage (ms, median), one column per stage. */
+void WriteDocsStageTable(std::ostream& md, const std::vector<const Row*>& sceneRows)
+{
+  std::vector<std::string> stageNames;
+  for (const Row* row : sceneRows)
+  {
+    for (const auto& stage : row->Stages)
+    {
+      if (!row->IsReference() &&
+        std::find(stageNames.begin(), stageNames.end(), stage.Name) == stageNames.end())
+      {
+        stageNames.push_back(stage.Name);
+      }
+    }
+  }
+  if (stageNames.empty())
+  {
+    return;
+  }
+  md << "\nGPU time per stage (ms, median):\n\n| technique | knobs |";
+  for (const auto& name : stageNames)
+  {
+    md << " " << name << " |";
+  }
+  md << "\n|---|---|";
+  for (std::size_t i = 0; i < stageNames.size(); ++i)
+  {
+    md << "--:|";
+  }
+  md << "\n";
+  for (const Row* row : sceneRows)
+  {
+    if (row->IsReference())
+    {
+      continue;
+    }
+    md << "| " << row->Technique << " | " << row->Knobs << " |";
+    for (const auto& name : stageNames)
+    {
+      auto stage = std::find_if(
+        row->Stages.begin(), row->Stages.end(), [&](const Stage& s) { return s.Name == name; });
+      md << " "
+         << (stage == row->Stages.end() || std::isnan(stage->GPUMilliseconds)
+                ? "–"
+                : Fixed(stage->GPUMilliseconds, 2))
+         << " |";
+    }
+    md << "\n";
+  }
+}
+
+/** The generated section of docs/benchmarks.md. */
+std::string MakeDocsSection(const Options& options, const Machine& machine,
+  const std::vector<TruthRecord>& truths, const std::vector<Row>& rows, const std::string& plot,
+  const std::string& plotSkipped, double runSeconds)
+{
+  std::ostringstream md;
+  WriteDocsHeader(md, options, machine, truths, runSeconds);
   for (const auto& scene : options.Scenes)
   {
-    std::vector<const Row*> sceneRows, ladder;
+    std::vector<const Row*> sceneRows;
     for (const auto& row : rows)
     {
       if (row.Scene == scene)
       {
         sceneRows.push_back(&row);
-        if (row.IsReference())
-        {
-          ladder.push_back(&row);
-        }
       }
     }
-    const std::vector<const Row*> front = ParetoFront(sceneRows);
     md << "### " << scene << "\n\n";
-    md << "| technique | knobs | wall / frame | GPU / frame | rel. L2 | flux ratio | peak err "
-          "(px) | PSNR (dB) | non-finite px | reference time for this error | speed-up | Pareto "
-          "front |\n";
-    md << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|:-:|\n";
-    std::vector<std::string> stageNames;
-    for (const Row* row : sceneRows)
-    {
-      const auto& e = row->Error;
-      double speedUp = NaN;
-      const std::string offline = row->IsReference()
-        ? "–"
-        : OfflineEquivalent(ladder, e.RelativeL2Error, row->WallMilliseconds, speedUp);
-      md << "| " << row->Technique << (row->Status == "ok" ? "" : " (" + row->Status + ")") << " | "
-         << row->Knobs << " | " << FormatTime(row->WallMilliseconds) << " | "
-         << FormatTime(row->GPUMilliseconds) << " | " << Fixed(e.RelativeL2Error, 4) << " | "
-         << Fixed(e.FluxRatio, 3) << " | "
-         << (e.TestFlux == 0.0 ? "–" : Fixed(e.PeakPositionError, 1)) << " | " << Fixed(e.PSNR, 1)
-         << " | " << e.NonFinitePixels << " | " << offline << " | "
-         << (std::isnan(speedUp) ? "–" : Fixed(speedUp, 1) + "x") << " | "
-         << (std::count(front.begin(), front.end(), row) ? "◆" : "") << " |\n";
-      for (const auto& stage : row->Stages)
-      {
-        if (!row->IsReference() &&
-          std::find(stageNames.begin(), stageNames.end(), stage.Name) == stageNames.end())
-        {
-          stageNames.push_back(stage.Name);
-        }
-      }
-    }
-    if (!stageNames.empty())
-    {
-      md << "\nGPU time per stage (ms, median):\n\n| technique | knobs |";
-      for (const auto& name : stageNames)
-      {
-        md << " " << name << " |";
-      }
-      md << "\n|---|---|";
-      for (std::size_t i = 0; i < stageNames.size(); ++i)
-      {
-        md << "--:|";
-      }
-      md << "\n";
-      for (const Row* row : sceneRows)
-      {
-        if (row->IsReference())
-        {
-          continue;
-        }
-        md << "| " << row->Technique << " | " << row->Knobs << " |";
-        for (const auto& name : stageNames)
-        {
-          auto stage = std::find_if(
-            row->Stages.begin(), row->Stages.end(), [&](const Stage& s) { return s.Name == name; });
-          md << " "
-             << (stage == row->Stages.end() || std::isnan(stage->GPUMilliseconds)
-                    ? "–"
-                    : Fixed(stage->GPUMilliseconds, 2))
-             << " |";
-        }
-        md << "\n";
-      }
-    }
+    WriteDocsSceneTable(md, sceneRows);
+    WriteDocsStageTable(md, sceneRows);
     md << "\n";
   }
   if (!plot.empty())
@@ -1460,7 +1530,9 @@ void PrintThroughput(const Row& row)
               << Rate(stage.PerSecond(stage.Fragments)) << " fragments/s  "
               << Rate(stage.PerSecond(stage.Invocations)) << " invocations/s  "
               << Rate(stage.PerSecond(stage.Primitives)) << " primitives/s"
-              << (std::isnan(stage.Photons) ? "" : "  " + Rate(stage.PerSecond(stage.Photons)) + " photons/s")
+              << (std::isnan(stage.Photons)
+                     ? ""
+                     : "  " + Rate(stage.PerSecond(stage.Photons)) + " photons/s")
               << std::endl;
   }
 }
@@ -1475,26 +1547,24 @@ void PrintRow(const Row& row)
   PrintThroughput(row);
 }
 
-int Run(const Options& options, OneLineOutputWindow* messages)
+/** --list: the scenes, the techniques and every technique's configurations. */
+void PrintConfigurations(const std::vector<Configuration>& table)
 {
-  const auto runStart = std::chrono::steady_clock::now();
-  const std::vector<Configuration> table = MakeConfigurations();
-  if (options.List)
+  std::cout << "scenes: " << Join(vtkCausticsBuiltinScene::GetSceneNames()) << "\n"
+            << "techniques:\n"
+            << vtkCausticsTechniques::Describe() << "configurations:\n";
+  for (const auto& technique : DefaultTechniques())
   {
-    std::cout << "scenes: " << Join(vtkCausticsBuiltinScene::GetSceneNames()) << "\n"
-              << "techniques:\n"
-              << vtkCausticsTechniques::Describe() << "configurations:\n";
-    for (const auto& technique : DefaultTechniques())
+    for (const auto& configuration : ConfigurationsOf(technique, table))
     {
-      for (const auto& configuration : ConfigurationsOf(technique, table))
-      {
-        std::cout << "  " << technique << ": " << configuration.Knobs << "\n";
-      }
+      std::cout << "  " << technique << ": " << configuration.Knobs << "\n";
     }
-    return 0;
   }
+}
 
-  // Fail on unwritable output or docs without markers before any work.
+/** Fails on unwritable output or docs without markers before any work. */
+void CheckOutputs(const Options& options)
+{
   if (options.UpdateDocs)
   {
     std::size_t from = 0, to = 0;
@@ -1505,10 +1575,10 @@ int Run(const Options& options, OneLineOutputWindow* messages)
   {
     throw std::runtime_error("cannot create the output folder " + options.Output);
   }
-  CSVWriter csv;
-  csv.Open(options.Output);
+}
 
-  Machine machine = DescribeMachine();
+vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options, Machine& machine)
+{
   std::string how;
   vtkSmartPointer<vtkRenderWindow> window = vtkCausticsWindowFactory::Create(true, &how);
   if (!window)
@@ -1518,98 +1588,146 @@ int Run(const Options& options, OneLineOutputWindow* messages)
   machine.Window = how;
   window->SetMultiSamples(0);
   window->SetSize(options.Size, options.Size);
+  return window;
+}
 
-  std::cout << "caustics-bench: " << Join(options.Scenes) << " x " << Join(options.Techniques)
-            << ", " << options.Size << "x" << options.Size << ", " << options.Frames
-            << " frames after " << options.Warmup << " warm-up, " << machine.CPU << " ("
-            << machine.Threads << " threads), window " << how << std::endl;
+/** What the run measured, for the CSV, the docs and the exit status. */
+struct Results
+{
+  Machine Computer; // this machine and its OpenGL
+  std::vector<Row> Rows;
+  std::vector<TruthRecord> Truths;
+  int Failed = 0;
 
-  std::vector<Row> rows;
-  std::vector<TruthRecord> truths;
-  int failed = 0;
-  for (const auto& scene : options.Scenes)
+  void Add(const Row& row, CSVWriter& csv, int size)
   {
-    vtkNew<vtkOpenGLRenderer> renderer;
-    window->AddRenderer(renderer);
-    vtkNew<vtkCausticsBuiltinScene> builtin;
-    builtin->SetSceneName(scene.c_str());
-    if (!builtin->Populate(renderer))
-    {
-      throw std::runtime_error(builtin->GetLastError());
-    }
-    // The GPU frames and the reference see the same camera, clipping range included.
-    renderer->ResetCameraClippingRange();
-
-    auto truth = MakeReference(
-      renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
-    std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
-              << " photons per light" << std::flush;
-    if (!truth->Update())
-    {
-      throw std::runtime_error(
-        "the reference failed on scene '" + scene + "': " + truth->GetLastError());
-    }
-    messages->TakeError();
-    truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
-      truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
-    std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
-              << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
-
-    for (Row& row : TimeReferenceLadder(options, scene, renderer, truth->GetOutput(), messages))
-    {
-      PrintRow(row);
-      csv.Write(row, options.Size);
-      rows.push_back(row);
-    }
-    for (const auto& technique : options.Techniques)
-    {
-      std::vector<Configuration> configurations = ConfigurationsOf(technique, table);
-      if (options.Smoke)
-      {
-        configurations.resize(1);
-      }
-      for (const auto& configuration : configurations)
-      {
-        Row row = MeasureConfiguration(
-          options, scene, configuration, window, renderer, truth->GetOutput(), messages);
-        if (machine.GLRenderer == "unknown")
-        {
-          DescribeGL(window, machine);
-        }
-        failed += row.Status.rfind("error", 0) == 0 ? 1 : 0;
-        PrintRow(row);
-        csv.Write(row, options.Size);
-        rows.push_back(row);
-      }
-    }
-    window->RemoveRenderer(renderer);
+    this->Failed += row.Status.rfind("error", 0) == 0 ? 1 : 0;
+    PrintRow(row);
+    csv.Write(row, size);
+    this->Rows.push_back(row);
   }
-  std::cout << "wrote " << csv.RowsPath << ", " << csv.StagesPath << " and " << csv.ThroughputPath
-            << std::endl;
+};
 
+/** The scene's ground truth (cached), recorded in `results`. */
+vtkSmartPointer<vtkCausticsReferenceRenderer> MakeGroundTruth(const Options& options,
+  const std::string& scene, vtkRenderer* renderer, Results& results, OneLineOutputWindow* messages)
+{
+  auto truth = MakeReference(
+    renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
+  std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
+            << " photons per light" << std::flush;
+  if (!truth->Update())
+  {
+    throw std::runtime_error(
+      "the reference failed on scene '" + scene + "': " + truth->GetLastError());
+  }
+  messages->TakeError();
+  results.Truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
+    truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
+  std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
+            << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
+  return truth;
+}
+
+/** One scene: its ground truth, the reference ladder, every selected configuration. */
+void MeasureScene(const Options& options, const std::string& scene,
+  const std::vector<Configuration>& table, vtkRenderWindow* window, CSVWriter& csv,
+  Results& results, OneLineOutputWindow* messages)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  builtin->SetSceneName(scene.c_str());
+  if (!builtin->Populate(renderer))
+  {
+    throw std::runtime_error(builtin->GetLastError());
+  }
+  // The GPU frames and the reference see the same camera, clipping range included.
+  renderer->ResetCameraClippingRange();
+  auto truth = MakeGroundTruth(options, scene, renderer, results, messages);
+  for (Row& row : TimeReferenceLadder(options, scene, renderer, truth->GetOutput(), messages))
+  {
+    results.Add(row, csv, options.Size);
+  }
+  for (const auto& technique : options.Techniques)
+  {
+    std::vector<Configuration> configurations =
+      ConfigurationsOf(technique, options.Defaults ? std::vector<Configuration>() : table);
+    if (options.Smoke)
+    {
+      configurations.resize(1);
+    }
+    for (const auto& configuration : configurations)
+    {
+      Row row = MeasureConfiguration(
+        options, scene, configuration, window, renderer, truth->GetOutput(), messages);
+      if (results.Computer.GLRenderer == "unknown")
+      {
+        DescribeGL(window, results.Computer);
+      }
+      results.Add(row, csv, options.Size);
+    }
+  }
+  window->RemoveRenderer(renderer);
+}
+
+/** The plot (unless --no-plot) and, with --update-docs, the docs' generated section. */
+void WritePlotAndDocs(
+  const Options& options, const CSVWriter& csv, const Results& results, double runSeconds)
+{
   std::string plot, plotSkipped = "--no-plot";
   if (options.Plot)
   {
     plot = Plot(options, csv.RowsPath, plotSkipped);
     std::cout << (plot.empty() ? "plot skipped: " + plotSkipped : "wrote " + plot) << std::endl;
   }
-  if (options.UpdateDocs)
+  if (!options.UpdateDocs)
   {
-    const std::string docsFolder = vtksys::SystemTools::GetFilenamePath(options.Docs);
-    if (!plot.empty() && !vtksys::SystemTools::CopyFileAlways(plot, docsFolder + "/benchmarks.png"))
-    {
-      throw std::runtime_error("cannot write " + docsFolder + "/benchmarks.png");
-    }
-    const double runSeconds = Milliseconds(runStart) / 1000.0;
-    UpdateDocs(
-      options.Docs, MakeDocsSection(options, machine, truths, rows, plot, plotSkipped, runSeconds));
-    std::cout << "updated " << options.Docs << (plot.empty() ? "" : " and benchmarks.png")
-              << std::endl;
+    return;
   }
-  if (failed > 0)
+  const std::string docsFolder = vtksys::SystemTools::GetFilenamePath(options.Docs);
+  if (!plot.empty() && !vtksys::SystemTools::CopyFileAlways(plot, docsFolder + "/benchmarks.png"))
   {
-    throw std::runtime_error(std::to_string(failed) + " configuration(s) failed; their rows in " +
-      csv.RowsPath + " say why");
+    throw std::runtime_error("cannot write " + docsFolder + "/benchmarks.png");
+  }
+  UpdateDocs(options.Docs,
+    MakeDocsSection(
+      options, results.Computer, results.Truths, results.Rows, plot, plotSkipped, runSeconds));
+  std::cout << "updated " << options.Docs << (plot.empty() ? "" : " and benchmarks.png")
+            << std::endl;
+}
+
+int Run(const Options& options, OneLineOutputWindow* messages)
+{
+  const auto runStart = std::chrono::steady_clock::now();
+  const std::vector<Configuration> table = MakeConfigurations();
+  if (options.List)
+  {
+    PrintConfigurations(table);
+    return 0;
+  }
+  CheckOutputs(options);
+  CSVWriter csv;
+  csv.Open(options.Output);
+  Results results;
+  results.Computer = DescribeMachine();
+  vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options, results.Computer);
+  std::cout << "caustics-bench: " << Join(options.Scenes) << " x " << Join(options.Techniques)
+            << ", " << options.Size << "x" << options.Size << ", " << options.Frames
+            << " frames after " << options.Warmup << " warm-up, " << results.Computer.CPU << " ("
+            << results.Computer.Threads << " threads), window " << results.Computer.Window
+            << std::endl;
+  for (const auto& scene : options.Scenes)
+  {
+    MeasureScene(options, scene, table, window, csv, results, messages);
+  }
+  std::cout << "wrote " << csv.RowsPath << ", " << csv.StagesPath << " and " << csv.ThroughputPath
+            << std::endl;
+  WritePlotAndDocs(options, csv, results, Milliseconds(runStart) / 1000.0);
+  if (results.Failed > 0)
+  {
+    throw std::runtime_error(std::to_string(results.Failed) +
+      " configuration(s) failed; their rows in " + csv.RowsPath + " say why");
   }
   return 0;
 }

@@ -80,15 +80,20 @@ Options Parse(int argc, char* argv[])
   using caustics_cli::ParseInteger;
   arguments.Flag("--help", [&] { options.Help = true; });
   arguments.Flag("-h", [&] { options.Help = true; });
-  arguments.Value("--size", [&](const std::string& option, const std::string& value)
+  arguments.Value("--size",
+    [&](const std::string& option, const std::string& value)
     { options.Size = ParseInteger(option, value, 16, 4096); });
-  arguments.Value("--splats", [&](const std::string& option, const std::string& value)
+  arguments.Value("--splats",
+    [&](const std::string& option, const std::string& value)
     { options.Splats = static_cast<int>(caustics_cli::ParseCount(option, value, 1, 1e8)); });
-  arguments.Value("--lines", [&](const std::string& option, const std::string& value)
+  arguments.Value("--lines",
+    [&](const std::string& option, const std::string& value)
     { options.Lines = ParseInteger(option, value, 1, 16384); });
-  arguments.Value("--line-length", [&](const std::string& option, const std::string& value)
+  arguments.Value("--line-length",
+    [&](const std::string& option, const std::string& value)
     { options.LineLength = ParseInteger(option, value, 1, 16384); });
-  arguments.Value("--repeats", [&](const std::string& option, const std::string& value)
+  arguments.Value("--repeats",
+    [&](const std::string& option, const std::string& value)
     { options.Repeats = ParseInteger(option, value, 1, 100); });
   for (const auto& positional : arguments.Parse(argc, argv))
   {
@@ -153,8 +158,7 @@ struct Target
     glTextureStorage2D(this->Texture, 1, format, width, height);
     glCreateFramebuffers(1, &this->Framebuffer);
     glNamedFramebufferTexture(this->Framebuffer, GL_COLOR_ATTACHMENT0, this->Texture, 0);
-    if (glCheckNamedFramebufferStatus(this->Framebuffer, GL_FRAMEBUFFER) !=
-      GL_FRAMEBUFFER_COMPLETE)
+    if (glCheckNamedFramebufferStatus(this->Framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     {
       throw std::runtime_error("a render target is incomplete");
     }
@@ -224,10 +228,10 @@ void main()
 struct Ceiling
 {
   std::string Name;
-  std::string Unit;          // what the rate counts: "splats", "fragments"
-  long long Primitives = 0;  // drawn per repeat
-  long long Fragments = 0;   // expected per repeat
-  long long Counted = -1;    // counted by vtkCausticsTimings (-1: no counters)
+  std::string Unit;         // what the rate counts: "splats", "fragments"
+  long long Primitives = 0; // drawn per repeat
+  long long Fragments = 0;  // expected per repeat
+  long long Counted = -1;   // counted by vtkCausticsTimings (-1: no counters)
   std::vector<double> Seconds;
   std::function<void()> Draw;
   double PerSecond() const;
@@ -292,7 +296,8 @@ struct LineScene
     glCreateVertexArrays(1, &this->VertexArray);
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &this->Layers);
     glTextureStorage3D(this->Layers, 1, GL_RGBA32F, options.Size, options.Size, 8);
-    const std::vector<float> texels(static_cast<std::size_t>(options.Size) * options.Size * 4, 0.5f);
+    const std::vector<float> texels(
+      static_cast<std::size_t>(options.Size) * options.Size * 4, 0.5f);
     for (int layer = 0; layer < 8; ++layer)
     {
       glTextureSubImage3D(this->Layers, 0, 0, 0, layer, options.Size, options.Size, 1, GL_RGBA,
@@ -347,8 +352,8 @@ vtkSmartPointer<vtkOpenGLRenderWindow> MakeContext(std::string& how)
   glWindow->GetOpenGLVersion(major, minor);
   if (major * 10 + minor < 45)
   {
-    throw std::runtime_error("needs OpenGL 4.5; this context is " + std::to_string(major) + "." +
-      std::to_string(minor));
+    throw std::runtime_error(
+      "needs OpenGL 4.5; this context is " + std::to_string(major) + "." + std::to_string(minor));
   }
   return glWindow;
 }
@@ -442,15 +447,16 @@ void PrintTable(const std::vector<Ceiling>& ceilings, const std::string& how, in
             << (threads ? threads : "unset") << "; median of " << repeats << " repeat(s)\n";
   std::cout << std::left << std::setw(44) << "ceiling" << std::right << std::setw(12)
             << "primitives" << std::setw(12) << "fragments" << std::setw(12) << "counted"
-            << std::setw(11) << "median ms" << "  rate\n";
+            << std::setw(11) << "median ms"
+            << "  rate\n";
   for (const Ceiling& ceiling : ceilings)
   {
     std::cout << std::left << std::setw(44) << ceiling.Name << std::right << std::setw(12)
               << ceiling.Primitives << std::setw(12) << ceiling.Fragments << std::setw(12)
               << (ceiling.Counted < 0 ? std::string("-") : std::to_string(ceiling.Counted))
               << std::setw(11) << std::fixed << std::setprecision(2)
-              << 1000.0 * Median(ceiling.Seconds) << "  " << Millions(ceiling.PerSecond())
-              << " " << ceiling.Unit << "/s\n";
+              << 1000.0 * Median(ceiling.Seconds) << "  " << Millions(ceiling.PerSecond()) << " "
+              << ceiling.Unit << "/s\n";
   }
 }
 

@@ -183,26 +183,30 @@ void DeclareSceneOptions(caustics_cli::Arguments& arguments, Options& options, b
         throw UsageError("--ior must be >= 1 (vacuum), got " + value);
       }
     });
-  arguments.Value("--time", [&options](const std::string& option, const std::string& value)
+  arguments.Value("--time",
+    [&options](const std::string& option, const std::string& value)
     { options.Time = ParseNumber(option, value); });
-  arguments.Value("--camera-index", [&options](const std::string& option, const std::string& value)
+  arguments.Value("--camera-index",
+    [&options](const std::string& option, const std::string& value)
     { options.CameraIndex = ParseInteger(option, value, -1, 1 << 20); });
 }
 
 void DeclareQualityOptions(caustics_cli::Arguments& arguments, Options& options)
 {
   arguments.Value("--technique", Text(options.Technique));
-  arguments.Value("--photons", [&options](const std::string& option, const std::string& value)
+  arguments.Value("--photons",
+    [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
   arguments.Value("--size",
     [&options](const std::string& option, const std::string& value)
     {
       const auto x = value.find('x');
       options.Width = ParseInteger(option, value.substr(0, x), 1, 16384);
-      options.Height =
-        x == std::string::npos ? options.Width : ParseInteger(option, value.substr(x + 1), 1, 16384);
+      options.Height = x == std::string::npos ? options.Width
+                                              : ParseInteger(option, value.substr(x + 1), 1, 16384);
     });
-  arguments.Value("--frames", [&options](const std::string& option, const std::string& value)
+  arguments.Value("--frames",
+    [&options](const std::string& option, const std::string& value)
     { options.Frames = ParseInteger(option, value, 1, 10000); });
 }
 
@@ -357,6 +361,21 @@ void StageMesh(vtkRenderer* renderer, vtkActor* mesh)
   renderer->ResetCameraClippingRange();
 }
 
+/** --ior on every refractor: glTF ones too (built-ins and meshes take it when loaded). */
+void ApplyRefractiveIndex(vtkRenderer* renderer, double ior)
+{
+  vtkActorCollection* actors = renderer->GetActors();
+  vtkCollectionSimpleIterator it;
+  actors->InitTraversal(it);
+  while (vtkActor* actor = actors->GetNextActor(it))
+  {
+    if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
+    {
+      actor->GetProperty()->SetBaseIOR(ior);
+    }
+  }
+}
+
 void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* renderer,
   vtkCausticsBuiltinScene* builtin)
 {
@@ -422,17 +441,7 @@ void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* ren
   }
   if (options.IOR > 0.0)
   {
-    // Applies to glTF refractors too (built-ins and meshes took it above).
-    vtkActorCollection* actors = renderer->GetActors();
-    vtkCollectionSimpleIterator it;
-    actors->InitTraversal(it);
-    while (vtkActor* actor = actors->GetNextActor(it))
-    {
-      if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
-      {
-        actor->GetProperty()->SetBaseIOR(options.IOR);
-      }
-    }
+    ApplyRefractiveIndex(renderer, options.IOR);
   }
 }
 
@@ -611,7 +620,8 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Options& options)
   return pass;
 }
 
-StageTimes RenderFrames(const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass)
+StageTimes RenderFrames(
+  const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass)
 {
   StageTimes times;
   for (int frame = 0; frame < options.Frames; ++frame)
@@ -691,13 +701,13 @@ void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std
 
 void PrintTimings(const Options& options, StageTimes& times)
 {
-  std::cout << std::fixed << std::setprecision(3) << "per-stage time, median of "
-            << options.Frames << " frame(s):\n";
+  std::cout << std::fixed << std::setprecision(3) << "per-stage time, median of " << options.Frames
+            << " frame(s):\n";
   for (const auto& name : times.Order)
   {
-    std::cout << "  " << std::left << std::setw(28) << name << "gpu " << std::right
-              << std::setw(9) << Median(times.GPU[name]) << " ms   cpu " << std::setw(9)
-              << Median(times.CPU[name]) << " ms\n";
+    std::cout << "  " << std::left << std::setw(28) << name << "gpu " << std::right << std::setw(9)
+              << Median(times.GPU[name]) << " ms   cpu " << std::setw(9) << Median(times.CPU[name])
+              << " ms\n";
   }
   std::cout << "  " << std::left << std::setw(28) << "whole frame (wall)"
             << "    " << std::right << std::setw(9) << Median(times.Frames) << " ms\n";
