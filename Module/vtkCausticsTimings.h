@@ -25,7 +25,10 @@
  * as its times do. The query objects are pooled and reused from frame to frame.
  * While counting, EndFrame() waits for the counts, and every stage boundary waits
  * for the GPU (glFinish) so that a stage's CPU time is the wall time of its
- * execution on any implementation: the denominator of its throughput.
+ * execution on any implementation: the denominator of its throughput. A counted
+ * stage must not run occlusion or pipeline statistics queries of its own (a target
+ * cannot be active twice); no caustics stage does, but VTK's depth peeling with an
+ * occlusion ratio would, inside "vtk delegate".
  */
 #ifndef vtkCausticsTimings_h
 #define vtkCausticsTimings_h
