@@ -14,6 +14,8 @@
 //
 // Every error is one line on stderr naming the problem, and a non-zero exit:
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "CausticsCommandLine.h"
+
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
@@ -38,6 +40,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -47,6 +50,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -95,60 +99,87 @@ std::function<bool(vtkCausticsRenderPass*)> Set(std::function<void(PassType*)> s
 }
 
 /**
- * The sweep of every technique, in the order the CSV and the docs list them. A
- * technique registered in vtkCausticsTechniques without entries here runs once with
- * its defaults (knobs "default").
+ * Screen-space photon tracing (docs/technique-screen-space.md): the photon grid
+ * N x N per light at the default layer cap, then the layer cap at N = 256, then its
+ * splat kernel.
  */
-std::vector<Configuration> MakeConfigurations()
+void AddScreenSpaceConfigurations(std::vector<Configuration>& table)
 {
-  std::vector<Configuration> table;
-
-  // Screen-space photon tracing (docs/technique-screen-space.md): the photon grid
-  // N x N per light at the default layer cap, then the layer cap at N = 256.
-  for (int grid : { 64, 128, 256, 512 })
+  auto add = [&table](int grid, int layers, double splat)
   {
-    table.push_back({ "screen-space", "grid=" + std::to_string(grid) + " layers=8",
+    std::string knobs = "grid=" + std::to_string(grid) + " layers=" + std::to_string(layers);
+    knobs += splat > 0.0 ? " splat=1" : "";
+    table.push_back({ "screen-space", knobs,
       Set<vtkCausticsScreenSpacePhotonPass>(
-        [grid](vtkCausticsScreenSpacePhotonPass* pass)
+        [grid, layers, splat](vtkCausticsScreenSpacePhotonPass* pass)
         {
           pass->SetLightBufferResolution(grid);
-          pass->SetMaximumNumberOfLayers(8);
+          pass->SetMaximumNumberOfLayers(layers);
+          if (splat > 0.0)
+          {
+            pass->SetSplatRadiusPixels(splat);
+          }
         }) });
+  };
+  for (int grid : { 64, 128, 256, 512 })
+  {
+    add(grid, 8, 0.0);
   }
   for (int layers : { 1, 2, 4 })
   {
-    table.push_back({ "screen-space", "grid=256 layers=" + std::to_string(layers),
-      Set<vtkCausticsScreenSpacePhotonPass>(
-        [layers](vtkCausticsScreenSpacePhotonPass* pass)
-        {
-          pass->SetLightBufferResolution(256);
-          pass->SetMaximumNumberOfLayers(layers);
-        }) });
+    add(256, layers, 0.0);
   }
-  // Its splat kernel: the default radius of 2 pixel footprints against 1 (sharper, noisier)
-  // at N = 256 and 512, since the ground truth's own kernel is 1 footprint.
+  // The default radius of 2 pixel footprints against 1 (sharper, noisier) at N = 256
+  // and 512, since the ground truth's own kernel is 1 footprint.
   for (int grid : { 256, 512 })
   {
-    table.push_back({ "screen-space", "grid=" + std::to_string(grid) + " layers=8 splat=1",
-      Set<vtkCausticsScreenSpacePhotonPass>(
-        [grid](vtkCausticsScreenSpacePhotonPass* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetMaximumNumberOfLayers(8);
-          pass->SetSplatRadiusPixels(1.0);
-        }) });
+    add(grid, 8, 1.0);
   }
+}
 
-  // Hierarchical caustic maps (docs/technique-caustic-maps.md): the variants of the
-  // paper's Table 3. The default (hierarchical gather, clustering at the last level,
-  // Eq. 2 splats into the multi-resolution map) over photon buffers 256^2..2048^2;
-  // the baselines and the other clustering variants at 256^2 and 1024^2.
-  using HCM = vtkCausticsHierarchicalCausticMapPass;
-  struct Variant
-  {
-    const char* Name;
-    int Gather, Cluster, Splat;
-  };
+using HCM = vtkCausticsHierarchicalCausticMapPass;
+
+/** A variant of the hierarchical caustic map (the paper's Table 3). */
+struct Variant
+{
+  const char* Name;
+  int Gather, Cluster, Splat;
+};
+
+/**
+ * A caustic-map configuration. map: caustic-map resolution (0: the pass's default);
+ * cameraFloor: its MinimumCameraSplatRadius (the default 1 is not named in the knobs).
+ */
+void AddCausticMap(std::vector<Configuration>& table, int grid, const Variant& variant, int map = 0,
+  double cameraFloor = 1.0)
+{
+  std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
+  knobs += map > 0 ? " map=" + std::to_string(map) : "";
+  knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
+  table.push_back({ "caustic-maps", knobs,
+    Set<HCM>(
+      [grid, variant, map, cameraFloor](HCM* pass)
+      {
+        pass->SetLightBufferResolution(grid);
+        pass->SetGatherMode(variant.Gather);
+        pass->SetClusterMode(variant.Cluster);
+        pass->SetSplatMode(variant.Splat);
+        if (map > 0)
+        {
+          pass->SetCausticMapResolution(map);
+        }
+        pass->SetMinimumCameraSplatRadius(cameraFloor);
+      }) });
+}
+
+/**
+ * Hierarchical caustic maps (docs/technique-caustic-maps.md): the default
+ * (hierarchical gather, clustering at the last level, Eq. 2 splats into the
+ * multi-resolution map) over photon buffers 256^2..2048^2; the baselines and the
+ * other clustering variants at 256^2 and 1024^2; then the map's own resolution.
+ */
+void AddCausticMapConfigurations(std::vector<Configuration>& table)
+{
   const Variant defaultVariant = { "varying-multires", HCM::GATHER_HIERARCHICAL,
     HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_VARYING_MULTIRES };
   const Variant variants[] = {
@@ -157,38 +188,15 @@ std::vector<Configuration> MakeConfigurations()
     { "combine-last", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_LAST_LEVEL, HCM::SPLAT_CONSTANT },
     { "combine-all", HCM::GATHER_HIERARCHICAL, HCM::CLUSTER_ALL_LEVELS, HCM::SPLAT_CONSTANT },
   };
-  // map: caustic-map resolution (0: the pass's default); cameraFloor: its
-  // MinimumCameraSplatRadius (the default 1 is not named in the knobs).
-  auto addCausticMap = [&table](
-                         int grid, const Variant& variant, int map = 0, double cameraFloor = 1.0)
-  {
-    std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
-    knobs += map > 0 ? " map=" + std::to_string(map) : "";
-    knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
-    table.push_back({ "caustic-maps", knobs,
-      Set<HCM>(
-        [grid, variant, map, cameraFloor](HCM* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetGatherMode(variant.Gather);
-          pass->SetClusterMode(variant.Cluster);
-          pass->SetSplatMode(variant.Splat);
-          if (map > 0)
-          {
-            pass->SetCausticMapResolution(map);
-          }
-          pass->SetMinimumCameraSplatRadius(cameraFloor);
-        }) });
-  };
   for (int grid : { 256, 512, 1024, 2048 })
   {
-    addCausticMap(grid, defaultVariant);
+    AddCausticMap(table, grid, defaultVariant);
   }
   for (int grid : { 256, 1024 })
   {
     for (const Variant& variant : variants)
     {
-      addCausticMap(grid, variant);
+      AddCausticMap(table, grid, variant);
     }
   }
   // The caustic map's own resolution (the default 512^2 texels over the light's view of
@@ -204,10 +212,21 @@ std::vector<Configuration> MakeConfigurations()
       {
         continue; // the defaults: "grid=1024 variant=varying-multires" above
       }
-      addCausticMap(1024, defaultVariant, map, cameraFloor);
+      AddCausticMap(table, 1024, defaultVariant, map, cameraFloor);
     }
   }
+}
 
+/**
+ * The sweep of every technique, in the order the CSV and the docs list them. A
+ * technique registered in vtkCausticsTechniques without entries here runs once with
+ * its defaults (knobs "default").
+ */
+std::vector<Configuration> MakeConfigurations()
+{
+  std::vector<Configuration> table;
+  AddScreenSpaceConfigurations(table);
+  AddCausticMapConfigurations(table);
   // "none": the shared stages (snapshot, VTK delegate, G-buffers, light buffers,
   // composite) with no technique. Its cost at each photon-grid size the techniques
   // use is their cost floor; its error (1: no caustic light) is the ceiling.
@@ -238,6 +257,8 @@ Selection:
   --scenes A,B,...           built-in scenes (default: ball-lens,pool,ring,bunny)
   --techniques A,B,...       techniques (default: every registered one, then none)
   --list                     print the scenes, techniques and configurations, and exit
+  --defaults                 each technique once with its own defaults (knobs
+                             "default") instead of its configurations
 
 Measurement:
   --size N                   image size N x N pixels, 16..4096 (default 256)
@@ -296,47 +317,16 @@ struct Options
   bool UpdateDocs = false;
   std::string Docs;
   bool Smoke = false;
+  bool Defaults = false;
   bool List = false;
   bool Help = false;
   std::string CommandLine;
 };
 
-/** A user mistake: reported as one line, exit code 2. */
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-/** No OpenGL window can be made here (no display, no EGL): exit code 3. */
-struct NoWindowError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-double ParseNumber(const std::string& option, const std::string& text)
-{
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
-  {
-    throw UsageError(option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
-
-/** An integer in [low, high]; accepts 1e6-style notation for photon counts. */
-double ParseCount(const std::string& option, const std::string& text, double low, double high)
-{
-  const double value = ParseNumber(option, text);
-  if (value != std::floor(value) || value < low || value > high)
-  {
-    std::ostringstream message;
-    message << option << " expects an integer in [" << low << ", " << high << "], got '" << text
-            << "'";
-    throw UsageError(message.str());
-  }
-  return value;
-}
+using caustics_cli::NoWindowError;
+using caustics_cli::ParseCount;
+using caustics_cli::ParseNumber;
+using caustics_cli::UsageError;
 
 std::vector<std::string> SplitList(const std::string& option, const std::string& text)
 {
@@ -403,38 +393,21 @@ std::vector<std::string> DefaultTechniques()
   return names;
 }
 
-Options Parse(int argc, char* argv[])
+/** The integer option that sets `field`, in [low, high]. */
+caustics_cli::Arguments::ValueHandler Count(int& field, double low, double high)
 {
-  Options options;
-  options.Scenes = vtkCausticsBuiltinScene::GetSceneNames();
-  options.Techniques = DefaultTechniques();
-  bool ladderGiven = false;
-  for (int i = 0; i < argc; ++i)
-  {
-    options.CommandLine += (i ? " " : "") + ShellQuote(argv[i]);
-  }
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string
+  return [&field, low, high](const std::string& option, const std::string& value)
+  { field = static_cast<int>(ParseCount(option, value, low, high)); };
+}
+
+void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Flag("--list", [&options] { options.List = true; });
+  arguments.Flag("--defaults", [&options] { options.Defaults = true; });
+  arguments.Value("--scenes",
+    [&options](const std::string& option, const std::string& value)
     {
-      if (i + 1 >= argc)
-      {
-        throw UsageError(arg + " needs a value");
-      }
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      options.Help = true;
-    }
-    else if (arg == "--list")
-    {
-      options.List = true;
-    }
-    else if (arg == "--scenes")
-    {
-      options.Scenes = SplitList(arg, value());
+      options.Scenes = SplitList(option, value);
       for (const auto& scene : options.Scenes)
       {
         if (!vtkCausticsBuiltinScene::IsSceneName(scene))
@@ -443,115 +416,97 @@ Options Parse(int argc, char* argv[])
             "' (built-in: " + Join(vtkCausticsBuiltinScene::GetSceneNames()) + ")");
         }
       }
-    }
-    else if (arg == "--techniques")
+    });
+  arguments.Value("--techniques",
+    [&options](const std::string& option, const std::string& value)
     {
-      options.Techniques = SplitList(arg, value());
+      options.Techniques = SplitList(option, value);
       for (auto& technique : options.Techniques)
       {
-        if (technique == "best")
-        {
-          technique = vtkCausticsTechniques::GetBestName();
-        }
+        technique = technique == "best" ? vtkCausticsTechniques::GetBestName() : technique;
         if (!vtkCausticsTechniques::Create(technique))
         {
           throw UsageError("unknown technique '" + technique +
             "' (known: " + Join(vtkCausticsTechniques::GetNames()) + ", best)");
         }
       }
-    }
-    else if (arg == "--size")
-    {
-      options.Size = static_cast<int>(ParseCount(arg, value(), 16, 4096));
-    }
-    else if (arg == "--frames")
-    {
-      options.Frames = static_cast<int>(ParseCount(arg, value(), 5, 1000));
-    }
-    else if (arg == "--warmup")
-    {
-      options.Warmup = static_cast<int>(ParseCount(arg, value(), 2, 100));
-    }
-    else if (arg == "--reference-photons")
-    {
-      options.ReferencePhotons = ParseCount(arg, value(), 1000, 1e10);
-    }
-    else if (arg == "--reference-ladder")
+    });
+}
+
+void DeclareMeasurementOptions(
+  caustics_cli::Arguments& arguments, Options& options, bool& ladderGiven)
+{
+  arguments.Value("--size", Count(options.Size, 16, 4096));
+  arguments.Value("--frames", Count(options.Frames, 5, 1000));
+  arguments.Value("--warmup", Count(options.Warmup, 2, 100));
+  arguments.Value("--reference-photons",
+    [&options](const std::string& option, const std::string& value)
+    { options.ReferencePhotons = ParseCount(option, value, 1000, 1e10); });
+  arguments.Value("--reference-ladder",
+    [&options, &ladderGiven](const std::string& option, const std::string& value)
     {
       options.Ladder.clear();
-      for (const auto& count : SplitList(arg, value()))
+      for (const auto& count : SplitList(option, value))
       {
-        options.Ladder.push_back(ParseCount(arg, count, 100, 1e10));
+        options.Ladder.push_back(ParseCount(option, count, 100, 1e10));
       }
       std::sort(options.Ladder.begin(), options.Ladder.end());
       ladderGiven = true;
-    }
-    else if (arg == "--reference-kernel")
+    });
+  arguments.Value("--reference-kernel",
+    [&options](const std::string& option, const std::string& value)
     {
-      options.ReferenceKernel = ParseNumber(arg, value());
+      options.ReferenceKernel = ParseNumber(option, value);
       if (options.ReferenceKernel < 0.25 || options.ReferenceKernel > 64.0)
       {
-        throw UsageError(arg + " expects a radius in [0.25, 64] pixel footprints");
+        throw UsageError(option + " expects a radius in [0.25, 64] pixel footprints");
       }
-    }
-    else if (arg == "--reference-repeats")
+    });
+  arguments.Value("--reference-repeats", Count(options.ReferenceRepeats, 1, 20));
+}
+
+void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Value("--output",
+    [&options](const std::string&, const std::string& value)
     {
-      options.ReferenceRepeats = static_cast<int>(ParseCount(arg, value(), 1, 20));
-    }
-    else if (arg == "--output")
-    {
-      options.Output = value();
+      options.Output = value;
       if (options.Output.empty())
       {
         throw UsageError("--output needs a folder name");
       }
-    }
-    else if (arg == "--no-plot")
-    {
-      options.Plot = false;
-    }
-    else if (arg == "--images")
-    {
-      options.Images = true;
-    }
-    else if (arg == "--python")
-    {
-      options.Python = value();
-    }
-    else if (arg == "--update-docs")
-    {
-      options.UpdateDocs = true;
-    }
-    else if (arg == "--docs")
-    {
-      options.Docs = value();
-    }
-    else if (arg == "--smoke")
-    {
-      options.Smoke = true;
-    }
-    else
-    {
-      throw UsageError("unknown option '" + arg + "' (see --help)");
-    }
-  }
-  if (options.Smoke)
+    });
+  arguments.Flag("--no-plot", [&options] { options.Plot = false; });
+  arguments.Flag("--images", [&options] { options.Images = true; });
+  arguments.Value("--python",
+    [&options](const std::string&, const std::string& value) { options.Python = value; });
+  arguments.Flag("--update-docs", [&options] { options.UpdateDocs = true; });
+  arguments.Value(
+    "--docs", [&options](const std::string&, const std::string& value) { options.Docs = value; });
+  arguments.Flag("--smoke", [&options] { options.Smoke = true; });
+}
+
+/** --smoke: the first scene at 64 x 64, few frames, a small reference and ladder. */
+void ApplySmoke(Options& options, bool ladderGiven)
+{
+  if (options.UpdateDocs)
   {
-    if (options.UpdateDocs)
-    {
-      throw UsageError("--update-docs cannot be combined with --smoke (the docs show full runs)");
-    }
-    options.Scenes.resize(1);
-    options.Size = 64;
-    options.Warmup = 1;
-    options.Frames = 2;
-    options.ReferencePhotons = 1e5;
-    if (!ladderGiven)
-    {
-      options.Ladder = { 1e4, 3e4 };
-    }
-    options.ReferenceRepeats = 1;
+    throw UsageError("--update-docs cannot be combined with --smoke (the docs show full runs)");
   }
+  options.Scenes.resize(1);
+  options.Size = 64;
+  options.Warmup = 1;
+  options.Frames = 2;
+  options.ReferencePhotons = 1e5;
+  if (!ladderGiven)
+  {
+    options.Ladder = { 1e4, 3e4 };
+  }
+  options.ReferenceRepeats = 1;
+}
+
+void CheckLadder(const Options& options)
+{
   for (double count : options.Ladder)
   {
     if (count >= options.ReferencePhotons)
@@ -564,20 +519,45 @@ Options Parse(int argc, char* argv[])
       throw UsageError(message.str());
     }
   }
-  if (options.Python.empty())
+}
+
+/** $CAUSTICS_PYTHON, else Debian's python3 (it has python3-matplotlib), else python3. */
+std::string DefaultPython()
+{
+  const char* fromEnvironment = std::getenv("CAUSTICS_PYTHON");
+  if (fromEnvironment && *fromEnvironment)
   {
-    // Debian's python3 has python3-matplotlib; a python3 earlier on PATH may not.
-    const char* fromEnvironment = std::getenv("CAUSTICS_PYTHON");
-    if (fromEnvironment && *fromEnvironment)
-    {
-      options.Python = fromEnvironment;
-    }
-    else
-    {
-      const bool debian = vtksys::SystemTools::FileExists("/usr/bin/python3");
-      options.Python = debian ? "/usr/bin/python3" : "python3";
-    }
+    return fromEnvironment;
   }
+  return vtksys::SystemTools::FileExists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+Options Parse(int argc, char* argv[])
+{
+  Options options;
+  options.Scenes = vtkCausticsBuiltinScene::GetSceneNames();
+  options.Techniques = DefaultTechniques();
+  for (int i = 0; i < argc; ++i)
+  {
+    options.CommandLine += (i ? " " : "") + ShellQuote(argv[i]);
+  }
+  bool ladderGiven = false;
+  caustics_cli::Arguments arguments;
+  arguments.Flag("--help", [&options] { options.Help = true; });
+  arguments.Flag("-h", [&options] { options.Help = true; });
+  DeclareSelectionOptions(arguments, options);
+  DeclareMeasurementOptions(arguments, options, ladderGiven);
+  DeclareOutputOptions(arguments, options);
+  for (const auto& positional : arguments.Parse(argc, argv))
+  {
+    throw UsageError("unknown option '" + positional + "' (see --help)");
+  }
+  if (options.Smoke)
+  {
+    ApplySmoke(options, ladderGiven);
+  }
+  CheckLadder(options);
+  options.Python = options.Python.empty() ? DefaultPython() : options.Python;
   if (options.Docs.empty())
   {
     options.Docs = std::string(CAUSTICS_SOURCE_DIR) + "/docs/benchmarks.md";
@@ -693,12 +673,30 @@ void DescribeGL(vtkRenderWindow* window, Machine& machine)
 // Measurements.
 // ---------------------------------------------------------------------------
 
-/** Median times of one stage. GPU is NaN for CPU-only stages (the reference). */
+/**
+ * Median times of one stage. GPU is NaN for CPU-only stages (the reference). Its
+ * throughput comes from the counted frames after the timed ones (CountWork): the
+ * stage's wall time there (its CPU time between glFinish brackets) and its work.
+ */
 struct Stage
 {
   std::string Name;
   double GPUMilliseconds = NaN;
   double CPUMilliseconds = NaN;
+  double CountedMilliseconds = NaN; // median wall time in the counted frames
+  long long Fragments = -1;         // fragments written (splat, line fragments, ...)
+  long long Invocations = -1;       // compute shader invocations
+  long long Primitives = -1;        // points, lines, triangles drawn
+  double Photons = NaN;             // photons offered to the stage, where known
+
+  /** `count` per second of the stage's counted wall time; NaN when either is unknown. */
+  double PerSecond(double count) const
+  {
+    return count >= 0.0 && this->CountedMilliseconds > 0.0
+      ? count / (this->CountedMilliseconds / 1000.0)
+      : NaN;
+  }
+  bool HasWork() const { return this->Fragments > 0 || this->Invocations > 0 || this->Photons > 0; }
 };
 
 /** One row of benchmarks.csv: a configuration of a technique, or a reference run. */
@@ -897,19 +895,67 @@ void WriteIrradiance(const Options& options, vtkImageData* image, std::string na
 }
 
 /**
- * One configuration: a new pass of the technique with the configuration applied;
- * Warmup untimed frames, then Frames timed ones (each: Render and wait for the GPU to
- * finish; stage GPU times from synchronous timer queries); the last frame's caustic
- * irradiance against the ground truth.
+ * Photons offered to a stage, where known: the photon grid of one light (N x N
+ * light-buffer texels) for the per-light stages that take every photon of the grid
+ * (emission, the caustic map's trace, the first bounce's line tracing); NaN elsewhere.
  */
-Row MeasureConfiguration(const Options& options, const std::string& scene,
-  const Configuration& configuration, vtkRenderWindow* window, vtkOpenGLRenderer* renderer,
-  vtkImageData* truth, OneLineOutputWindow* messages)
+double PhotonsOfStage(const std::string& name, int grid)
 {
-  Row row;
-  row.Scene = scene;
-  row.Technique = configuration.Technique;
-  row.Knobs = configuration.Knobs;
+  auto endsWith = [&name](const std::string& end)
+  {
+    return name.size() >= end.size() &&
+      name.compare(name.size() - end.size(), end.size(), end) == 0;
+  };
+  const bool perPhoton = endsWith("emission") || name == "hcm emit" || name == "hcm trace" ||
+    endsWith("bounce 1 line tracing");
+  return perPhoton ? static_cast<double>(grid) * grid : NaN;
+}
+
+/**
+ * Frames after the timed ones with vtkCausticsTimings::CountWork on (it waits at
+ * every stage boundary, so these frames are not timed): each stage's median wall
+ * time in them and the work of the last one, for its throughput.
+ */
+void CountStageWork(const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass,
+  std::vector<Stage>& stages)
+{
+  vtkCausticsTimings* timings = pass->GetTimings();
+  timings->CountWorkOn();
+  std::map<std::string, std::vector<double>> wall;
+  std::map<std::string, std::array<long long, 3>> work;
+  for (int frame = 0; frame < (options.Smoke ? 1 : 3); ++frame)
+  {
+    window->Render();
+    window->WaitForCompletion();
+    for (int s = 0; s < timings->GetNumberOfStages(); ++s)
+    {
+      if (timings->GetStageTimedOnGPU(s))
+      {
+        wall[timings->GetStageName(s)].push_back(timings->GetStageCPUMilliseconds(s));
+        work[timings->GetStageName(s)] = { timings->GetStageWork(
+                                             s, vtkCausticsTimings::FRAGMENTS_WRITTEN),
+          timings->GetStageWork(s, vtkCausticsTimings::COMPUTE_SHADER_INVOCATIONS),
+          timings->GetStageWork(s, vtkCausticsTimings::PRIMITIVES_SUBMITTED) };
+      }
+    }
+  }
+  timings->CountWorkOff();
+  for (Stage& stage : stages)
+  {
+    if (work.count(stage.Name))
+    {
+      stage.CountedMilliseconds = Median(wall[stage.Name]);
+      stage.Fragments = work[stage.Name][0];
+      stage.Invocations = work[stage.Name][1];
+      stage.Primitives = work[stage.Name][2];
+      stage.Photons = PhotonsOfStage(stage.Name, pass->GetLightBufferResolution());
+    }
+  }
+}
+
+/** A new pass of the configuration's technique with the configuration applied. */
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Configuration& configuration)
+{
   vtkSmartPointer<vtkCausticsRenderPass> pass =
     vtkCausticsTechniques::Create(configuration.Technique);
   if (!configuration.Apply(pass))
@@ -918,11 +964,20 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
       configuration.Technique + "' than " + pass->GetClassName());
   }
   pass->GetTimings()->SynchronousOn();
-  renderer->SetPass(pass);
+  return pass;
+}
 
+/**
+ * Warmup untimed frames, then Frames timed ones (each: Render and wait for the GPU
+ * to finish; stage GPU times from synchronous timer queries): the row's medians.
+ */
+void TimeFrames(
+  const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass, Row& row)
+{
   std::vector<double> wall, gpuTotal;
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> gpu, cpu;
+  vtkCausticsTimings* timings = pass->GetTimings();
   for (int frame = 0; frame < options.Warmup + options.Frames; ++frame)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -934,7 +989,6 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
       continue;
     }
     wall.push_back(elapsed);
-    vtkCausticsTimings* timings = pass->GetTimings();
     double total = 0.0;
     for (int s = 0; s < timings->GetNumberOfStages(); ++s)
     {
@@ -948,15 +1002,12 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
         order.push_back(name);
       }
       cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
-      if (!timings->GetStageTimedOnGPU(s))
-      {
-        gpu[name].push_back(NaN); // CPU work (e.g. the scene snapshot): no GPU time
-        continue;
-      }
+      // CPU work (e.g. the scene snapshot) has no GPU time; -1: the timer query had no
+      // result (it would wrongly lower the total).
       const double milliseconds = timings->GetStageGPUMilliseconds(s);
-      // -1: the timer query had no result (it would wrongly lower the total).
-      gpu[name].push_back(milliseconds >= 0.0 ? milliseconds : NaN);
-      total += gpu[name].back();
+      gpu[name].push_back(
+        timings->GetStageTimedOnGPU(s) && milliseconds >= 0.0 ? milliseconds : NaN);
+      total += timings->GetStageTimedOnGPU(s) ? gpu[name].back() : 0.0;
     }
     gpuTotal.push_back(total);
   }
@@ -967,27 +1018,57 @@ Row MeasureConfiguration(const Options& options, const std::string& scene,
   {
     row.Stages.push_back({ name, Median(gpu[name]), Median(cpu[name]) });
   }
+}
+
+/**
+ * The last timed frame's caustic irradiance against the ground truth (and, with
+ * --images, written out); then the counted frames. Returns the error, "" if none.
+ */
+std::string CompareAndCount(const Options& options, const Configuration& configuration,
+  vtkRenderWindow* window, vtkCausticsRenderPass* pass, vtkImageData* truth, Row& row)
+{
+  try
+  {
+    vtkSmartPointer<vtkImageData> irradiance = ReadCausticIrradiance(pass, options.Size);
+    row.Error = CompareWithReference(irradiance, truth);
+    if (options.Images)
+    {
+      WriteIrradiance(
+        options, irradiance, row.Scene + "_" + configuration.Technique + "_" + configuration.Knobs);
+    }
+    if (!pass->GetLastFrameHadCaustics())
+    {
+      row.Status = "no caustic stage ran";
+    }
+    CountStageWork(options, window, pass, row.Stages);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+/**
+ * One configuration: a new pass of the technique with the configuration applied,
+ * its timed frames, the last one's error against the ground truth, then the
+ * counted frames for the stages' throughput.
+ */
+Row MeasureConfiguration(const Options& options, const std::string& scene,
+  const Configuration& configuration, vtkRenderWindow* window, vtkOpenGLRenderer* renderer,
+  vtkImageData* truth, OneLineOutputWindow* messages)
+{
+  Row row;
+  row.Scene = scene;
+  row.Technique = configuration.Technique;
+  row.Knobs = configuration.Knobs;
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(configuration);
+  renderer->SetPass(pass);
+  TimeFrames(options, window, pass, row);
   std::string error = messages->TakeError();
   if (error.empty())
   {
-    try
-    {
-      vtkSmartPointer<vtkImageData> irradiance = ReadCausticIrradiance(pass, options.Size);
-      row.Error = CompareWithReference(irradiance, truth);
-      if (options.Images)
-      {
-        WriteIrradiance(
-          options, irradiance, scene + "_" + configuration.Technique + "_" + configuration.Knobs);
-      }
-      if (!pass->GetLastFrameHadCaustics())
-      {
-        row.Status = "no caustic stage ran";
-      }
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
+    error = CompareAndCount(options, configuration, window, pass, truth, row);
   }
   const std::string late = messages->TakeError();
   if (!error.empty() || !late.empty())
@@ -1050,12 +1131,18 @@ public:
     };
     this->RowsPath = folder + "/benchmarks.csv";
     this->StagesPath = folder + "/benchmark-stages.csv";
+    this->ThroughputPath = folder + "/benchmark-throughput.csv";
     open(this->Rows, this->RowsPath);
     open(this->Stages, this->StagesPath);
+    open(this->Throughput, this->ThroughputPath);
     // Units: ms per frame (reference: per render), error columns as in docs/accuracy.md.
     this->Rows << "scene,technique,knobs,width,height,frames,wall_ms,gpu_ms,rel_l2,flux_ratio,"
                   "peak_error_px,psnr_db,rmse,nonfinite_px,compared_px,status\n";
     this->Stages << "scene,technique,knobs,stage,gpu_ms,cpu_ms\n";
+    // Work of one counted frame; rates per second of the stage's counted wall time.
+    this->Throughput << "scene,technique,knobs,stage,counted_wall_ms,fragments,compute_invocations,"
+                        "primitives,photons,fragments_per_s,invocations_per_s,primitives_per_s,"
+                        "photons_per_s\n";
   }
   void Write(const Row& row, int size)
   {
@@ -1075,17 +1162,40 @@ public:
                    << (std::isnan(stage.GPUMilliseconds) ? "" : Number(stage.GPUMilliseconds))
                    << ',' << Number(stage.CPUMilliseconds) << '\n';
     }
+    this->WriteThroughput(row);
     this->Rows.flush();
     this->Stages.flush();
-    if (!this->Rows || !this->Stages)
+    this->Throughput.flush();
+    if (!this->Rows || !this->Stages || !this->Throughput)
     {
       throw std::runtime_error("cannot write " + this->RowsPath + " (disk full?)");
     }
   }
-  std::string RowsPath, StagesPath;
+  std::string RowsPath, StagesPath, ThroughputPath;
 
 private:
-  std::ofstream Rows, Stages;
+  void WriteThroughput(const Row& row)
+  {
+    auto count = [](long long value) { return value < 0 ? std::string() : std::to_string(value); };
+    for (const auto& stage : row.Stages)
+    {
+      if (std::isnan(stage.CountedMilliseconds))
+      {
+        continue;
+      }
+      this->Throughput << CSVField(row.Scene) << ',' << CSVField(row.Technique) << ','
+                       << CSVField(row.Knobs) << ',' << CSVField(stage.Name) << ','
+                       << Number(stage.CountedMilliseconds) << ',' << count(stage.Fragments) << ','
+                       << count(stage.Invocations) << ',' << count(stage.Primitives) << ','
+                       << (std::isnan(stage.Photons) ? "" : Number(stage.Photons)) << ','
+                       << Number(stage.PerSecond(stage.Fragments)) << ','
+                       << Number(stage.PerSecond(stage.Invocations)) << ','
+                       << Number(stage.PerSecond(stage.Primitives)) << ','
+                       << Number(stage.PerSecond(stage.Photons)) << '\n';
+    }
+  }
+
+  std::ofstream Rows, Stages, Throughput;
 };
 
 /**
@@ -1206,12 +1316,10 @@ std::string OfflineEquivalent(
   return "–";
 }
 
-/** The generated section of docs/benchmarks.md. */
-std::string MakeDocsSection(const Options& options, const Machine& machine,
-  const std::vector<TruthRecord>& truths, const std::vector<Row>& rows, const std::string& plot,
-  const std::string& plotSkipped, double runSeconds)
+/** The generated section's header: the command and a table of the run's conditions. */
+void WriteDocsHeader(std::ostream& md, const Options& options, const Machine& machine,
+  const std::vector<TruthRecord>& truths, double runSeconds)
 {
-  std::ostringstream md;
   std::string cwd = vtksys::SystemTools::GetCurrentWorkingDirectory();
   std::string relative = vtksys::SystemTools::RelativePath(
     vtksys::SystemTools::GetRealPath(CAUSTICS_SOURCE_DIR), vtksys::SystemTools::GetRealPath(cwd));
@@ -1238,85 +1346,108 @@ std::string MakeDocsSection(const Options& options, const Machine& machine,
   md << "| reference ladder | seed 2, cache off, median of up to " << options.ReferenceRepeats
      << " renders per count (fewer once a count took 30 s) |\n";
   md << "| run time | " << Fixed(runSeconds, 0) << " s in all |\n\n";
+}
 
+/** One scene's table of rows: time, error, offline equivalent, Pareto front. */
+void WriteDocsSceneTable(std::ostream& md, const std::vector<const Row*>& sceneRows)
+{
+  std::vector<const Row*> ladder;
+  std::copy_if(sceneRows.begin(), sceneRows.end(), std::back_inserter(ladder),
+    [](const Row* row) { return row->IsReference(); });
+  const std::vector<const Row*> front = ParetoFront(sceneRows);
+  md << "| technique | knobs | wall / frame | GPU / frame | rel. L2 | flux ratio | peak err "
+        "(px) | PSNR (dB) | non-finite px | reference time for this error | speed-up | Pareto "
+        "front |\n";
+  md << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|:-:|\n";
+  for (const Row* row : sceneRows)
+  {
+    const auto& e = row->Error;
+    double speedUp = NaN;
+    const std::string offline = row->IsReference()
+      ? "–"
+      : OfflineEquivalent(ladder, e.RelativeL2Error, row->WallMilliseconds, speedUp);
+    md << "| " << row->Technique << (row->Status == "ok" ? "" : " (" + row->Status + ")") << " | "
+       << row->Knobs << " | " << FormatTime(row->WallMilliseconds) << " | "
+       << FormatTime(row->GPUMilliseconds) << " | " << Fixed(e.RelativeL2Error, 4) << " | "
+       << Fixed(e.FluxRatio, 3) << " | "
+       << (e.TestFlux == 0.0 ? "–" : Fixed(e.PeakPositionError, 1)) << " | " << Fixed(e.PSNR, 1)
+       << " | " << e.NonFinitePixels << " | " << offline << " | "
+       << (std::isnan(speedUp) ? "–" : Fixed(speedUp, 1) + "x") << " | "
+       << (std::count(front.begin(), front.end(), row) ? "◆" : "") << " |\n";
+  }
+}
+
+/** One scene's GPU time per stage (ms, median), one column per stage. */
+void WriteDocsStageTable(std::ostream& md, const std::vector<const Row*>& sceneRows)
+{
+  std::vector<std::string> stageNames;
+  for (const Row* row : sceneRows)
+  {
+    for (const auto& stage : row->Stages)
+    {
+      if (!row->IsReference() &&
+        std::find(stageNames.begin(), stageNames.end(), stage.Name) == stageNames.end())
+      {
+        stageNames.push_back(stage.Name);
+      }
+    }
+  }
+  if (stageNames.empty())
+  {
+    return;
+  }
+  md << "\nGPU time per stage (ms, median):\n\n| technique | knobs |";
+  for (const auto& name : stageNames)
+  {
+    md << " " << name << " |";
+  }
+  md << "\n|---|---|";
+  for (std::size_t i = 0; i < stageNames.size(); ++i)
+  {
+    md << "--:|";
+  }
+  md << "\n";
+  for (const Row* row : sceneRows)
+  {
+    if (row->IsReference())
+    {
+      continue;
+    }
+    md << "| " << row->Technique << " | " << row->Knobs << " |";
+    for (const auto& name : stageNames)
+    {
+      auto stage = std::find_if(
+        row->Stages.begin(), row->Stages.end(), [&](const Stage& s) { return s.Name == name; });
+      md << " "
+         << (stage == row->Stages.end() || std::isnan(stage->GPUMilliseconds)
+                ? "–"
+                : Fixed(stage->GPUMilliseconds, 2))
+         << " |";
+    }
+    md << "\n";
+  }
+}
+
+/** The generated section of docs/benchmarks.md. */
+std::string MakeDocsSection(const Options& options, const Machine& machine,
+  const std::vector<TruthRecord>& truths, const std::vector<Row>& rows, const std::string& plot,
+  const std::string& plotSkipped, double runSeconds)
+{
+  std::ostringstream md;
+  WriteDocsHeader(md, options, machine, truths, runSeconds);
   for (const auto& scene : options.Scenes)
   {
-    std::vector<const Row*> sceneRows, ladder;
+    std::vector<const Row*> sceneRows;
     for (const auto& row : rows)
     {
       if (row.Scene == scene)
       {
         sceneRows.push_back(&row);
-        if (row.IsReference())
-        {
-          ladder.push_back(&row);
-        }
       }
     }
-    const std::vector<const Row*> front = ParetoFront(sceneRows);
     md << "### " << scene << "\n\n";
-    md << "| technique | knobs | wall / frame | GPU / frame | rel. L2 | flux ratio | peak err "
-          "(px) | PSNR (dB) | non-finite px | reference time for this error | speed-up | Pareto "
-          "front |\n";
-    md << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|:-:|\n";
-    std::vector<std::string> stageNames;
-    for (const Row* row : sceneRows)
-    {
-      const auto& e = row->Error;
-      double speedUp = NaN;
-      const std::string offline = row->IsReference()
-        ? "–"
-        : OfflineEquivalent(ladder, e.RelativeL2Error, row->WallMilliseconds, speedUp);
-      md << "| " << row->Technique << (row->Status == "ok" ? "" : " (" + row->Status + ")") << " | "
-         << row->Knobs << " | " << FormatTime(row->WallMilliseconds) << " | "
-         << FormatTime(row->GPUMilliseconds) << " | " << Fixed(e.RelativeL2Error, 4) << " | "
-         << Fixed(e.FluxRatio, 3) << " | "
-         << (e.TestFlux == 0.0 ? "–" : Fixed(e.PeakPositionError, 1)) << " | " << Fixed(e.PSNR, 1)
-         << " | " << e.NonFinitePixels << " | " << offline << " | "
-         << (std::isnan(speedUp) ? "–" : Fixed(speedUp, 1) + "x") << " | "
-         << (std::count(front.begin(), front.end(), row) ? "◆" : "") << " |\n";
-      for (const auto& stage : row->Stages)
-      {
-        if (!row->IsReference() &&
-          std::find(stageNames.begin(), stageNames.end(), stage.Name) == stageNames.end())
-        {
-          stageNames.push_back(stage.Name);
-        }
-      }
-    }
-    if (!stageNames.empty())
-    {
-      md << "\nGPU time per stage (ms, median):\n\n| technique | knobs |";
-      for (const auto& name : stageNames)
-      {
-        md << " " << name << " |";
-      }
-      md << "\n|---|---|";
-      for (std::size_t i = 0; i < stageNames.size(); ++i)
-      {
-        md << "--:|";
-      }
-      md << "\n";
-      for (const Row* row : sceneRows)
-      {
-        if (row->IsReference())
-        {
-          continue;
-        }
-        md << "| " << row->Technique << " | " << row->Knobs << " |";
-        for (const auto& name : stageNames)
-        {
-          auto stage = std::find_if(
-            row->Stages.begin(), row->Stages.end(), [&](const Stage& s) { return s.Name == name; });
-          md << " "
-             << (stage == row->Stages.end() || std::isnan(stage->GPUMilliseconds)
-                    ? "–"
-                    : Fixed(stage->GPUMilliseconds, 2))
-             << " |";
-        }
-        md << "\n";
-      }
-    }
+    WriteDocsSceneTable(md, sceneRows);
+    WriteDocsStageTable(md, sceneRows);
     md << "\n";
   }
   if (!plot.empty())
@@ -1378,6 +1509,34 @@ void UpdateDocs(const std::string& path, const std::string& section)
 // The run.
 // ---------------------------------------------------------------------------
 
+/** "12.3 M" (or "-" when not a finite number). */
+std::string Rate(double perSecond)
+{
+  return std::isfinite(perSecond) ? Fixed(perSecond / 1e6, perSecond >= 1e7 ? 1 : 2) + " M" : "-";
+}
+
+/** Each stage that did counted work: its time beside its throughput. */
+void PrintThroughput(const Row& row)
+{
+  for (const auto& stage : row.Stages)
+  {
+    if (std::isnan(stage.CountedMilliseconds) || !stage.HasWork())
+    {
+      continue;
+    }
+    std::cout << "      " << std::left << std::setw(36) << stage.Name << std::right << std::setw(9)
+              << FormatTime(stage.GPUMilliseconds) << " gpu" << std::setw(10)
+              << FormatTime(stage.CountedMilliseconds) << " counted  "
+              << Rate(stage.PerSecond(stage.Fragments)) << " fragments/s  "
+              << Rate(stage.PerSecond(stage.Invocations)) << " invocations/s  "
+              << Rate(stage.PerSecond(stage.Primitives)) << " primitives/s"
+              << (std::isnan(stage.Photons)
+                     ? ""
+                     : "  " + Rate(stage.PerSecond(stage.Photons)) + " photons/s")
+              << std::endl;
+  }
+}
+
 void PrintRow(const Row& row)
 {
   std::cout << "  " << std::left << std::setw(13) << row.Technique << std::setw(34) << row.Knobs
@@ -1385,28 +1544,27 @@ void PrintRow(const Row& row)
             << "  gpu " << std::setw(9) << FormatTime(row.GPUMilliseconds) << "  relL2 "
             << Fixed(row.Error.RelativeL2Error, 4) << "  flux " << Fixed(row.Error.FluxRatio, 3)
             << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
+  PrintThroughput(row);
 }
 
-int Run(const Options& options, OneLineOutputWindow* messages)
+/** --list: the scenes, the techniques and every technique's configurations. */
+void PrintConfigurations(const std::vector<Configuration>& table)
 {
-  const auto runStart = std::chrono::steady_clock::now();
-  const std::vector<Configuration> table = MakeConfigurations();
-  if (options.List)
+  std::cout << "scenes: " << Join(vtkCausticsBuiltinScene::GetSceneNames()) << "\n"
+            << "techniques:\n"
+            << vtkCausticsTechniques::Describe() << "configurations:\n";
+  for (const auto& technique : DefaultTechniques())
   {
-    std::cout << "scenes: " << Join(vtkCausticsBuiltinScene::GetSceneNames()) << "\n"
-              << "techniques:\n"
-              << vtkCausticsTechniques::Describe() << "configurations:\n";
-    for (const auto& technique : DefaultTechniques())
+    for (const auto& configuration : ConfigurationsOf(technique, table))
     {
-      for (const auto& configuration : ConfigurationsOf(technique, table))
-      {
-        std::cout << "  " << technique << ": " << configuration.Knobs << "\n";
-      }
+      std::cout << "  " << technique << ": " << configuration.Knobs << "\n";
     }
-    return 0;
   }
+}
 
-  // Fail on unwritable output or docs without markers before any work.
+/** Fails on unwritable output or docs without markers before any work. */
+void CheckOutputs(const Options& options)
+{
   if (options.UpdateDocs)
   {
     std::size_t from = 0, to = 0;
@@ -1417,10 +1575,10 @@ int Run(const Options& options, OneLineOutputWindow* messages)
   {
     throw std::runtime_error("cannot create the output folder " + options.Output);
   }
-  CSVWriter csv;
-  csv.Open(options.Output);
+}
 
-  Machine machine = DescribeMachine();
+vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options, Machine& machine)
+{
   std::string how;
   vtkSmartPointer<vtkRenderWindow> window = vtkCausticsWindowFactory::Create(true, &how);
   if (!window)
@@ -1430,97 +1588,146 @@ int Run(const Options& options, OneLineOutputWindow* messages)
   machine.Window = how;
   window->SetMultiSamples(0);
   window->SetSize(options.Size, options.Size);
+  return window;
+}
 
-  std::cout << "caustics-bench: " << Join(options.Scenes) << " x " << Join(options.Techniques)
-            << ", " << options.Size << "x" << options.Size << ", " << options.Frames
-            << " frames after " << options.Warmup << " warm-up, " << machine.CPU << " ("
-            << machine.Threads << " threads), window " << how << std::endl;
+/** What the run measured, for the CSV, the docs and the exit status. */
+struct Results
+{
+  Machine Computer; // this machine and its OpenGL
+  std::vector<Row> Rows;
+  std::vector<TruthRecord> Truths;
+  int Failed = 0;
 
-  std::vector<Row> rows;
-  std::vector<TruthRecord> truths;
-  int failed = 0;
-  for (const auto& scene : options.Scenes)
+  void Add(const Row& row, CSVWriter& csv, int size)
   {
-    vtkNew<vtkOpenGLRenderer> renderer;
-    window->AddRenderer(renderer);
-    vtkNew<vtkCausticsBuiltinScene> builtin;
-    builtin->SetSceneName(scene.c_str());
-    if (!builtin->Populate(renderer))
-    {
-      throw std::runtime_error(builtin->GetLastError());
-    }
-    // The GPU frames and the reference see the same camera, clipping range included.
-    renderer->ResetCameraClippingRange();
-
-    auto truth = MakeReference(
-      renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
-    std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
-              << " photons per light" << std::flush;
-    if (!truth->Update())
-    {
-      throw std::runtime_error(
-        "the reference failed on scene '" + scene + "': " + truth->GetLastError());
-    }
-    messages->TakeError();
-    truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
-      truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
-    std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
-              << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
-
-    for (Row& row : TimeReferenceLadder(options, scene, renderer, truth->GetOutput(), messages))
-    {
-      PrintRow(row);
-      csv.Write(row, options.Size);
-      rows.push_back(row);
-    }
-    for (const auto& technique : options.Techniques)
-    {
-      std::vector<Configuration> configurations = ConfigurationsOf(technique, table);
-      if (options.Smoke)
-      {
-        configurations.resize(1);
-      }
-      for (const auto& configuration : configurations)
-      {
-        Row row = MeasureConfiguration(
-          options, scene, configuration, window, renderer, truth->GetOutput(), messages);
-        if (machine.GLRenderer == "unknown")
-        {
-          DescribeGL(window, machine);
-        }
-        failed += row.Status.rfind("error", 0) == 0 ? 1 : 0;
-        PrintRow(row);
-        csv.Write(row, options.Size);
-        rows.push_back(row);
-      }
-    }
-    window->RemoveRenderer(renderer);
+    this->Failed += row.Status.rfind("error", 0) == 0 ? 1 : 0;
+    PrintRow(row);
+    csv.Write(row, size);
+    this->Rows.push_back(row);
   }
-  std::cout << "wrote " << csv.RowsPath << " and " << csv.StagesPath << std::endl;
+};
 
+/** The scene's ground truth (cached), recorded in `results`. */
+vtkSmartPointer<vtkCausticsReferenceRenderer> MakeGroundTruth(const Options& options,
+  const std::string& scene, vtkRenderer* renderer, Results& results, OneLineOutputWindow* messages)
+{
+  auto truth = MakeReference(
+    renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
+  std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
+            << " photons per light" << std::flush;
+  if (!truth->Update())
+  {
+    throw std::runtime_error(
+      "the reference failed on scene '" + scene + "': " + truth->GetLastError());
+  }
+  messages->TakeError();
+  results.Truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
+    truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
+  std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
+            << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
+  return truth;
+}
+
+/** One scene: its ground truth, the reference ladder, every selected configuration. */
+void MeasureScene(const Options& options, const std::string& scene,
+  const std::vector<Configuration>& table, vtkRenderWindow* window, CSVWriter& csv,
+  Results& results, OneLineOutputWindow* messages)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  builtin->SetSceneName(scene.c_str());
+  if (!builtin->Populate(renderer))
+  {
+    throw std::runtime_error(builtin->GetLastError());
+  }
+  // The GPU frames and the reference see the same camera, clipping range included.
+  renderer->ResetCameraClippingRange();
+  auto truth = MakeGroundTruth(options, scene, renderer, results, messages);
+  for (Row& row : TimeReferenceLadder(options, scene, renderer, truth->GetOutput(), messages))
+  {
+    results.Add(row, csv, options.Size);
+  }
+  for (const auto& technique : options.Techniques)
+  {
+    std::vector<Configuration> configurations =
+      ConfigurationsOf(technique, options.Defaults ? std::vector<Configuration>() : table);
+    if (options.Smoke)
+    {
+      configurations.resize(1);
+    }
+    for (const auto& configuration : configurations)
+    {
+      Row row = MeasureConfiguration(
+        options, scene, configuration, window, renderer, truth->GetOutput(), messages);
+      if (results.Computer.GLRenderer == "unknown")
+      {
+        DescribeGL(window, results.Computer);
+      }
+      results.Add(row, csv, options.Size);
+    }
+  }
+  window->RemoveRenderer(renderer);
+}
+
+/** The plot (unless --no-plot) and, with --update-docs, the docs' generated section. */
+void WritePlotAndDocs(
+  const Options& options, const CSVWriter& csv, const Results& results, double runSeconds)
+{
   std::string plot, plotSkipped = "--no-plot";
   if (options.Plot)
   {
     plot = Plot(options, csv.RowsPath, plotSkipped);
     std::cout << (plot.empty() ? "plot skipped: " + plotSkipped : "wrote " + plot) << std::endl;
   }
-  if (options.UpdateDocs)
+  if (!options.UpdateDocs)
   {
-    const std::string docsFolder = vtksys::SystemTools::GetFilenamePath(options.Docs);
-    if (!plot.empty() && !vtksys::SystemTools::CopyFileAlways(plot, docsFolder + "/benchmarks.png"))
-    {
-      throw std::runtime_error("cannot write " + docsFolder + "/benchmarks.png");
-    }
-    const double runSeconds = Milliseconds(runStart) / 1000.0;
-    UpdateDocs(
-      options.Docs, MakeDocsSection(options, machine, truths, rows, plot, plotSkipped, runSeconds));
-    std::cout << "updated " << options.Docs << (plot.empty() ? "" : " and benchmarks.png")
-              << std::endl;
+    return;
   }
-  if (failed > 0)
+  const std::string docsFolder = vtksys::SystemTools::GetFilenamePath(options.Docs);
+  if (!plot.empty() && !vtksys::SystemTools::CopyFileAlways(plot, docsFolder + "/benchmarks.png"))
   {
-    throw std::runtime_error(std::to_string(failed) + " configuration(s) failed; their rows in " +
-      csv.RowsPath + " say why");
+    throw std::runtime_error("cannot write " + docsFolder + "/benchmarks.png");
+  }
+  UpdateDocs(options.Docs,
+    MakeDocsSection(
+      options, results.Computer, results.Truths, results.Rows, plot, plotSkipped, runSeconds));
+  std::cout << "updated " << options.Docs << (plot.empty() ? "" : " and benchmarks.png")
+            << std::endl;
+}
+
+int Run(const Options& options, OneLineOutputWindow* messages)
+{
+  const auto runStart = std::chrono::steady_clock::now();
+  const std::vector<Configuration> table = MakeConfigurations();
+  if (options.List)
+  {
+    PrintConfigurations(table);
+    return 0;
+  }
+  CheckOutputs(options);
+  CSVWriter csv;
+  csv.Open(options.Output);
+  Results results;
+  results.Computer = DescribeMachine();
+  vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options, results.Computer);
+  std::cout << "caustics-bench: " << Join(options.Scenes) << " x " << Join(options.Techniques)
+            << ", " << options.Size << "x" << options.Size << ", " << options.Frames
+            << " frames after " << options.Warmup << " warm-up, " << results.Computer.CPU << " ("
+            << results.Computer.Threads << " threads), window " << results.Computer.Window
+            << std::endl;
+  for (const auto& scene : options.Scenes)
+  {
+    MeasureScene(options, scene, table, window, csv, results, messages);
+  }
+  std::cout << "wrote " << csv.RowsPath << ", " << csv.StagesPath << " and " << csv.ThroughputPath
+            << std::endl;
+  WritePlotAndDocs(options, csv, results, Milliseconds(runStart) / 1000.0);
+  if (results.Failed > 0)
+  {
+    throw std::runtime_error(std::to_string(results.Failed) +
+      " configuration(s) failed; their rows in " + csv.RowsPath + " say why");
   }
   return 0;
 }

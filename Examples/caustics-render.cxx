@@ -5,6 +5,8 @@
 //
 // Every error is one line on stderr naming the problem, and a non-zero exit:
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "CausticsCommandLine.h"
+
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsGLTFImporter.h"
 #include "vtkCausticsImageIO.h"
@@ -118,39 +120,10 @@ struct Options
   std::array<double, 3> Medium{};
 };
 
-/** A user mistake: reported as one line, exit code 2. */
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-/** No OpenGL window can be made here (no display, no EGL): exit code 3. */
-struct NoWindowError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-double ParseNumber(const std::string& option, const std::string& text)
-{
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
-  {
-    throw UsageError(option + " expects a finite number, got '" + text + "'");
-  }
-  return value;
-}
-
-int ParseInteger(const std::string& option, const std::string& text, int low, int high)
-{
-  const double value = ParseNumber(option, text);
-  if (value != std::floor(value) || value < low || value > high)
-  {
-    throw UsageError(option + " expects an integer in [" + std::to_string(low) + ", " +
-      std::to_string(high) + "], got '" + text + "'");
-  }
-  return static_cast<int>(value);
-}
+using caustics_cli::NoWindowError;
+using caustics_cli::ParseInteger;
+using caustics_cli::ParseNumber;
+using caustics_cli::UsageError;
 
 std::array<double, 3> ParseVector(const std::string& option, const std::string& text)
 {
@@ -169,10 +142,156 @@ std::array<double, 3> ParseVector(const std::string& option, const std::string& 
     ParseNumber(option, parts[2]) } };
 }
 
+/** ParseVector, rejecting the zero vector (a direction). */
+std::array<double, 3> ParseDirection(const std::string& option, const std::string& text)
+{
+  const std::array<double, 3> direction = ParseVector(option, text);
+  if (vtkMath::Norm(direction.data()) == 0.0)
+  {
+    throw UsageError(option + " must not be the zero vector");
+  }
+  return direction;
+}
+
 std::string Lower(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), ::tolower);
   return text;
+}
+
+/** The handler of an option that sets a string. */
+caustics_cli::Arguments::ValueHandler Text(std::string& field)
+{
+  return [&field](const std::string&, const std::string& value) { field = value; };
+}
+
+void DeclareSceneOptions(caustics_cli::Arguments& arguments, Options& options, bool& sceneGiven)
+{
+  arguments.Value("--scene",
+    [&options, &sceneGiven](const std::string&, const std::string& value)
+    {
+      options.Scene = value;
+      sceneGiven = true;
+    });
+  arguments.Value("--role", Text(options.Role));
+  arguments.Value("--ior",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.IOR = ParseNumber(option, value);
+      if (options.IOR < 1.0)
+      {
+        throw UsageError("--ior must be >= 1 (vacuum), got " + value);
+      }
+    });
+  arguments.Value("--time",
+    [&options](const std::string& option, const std::string& value)
+    { options.Time = ParseNumber(option, value); });
+  arguments.Value("--camera-index",
+    [&options](const std::string& option, const std::string& value)
+    { options.CameraIndex = ParseInteger(option, value, -1, 1 << 20); });
+}
+
+void DeclareQualityOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Value("--technique", Text(options.Technique));
+  arguments.Value("--photons",
+    [&options](const std::string& option, const std::string& value)
+    { options.Photons = ParseInteger(option, value, 1, 8192); });
+  arguments.Value("--size",
+    [&options](const std::string& option, const std::string& value)
+    {
+      const auto x = value.find('x');
+      options.Width = ParseInteger(option, value.substr(0, x), 1, 16384);
+      options.Height = x == std::string::npos ? options.Width
+                                              : ParseInteger(option, value.substr(x + 1), 1, 16384);
+    });
+  arguments.Value("--frames",
+    [&options](const std::string& option, const std::string& value)
+    { options.Frames = ParseInteger(option, value, 1, 10000); });
+}
+
+void DeclareLightAndCameraOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Value("--light-direction",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.LightDirection = ParseDirection(option, value);
+      options.HasLightDirection = true;
+    });
+  arguments.Value("--light-intensity",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.LightIntensity = ParseNumber(option, value);
+      if (options.LightIntensity < 0.0)
+      {
+        throw UsageError("--light-intensity must be >= 0");
+      }
+      options.HasLightIntensity = true;
+    });
+  arguments.Value("--camera-position",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.CameraPosition = ParseVector(option, value);
+      options.HasCameraPosition = true;
+    });
+  arguments.Value("--camera-focal",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.CameraFocal = ParseVector(option, value);
+      options.HasCameraFocal = true;
+    });
+  arguments.Value("--camera-up",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.CameraUp = ParseDirection(option, value);
+      options.HasCameraUp = true;
+    });
+  arguments.Value("--view-angle",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.ViewAngle = ParseNumber(option, value);
+      if (!(options.ViewAngle > 0.0 && options.ViewAngle < 180.0))
+      {
+        throw UsageError("--view-angle must lie in (0, 180) degrees");
+      }
+    });
+}
+
+void DeclareMediumAndOutputOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Value("--medium",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.Medium = ParseVector(option, value);
+      if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
+      {
+        throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
+      }
+      options.HasMedium = true;
+    });
+  arguments.Value("--output", Text(options.Output));
+  arguments.Value("--exposure",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.Exposure = ParseNumber(option, value);
+      if (options.Exposure <= 0.0)
+      {
+        throw UsageError("--exposure must be > 0");
+      }
+    });
+  arguments.Flag("--timings", [&options] { options.Timings = true; });
+}
+
+/** "A, B, ..., best (default: X)": the techniques --technique takes. */
+std::string TechniqueNames(bool withDefault)
+{
+  std::string names;
+  for (const auto& name : vtkCausticsTechniques::GetNames())
+  {
+    names += name + ", ";
+  }
+  return names + "best" +
+    (withDefault ? std::string(" (default: ") + vtkCausticsTechniques::GetBestName() + ")" : "");
 }
 
 Options Parse(int argc, char* argv[], bool& help)
@@ -180,158 +299,26 @@ Options Parse(int argc, char* argv[], bool& help)
   Options options;
   help = false;
   bool sceneGiven = false;
-  for (int i = 1; i < argc; ++i)
+  caustics_cli::Arguments arguments;
+  arguments.Flag("--help", [&help] { help = true; });
+  arguments.Flag("-h", [&help] { help = true; });
+  DeclareSceneOptions(arguments, options, sceneGiven);
+  DeclareQualityOptions(arguments, options);
+  DeclareLightAndCameraOptions(arguments, options);
+  DeclareMediumAndOutputOptions(arguments, options);
+  for (const auto& scene : arguments.Parse(argc, argv))
   {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string
+    if (sceneGiven)
     {
-      if (i + 1 >= argc)
-      {
-        throw UsageError(arg + " needs a value");
-      }
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      help = true;
+      throw UsageError("more than one scene given ('" + options.Scene + "' and '" + scene + "')");
     }
-    else if (arg == "--scene")
-    {
-      options.Scene = value();
-      sceneGiven = true;
-    }
-    else if (arg == "--role")
-    {
-      options.Role = value();
-    }
-    else if (arg == "--ior")
-    {
-      options.IOR = ParseNumber(arg, value());
-      if (options.IOR < 1.0)
-      {
-        throw UsageError("--ior must be >= 1 (vacuum), got " + std::string(argv[i]));
-      }
-    }
-    else if (arg == "--time")
-    {
-      options.Time = ParseNumber(arg, value());
-    }
-    else if (arg == "--camera-index")
-    {
-      options.CameraIndex = ParseInteger(arg, value(), -1, 1 << 20);
-    }
-    else if (arg == "--technique")
-    {
-      options.Technique = value();
-    }
-    else if (arg == "--photons")
-    {
-      options.Photons = ParseInteger(arg, value(), 1, 8192);
-    }
-    else if (arg == "--size")
-    {
-      const std::string text = value();
-      const auto x = text.find('x');
-      options.Width = ParseInteger(arg, text.substr(0, x), 1, 16384);
-      options.Height =
-        x == std::string::npos ? options.Width : ParseInteger(arg, text.substr(x + 1), 1, 16384);
-    }
-    else if (arg == "--frames")
-    {
-      options.Frames = ParseInteger(arg, value(), 1, 10000);
-    }
-    else if (arg == "--light-direction")
-    {
-      options.LightDirection = ParseVector(arg, value());
-      if (vtkMath::Norm(options.LightDirection.data()) == 0.0)
-      {
-        throw UsageError("--light-direction must not be the zero vector");
-      }
-      options.HasLightDirection = true;
-    }
-    else if (arg == "--light-intensity")
-    {
-      options.LightIntensity = ParseNumber(arg, value());
-      if (options.LightIntensity < 0.0)
-      {
-        throw UsageError("--light-intensity must be >= 0");
-      }
-      options.HasLightIntensity = true;
-    }
-    else if (arg == "--camera-position")
-    {
-      options.CameraPosition = ParseVector(arg, value());
-      options.HasCameraPosition = true;
-    }
-    else if (arg == "--camera-focal")
-    {
-      options.CameraFocal = ParseVector(arg, value());
-      options.HasCameraFocal = true;
-    }
-    else if (arg == "--camera-up")
-    {
-      options.CameraUp = ParseVector(arg, value());
-      if (vtkMath::Norm(options.CameraUp.data()) == 0.0)
-      {
-        throw UsageError("--camera-up must not be the zero vector");
-      }
-      options.HasCameraUp = true;
-    }
-    else if (arg == "--view-angle")
-    {
-      options.ViewAngle = ParseNumber(arg, value());
-      if (!(options.ViewAngle > 0.0 && options.ViewAngle < 180.0))
-      {
-        throw UsageError("--view-angle must lie in (0, 180) degrees");
-      }
-    }
-    else if (arg == "--medium")
-    {
-      options.Medium = ParseVector(arg, value());
-      if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
-      {
-        throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
-      }
-      options.HasMedium = true;
-    }
-    else if (arg == "--output")
-    {
-      options.Output = value();
-    }
-    else if (arg == "--exposure")
-    {
-      options.Exposure = ParseNumber(arg, value());
-      if (options.Exposure <= 0.0)
-      {
-        throw UsageError("--exposure must be > 0");
-      }
-    }
-    else if (arg == "--timings")
-    {
-      options.Timings = true;
-    }
-    else if (!arg.empty() && arg[0] == '-')
-    {
-      throw UsageError("unknown option '" + arg + "' (see --help)");
-    }
-    else if (sceneGiven)
-    {
-      throw UsageError("more than one scene given ('" + options.Scene + "' and '" + arg + "')");
-    }
-    else
-    {
-      options.Scene = arg;
-      sceneGiven = true;
-    }
+    options.Scene = scene;
+    sceneGiven = true;
   }
   if (!vtkCausticsTechniques::Create(options.Technique))
   {
-    std::string known;
-    for (const auto& name : vtkCausticsTechniques::GetNames())
-    {
-      known += name + ", ";
-    }
-    throw UsageError("unknown technique '" + options.Technique + "' (known: " + known + "best)");
+    throw UsageError(
+      "unknown technique '" + options.Technique + "' (known: " + TechniqueNames(false) + ")");
   }
   return options;
 }
@@ -372,6 +359,21 @@ void StageMesh(vtkRenderer* renderer, vtkActor* mesh)
   camera->SetViewUp(0, 1, 0);
   camera->SetViewAngle(30.0);
   renderer->ResetCameraClippingRange();
+}
+
+/** --ior on every refractor: glTF ones too (built-ins and meshes take it when loaded). */
+void ApplyRefractiveIndex(vtkRenderer* renderer, double ior)
+{
+  vtkActorCollection* actors = renderer->GetActors();
+  vtkCollectionSimpleIterator it;
+  actors->InitTraversal(it);
+  while (vtkActor* actor = actors->GetNextActor(it))
+  {
+    if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
+    {
+      actor->GetProperty()->SetBaseIOR(ior);
+    }
+  }
 }
 
 void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* renderer,
@@ -439,17 +441,7 @@ void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* ren
   }
   if (options.IOR > 0.0)
   {
-    // Applies to glTF refractors too (built-ins and meshes took it above).
-    vtkActorCollection* actors = renderer->GetActors();
-    vtkCollectionSimpleIterator it;
-    actors->InitTraversal(it);
-    while (vtkActor* actor = actors->GetNextActor(it))
-    {
-      if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
-      {
-        actor->GetProperty()->SetBaseIOR(options.IOR);
-      }
-    }
+    ApplyRefractiveIndex(renderer, options.IOR);
   }
 }
 
@@ -576,20 +568,47 @@ private:
   }
 };
 
-int Run(const Options& options)
+/** Each stage's GPU and CPU times over the frames, in the order the stages first ran. */
+struct StageTimes
 {
-  std::string how;
+  std::vector<std::string> Order;
+  std::map<std::string, std::vector<double>> GPU, CPU;
+  std::vector<double> Frames; // wall time of each frame
+
+  void Add(vtkCausticsTimings* timings)
+  {
+    for (int s = 0; s < timings->GetNumberOfStages(); ++s)
+    {
+      const std::string name = timings->GetStageName(s);
+      if (!timings->GetStageRan(s))
+      {
+        continue;
+      }
+      if (!this->GPU.count(name))
+      {
+        this->Order.push_back(name);
+      }
+      this->GPU[name].push_back(timings->GetStageGPUMilliseconds(s));
+      this->CPU[name].push_back(timings->GetStageCPUMilliseconds(s));
+    }
+  }
+};
+
+vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options, std::string& how)
+{
   vtkSmartPointer<vtkRenderWindow> window = vtkCausticsWindowFactory::Create(true, &how);
   if (!window)
   {
     throw NoWindowError(how);
   }
-  vtkNew<vtkOpenGLRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkCausticsBuiltinScene> builtin;
-  LoadScene(options, window, renderer, builtin);
-  ApplyOverrides(options, renderer);
+  window->SetMultiSamples(0);
+  window->SetSize(options.Width, options.Height);
+  return window;
+}
 
+/** The technique's pass, keeping its buffers for read-back, with synchronous timings. */
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Options& options)
+{
   vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(options.Technique);
   pass->KeepBuffersOn();
   pass->ComputeDirectIrradianceOn();
@@ -598,44 +617,38 @@ int Run(const Options& options)
   {
     pass->SetLightBufferResolution(options.Photons);
   }
-  renderer->SetPass(pass);
-  window->SetMultiSamples(0);
-  window->SetSize(options.Width, options.Height);
+  return pass;
+}
 
-  std::map<std::string, std::vector<double>> gpu, cpu;
-  std::vector<std::string> order;
-  std::vector<double> frameTimes;
+StageTimes RenderFrames(
+  const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass)
+{
+  StageTimes times;
   for (int frame = 0; frame < options.Frames; ++frame)
   {
     const auto start = std::chrono::steady_clock::now();
     window->Render();
-    frameTimes.push_back(
+    times.Frames.push_back(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    vtkCausticsTimings* timings = pass->GetTimings();
-    for (int s = 0; s < timings->GetNumberOfStages(); ++s)
-    {
-      const std::string name = timings->GetStageName(s);
-      if (!timings->GetStageRan(s))
-      {
-        continue;
-      }
-      if (!gpu.count(name))
-      {
-        order.push_back(name);
-      }
-      gpu[name].push_back(timings->GetStageGPUMilliseconds(s));
-      cpu[name].push_back(timings->GetStageCPUMilliseconds(s));
-    }
+    times.Add(pass->GetTimings());
   }
+  return times;
+}
 
-  const auto& scene = pass->GetSceneExtractor()->GetScene();
-  vtkNew<vtkImageData> image;
+/**
+ * The last frame's buffers as arrays of one image, and the EXR layers they become
+ * (array name, layer prefix). A frame without a caustic stage gets a zero caustic layer.
+ */
+vtkSmartPointer<vtkImageData> ReadLayers(const Options& options, vtkCausticsRenderPass* pass,
+  std::vector<std::pair<std::string, std::string>>& layers)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(options.Width, options.Height, 1);
   if (!CopyBuffer(pass, "FinalColor", "FinalColor", image))
   {
     throw std::runtime_error("the frame produced no image (see the errors above)");
   }
-  std::vector<std::pair<std::string, std::string>> layers = { { "FinalColor", "" } };
+  layers = { { "FinalColor", "" } };
   if (CopyBuffer(pass, "DirectIrradiance", "DirectIrradiance", image))
   {
     layers.emplace_back("DirectIrradiance", "direct");
@@ -659,7 +672,12 @@ int Run(const Options& options)
   {
     layers.emplace_back("ReceiverMask", "mask");
   }
+  return image;
+}
 
+void WriteImages(const Options& options, vtkImageData* image,
+  const std::vector<std::pair<std::string, std::string>>& layers)
+{
   std::string error;
   const std::string png = options.Output + ".png", exr = options.Output + ".exr";
   if (!vtkCausticsImageIO::WritePNG(image, "FinalColor", png, options.Exposure, false, &error) ||
@@ -667,30 +685,66 @@ int Run(const Options& options)
   {
     throw std::runtime_error(error);
   }
+}
 
+void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std::string& how)
+{
+  const auto& scene = pass->GetSceneExtractor()->GetScene();
   std::cout << "caustics-render: " << options.Scene << ", technique "
             << (options.Technique == "best" ? vtkCausticsTechniques::GetBestName()
                                             : options.Technique)
             << ", " << options.Width << "x" << options.Height << ", window " << how << ", "
             << scene.Meshes.size() << " meshes, " << scene.Lights.size() << " light(s)"
             << (pass->GetLastFrameHadCaustics() ? "" : " (no caustic stage needed)") << "\n";
-  std::cout << "wrote " << png << " and " << exr << "\n";
+  std::cout << "wrote " << options.Output << ".png and " << options.Output << ".exr\n";
+}
+
+void PrintTimings(const Options& options, StageTimes& times)
+{
+  std::cout << std::fixed << std::setprecision(3) << "per-stage time, median of " << options.Frames
+            << " frame(s):\n";
+  for (const auto& name : times.Order)
+  {
+    std::cout << "  " << std::left << std::setw(28) << name << "gpu " << std::right << std::setw(9)
+              << Median(times.GPU[name]) << " ms   cpu " << std::setw(9) << Median(times.CPU[name])
+              << " ms\n";
+  }
+  std::cout << "  " << std::left << std::setw(28) << "whole frame (wall)"
+            << "    " << std::right << std::setw(9) << Median(times.Frames) << " ms\n";
+}
+
+int Run(const Options& options)
+{
+  std::string how;
+  vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options, how);
+  vtkNew<vtkOpenGLRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  LoadScene(options, window, renderer, builtin);
+  ApplyOverrides(options, renderer);
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(options);
+  renderer->SetPass(pass);
+  StageTimes times = RenderFrames(options, window, pass);
+
+  std::vector<std::pair<std::string, std::string>> layers;
+  vtkSmartPointer<vtkImageData> image = ReadLayers(options, pass, layers);
+  WriteImages(options, image, layers);
+  PrintSummary(options, pass, how);
   if (options.Timings)
   {
-    std::cout << std::fixed << std::setprecision(3) << "per-stage time, median of "
-              << options.Frames << " frame(s):\n";
-    for (const auto& name : order)
-    {
-      std::cout << "  " << std::left << std::setw(28) << name << "gpu " << std::right
-                << std::setw(9) << Median(gpu[name]) << " ms   cpu " << std::setw(9)
-                << Median(cpu[name]) << " ms\n";
-    }
-    std::cout << "  " << std::left << std::setw(28) << "whole frame (wall)"
-              << "    " << std::right << std::setw(9) << Median(frameTimes) << " ms\n";
+    PrintTimings(options, times);
   }
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
   return 0;
+}
+
+/** The usage text with the registered techniques filled in. */
+std::string UsageText()
+{
+  std::string text = Usage;
+  text.replace(text.find("%TECHNIQUES%"), 12, "technique: " + TechniqueNames(true));
+  return text;
 }
 }
 
@@ -706,19 +760,7 @@ int main(int argc, char* argv[])
     const Options options = Parse(argc, argv, help);
     if (help)
     {
-      std::string text = Usage;
-      const std::string techniques = "technique: " +
-        []
-      {
-        std::string names;
-        for (const auto& name : vtkCausticsTechniques::GetNames())
-        {
-          names += name + ", ";
-        }
-        return names + "best (default: " + vtkCausticsTechniques::GetBestName() + ")";
-      }();
-      text.replace(text.find("%TECHNIQUES%"), 12, techniques);
-      std::cout << text;
+      std::cout << UsageText();
       return 0;
     }
     const int status = Run(options);

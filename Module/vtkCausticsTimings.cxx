@@ -5,8 +5,10 @@
 
 #include "vtk_glew.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <iterator>
 #include <memory>
 #include <sstream>
 #include <thread>
@@ -17,6 +19,14 @@ vtkStandardNewMacro(vtkCausticsTimings);
 namespace
 {
 using Clock = std::chrono::steady_clock;
+constexpr int Counters = vtkCausticsTimings::NUMBER_OF_WORK_COUNTERS;
+
+/** The pipeline statistics query target of each counter, in WorkCounter order. */
+const GLenum CounterTargets[Counters] = { GL_SAMPLES_PASSED, GL_FRAGMENT_SHADER_INVOCATIONS_ARB,
+  GL_COMPUTE_SHADER_INVOCATIONS_ARB, GL_PRIMITIVES_SUBMITTED_ARB,
+  GL_VERTEX_SHADER_INVOCATIONS_ARB };
+const char* CounterNames[Counters] = { "fragments", "fragment shader invocations",
+  "compute invocations", "primitives", "vertices" };
 
 struct Stage
 {
@@ -30,20 +40,41 @@ struct Stage
   double GPU = -1.0;
   double CPU = 0.0;
   Clock::time_point CPUStart;
+  // Work counts of the stage's last run (CountWork); Run tells the runs apart.
+  bool Counted = false;
+  int Run = 0;
+  long long Work[Counters] = { -1, -1, -1, -1, -1 };
+};
+
+/**
+ * One interval of a frame between two counted stage boundaries: its queries (one
+ * per counter) and the stage runs open during it, which its counts are added to.
+ */
+struct Segment
+{
+  GLuint Queries[Counters] = {};
+  std::vector<std::pair<std::size_t, int>> Owners; // stage index, run
 };
 }
 
 struct vtkCausticsTimings::Internals
 {
   std::vector<Stage> Stages;
+  // Work counting: the counted stages open now (outermost first), the pool of
+  // segments (reused from frame to frame) and how many this frame used.
+  std::vector<std::size_t> Open;
+  std::vector<Segment> Segments;
+  std::size_t UsedSegments = 0;
+  bool SegmentActive = false;
+  int HasStatistics = -1; // unknown until the first counted stage has a context
 
-  Stage& Find(const char* name)
+  std::size_t Find(const char* name)
   {
-    for (Stage& stage : this->Stages)
+    for (std::size_t i = 0; i < this->Stages.size(); ++i)
     {
-      if (stage.Name == name)
+      if (this->Stages[i].Name == name)
       {
-        return stage;
+        return i;
       }
     }
     this->Stages.emplace_back();
@@ -51,7 +82,7 @@ struct vtkCausticsTimings::Internals
     stage.Name = name;
     stage.Timers[0].reset(new vtkOpenGLRenderTimer);
     stage.Timers[1].reset(new vtkOpenGLRenderTimer);
-    return stage;
+    return this->Stages.size() - 1;
   }
 
   static void Collect(Stage& stage, bool wait)
@@ -77,6 +108,111 @@ struct vtkCausticsTimings::Internals
       }
     }
   }
+
+  /** GL 4.6, or GL_ARB_pipeline_statistics_query: asked once, in the current context. */
+  bool CanCount()
+  {
+    if (this->HasStatistics < 0)
+    {
+      GLint major = 0, minor = 0, extensions = 0;
+      glGetIntegerv(GL_MAJOR_VERSION, &major);
+      glGetIntegerv(GL_MINOR_VERSION, &minor);
+      glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+      this->HasStatistics = major * 10 + minor >= 46 ? 1 : 0;
+      for (GLint i = 0; i < extensions && !this->HasStatistics; ++i)
+      {
+        const char* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, i));
+        this->HasStatistics = name && std::string(name) == "GL_ARB_pipeline_statistics_query";
+      }
+    }
+    return this->HasStatistics == 1;
+  }
+
+  /** Starts a segment for the stages open now (none: nothing to count). */
+  void OpenSegment()
+  {
+    if (this->Open.empty())
+    {
+      return;
+    }
+    if (this->UsedSegments == this->Segments.size())
+    {
+      this->Segments.emplace_back(); // the pool grows in the first frames only
+      glGenQueries(Counters, this->Segments.back().Queries);
+    }
+    Segment& segment = this->Segments[this->UsedSegments];
+    segment.Owners.clear();
+    for (std::size_t i : this->Open)
+    {
+      segment.Owners.emplace_back(i, this->Stages[i].Run);
+    }
+    for (int k = 0; k < Counters; ++k)
+    {
+      glBeginQuery(CounterTargets[k], segment.Queries[k]);
+    }
+    this->SegmentActive = true;
+  }
+
+  void CloseSegment()
+  {
+    if (!this->SegmentActive)
+    {
+      return;
+    }
+    for (int k = 0; k < Counters; ++k)
+    {
+      glEndQuery(CounterTargets[k]);
+    }
+    ++this->UsedSegments;
+    this->SegmentActive = false;
+  }
+
+  void StartCounting(std::size_t index)
+  {
+    glFinish(); // the stage's CPU time then starts on an idle GPU
+    this->CloseSegment();
+    Stage& stage = this->Stages[index];
+    stage.Counted = true;
+    ++stage.Run;
+    std::fill(stage.Work, stage.Work + Counters, 0);
+    this->Open.push_back(index);
+    this->OpenSegment();
+  }
+
+  void StopCounting(std::size_t index)
+  {
+    glFinish(); // ... and ends when its work is done
+    this->CloseSegment();
+    const auto open = std::find(this->Open.rbegin(), this->Open.rend(), index);
+    if (open != this->Open.rend())
+    {
+      this->Open.erase(std::next(open).base());
+    }
+    this->OpenSegment();
+  }
+
+  /** Waits for the frame's segments and adds each to the stage runs it belongs to. */
+  void CollectWork()
+  {
+    this->CloseSegment();
+    for (std::size_t s = 0; s < this->UsedSegments; ++s)
+    {
+      const Segment& segment = this->Segments[s];
+      for (int k = 0; k < Counters; ++k)
+      {
+        GLuint64 value = 0;
+        glGetQueryObjectui64v(segment.Queries[k], GL_QUERY_RESULT, &value);
+        for (const auto& owner : segment.Owners)
+        {
+          Stage& stage = this->Stages[owner.first];
+          // A stage that ran again later in the frame keeps its last run's counts.
+          stage.Work[k] += stage.Run == owner.second ? static_cast<long long>(value) : 0;
+        }
+      }
+    }
+    this->UsedSegments = 0;
+    this->Open.clear();
+  }
 };
 
 vtkCausticsTimings::vtkCausticsTimings()
@@ -88,6 +224,10 @@ vtkCausticsTimings::~vtkCausticsTimings() = default;
 
 void vtkCausticsTimings::BeginFrame()
 {
+  if (this->Internal->UsedSegments > 0 || this->Internal->SegmentActive)
+  {
+    this->Internal->CollectWork(); // a frame that did not reach EndFrame()
+  }
   for (Stage& stage : this->Internal->Stages)
   {
     stage.Ran = false;
@@ -101,9 +241,15 @@ void vtkCausticsTimings::StartStage(const char* name, bool gpu)
   {
     return;
   }
-  Stage& stage = this->Internal->Find(name);
+  const std::size_t index = this->Internal->Find(name);
+  Stage& stage = this->Internal->Stages[index];
   stage.Ran = true;
   stage.CPUOnly = !gpu;
+  stage.Counted = false;
+  if (gpu && this->CountWork && this->Internal->CanCount())
+  {
+    this->Internal->StartCounting(index);
+  }
   stage.CPUStart = Clock::now();
   if (!gpu)
   {
@@ -127,7 +273,12 @@ void vtkCausticsTimings::StopStage(const char* name)
   {
     return;
   }
-  Stage& stage = this->Internal->Find(name);
+  const std::size_t index = this->Internal->Find(name);
+  Stage& stage = this->Internal->Stages[index];
+  if (stage.Counted)
+  {
+    this->Internal->StopCounting(index);
+  }
   if (!stage.CPUOnly)
   {
     stage.Timers[stage.Current]->Stop();
@@ -138,6 +289,10 @@ void vtkCausticsTimings::StopStage(const char* name)
 
 void vtkCausticsTimings::EndFrame()
 {
+  if (this->Internal->UsedSegments > 0 || this->Internal->SegmentActive)
+  {
+    this->Internal->CollectWork();
+  }
   for (Stage& stage : this->Internal->Stages)
   {
     if (stage.Ran)
@@ -175,6 +330,21 @@ bool vtkCausticsTimings::GetStageRan(int i) const
 bool vtkCausticsTimings::GetStageTimedOnGPU(int i) const
 {
   return this->GetStageRan(i) && !this->Internal->Stages[i].CPUOnly;
+}
+
+const char* vtkCausticsTimings::GetWorkCounterName(int counter)
+{
+  return counter >= 0 && counter < Counters ? CounterNames[counter] : "";
+}
+
+long long vtkCausticsTimings::GetStageWork(int i, int counter) const
+{
+  if (!this->GetStageRan(i) || counter < 0 || counter >= Counters)
+  {
+    return -1;
+  }
+  const Stage& stage = this->Internal->Stages[i];
+  return stage.Counted ? stage.Work[counter] : -1;
 }
 
 double vtkCausticsTimings::GetGPUMilliseconds(const char* name) const
@@ -228,6 +398,16 @@ std::string vtkCausticsTimings::GetReport() const
 
 void vtkCausticsTimings::ReleaseGraphicsResources()
 {
+  auto& in = *this->Internal;
+  in.CloseSegment();
+  for (Segment& segment : in.Segments)
+  {
+    glDeleteQueries(Counters, segment.Queries);
+  }
+  in.Segments.clear();
+  in.UsedSegments = 0;
+  in.Open.clear();
+  in.HasStatistics = -1;
   for (Stage& stage : this->Internal->Stages)
   {
     for (int k = 0; k < 2; ++k)
@@ -243,5 +423,6 @@ void vtkCausticsTimings::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Enabled: " << this->Enabled << "\n";
   os << indent << "Synchronous: " << this->Synchronous << "\n";
+  os << indent << "CountWork: " << this->CountWork << "\n";
   os << indent << "Stages:\n" << this->GetReport();
 }

@@ -8,6 +8,27 @@
  * are complete (usually the previous one). With Synchronous on (the CLI, the
  * benchmark, tests), EndFrame() waits for the queries so the times are this frame's.
  * Stages keep the order in which they were first started.
+ *
+ * With CountWork on (the benchmark; off by default, it costs), each stage also
+ * counts the GPU work it did with pipeline statistics queries
+ * (GL_ARB_pipeline_statistics_query, core in GL 4.6: fragment and compute shader
+ * invocations, primitives submitted, vertex shader invocations) and an occlusion
+ * query (fragments written, i.e. not discarded: with no depth test, a splat's or a
+ * traced line's fragments). Mesa's llvmpipe (22.3) counts fragment shader
+ * invocations as 16 per 4x4 block it shades, so throughputs use fragments
+ * written, primitives and compute invocations; caustics-ceilings checks the
+ * counts against what it drew. Stages nest (a
+ * technique's stages run inside "caustic irradiance"), but a query of one target
+ * cannot be active twice, so the frame is cut into segments at every counted
+ * StartStage/StopStage: one set of queries per segment, added to every stage open
+ * during it. A stage's counts therefore include those of the stages nested in it,
+ * as its times do. The query objects are pooled and reused from frame to frame.
+ * While counting, EndFrame() waits for the counts, and every stage boundary waits
+ * for the GPU (glFinish) so that a stage's CPU time is the wall time of its
+ * execution on any implementation: the denominator of its throughput. A counted
+ * stage must not run occlusion or pipeline statistics queries of its own (a target
+ * cannot be active twice); no caustics stage does, but VTK's depth peeling with an
+ * occlusion ratio would, inside "vtk delegate".
  */
 #ifndef vtkCausticsTimings_h
 #define vtkCausticsTimings_h
@@ -38,6 +59,37 @@ public:
   vtkGetMacro(Enabled, bool);
   vtkBooleanMacro(Enabled, bool);
   ///@}
+
+  ///@{
+  /**
+   * Count each stage's GPU work (pipeline statistics queries; see the class
+   * documentation). Default off: the queries, and the waits they need, cost.
+   */
+  vtkSetMacro(CountWork, bool);
+  vtkGetMacro(CountWork, bool);
+  vtkBooleanMacro(CountWork, bool);
+  ///@}
+
+  /** The work counted per stage with CountWork on. */
+  enum WorkCounter
+  {
+    FRAGMENTS_WRITTEN,           // fragments that passed every test (GL_SAMPLES_PASSED)
+    FRAGMENT_SHADER_INVOCATIONS, // fragments shaded, as the implementation counts them
+    COMPUTE_SHADER_INVOCATIONS,  // compute shader invocations (threads, not work groups)
+    PRIMITIVES_SUBMITTED,        // points, lines, triangles drawn
+    VERTEX_SHADER_INVOCATIONS,   // vertices shaded
+    NUMBER_OF_WORK_COUNTERS
+  };
+
+  /** Short name of a counter ("fragments", "compute invocations", ...), "" if out of range. */
+  static const char* GetWorkCounterName(int counter);
+
+  /**
+   * Work of stage i in the last frame (its last run when it ran more than once, as
+   * its times), nested stages included; -1 when it was not counted (CountWork off,
+   * a CPU-only stage, or no pipeline statistics queries in this context).
+   */
+  long long GetStageWork(int i, int counter) const;
 
   /** Marks the start of a frame: stages not started this frame report "skipped". */
   void BeginFrame();
@@ -79,6 +131,7 @@ protected:
 
   bool Synchronous = false;
   bool Enabled = true;
+  bool CountWork = false;
 
 private:
   vtkCausticsTimings(const vtkCausticsTimings&) = delete;

@@ -1,0 +1,169 @@
+// The command-line conventions the caustics programs share (caustics-render,
+// caustics-bench, caustics-ceilings): options declared with their handler on top
+// of vtksys::CommandLineArguments, the number parsers with their one-line errors,
+// and the error kinds that main() turns into exit codes (2 for bad arguments, 3
+// when no OpenGL window can be made, 1 for anything else).
+#ifndef CausticsCommandLine_h
+#define CausticsCommandLine_h
+
+#include "vtksys/CommandLineArguments.hxx"
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <list>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace caustics_cli
+{
+/** A user mistake: reported as one line, exit code 2. */
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/** No OpenGL window can be made here (no display, no EGL): exit code 3. */
+struct NoWindowError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/** A finite number, or "OPTION expects a finite number, got 'TEXT'". */
+inline double ParseNumber(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
+  {
+    throw UsageError(option + " expects a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+/** An integer in [low, high]; accepts 1e6-style notation (photon counts). */
+inline double ParseCount(
+  const std::string& option, const std::string& text, double low, double high)
+{
+  const double value = ParseNumber(option, text);
+  if (value != std::floor(value) || value < low || value > high)
+  {
+    std::ostringstream message;
+    message << option << " expects an integer in [" << low << ", " << high << "], got '" << text
+            << "'";
+    throw UsageError(message.str());
+  }
+  return value;
+}
+
+/** An int in [low, high] (bounds printed in full, not in 1e6-style notation). */
+inline int ParseInteger(const std::string& option, const std::string& text, int low, int high)
+{
+  const double value = ParseNumber(option, text);
+  if (value != std::floor(value) || value < low || value > high)
+  {
+    throw UsageError(option + " expects an integer in [" + std::to_string(low) + ", " +
+      std::to_string(high) + "], got '" + text + "'");
+  }
+  return static_cast<int>(value);
+}
+
+/**
+ * The options of one program on vtksys::CommandLineArguments: each is declared
+ * once with its handler, which parses and validates its value and throws
+ * UsageError naming the problem. Parse() handles the arguments in order and
+ * returns those that are no option (the positionals); an unknown "-..." argument
+ * and an option without its value are errors too. The help text stays the
+ * program's own (grouped and worded for readers), so vtksys's generated help is
+ * not used.
+ */
+class Arguments
+{
+public:
+  using ValueHandler = std::function<void(const std::string& option, const std::string& value)>;
+
+  /** An option that takes the next argument as its value: --name VALUE. */
+  void Value(const char* name, ValueHandler handler)
+  {
+    this->Add(name, vtksys::CommandLineArguments::SPACE_ARGUMENT, std::move(handler));
+  }
+
+  /** A flag: --name. */
+  void Flag(const char* name, std::function<void()> handler)
+  {
+    this->Add(name, vtksys::CommandLineArguments::NO_ARGUMENT,
+      [handler](const std::string&, const std::string&) { handler(); });
+  }
+
+  /** Parses argv[1..]; throws UsageError on the first bad argument. */
+  std::vector<std::string> Parse(int argc, char* argv[])
+  {
+    this->Parser.Initialize(argc, argv);
+    this->Parser.StoreUnusedArguments(true);
+    if (!this->Parser.Parse())
+    {
+      if (!this->Error.empty())
+      {
+        throw UsageError(this->Error);
+      }
+      // vtksys fails silently only for an option at the end without its value.
+      const unsigned int failed = this->Parser.GetLastArgument() + 1;
+      throw UsageError(
+        std::string(failed < static_cast<unsigned int>(argc) ? argv[failed] : "an option") +
+        " needs a value");
+    }
+    int count = 0;
+    char** unused = nullptr;
+    this->Parser.GetUnusedArguments(&count, &unused);
+    std::vector<std::string> positionals(unused + 1, unused + count); // unused[0] is argv[0]
+    this->Parser.DeleteRemainingArguments(count, &unused);
+    for (const auto& argument : positionals)
+    {
+      if (!argument.empty() && argument[0] == '-')
+      {
+        throw UsageError("unknown option '" + argument + "' (see --help)");
+      }
+    }
+    return positionals;
+  }
+
+private:
+  struct Option
+  {
+    Arguments* Owner;
+    ValueHandler Handler;
+  };
+
+  void Add(
+    const char* name, vtksys::CommandLineArguments::ArgumentTypeEnum type, ValueHandler handler)
+  {
+    this->Options.push_back({ this, std::move(handler) });
+    // The help string must not be null (vtksys formats its own help as options come).
+    this->Parser.AddCallback(name, type, &Arguments::Call, &this->Options.back(), "");
+  }
+
+  /** vtksys's callback: runs the handler; a UsageError stops parsing with its message. */
+  static int Call(const char* argument, const char* value, void* data)
+  {
+    auto* option = static_cast<Option*>(data);
+    try
+    {
+      option->Handler(argument, value ? value : "");
+      return 1;
+    }
+    catch (const UsageError& e)
+    {
+      option->Owner->Error = e.what();
+      return 0;
+    }
+  }
+
+  vtksys::CommandLineArguments Parser;
+  std::list<Option> Options; // a list: each option's address is its callback's data
+  std::string Error;
+};
+}
+
+#endif
