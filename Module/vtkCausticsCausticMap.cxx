@@ -1,5 +1,6 @@
 #include "vtkCausticsCausticMap.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
@@ -176,9 +177,9 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin, vtkCausticsPhot
     program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
     program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
     glBindBufferBase(
-      GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, hierarchy->GetNodeBuffer());
+      GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING, hierarchy->GetNodeBuffer());
     glBindBufferBase(
-      GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, hierarchy->GetSplatBuffer());
+      GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_SPLATS_BINDING, hierarchy->GetSplatBuffer());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer());
     glBindVertexArray(this->VertexArray);
     for (int j = 0; j < this->NumberOfLevels; ++j)

@@ -1,5 +1,6 @@
 #include "vtkCausticsLayeredDepth.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -34,13 +35,6 @@ vtkStandardNewMacro(vtkCausticsLayeredDepth);
 
 namespace
 {
-// Shader storage bindings (glsl/vtkCausticsScreenSpaceCommon.glsl).
-constexpr unsigned int TableBinding = 1;
-constexpr unsigned int ObjectMapBinding = 2;
-constexpr unsigned int CommandInfoBinding = 3;
-constexpr unsigned int DrawCommandBinding = 4;
-constexpr unsigned int ClearCommandBinding = 5;
-
 /** A contiguous range of the scene geometry's index buffer. */
 struct IndexRange
 {
@@ -373,7 +367,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   {
     in.CountProgram->SetUniformMatrix4("worldToClip", worldToClip);
     glBindImageTexture(0, in.Complexity.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    in.ObjectMap.BindStorage(ObjectMapBinding);
+    in.ObjectMap.BindStorage(CAUSTICS_LDI_OBJECT_MAP_BINDING);
     geometry->Draw(this->RoleMask);
     in.CountProgram->Unbind(renWin);
   }
@@ -384,7 +378,7 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   if (ok)
   {
     glBindImageTexture(0, in.Complexity.Handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    in.Table.BindStorage(TableBinding);
+    in.Table.BindStorage(CAUSTICS_LDI_TABLE_BINDING);
     in.ReduceProgram->SetUniform2i("size", width, height);
     in.ReduceProgram->SetUniformi("objectCount", objects);
     in.ReduceProgram->DispatchCovering2D(width, height, 16, 16);
@@ -397,10 +391,10 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   ok = ok && in.FinalizeProgram->Bind(renWin);
   if (ok)
   {
-    in.Table.BindStorage(TableBinding);
-    in.CommandInfo.BindStorage(CommandInfoBinding);
-    in.DrawCommands.BindStorage(DrawCommandBinding);
-    in.ClearCommands.BindStorage(ClearCommandBinding);
+    in.Table.BindStorage(CAUSTICS_LDI_TABLE_BINDING);
+    in.CommandInfo.BindStorage(CAUSTICS_LDI_COMMAND_INFO_BINDING);
+    in.DrawCommands.BindStorage(CAUSTICS_LDI_DRAW_COMMAND_BINDING);
+    in.ClearCommands.BindStorage(CAUSTICS_LDI_CLEAR_COMMAND_BINDING);
     in.FinalizeProgram->SetUniformi("objectCount", objects);
     in.FinalizeProgram->SetUniformi("maxLayers", layers);
     in.FinalizeProgram->SetUniformi("commandCount", in.Commands);

@@ -1,5 +1,6 @@
 #include "vtkCausticsPhotonBuffer.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
@@ -179,8 +180,8 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
     glBindImageTexture(i, outputs[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   }
   glBindBufferBase(
-    GL_SHADER_STORAGE_BUFFER, caustics::hcm::StatisticsBinding, this->StatisticsBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding, this->ListBuffer);
+    GL_SHADER_STORAGE_BUFFER, CAUSTICS_PHOTON_STATISTICS_BINDING, this->StatisticsBuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_CONTROL_BINDING, this->ListBuffer);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->ListBuffer);
   geometry->BindMaterials();
   bool ok = true;

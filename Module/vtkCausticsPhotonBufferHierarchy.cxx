@@ -1,5 +1,6 @@
 #include "vtkCausticsPhotonBufferHierarchy.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
@@ -203,7 +204,7 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
   program->SetUniformi("hitPosition", position->GetTextureUnit());
   program->SetUniformi("hitFlux", flux->GetTextureUnit());
   caustics::hcm::SetViewUniforms(program, "mapView", mapView, mapResolution, mapResolution);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, this->NodeBuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING, this->NodeBuffer);
   for (int k = 1; k <= this->StartLevel; ++k)
   {
     program->SetUniformi("level", k);
@@ -233,10 +234,11 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   }
   const int* grid = photons->GetGridSize();
   glBindImageTexture(0, this->SplatRadius->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding, this->NodeBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding, this->ControlBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::WorkBinding, this->WorkBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding, this->SplatBuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING, this->NodeBuffer);
+  glBindBufferBase(
+    GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_CONTROL_BINDING, this->ControlBuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_WORK_BINDING, this->WorkBuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_SPLATS_BINDING, this->SplatBuffer);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->ControlBuffer);
 
   const bool flat = this->GatherMode == GATHER_FLAT;

@@ -1,5 +1,6 @@
 #include "vtkCausticsSceneGeometry.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_MATERIAL_BINDING
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtk_glew.h"
@@ -253,7 +254,8 @@ bool vtkCausticsSceneGeometry::Upload(
 
 void vtkCausticsSceneGeometry::BindMaterials()
 {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, this->Internal->MaterialBuffer);
+  glBindBufferBase(
+    GL_SHADER_STORAGE_BUFFER, CAUSTICS_MATERIAL_BINDING, this->Internal->MaterialBuffer);
 }
 
 void vtkCausticsSceneGeometry::Draw(int roleMask)

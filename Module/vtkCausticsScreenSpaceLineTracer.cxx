@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceLineTracer.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
@@ -24,13 +25,6 @@ vtkStandardNewMacro(vtkCausticsScreenSpaceLineTracer);
 
 namespace
 {
-// Shader storage bindings (glsl/vtkCausticsScreenSpaceCommon.glsl).
-constexpr unsigned int TableBinding = 1;
-constexpr unsigned int RayBinding = 6;
-constexpr unsigned int LineBinding = 8;
-constexpr unsigned int HitBinding = 9;
-constexpr unsigned int CounterBinding = 10;
-constexpr unsigned int ArgumentBinding = 15;
 // Sizes of the per-ray records, bytes.
 constexpr std::size_t LineBytes = 48;
 constexpr std::size_t HitBytes = 32;
@@ -147,8 +141,8 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   bool ok = in.PrepareProgram->Bind(renWin);
   if (ok)
   {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
-    in.Arguments.BindStorage(ArgumentBinding);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, counterBuffer);
+    in.Arguments.BindStorage(CAUSTICS_SSP_ARGUMENT_BINDING);
     in.PrepareProgram->SetUniformi("rowsPerBatch", rows);
     in.PrepareProgram->SetUniformi("batches", batches);
     in.PrepareProgram->SetUniformi("capacity", capacity);
@@ -160,9 +154,9 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   ok = ok && in.SetupProgram->Bind(renWin);
   if (ok)
   {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-    in.Lines.BindStorage(LineBinding);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, counterBuffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, rayBuffer);
+    in.Lines.BindStorage(CAUSTICS_SSP_LINE_BINDING);
     vtkCausticsShaderProgram* p = in.SetupProgram;
     p->SetUniformMatrix4("worldToClip", view.WorldToClip);
     p->SetUniform2f("viewport", static_cast<float>(width), static_cast<float>(height));
@@ -222,9 +216,9 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
     if (ok)
     {
       vtkCausticsShaderProgram* p = in.LineProgram;
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-      in.Lines.BindStorage(LineBinding);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TableBinding, tableBuffer);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, rayBuffer);
+      in.Lines.BindStorage(CAUSTICS_SSP_LINE_BINDING);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, tableBuffer);
       p->SetUniformi("batchBase", b * rows);
       p->SetUniform2f("target", static_cast<float>(rowWidth), static_cast<float>(rows));
       p->SetUniformi("ldiPosition", positionUnit);
@@ -250,9 +244,9 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
     {
       vtkCausticsShaderProgram* p = in.ReduceProgram;
       glBindTextureUnit(rowUnit, in.Rows.Handle);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-      in.Lines.BindStorage(LineBinding);
-      in.Hits.BindStorage(HitBinding);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, rayBuffer);
+      in.Lines.BindStorage(CAUSTICS_SSP_LINE_BINDING);
+      in.Hits.BindStorage(CAUSTICS_SSP_HIT_BINDING);
       p->SetUniformi("rowHits", rowUnit);
       p->SetUniformMatrix4("worldToClip", view.WorldToClip);
       p->SetUniformf("pixelScale", pixelScale);
@@ -261,7 +255,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
       p->SetUniform2f("viewport", static_cast<float>(width), static_cast<float>(height));
       p->SetUniformi("batchBase", b * rows);
       p->SetUniformi("capacity", capacity);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, counterBuffer);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, counterBuffer);
       p->SetUniformu("stamp", in.Stamp);
       glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Arguments.Handle);
       glDispatchComputeIndirect(static_cast<GLintptr>(argumentBytes + 16));

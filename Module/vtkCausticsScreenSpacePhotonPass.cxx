@@ -4,6 +4,7 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -54,14 +55,6 @@ vtkStandardNewMacro(vtkCausticsScreenSpacePhotonPass);
 
 namespace
 {
-// Shader storage bindings (glsl/vtkCausticsScreenSpaceCommon.glsl).
-constexpr unsigned int RayBinding = 6;
-constexpr unsigned int PayloadBinding = 7;
-constexpr unsigned int HitBinding = 9;
-constexpr unsigned int CounterBinding = 10;
-constexpr unsigned int NextRayBinding = 11;
-constexpr unsigned int NextPayloadBinding = 12;
-constexpr unsigned int NextCounterBinding = 13;
 // Bytes of one SspRay, one SspPayload, one SspHit.
 constexpr std::size_t RayBytes = 32;
 constexpr std::size_t PayloadBytes = 32;
@@ -511,9 +504,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
   p->SetUniform3f("boundsMax", static_cast<float>(scene.Bounds[1]),
     static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
-  in.Rays[0].BindStorage(NextRayBinding);
-  in.Payloads[0].BindStorage(NextPayloadBinding);
-  in.Counters[0].BindStorage(NextCounterBinding);
+  in.Rays[0].BindStorage(CAUSTICS_SSP_NEXT_RAY_BINDING);
+  in.Payloads[0].BindStorage(CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
+  in.Counters[0].BindStorage(CAUSTICS_SSP_NEXT_COUNTER_BINDING);
   p->DispatchCovering2D(grid[0], grid[1], 16, 16);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   p->Unbind(renWin);
@@ -544,13 +537,13 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   {
     return false;
   }
-  in.Counters[c].BindStorage(CounterBinding);
-  in.Rays[c].BindStorage(RayBinding);
-  in.Payloads[c].BindStorage(PayloadBinding);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HitBinding, in.Tracer->GetHitBuffer());
-  in.Rays[n].BindStorage(NextRayBinding);
-  in.Payloads[n].BindStorage(NextPayloadBinding);
-  in.Counters[n].BindStorage(NextCounterBinding);
+  in.Counters[c].BindStorage(CAUSTICS_SSP_COUNTER_BINDING);
+  in.Rays[c].BindStorage(CAUSTICS_SSP_RAY_BINDING);
+  in.Payloads[c].BindStorage(CAUSTICS_SSP_PAYLOAD_BINDING);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_HIT_BINDING, in.Tracer->GetHitBuffer());
+  in.Rays[n].BindStorage(CAUSTICS_SSP_NEXT_RAY_BINDING);
+  in.Payloads[n].BindStorage(CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
+  in.Counters[n].BindStorage(CAUSTICS_SSP_NEXT_COUNTER_BINDING);
   this->Geometry->BindMaterials();
   glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -808,7 +801,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
       static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
     p->SetUniform3f("lightDirection", static_cast<float>(source.direction[0]),
       static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
-    in.Rays[0].BindStorage(NextRayBinding);
+    in.Rays[0].BindStorage(CAUSTICS_SSP_NEXT_RAY_BINDING);
     p->DispatchCovering2D(w, h, 16, 16);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

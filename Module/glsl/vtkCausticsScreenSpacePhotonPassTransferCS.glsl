@@ -12,31 +12,31 @@
 //    reflection: always reflected). The result goes to the next transfer map.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSP_COUNTER_BINDING) readonly buffer SspCounter
+layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
 {
   uint rayCount;
 };
-layout(std430, binding = SSP_RAY_BINDING) readonly buffer SspRays
+layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
 {
   SspRay rays[];
 };
-layout(std430, binding = SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
+layout(std430, binding = CAUSTICS_SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
 {
   SspPayload payloads[];
 };
-layout(std430, binding = SSP_HIT_BINDING) readonly buffer SspHits
+layout(std430, binding = CAUSTICS_SSP_HIT_BINDING) readonly buffer SspHits
 {
   SspHit hits[];
 };
-layout(std430, binding = SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
+layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
 {
   SspRay nextRays[];
 };
-layout(std430, binding = SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
+layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
 {
   SspPayload nextPayloads[];
 };
-layout(std430, binding = SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
+layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
 {
   uint nextCount;
 };

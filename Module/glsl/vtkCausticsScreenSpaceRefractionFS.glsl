@@ -13,7 +13,7 @@
 // VTK shows that surface, else albedo x (direct + caustic irradiance).
 in vec2 texCoord;
 
-layout(std430, binding = SSP_LDI_TABLE_BINDING) readonly buffer SspLayerTable
+layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTable
 {
   uvec4 ldiHeader;
   uvec4 ldiObjects[];
