@@ -136,7 +136,7 @@ void main()
   if (inside && ray.direction.w >= 0.0)
   {
     // Inside the refractor the photon last entered or reflected in: its surface.
-    flux *= exp(-causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb * t);
+    flux *= CausticsTransmittance(causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb, t);
   }
   else if (mediumOn != 0)
   {
@@ -144,7 +144,7 @@ void main()
     float t1 = t;
     if (SspClipToBox(ray.origin.xyz, d, boundsMin, boundsMax, t0, t1))
     {
-      flux *= exp(-sigmaT * (t1 - t0));
+      flux *= CausticsTransmittance(sigmaT, t1 - t0);
     }
   }
   if (!(dot(n, n) > 0.25) || !(dot(flux, vec3(1.0)) > 0.0))
@@ -180,33 +180,21 @@ void main()
   {
     return;
   }
-  bool entering = dot(d, n) < 0.0;
-  vec3 facing = entering ? n : -n;
-  float cosI = clamp(-dot(d, facing), 0.0, 1.0);
-  vec3 direction;
+  CausticsInteraction s = CausticsSurfaceInteraction(d, n, material, role, 1.0);
+  vec3 direction = s.reflected;
   float state = ray.origin.w;
   if (role == ROLE_REFLECTOR)
   {
-    direction = reflect(d, facing);
-    flux *= FresnelConductor(cosI, material.metalN.rgb, material.metalK.rgb);
+    flux *= s.reflectedWeight;
   }
   else
   {
-    float ior = max(material.params.x, 1.0);
-    float n1 = entering ? 1.0 : ior;
-    float n2 = entering ? ior : 1.0;
-    float reflectance = FresnelDielectric(cosI, n1, n2);
-    vec3 refracted;
-    bool transmits = RefractDirection(d, facing, n1 / n2, refracted);
+    // One branch, refracted with probability 1 - R: the flux is kept as it is.
     float u = float(Hash(payload.info.x ^ Hash(uint(events) + seed)) >> 8) / 16777216.0;
-    if (!transmits || u < reflectance)
+    if (s.transmits && !(u < s.reflectedWeight.r))
     {
-      direction = reflect(d, facing);
-    }
-    else
-    {
-      direction = refracted;
-      state = entering ? 2.0 : 1.0;
+      direction = s.refracted;
+      state = s.entering ? 2.0 : 1.0;
     }
   }
   if (!(dot(flux, vec3(1.0)) > 0.0))
