@@ -108,37 +108,6 @@ bool BoxInFrustum(const std::array<double, 6>& b, const double m[16])
   }
   return true;
 }
-
-/** True if a light can send light to the sphere bounding the specular objects. */
-bool LightReachesSpecular(const caustics::SceneData& scene, const caustics::Light& light)
-{
-  if (!(light.radiometric[0] > 0.0 || light.radiometric[1] > 0.0 || light.radiometric[2] > 0.0))
-  {
-    return false;
-  }
-  if (light.type != caustics::Light::Type::Spot || light.cosOuter <= -1.0)
-  {
-    return true;
-  }
-  const double* sb = scene.SpecularBounds;
-  double v[3], radius2 = 0.0, distance2 = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    v[c] = 0.5 * (sb[2 * c] + sb[2 * c + 1]) - light.position[c];
-    radius2 += 0.25 * (sb[2 * c + 1] - sb[2 * c]) * (sb[2 * c + 1] - sb[2 * c]);
-    distance2 += v[c] * v[c];
-  }
-  if (distance2 <= radius2)
-  {
-    return true; // inside the bounding sphere
-  }
-  const double distance = std::sqrt(distance2);
-  const double cosAxis =
-    (v[0] * light.direction[0] + v[1] * light.direction[1] + v[2] * light.direction[2]) / distance;
-  const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
-  const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
-  return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
-}
 }
 
 struct vtkCausticsScreenSpacePhotonPass::Internals
@@ -363,7 +332,7 @@ bool vtkCausticsScreenSpacePhotonPass::CannotNeedCaustics(vtkRenderer* renderer)
       physical.type = caustics::Light::Type::Spot;
       physical.cosOuter = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
     }
-    reached = reached || LightReachesSpecular(scene, physical);
+    reached = reached || caustics::LightReachesSpecular(physical, scene.SpecularBounds);
   }
   if (!reached)
   {
@@ -398,7 +367,7 @@ bool vtkCausticsScreenSpacePhotonPass::NeedsCaustics()
   bool reached = false;
   for (const caustics::Light& light : scene.Lights)
   {
-    reached = reached || LightReachesSpecular(scene, light);
+    reached = reached || caustics::LightReachesSpecular(light, scene.SpecularBounds);
   }
   if (!reached)
   {
@@ -689,7 +658,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(vtkOpenGLRenderWi
   const int lights = this->LightBuffers->GetNumberOfLights();
   for (int light = 0; ok && light < lights; ++light)
   {
-    if (!LightReachesSpecular(scene, scene.Lights[light]))
+    if (!caustics::LightReachesSpecular(scene.Lights[light], scene.SpecularBounds))
     {
       continue;
     }
