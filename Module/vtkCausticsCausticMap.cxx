@@ -1,5 +1,6 @@
 #include "vtkCausticsCausticMap.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
@@ -145,8 +146,9 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
       program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
     this->SetSplatUniforms(program, settings, grid, hierarchy, camera);
-    hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
-    hierarchy->GetSplatBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
+    hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING);
+    hierarchy->GetSplatBuffer().BindBase(
+      GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_SPLATS_BINDING);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer().Handle());
     glBindVertexArray(this->VertexArray);
     this->DrawLevels(state, program, hierarchy);

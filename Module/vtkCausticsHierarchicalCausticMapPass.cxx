@@ -50,42 +50,6 @@ struct PerLight
   }
 };
 
-/**
- * Whether a light can send photons to a specular actor: it has power, and a spot
- * light's outer cone meets the specular actors' bounding sphere.
- */
-bool LightReachesSpecular(const caustics::SceneData& scene, const caustics::Light& light)
-{
-  const double power =
-    std::max({ light.radiometric[0], light.radiometric[1], light.radiometric[2] });
-  if (!scene.HasSpecular || !(power > 0.0))
-  {
-    return false;
-  }
-  if (light.type != caustics::Light::Type::Spot)
-  {
-    return true;
-  }
-  const double* b = scene.SpecularBounds;
-  double toCentre[3], radius2 = 0.0, distance2 = 0.0, along = 0.0;
-  for (int i = 0; i < 3; ++i)
-  {
-    const double half = 0.5 * (b[2 * i + 1] - b[2 * i]);
-    radius2 += half * half;
-    toCentre[i] = 0.5 * (b[2 * i] + b[2 * i + 1]) - light.position[i];
-    distance2 += toCentre[i] * toCentre[i];
-    along += toCentre[i] * light.direction[i];
-  }
-  if (distance2 <= radius2)
-  {
-    return true; // the light is inside the specular actors' bounds
-  }
-  const double distance = std::sqrt(distance2);
-  const double toAxis = std::acos(std::max(-1.0, std::min(1.0, along / distance)));
-  const double angularRadius = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
-  const double outer = std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
-  return toAxis - angularRadius < outer;
-}
 }
 
 struct vtkCausticsHierarchicalCausticMapPass::Internals
@@ -179,8 +143,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     const int index = static_cast<int>(i);
     light.MapView = caustics::ComputeLightView(scene, index, caustics::LightView::Focus::Scene);
     light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
-      this->GetLightBuffers()->GetView(index).valid && light.MapView.valid &&
-      LightReachesSpecular(scene, scene.Lights[i]);
+      this->GetLightBuffers()->GetView(index).valid && light.MapView.valid && scene.HasSpecular &&
+      caustics::LightReachesSpecular(scene.Lights[i], scene.SpecularBounds);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "vtkCausticsLayeredDepth.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -35,11 +36,6 @@ vtkStandardNewMacro(vtkCausticsLayeredDepth);
 namespace
 {
 // Shader storage bindings (glsl/vtkCausticsScreenSpaceCommon.glsl).
-constexpr unsigned int TableBinding = 1;
-constexpr unsigned int ObjectMapBinding = 2;
-constexpr unsigned int CommandInfoBinding = 3;
-constexpr unsigned int DrawCommandBinding = 4;
-constexpr unsigned int ClearCommandBinding = 5;
 
 /** A contiguous range of the scene geometry's index buffer. */
 struct IndexRange
@@ -361,7 +357,7 @@ bool vtkCausticsLayeredDepth::Internals::CountFragments(vtkOpenGLRenderWindow* r
   {
     this->CountProgram->SetUniformMatrix4("worldToClip", worldToClip);
     glBindImageTexture(0, this->Complexity.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    this->ObjectMap.BindBase(GL_SHADER_STORAGE_BUFFER, ObjectMapBinding);
+    this->ObjectMap.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_OBJECT_MAP_BINDING);
     geometry->Draw(roleMask);
     this->CountProgram->Unbind(renWin);
   }
@@ -377,7 +373,7 @@ bool vtkCausticsLayeredDepth::Internals::ReduceComplexity(vtkOpenGLRenderWindow*
     return false;
   }
   glBindImageTexture(0, this->Complexity.Handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-  this->Table.BindBase(GL_SHADER_STORAGE_BUFFER, TableBinding);
+  this->Table.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING);
   this->ReduceProgram->SetUniform2i("size", this->Width, this->Height);
   this->ReduceProgram->SetUniformi("objectCount", this->Objects);
   this->ReduceProgram->DispatchCovering2D(this->Width, this->Height, 16, 16);
@@ -393,10 +389,10 @@ bool vtkCausticsLayeredDepth::Internals::GateLayers(vtkOpenGLRenderWindow* renWi
   {
     return false;
   }
-  this->Table.BindBase(GL_SHADER_STORAGE_BUFFER, TableBinding);
-  this->CommandInfo.BindBase(GL_SHADER_STORAGE_BUFFER, CommandInfoBinding);
-  this->DrawCommands.BindBase(GL_SHADER_STORAGE_BUFFER, DrawCommandBinding);
-  this->ClearCommands.BindBase(GL_SHADER_STORAGE_BUFFER, ClearCommandBinding);
+  this->Table.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING);
+  this->CommandInfo.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_COMMAND_INFO_BINDING);
+  this->DrawCommands.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_DRAW_COMMAND_BINDING);
+  this->ClearCommands.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_CLEAR_COMMAND_BINDING);
   this->FinalizeProgram->SetUniformi("objectCount", this->Objects);
   this->FinalizeProgram->SetUniformi("maxLayers", this->Layers);
   this->FinalizeProgram->SetUniformi("commandCount", this->Commands);

@@ -1,5 +1,6 @@
 #include "vtkCausticsPhotonBuffer.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
@@ -306,8 +307,8 @@ void vtkCausticsPhotonBuffer::BindTraceOutputs(vtkCausticsSceneGeometry* geometr
   {
     glBindImageTexture(i, outputs[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   }
-  this->Internal->Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::StatisticsBinding);
-  this->Internal->Lists.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding);
+  this->Internal->Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_PHOTON_STATISTICS_BINDING);
+  this->Internal->Lists.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_CONTROL_BINDING);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Internal->Lists.Handle());
   geometry->BindMaterials();
 }

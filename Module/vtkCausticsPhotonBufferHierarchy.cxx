@@ -1,5 +1,6 @@
 #include "vtkCausticsPhotonBufferHierarchy.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBuffer.h"
@@ -216,7 +217,7 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
   program->SetUniformi("hitPosition", position->GetTextureUnit());
   program->SetUniformi("hitFlux", flux->GetTextureUnit());
   caustics::hcm::SetViewUniforms(program, "mapView", mapView, mapResolution, mapResolution);
-  this->Internal->Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
+  this->Internal->Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING);
   for (int k = 1; k <= this->StartLevel; ++k)
   {
     program->SetUniformi("level", k);
@@ -247,10 +248,10 @@ bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   }
   glBindImageTexture(0, this->SplatRadius->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   Internals& in = *this->Internal;
-  in.Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::NodesBinding);
-  in.Control.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::ControlBinding);
-  in.Work.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::WorkBinding);
-  in.Splats.BindBase(GL_SHADER_STORAGE_BUFFER, caustics::hcm::SplatsBinding);
+  in.Nodes.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING);
+  in.Control.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_CONTROL_BINDING);
+  in.Work.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_WORK_BINDING);
+  in.Splats.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_SPLATS_BINDING);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Control.Handle());
 
   const bool flat = settings.GatherMode == Settings::GATHER_FLAT;

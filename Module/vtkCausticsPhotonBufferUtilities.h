@@ -24,12 +24,8 @@ struct PhotonGrid;
 
 namespace hcm
 {
-// Shader storage binding points (vtkCausticsPhotonBufferCommon.glsl).
-constexpr unsigned int StatisticsBinding = 1;
-constexpr unsigned int NodesBinding = 2;
-constexpr unsigned int ControlBinding = 3;
-constexpr unsigned int WorkBinding = 4;
-constexpr unsigned int SplatsBinding = 5;
+// Shader storage binding points: CAUSTICS_PHOTON_STATISTICS_BINDING and
+// CAUSTICS_HIERARCHY_*_BINDING in vtkCausticsBindings.h.
 
 // Photon-buffer statistics words (STAT_*).
 constexpr int StatPhotons = 0;

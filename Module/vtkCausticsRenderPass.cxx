@@ -119,39 +119,6 @@ bool BoxInFrustum(const Box& b, const double m[16])
 }
 
 /**
- * True if a light with power can send light into box `sb`: any directional or
- * point light, a spot light whose outer cone meets the box's bounding sphere.
- */
-bool LightReachesBox(const caustics::Light& light, const double sb[6])
-{
-  if (!HasPower(light))
-  {
-    return false;
-  }
-  if (light.type != caustics::Light::Type::Spot || light.cosOuter <= -1.0)
-  {
-    return true;
-  }
-  double v[3], radius2 = 0.0, distance2 = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    v[c] = 0.5 * (sb[2 * c] + sb[2 * c + 1]) - light.position[c];
-    radius2 += 0.25 * (sb[2 * c + 1] - sb[2 * c]) * (sb[2 * c + 1] - sb[2 * c]);
-    distance2 += v[c] * v[c];
-  }
-  if (distance2 <= radius2)
-  {
-    return true; // inside the bounding sphere
-  }
-  const double distance = std::sqrt(distance2);
-  const double cosAxis =
-    (v[0] * light.direction[0] + v[1] * light.direction[1] + v[2] * light.direction[2]) / distance;
-  const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
-  const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
-  return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
-}
-
-/**
  * World bounds of the visible specular actors as the snapshot would classify
  * them (VTK's own bounds, cached by VTK). False when one has no known extent.
  */
@@ -221,7 +188,7 @@ int VTKLightsReach(vtkRenderer* renderer, const double bounds[6])
       physical.type = caustics::Light::Type::Spot;
       physical.cosOuter = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
     }
-    reached = reached || LightReachesBox(physical, bounds);
+    reached = reached || caustics::LightReachesSpecular(physical, bounds);
   }
   return reached ? 1 : -1;
 }
@@ -450,7 +417,7 @@ bool vtkCausticsRenderPass::SceneNeedsCaustics(const CausticNeeds& needs)
   for (const auto& light : scene.Lights)
   {
     hasPower = hasPower || HasPower(light);
-    reached = reached || LightReachesBox(light, scene.SpecularBounds);
+    reached = reached || caustics::LightReachesSpecular(light, scene.SpecularBounds);
   }
   if (!hasReceiver || !hasPower || !reached)
   {

@@ -1,5 +1,6 @@
 #include "vtkCausticsSceneGeometry.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_MATERIAL_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -100,8 +101,8 @@ bool SameLayout(const std::vector<MeshSlot>& slots, const std::vector<MeshSlot>&
  * so that compute stages need no base vertex. Returns the bytes sent.
  */
 std::size_t UploadMesh(caustics::gl::StorageBuffer& vertexBuffer,
-  caustics::gl::StorageBuffer& indexBuffer, const caustics::Mesh& mesh,
-  const MeshSlot& slot, std::vector<float>& staging)
+  caustics::gl::StorageBuffer& indexBuffer, const caustics::Mesh& mesh, const MeshSlot& slot,
+  std::vector<float>& staging)
 {
   staging.resize(slot.vertexCount * WordsPerVertex);
   for (std::size_t v = 0; v < slot.vertexCount; ++v)
@@ -294,7 +295,7 @@ void vtkCausticsSceneGeometry::UploadMaterials(const caustics::SceneData& scene)
 
 void vtkCausticsSceneGeometry::BindMaterials()
 {
-  this->Internal->MaterialBuffer.BindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  this->Internal->MaterialBuffer.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_MATERIAL_BINDING);
 }
 
 void vtkCausticsSceneGeometry::Draw(int roleMask)

@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceGodRays.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
@@ -20,14 +21,6 @@
 #include <string>
 
 vtkStandardNewMacro(vtkCausticsScreenSpaceGodRays);
-
-namespace
-{
-constexpr unsigned int RayBinding = 6;
-constexpr unsigned int PayloadBinding = 7;
-constexpr unsigned int LineBinding = 8;
-constexpr unsigned int HitBinding = 9;
-}
 
 struct vtkCausticsScreenSpaceGodRays::Internals
 {
@@ -112,10 +105,10 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
     caustics::ssp::TextureUnits units(renWin);
     p->SetUniformi("opaqueDepth", units.Bind(view.OpaqueDepth));
     p->SetUniformi("refractiveDepth", units.Bind(view.RefractiveDepth));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, rayBuffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, PayloadBinding, payloadBuffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LineBinding, lineBuffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HitBinding, hitBuffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, rayBuffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_PAYLOAD_BINDING, payloadBuffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_LINE_BINDING, lineBuffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_HIT_BINDING, hitBuffer);
     p->SetUniformMatrix4("worldToClip", view.WorldToClip);
     p->SetUniformMatrix4("clipToWorld", view.ClipToWorld);
     p->SetUniform2f("viewport", static_cast<float>(in.Width), static_cast<float>(in.Height));

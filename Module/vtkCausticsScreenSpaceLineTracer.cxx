@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceLineTracer.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
@@ -26,12 +27,6 @@ vtkStandardNewMacro(vtkCausticsScreenSpaceLineTracer);
 namespace
 {
 // Shader storage bindings (glsl/vtkCausticsScreenSpaceCommon.glsl).
-constexpr unsigned int TableBinding = 1;
-constexpr unsigned int RayBinding = 6;
-constexpr unsigned int LineBinding = 8;
-constexpr unsigned int HitBinding = 9;
-constexpr unsigned int CounterBinding = 10;
-constexpr unsigned int ArgumentBinding = 15;
 // Sizes of the per-ray records, bytes.
 constexpr std::size_t LineBytes = 48;
 constexpr std::size_t HitBytes = 32;
@@ -136,8 +131,8 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::PrepareArguments(
   {
     return false;
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, batch.Counter);
-  this->Arguments.BindBase(GL_SHADER_STORAGE_BUFFER, ArgumentBinding);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, batch.Counter);
+  this->Arguments.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_ARGUMENT_BINDING);
   this->PrepareProgram->SetUniformi("rowsPerBatch", batch.Rows);
   this->PrepareProgram->SetUniformi("batches", batch.Batches);
   this->PrepareProgram->SetUniformi("capacity", batch.Capacity);
@@ -155,9 +150,9 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::SetupLines(
     return false;
   }
   const View& view = *batch.Against;
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, batch.Counter);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, batch.Rays);
-  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, batch.Counter);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, batch.Rays);
+  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_LINE_BINDING);
   p->SetUniformMatrix4("worldToClip", view.WorldToClip);
   p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
   p->SetUniform3f("boundsMin", static_cast<float>(view.Bounds[0]),
@@ -186,9 +181,10 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::RasterizeRows(
     return false;
   }
   const View& view = *batch.Against;
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, batch.Rays);
-  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TableBinding, view.Layers->GetTableBuffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, batch.Rays);
+  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_LINE_BINDING);
+  glBindBufferBase(
+    GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, view.Layers->GetTableBuffer());
   p->SetUniformi("batchBase", b * batch.Rows);
   p->SetUniform2f("target", static_cast<float>(batch.RowWidth), static_cast<float>(batch.Rows));
   p->SetUniformi("ldiPosition", batch.PositionUnit);
@@ -220,9 +216,9 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::ReduceRows(
     return false;
   }
   glBindTextureUnit(batch.RowUnit, this->Rows.Handle);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RayBinding, batch.Rays);
-  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, LineBinding);
-  this->Hits.BindBase(GL_SHADER_STORAGE_BUFFER, HitBinding);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, batch.Rays);
+  this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_LINE_BINDING);
+  this->Hits.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_HIT_BINDING);
   p->SetUniformi("rowHits", batch.RowUnit);
   p->SetUniformMatrix4("worldToClip", batch.Against->WorldToClip);
   p->SetUniformf("pixelScale", batch.PixelScale);
@@ -231,7 +227,7 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::ReduceRows(
   p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
   p->SetUniformi("batchBase", b * batch.Rows);
   p->SetUniformi("capacity", batch.Capacity);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CounterBinding, batch.Counter);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, batch.Counter);
   p->SetUniformu("stamp", this->Stamp);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Arguments.Handle());
   glDispatchComputeIndirect(static_cast<GLintptr>(Batch::ArgumentBytes(b) + 16));

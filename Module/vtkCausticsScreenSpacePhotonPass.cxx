@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpacePhotonPass.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -41,49 +42,12 @@ vtkStandardNewMacro(vtkCausticsScreenSpacePhotonPass);
 
 namespace
 {
-// Shader storage bindings (glsl/vtkCausticsScreenSpaceCommon.glsl).
-constexpr unsigned int RayBinding = 6;
-constexpr unsigned int PayloadBinding = 7;
-constexpr unsigned int HitBinding = 9;
-constexpr unsigned int CounterBinding = 10;
-constexpr unsigned int NextRayBinding = 11;
-constexpr unsigned int NextPayloadBinding = 12;
-constexpr unsigned int NextCounterBinding = 13;
+// Storage-buffer bindings: vtkCausticsBindings.h. Record layouts:
+// glsl/vtkCausticsScreenSpaceCommon.glsl.
 // Bytes of one SspRay, one SspPayload, one SspHit.
 constexpr std::size_t RayBytes = 32;
 constexpr std::size_t PayloadBytes = 32;
 constexpr std::size_t HitBytes = 32;
-
-/** True if a light can send light to the sphere bounding the specular objects. */
-bool LightReachesSpecular(const caustics::SceneData& scene, const caustics::Light& light)
-{
-  if (!(light.radiometric[0] > 0.0 || light.radiometric[1] > 0.0 || light.radiometric[2] > 0.0))
-  {
-    return false;
-  }
-  if (light.type != caustics::Light::Type::Spot || light.cosOuter <= -1.0)
-  {
-    return true;
-  }
-  const double* sb = scene.SpecularBounds;
-  double v[3], radius2 = 0.0, distance2 = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    v[c] = 0.5 * (sb[2 * c] + sb[2 * c + 1]) - light.position[c];
-    radius2 += 0.25 * (sb[2 * c + 1] - sb[2 * c]) * (sb[2 * c + 1] - sb[2 * c]);
-    distance2 += v[c] * v[c];
-  }
-  if (distance2 <= radius2)
-  {
-    return true; // inside the bounding sphere
-  }
-  const double distance = std::sqrt(distance2);
-  const double cosAxis =
-    (v[0] * light.direction[0] + v[1] * light.direction[1] + v[2] * light.direction[2]) / distance;
-  const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
-  const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
-  return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
-}
 
 /** The "Shadow" array of TraceShadowRays from the traced rays and their hits. */
 void WriteShadow(const std::vector<float>& rays, const std::vector<float>& hits,
@@ -302,9 +266,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
   p->SetUniform3f("boundsMax", static_cast<float>(scene.Bounds[1]),
     static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
-  in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
-  in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
-  in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
+  in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
+  in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
+  in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
   p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   p->Unbind(renWin);
@@ -337,13 +301,13 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   {
     return false;
   }
-  in.Counters[c].BindBase(GL_SHADER_STORAGE_BUFFER, CounterBinding);
-  in.Rays[c].BindBase(GL_SHADER_STORAGE_BUFFER, RayBinding);
-  in.Payloads[c].BindBase(GL_SHADER_STORAGE_BUFFER, PayloadBinding);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HitBinding, in.Tracer->GetHitBuffer());
-  in.Rays[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
-  in.Payloads[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextPayloadBinding);
-  in.Counters[n].BindBase(GL_SHADER_STORAGE_BUFFER, NextCounterBinding);
+  in.Counters[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING);
+  in.Rays[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING);
+  in.Payloads[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_PAYLOAD_BINDING);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_HIT_BINDING, in.Tracer->GetHitBuffer());
+  in.Rays[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
+  in.Payloads[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
+  in.Counters[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
   f.Geometry->BindMaterials();
   glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -409,8 +373,8 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     p->Unbind(renWin);
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
-  return in.Splatter->Splat(renWin, grid, in.SplatPosition, in.SplatNormal, in.SplatFlux,
-    f.CameraGBuffer, f.WorldToClip);
+  return in.Splatter->Splat(
+    renWin, grid, in.SplatPosition, in.SplatNormal, in.SplatFlux, f.CameraGBuffer, f.WorldToClip);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin, int, int)
@@ -528,7 +492,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
   const int lights = f.LightBuffers->GetNumberOfLights();
   for (int light = 0; ok && light < lights; ++light)
   {
-    if (LightReachesSpecular(scene, scene.Lights[light]))
+    if (caustics::LightReachesSpecular(scene.Lights[light], scene.SpecularBounds))
     {
       ok = this->TraceLight(f, light, in.GodRaysOn);
     }
@@ -622,7 +586,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
       static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
     p->SetUniform3f("lightDirection", static_cast<float>(source.direction[0]),
       static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
-    in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, NextRayBinding);
+    in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
     p->DispatchCovering2D(w, h, 16, 16);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceRefraction.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -91,7 +92,8 @@ bool vtkCausticsScreenSpaceRefraction::Render(
     p->SetUniformi(
       "directIrradiance", units.Bind(direct ? inputs.DirectIrradiance : inputs.CausticIrradiance));
     p->SetUniformi("hasDirect", direct ? 1 : 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, layers->GetTableBuffer());
+    glBindBufferBase(
+      GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, layers->GetTableBuffer());
     inputs.Geometry->BindMaterials();
     p->SetUniformMatrix4("worldToClip", inputs.WorldToClip);
     p->SetUniform2f(

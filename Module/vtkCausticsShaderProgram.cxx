@@ -5,7 +5,8 @@
 #include "vtkOpenGLShaderCache.h"
 #include "vtk_glew.h"
 
-#include "vtkCausticsCommon.h" // embedded glsl/vtkCausticsCommon.glsl
+#include "vtkCausticsBindingsSource.h" // embedded vtkCausticsBindings.h
+#include "vtkCausticsCommon.h"         // embedded glsl/vtkCausticsCommon.glsl
 
 #include <map>
 #include <sstream>
@@ -151,7 +152,9 @@ bool vtkCausticsShaderProgram::Build()
   {
     header << "#define " << define.first << " " << define.second << "\n";
   }
-  header << vtkCausticsCommon << "\n#line 1\n";
+  // The binding table first: the common include declares the material table at
+  // CAUSTICS_MATERIAL_BINDING, and the stages name their buffers' binding points.
+  header << vtkCausticsBindingsSource << "\n" << vtkCausticsCommon << "\n#line 1\n";
   const std::string prefix = header.str();
 
   std::vector<std::pair<GLenum, const std::string*>> stages;

@@ -15,8 +15,9 @@
  *    re-bind their programs afterwards;
  * 4. ReleaseGraphicsResources() deletes the GL program.
  *
- * Every source gets `#version 450 core`, then the defines, then the common
- * include (vtkCausticsCommon.glsl), prepended.
+ * Every source gets `#version 450 core`, then the defines, then the binding
+ * table shared with the host (vtkCausticsBindings.h), then the common include
+ * (vtkCausticsCommon.glsl), prepended.
  */
 
 #ifndef vtkCausticsShaderProgram_h

@@ -307,6 +307,36 @@ LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus f
   return view;
 }
 
+bool LightReachesSpecular(const Light& light, const double specularBounds[6])
+{
+  if (!(light.radiometric[0] > 0.0 || light.radiometric[1] > 0.0 || light.radiometric[2] > 0.0))
+  {
+    return false;
+  }
+  if (light.type != Light::Type::Spot || light.cosOuter <= -1.0)
+  {
+    return true;
+  }
+  const double* sb = specularBounds;
+  double v[3], radius2 = 0.0, distance2 = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    v[c] = 0.5 * (sb[2 * c] + sb[2 * c + 1]) - light.position[c];
+    radius2 += 0.25 * (sb[2 * c + 1] - sb[2 * c]) * (sb[2 * c + 1] - sb[2 * c]);
+    distance2 += v[c] * v[c];
+  }
+  if (distance2 <= radius2)
+  {
+    return true; // the light is inside the bounding sphere
+  }
+  const double distance = std::sqrt(distance2);
+  const double cosAxis =
+    (v[0] * light.direction[0] + v[1] * light.direction[1] + v[2] * light.direction[2]) / distance;
+  const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
+  const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
+  return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+}
+
 double SceneData::Scale() const
 {
   const double dx = this->Bounds[1] - this->Bounds[0];

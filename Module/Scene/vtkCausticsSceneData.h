@@ -160,6 +160,16 @@ struct SceneData
   /** Length of the bounds' diagonal: the scene's size for relative tolerances. */
   double Scale() const;
 };
+
+/**
+ * Whether `light` can send light to the specular objects bounded by
+ * `specularBounds` (xmin, xmax, ymin, ymax, zmin, zmax): it has power in some
+ * channel and, for a spot light, its outer cone meets the bounds' sphere
+ * (directional and point lights reach everything). The bounds are taken as they
+ * are: callers whose scene may hold no specular object at all test
+ * SceneData::HasSpecular first.
+ */
+bool LightReachesSpecular(const Light& light, const double specularBounds[6]);
 }
 
 #endif

@@ -1,4 +1,5 @@
-// Shared by every caustics shader (prepended after #version and the defines).
+// Shared by every caustics shader (prepended after #version, the defines and the
+// binding table vtkCausticsBindings.h).
 // Layouts and constants here must match the host side (vtkCausticsSceneGeometry,
 // vtkCausticsSceneData.h).
 
@@ -27,9 +28,6 @@ float CausticsSpotFactor(float cosAngle, float cosOuter, float cosInner)
   float t = min(1.0, (cosAngle - cosOuter) / range);
   return t * t;
 }
-
-// Shader storage binding points reserved across all caustics stages.
-#define CAUSTICS_MATERIAL_BINDING 0
 
 // One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).
 struct CausticsMaterial

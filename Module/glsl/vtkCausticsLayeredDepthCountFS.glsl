@@ -5,7 +5,7 @@ in vec3 worldPosition;
 in vec3 worldNormal;
 flat in uint materialIndex;
 
-layout(std430, binding = SSP_LDI_OBJECT_MAP_BINDING) readonly buffer SspObjectMap
+layout(std430, binding = CAUSTICS_LDI_OBJECT_MAP_BINDING) readonly buffer SspObjectMap
 {
   uint objectOfMaterial[];
 };

@@ -4,23 +4,23 @@
 // nothing is read back (vtkCausticsLayeredDepth).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSP_LDI_TABLE_BINDING) buffer SspLayerTable
+layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) buffer SspLayerTable
 {
   uvec4 ldiHeader;
   uvec4 ldiObjects[];
 };
 // Per peel command: object | layer << 16.
-layout(std430, binding = SSP_LDI_COMMAND_INFO_BINDING) readonly buffer SspCommandInfo
+layout(std430, binding = CAUSTICS_LDI_COMMAND_INFO_BINDING) readonly buffer SspCommandInfo
 {
   uint commandInfo[];
 };
 // DrawElementsIndirectCommand: count, instanceCount, firstIndex, baseVertex, baseInstance.
-layout(std430, binding = SSP_LDI_DRAW_COMMAND_BINDING) buffer SspDrawCommands
+layout(std430, binding = CAUSTICS_LDI_DRAW_COMMAND_BINDING) buffer SspDrawCommands
 {
   uint drawCommands[];
 };
 // DrawArraysIndirectCommand per (object, layer): count, instanceCount, first, baseInstance.
-layout(std430, binding = SSP_LDI_CLEAR_COMMAND_BINDING) buffer SspClearCommands
+layout(std430, binding = CAUSTICS_LDI_CLEAR_COMMAND_BINDING) buffer SspClearCommands
 {
   uint clearCommands[];
 };

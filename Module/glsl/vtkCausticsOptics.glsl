@@ -1,7 +1,10 @@
-// Optics shared by the photon stages (inserted where CAUSTICS_OPTICS is defined).
-// Exact Fresnel equations, as the CPU reference uses: unpolarized dielectric
-// reflectance, and conductor reflectance with complex IOR n + ik per channel
-// (004_4da4b323b51d1415.txt §3).
+// Optics shared by the photon stages and the screen-space refraction (prepended
+// by the stages that need them, after vtkCausticsCommon.glsl). Exact Fresnel
+// equations, as the CPU reference uses: unpolarized dielectric reflectance, and
+// conductor reflectance with complex IOR n + ik per channel
+// (004_4da4b323b51d1415.txt §3). Every stage meets a specular surface through
+// CausticsSurfaceInteraction or, where it knows the two indices itself,
+// CausticsDielectric; absorption is CausticsTransmittance.
 
 // Unpolarized dielectric reflectance for cosine of incidence cosI (>= 0) going
 // from index n1 to n2; 1 under total internal reflection.
@@ -51,4 +54,68 @@ bool RefractDirection(vec3 d, vec3 n, float eta, out vec3 t)
   }
   t = normalize(eta * d + (eta * cosI - sqrt(1.0 - sin2T)) * n);
   return true;
+}
+
+// Beer-Lambert: the fraction of the flux left after distance (m) through a
+// medium of attenuation (or extinction) coefficients sigma (1/m).
+vec3 CausticsTransmittance(vec3 sigma, float distance)
+{
+  return exp(-sigma * distance);
+}
+
+// A dielectric interface met by the unit direction d: facing is the unit normal
+// on d's side, cosI the cosine of incidence, n1 the index d travels in and n2 the
+// index beyond. Gives the exact Fresnel reflectance and both directions; false
+// under total internal reflection (then refracted = reflected).
+bool CausticsDielectric(vec3 d, vec3 facing, float cosI, float n1, float n2,
+  out float reflectance, out vec3 reflected, out vec3 refracted)
+{
+  reflectance = FresnelDielectric(cosI, n1, n2);
+  reflected = reflect(d, facing);
+  return RefractDirection(d, facing, n1 / n2, refracted);
+}
+
+// What a specular surface does to a photon: both outgoing directions and the
+// flux weight of each. The caller decides what to follow (emission keeps both
+// branches of a refractor, a photon each; the screen-space transfer follows one,
+// reflected with probability R) and applies the weight to its flux.
+struct CausticsInteraction
+{
+  bool entering;        // d arrived on the side the normal points to (from outside)
+  bool transmits;       // a refractor, and no total internal reflection
+  vec3 reflected;       // mirror direction
+  vec3 refracted;       // transmitted direction (= reflected where !transmits)
+  vec3 reflectedWeight; // conductor Fresnel per channel, or the dielectric's R
+  vec3 refractedWeight; // 1 - R (0 for a conductor)
+};
+
+// The photon with unit direction d meets the surface with unit shading normal n
+// (as modelled, either side) and material (its role given separately, as the
+// caller knows it): ROLE_REFLECTOR is a conductor (complex IOR metalN + i metalK,
+// reflected only); otherwise a dielectric of index max(IOR, 1) inside and
+// outsideIor around it, entered or left depending on the side d arrives on.
+CausticsInteraction CausticsSurfaceInteraction(
+  vec3 d, vec3 n, CausticsMaterial material, int role, float outsideIor)
+{
+  CausticsInteraction s;
+  s.entering = dot(d, n) < 0.0;
+  vec3 facing = s.entering ? n : -n;
+  float cosI = clamp(-dot(d, facing), 0.0, 1.0);
+  if (role == ROLE_REFLECTOR)
+  {
+    s.transmits = false;
+    s.reflected = reflect(d, facing);
+    s.refracted = s.reflected;
+    s.reflectedWeight = FresnelConductor(cosI, material.metalN.rgb, material.metalK.rgb);
+    s.refractedWeight = vec3(0.0);
+    return s;
+  }
+  float ior = max(material.params.x, 1.0);
+  float n1 = s.entering ? outsideIor : ior;
+  float n2 = s.entering ? ior : outsideIor;
+  float reflectance;
+  s.transmits = CausticsDielectric(d, facing, cosI, n1, n2, reflectance, s.reflected, s.refracted);
+  s.reflectedWeight = vec3(reflectance);
+  s.refractedWeight = vec3(1.0 - reflectance);
+  return s;
 }

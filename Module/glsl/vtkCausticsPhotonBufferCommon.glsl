@@ -4,12 +4,8 @@
 // final render). Buffer layouts here are mirrored on the host side in
 // vtkCausticsPhotonBuffer.cxx and vtkCausticsPhotonBufferHierarchy.cxx.
 
-// Shader storage binding points of these stages (0 is the material table).
-#define CAUSTICS_PHOTON_STATISTICS_BINDING 1
-#define CAUSTICS_HIERARCHY_NODES_BINDING 2
-#define CAUSTICS_HIERARCHY_CONTROL_BINDING 3
-#define CAUSTICS_HIERARCHY_WORK_BINDING 4
-#define CAUSTICS_HIERARCHY_SPLATS_BINDING 5
+// Their shader storage binding points: CAUSTICS_PHOTON_STATISTICS_BINDING and
+// CAUSTICS_HIERARCHY_* in vtkCausticsBindings.h.
 
 // Photon-buffer statistics (uint words; flux as 64-bit fixed point, lo then hi).
 #define STAT_PHOTONS 0

@@ -492,7 +492,7 @@ void main()
         p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
     }
     CausticsMaterial medium = causticsMaterials[max(int(material + 0.5), 0)];
-    vec3 transmitted = flux * exp(-medium.attenuation.rgb * t); // Beer-Lambert
+    vec3 transmitted = flux * CausticsTransmittance(medium.attenuation.rgb, t);
     absorbed += Power(flux - transmitted);
     flux = transmitted;
     path += t;
@@ -501,12 +501,15 @@ void main()
     // that faces the photon already belongs to a surface the slab model puts on the
     // wrong side (a concavity between the two layers): the photon leaves through it.
     n = dot(d, n) < 0.0 ? -n : n;
-    vec3 facing = -n;
     float ior = max(medium.params.x, 1.0);
-    vec3 refracted;
-    if (dot(d, n) > 1e-4 && RefractDirection(d, facing, ior, refracted))
+    float reflectance;
+    vec3 mirrored, refracted;
+    // Always from inside into air, so CausticsDielectric with the two indices, and
+    // the cosine dot(d, n) as it is (this trace never clamped it).
+    bool transmits =
+      CausticsDielectric(d, -n, dot(d, n), ior, 1.0, reflectance, mirrored, refracted);
+    if (dot(d, n) > 1e-4 && transmits)
     {
-      float reflectance = FresnelDielectric(dot(d, n), ior, 1.0);
       reflected += Power(flux) * reflectance;
       flux *= 1.0 - reflectance;
       d = refracted;
@@ -514,7 +517,7 @@ void main()
     }
     else
     {
-      d = reflect(d, facing); // total internal reflection (or a grazing exit)
+      d = mirrored; // total internal reflection (or a grazing exit)
     }
   }
   AddFlux(STAT_FLUX_ABSORBED, absorbed);

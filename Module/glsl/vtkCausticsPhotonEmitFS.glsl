@@ -40,45 +40,19 @@ void main()
   }
   vec3 p = position.xyz;
   vec3 d = lightType == 0 ? lightDirection : normalize(p - lightOrigin);
-  vec3 n = normalRole.xyz;
-  bool entering = dot(d, n) < 0.0;
-  vec3 facing = entering ? n : -n;
-  float cosI = clamp(-dot(d, facing), 0.0, 1.0);
   CausticsMaterial material = causticsMaterials[int(position.w + 0.5)];
-  vec3 weight;
-  vec3 direction;
-  float state = 1.0;
-  if (role == ROLE_REFLECTOR)
+  CausticsInteraction s = CausticsSurfaceInteraction(d, normalRole.xyz, material, role, 1.0);
+  // Both Fresnel branches of a refractor are kept, one photon each: branch 0 the
+  // refracted one, branch 1 the reflected one. A reflector has only branch 0.
+  bool refracts = role == ROLE_REFRACTOR && branch == 0;
+  if (refracts && !s.transmits)
   {
-    direction = reflect(d, facing);
-    weight = FresnelConductor(cosI, material.metalN.rgb, material.metalK.rgb);
+    NoPhoton(); // total internal reflection: all flux is in the reflected branch
+    return;
   }
-  else
-  {
-    float ior = max(material.params.x, 1.0);
-    float n1 = entering ? 1.0 : ior;
-    float n2 = entering ? ior : 1.0;
-    float reflectance = FresnelDielectric(cosI, n1, n2);
-    if (branch == 0)
-    {
-      vec3 refracted;
-      if (!RefractDirection(d, facing, n1 / n2, refracted))
-      {
-        NoPhoton(); // total internal reflection: all flux is in the reflected branch
-        return;
-      }
-      direction = refracted;
-      weight = vec3(1.0 - reflectance);
-      state = entering ? 2.0 : 1.0;
-    }
-    else
-    {
-      direction = reflect(d, facing);
-      weight = vec3(reflectance);
-      state = entering ? 1.0 : 2.0;
-    }
-  }
-  outPosition = vec4(p, state);
-  outDirection = vec4(direction, flux.a);
-  outFlux = vec4(flux.rgb * weight, 1.0);
+  // Inside the refractor after entering it, or after reflecting off its inside.
+  bool inside = role == ROLE_REFRACTOR && refracts == s.entering;
+  outPosition = vec4(p, inside ? 2.0 : 1.0);
+  outDirection = vec4(refracts ? s.refracted : s.reflected, flux.a);
+  outFlux = vec4(flux.rgb * (refracts ? s.refractedWeight : s.reflectedWeight), 1.0);
 }

@@ -3,22 +3,8 @@
 // helpers; 000_54cf099eeccf42d9.txt). Host-side layouts must match
 // (vtkCausticsLayeredDepth.h, vtkCausticsScreenSpaceLineTracer.h).
 
-// Shader storage binding points of these stages (0 is the material table).
-#define SSP_LDI_TABLE_BINDING 1
-#define SSP_LDI_OBJECT_MAP_BINDING 2
-#define SSP_LDI_COMMAND_INFO_BINDING 3
-#define SSP_LDI_DRAW_COMMAND_BINDING 4
-#define SSP_LDI_CLEAR_COMMAND_BINDING 5
-#define SSP_RAY_BINDING 6
-#define SSP_PAYLOAD_BINDING 7
-#define SSP_LINE_BINDING 8
-#define SSP_HIT_BINDING 9
-#define SSP_COUNTER_BINDING 10
-#define SSP_NEXT_RAY_BINDING 11
-#define SSP_NEXT_PAYLOAD_BINDING 12
-#define SSP_NEXT_COUNTER_BINDING 13
-#define SSP_SECOND_LDI_TABLE_BINDING 14
-#define SSP_ARGUMENT_BINDING 15
+// Their shader storage binding points: CAUSTICS_LDI_* and CAUSTICS_SSP_* in
+// vtkCausticsBindings.h.
 
 // A ray to trace: origin.xyz (m), origin.w = state (0 none, 1 in air, 2 inside a
 // refractor); direction.xyz unit, direction.w = material index of the surface the

@@ -12,11 +12,11 @@ flat in vec4 segment;
 flat in float majorPixels;
 noperspective in float lineParameter;
 
-layout(std430, binding = SSP_RAY_BINDING) readonly buffer SspRays
+layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
 {
   SspRay rays[];
 };
-layout(std430, binding = SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
+layout(std430, binding = CAUSTICS_SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
 {
   SspPayload payloads[];
 };

@@ -4,11 +4,11 @@
 // (4 words) and the dispatch of its row reduction (3 words; word 7 = its rows).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSP_COUNTER_BINDING) readonly buffer SspCounter
+layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
 {
   uint rayCount;
 };
-layout(std430, binding = SSP_ARGUMENT_BINDING) writeonly buffer SspArguments
+layout(std430, binding = CAUSTICS_SSP_ARGUMENT_BINDING) writeonly buffer SspArguments
 {
   uint arguments[];
 };

@@ -4,15 +4,15 @@
 // along the way from the light into the scene.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
+layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
 {
   SspRay nextRays[];
 };
-layout(std430, binding = SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
+layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
 {
   SspPayload nextPayloads[];
 };
-layout(std430, binding = SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
+layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
 {
   uint nextCount;
 };

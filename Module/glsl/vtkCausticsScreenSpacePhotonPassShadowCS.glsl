@@ -3,7 +3,7 @@
 // finds whether anything lies between.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
+layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
 {
   SspRay nextRays[];
 };

@@ -12,31 +12,31 @@
 //    reflection: always reflected). The result goes to the next transfer map.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = SSP_COUNTER_BINDING) readonly buffer SspCounter
+layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
 {
   uint rayCount;
 };
-layout(std430, binding = SSP_RAY_BINDING) readonly buffer SspRays
+layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
 {
   SspRay rays[];
 };
-layout(std430, binding = SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
+layout(std430, binding = CAUSTICS_SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
 {
   SspPayload payloads[];
 };
-layout(std430, binding = SSP_HIT_BINDING) readonly buffer SspHits
+layout(std430, binding = CAUSTICS_SSP_HIT_BINDING) readonly buffer SspHits
 {
   SspHit hits[];
 };
-layout(std430, binding = SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
+layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
 {
   SspRay nextRays[];
 };
-layout(std430, binding = SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
+layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
 {
   SspPayload nextPayloads[];
 };
-layout(std430, binding = SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
+layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
 {
   uint nextCount;
 };
@@ -136,7 +136,7 @@ void main()
   if (inside && ray.direction.w >= 0.0)
   {
     // Inside the refractor the photon last entered or reflected in: its surface.
-    flux *= exp(-causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb * t);
+    flux *= CausticsTransmittance(causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb, t);
   }
   else if (mediumOn != 0)
   {
@@ -144,7 +144,7 @@ void main()
     float t1 = t;
     if (SspClipToBox(ray.origin.xyz, d, boundsMin, boundsMax, t0, t1))
     {
-      flux *= exp(-sigmaT * (t1 - t0));
+      flux *= CausticsTransmittance(sigmaT, t1 - t0);
     }
   }
   if (!(dot(n, n) > 0.25) || !(dot(flux, vec3(1.0)) > 0.0))
@@ -180,33 +180,21 @@ void main()
   {
     return;
   }
-  bool entering = dot(d, n) < 0.0;
-  vec3 facing = entering ? n : -n;
-  float cosI = clamp(-dot(d, facing), 0.0, 1.0);
-  vec3 direction;
+  CausticsInteraction s = CausticsSurfaceInteraction(d, n, material, role, 1.0);
+  vec3 direction = s.reflected;
   float state = ray.origin.w;
   if (role == ROLE_REFLECTOR)
   {
-    direction = reflect(d, facing);
-    flux *= FresnelConductor(cosI, material.metalN.rgb, material.metalK.rgb);
+    flux *= s.reflectedWeight;
   }
   else
   {
-    float ior = max(material.params.x, 1.0);
-    float n1 = entering ? 1.0 : ior;
-    float n2 = entering ? ior : 1.0;
-    float reflectance = FresnelDielectric(cosI, n1, n2);
-    vec3 refracted;
-    bool transmits = RefractDirection(d, facing, n1 / n2, refracted);
+    // One branch, refracted with probability 1 - R: the flux is kept as it is.
     float u = float(Hash(payload.info.x ^ Hash(uint(events) + seed)) >> 8) / 16777216.0;
-    if (!transmits || u < reflectance)
+    if (s.transmits && !(u < s.reflectedWeight.r))
     {
-      direction = reflect(d, facing);
-    }
-    else
-    {
-      direction = refracted;
-      state = entering ? 2.0 : 1.0;
+      direction = s.refracted;
+      state = s.entering ? 2.0 : 1.0;
     }
   }
   if (!(dot(flux, vec3(1.0)) > 0.0))

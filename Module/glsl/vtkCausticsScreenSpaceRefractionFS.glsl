@@ -13,7 +13,7 @@
 // VTK shows that surface, else albedo x (direct + caustic irradiance).
 in vec2 texCoord;
 
-layout(std430, binding = SSP_LDI_TABLE_BINDING) readonly buffer SspLayerTable
+layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTable
 {
   uvec4 ldiHeader;
   uvec4 ldiObjects[];
@@ -256,14 +256,16 @@ void main()
   float ior = max(material.params.x, 1.0);
   vec3 facing = dot(v, n) < 0.0 ? n : -n;
   float cosI = clamp(-dot(v, facing), 0.0, 1.0);
-  float reflectance = FresnelDielectric(cosI, 1.0, ior);
+  // The camera is in air: from index 1 into the refractor, whichever way n faces.
+  float reflectance;
+  vec3 reflected, d;
+  bool transmits = CausticsDielectric(v, facing, cosI, 1.0, ior, reflectance, reflected, d);
 
   // The reflected part, outside.
-  vec3 color = reflectance * Outcome(MarchRay(front.xyz, reflect(v, facing), -1, -1));
+  vec3 color = reflectance * Outcome(MarchRay(front.xyz, reflected, -1, -1));
 
   // The refracted part, through the object's layers.
-  vec3 d;
-  if (!RefractDirection(v, facing, 1.0 / ior, d))
+  if (!transmits)
   {
     outColor = vec4(color, 1.0);
     return;
@@ -279,7 +281,7 @@ void main()
     March m = inside ? MarchRay(o, d, current + 1, current) : MarchRay(o, d, current + 1, -1);
     if (inside)
     {
-      throughput *= exp(-absorption * m.t);
+      throughput *= CausticsTransmittance(absorption, m.t);
     }
     if (m.kind != REFRACTOR)
     {
@@ -295,9 +297,9 @@ void main()
     float c = clamp(-dot(d, f), 0.0, 1.0);
     float n1 = inside ? hitIor : 1.0;
     float n2 = inside ? 1.0 : hitIor;
-    float r = FresnelDielectric(c, n1, n2);
-    vec3 refracted;
-    if (RefractDirection(d, f, n1 / n2, refracted))
+    float r;
+    vec3 mirrored, refracted;
+    if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
     {
       throughput *= 1.0 - r;
       d = refracted;
@@ -307,7 +309,7 @@ void main()
     }
     else
     {
-      d = reflect(d, f); // total internal reflection: still between the same layers
+      d = mirrored; // total internal reflection: still between the same layers
     }
     o = x;
   }
