@@ -2098,6 +2098,36 @@ struct ReferenceTracer::Internals
     }
   }
 
+  /** A pixel's camera ray in a tile, its spread to the next pixel, and its beam sum. */
+  struct TileRay
+  {
+    glm::dvec3 origin{ 0.0 }, direction{ 0.0 }, spreadOrigin{ 0.0 }, spreadDirection{ 0.0 },
+      sum{ 0.0 };
+    double start = 0.0, end = 0.0; ///< the ray's part in the medium
+  };
+
+  /** The camera rays of pixels [x0, x1) x [y0, y1), rows of tileSize. */
+  void SetUpTileRays(int x0, int y0, int x1, int y1, int tileSize, std::vector<TileRay>& rays) const
+  {
+    const int width = this->Scene->View.width;
+    rays.assign(static_cast<std::size_t>(tileSize) * tileSize, TileRay());
+    for (int j = y0; j < y1; ++j)
+    {
+      for (int i = x0; i < x1; ++i)
+      {
+        TileRay& pixel = rays[(j - y0) * tileSize + (i - x0)];
+        const std::size_t id = static_cast<std::size_t>(j) * width + i;
+        pixel.start = this->MediumStart[id];
+        pixel.end = this->MediumEnd[id];
+        glm::dvec3 o1, v1;
+        this->PixelRay(i, j, pixel.origin, pixel.direction);
+        this->PixelRay(i + (i + 1 < width ? 1 : -1), j, o1, v1);
+        pixel.spreadOrigin = o1 - pixel.origin;
+        pixel.spreadDirection = v1 - pixel.direction;
+      }
+    }
+  }
+
   /**
    * Beam radiance estimate for the pixels of one tile. Each beam is rasterized: per
    * pixel row, only the pixels whose centre lies within `reach` of the beam's
@@ -2110,28 +2140,8 @@ struct ReferenceTracer::Internals
     const Camera& view = this->Scene->View;
     const int width = view.width;
     const int x1 = std::min(view.width, x0 + tileSize), y1 = std::min(view.height, y0 + tileSize);
-    struct PixelRayData
-    {
-      glm::dvec3 origin{ 0.0 }, direction{ 0.0 }, spreadOrigin{ 0.0 }, spreadDirection{ 0.0 },
-        sum{ 0.0 };
-      double start = 0.0, end = 0.0;
-    };
-    std::vector<PixelRayData> pixels(static_cast<std::size_t>(tileSize) * tileSize);
-    for (int j = y0; j < y1; ++j)
-    {
-      for (int i = x0; i < x1; ++i)
-      {
-        PixelRayData& pixel = pixels[(j - y0) * tileSize + (i - x0)];
-        const std::size_t id = static_cast<std::size_t>(j) * width + i;
-        pixel.start = this->MediumStart[id];
-        pixel.end = this->MediumEnd[id];
-        glm::dvec3 o1, v1;
-        this->PixelRay(i, j, pixel.origin, pixel.direction);
-        this->PixelRay(i + (i + 1 < width ? 1 : -1), j, o1, v1);
-        pixel.spreadOrigin = o1 - pixel.origin;
-        pixel.spreadDirection = v1 - pixel.direction;
-      }
-    }
+    std::vector<TileRay> pixels;
+    this->SetUpTileRays(x0, y0, x1, y1, tileSize, pixels);
     const double c = this->Settings.volumeKernelRadiusPixels;
     for (std::uint32_t index : list)
     {
@@ -2162,7 +2172,7 @@ struct ReferenceTracer::Internals
         for (int i = std::max(x0, static_cast<int>(std::ceil(lo - 0.5))); i < x1 && i + 0.5 <= hi;
              ++i)
         {
-          PixelRayData& pixel = pixels[(j - y0) * tileSize + (i - x0)];
+          TileRay& pixel = pixels[(j - y0) * tileSize + (i - x0)];
           if (pixel.end > pixel.start)
           {
             pixel.sum += this->BeamContribution(beam, pixel.origin, pixel.direction, pixel.start,
