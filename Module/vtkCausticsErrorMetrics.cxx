@@ -136,10 +136,18 @@ std::string ReadCompared(
   return std::string();
 }
 
-/** The reference's 1-component array `what` named `name` (mask or area). */
-std::string FindScalarArray(
+/**
+ * The reference's optional 1-component array `what` (mask or area) named `name`:
+ * nullptr when no name is set.
+ */
+std::string FindOptionalScalarArray(
   vtkImageData* reference, const std::string& name, const std::string& what, vtkDataArray*& array)
 {
+  array = nullptr;
+  if (name.empty())
+  {
+    return std::string();
+  }
   const std::string problem = FindArray(reference, name, "reference", array);
   if (!problem.empty())
   {
@@ -156,13 +164,9 @@ std::string FindScalarArray(
 /** The mask, if named: pixels where it is non-zero are compared. */
 std::string ReadMask(vtkImageData* reference, const std::string& maskName, Inputs& in)
 {
-  if (maskName.empty())
-  {
-    return std::string();
-  }
   vtkDataArray* mask;
-  const std::string problem = FindScalarArray(reference, maskName, "mask", mask);
-  if (!problem.empty())
+  const std::string problem = FindOptionalScalarArray(reference, maskName, "mask", mask);
+  if (!mask || !problem.empty())
   {
     return problem;
   }
@@ -181,13 +185,9 @@ std::string ReadMask(vtkImageData* reference, const std::string& maskName, Input
 /** The pixel areas, if named: finite and >= 0 wherever compared. */
 std::string ReadArea(vtkImageData* reference, const std::string& areaName, Inputs& in)
 {
-  if (areaName.empty())
-  {
-    return std::string();
-  }
   vtkDataArray* area;
-  const std::string problem = FindScalarArray(reference, areaName, "area", area);
-  if (!problem.empty())
+  const std::string problem = FindOptionalScalarArray(reference, areaName, "area", area);
+  if (!area || !problem.empty())
   {
     return problem;
   }
