@@ -77,15 +77,14 @@ std::string FindArray(
   return std::string();
 }
 
-/** Step 1: checks both images and reads the compared, mask and area arrays. */
-std::string ReadInputs(vtkImageData* test, vtkImageData* reference, const std::string& arrayName,
-  const std::string& maskName, const std::string& areaName, Inputs& in)
+/** Both images exist, have the same size, and are non-empty 2D images. */
+std::string CheckImages(vtkImageData* test, vtkImageData* reference, int dims[3])
 {
   if (!test || !reference)
   {
     return test ? "no reference image" : "no test image";
   }
-  int dims[3], referenceDims[3];
+  int referenceDims[3];
   test->GetDimensions(dims);
   reference->GetDimensions(referenceDims);
   const auto size = [](const int d[3])
@@ -98,6 +97,13 @@ std::string ReadInputs(vtkImageData* test, vtkImageData* reference, const std::s
   {
     return "images are " + size(dims) + "; the metrics compare non-empty 2D images";
   }
+  return std::string();
+}
+
+/** The compared array of both images, with 1 or 3 matching components. */
+std::string ReadCompared(
+  vtkImageData* test, vtkImageData* reference, const std::string& arrayName, Inputs& in)
+{
   if (arrayName.empty())
   {
     return "no array name set";
@@ -124,66 +130,88 @@ std::string ReadInputs(vtkImageData* test, vtkImageData* reference, const std::s
     return "array '" + arrayName + "' has " + std::to_string(components) +
       " components; the metrics compare 1 (scalar) or 3 (RGB)";
   }
-  in.Width = dims[0];
-  in.Height = dims[1];
   in.Components = components;
   in.Test = Values(testArray);
   in.Reference = Values(referenceArray);
-  const vtkIdType pixels = reference->GetNumberOfPoints();
-  in.Compared.assign(static_cast<std::size_t>(pixels), 1);
+  return std::string();
+}
 
-  if (!maskName.empty())
+/**
+ * The reference's optional 1-component array `what` (mask or area) named `name`:
+ * nullptr when no name is set.
+ */
+std::string FindOptionalScalarArray(
+  vtkImageData* reference, const std::string& name, const std::string& what, vtkDataArray*& array)
+{
+  array = nullptr;
+  if (name.empty())
   {
-    vtkDataArray* mask;
-    problem = FindArray(reference, maskName, "reference", mask);
-    if (!problem.empty())
+    return std::string();
+  }
+  const std::string problem = FindArray(reference, name, "reference", array);
+  if (!problem.empty())
+  {
+    return what + ": " + problem;
+  }
+  if (array->GetNumberOfComponents() != 1)
+  {
+    return what + " array '" + name + "' has " + std::to_string(array->GetNumberOfComponents()) +
+      " components; expected 1";
+  }
+  return std::string();
+}
+
+/** The mask, if named: pixels where it is non-zero are compared. */
+std::string ReadMask(vtkImageData* reference, const std::string& maskName, Inputs& in)
+{
+  vtkDataArray* mask;
+  const std::string problem = FindOptionalScalarArray(reference, maskName, "mask", mask);
+  if (!mask || !problem.empty())
+  {
+    return problem;
+  }
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(in.Compared.size()); ++i)
+  {
+    const double value = mask->GetComponent(i, 0);
+    if (!std::isfinite(value))
     {
-      return "mask: " + problem;
+      return "mask array '" + maskName + "' is NaN/Inf at pixel " + Pixel(i, in.Width);
     }
-    if (mask->GetNumberOfComponents() != 1)
+    in.Compared[i] = value != 0.0;
+  }
+  return std::string();
+}
+
+/** The pixel areas, if named: finite and >= 0 wherever compared. */
+std::string ReadArea(vtkImageData* reference, const std::string& areaName, Inputs& in)
+{
+  vtkDataArray* area;
+  const std::string problem = FindOptionalScalarArray(reference, areaName, "area", area);
+  if (!area || !problem.empty())
+  {
+    return problem;
+  }
+  in.Area = Values(area);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(in.Compared.size()); ++i)
+  {
+    // Only masked pixels enter the flux: background pixels may have no finite area.
+    if (in.Compared[i] && !(std::isfinite(in.Area[i]) && in.Area[i] >= 0.0))
     {
-      return "mask array '" + maskName + "' has " + std::to_string(mask->GetNumberOfComponents()) +
-        " components; expected 1";
-    }
-    for (vtkIdType i = 0; i < pixels; ++i)
-    {
-      const double value = mask->GetComponent(i, 0);
-      if (!std::isfinite(value))
-      {
-        return "mask array '" + maskName + "' is NaN/Inf at pixel " + Pixel(i, in.Width);
-      }
-      in.Compared[i] = value != 0.0;
+      return "area array '" + areaName + "' is " + Number(in.Area[i]) + " at pixel " +
+        Pixel(i, in.Width) + "; areas must be finite and >= 0";
     }
   }
-  if (!areaName.empty())
+  return std::string();
+}
+
+/** A reference must be finite wherever it is compared. */
+std::string CheckReferenceFinite(const std::string& arrayName, const Inputs& in)
+{
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(in.Compared.size()); ++i)
   {
-    vtkDataArray* area;
-    problem = FindArray(reference, areaName, "reference", area);
-    if (!problem.empty())
+    for (int c = 0; c < in.Components; ++c)
     {
-      return "area: " + problem;
-    }
-    if (area->GetNumberOfComponents() != 1)
-    {
-      return "area array '" + areaName + "' has " + std::to_string(area->GetNumberOfComponents()) +
-        " components; expected 1";
-    }
-    in.Area = Values(area);
-    for (vtkIdType i = 0; i < pixels; ++i)
-    {
-      // Only masked pixels enter the flux: background pixels may have no finite area.
-      if (in.Compared[i] && !(std::isfinite(in.Area[i]) && in.Area[i] >= 0.0))
-      {
-        return "area array '" + areaName + "' is " + Number(in.Area[i]) + " at pixel " +
-          Pixel(i, in.Width) + "; areas must be finite and >= 0";
-      }
-    }
-  }
-  for (vtkIdType i = 0; i < pixels; ++i)
-  {
-    for (int c = 0; c < components; ++c)
-    {
-      const double value = in.Reference[static_cast<std::size_t>(i) * components + c];
+      const double value = in.Reference[static_cast<std::size_t>(i) * in.Components + c];
       if (in.Compared[i] && !std::isfinite(value))
       {
         return "reference '" + arrayName + "' is NaN/Inf at pixel " + Pixel(i, in.Width) +
@@ -192,6 +220,31 @@ std::string ReadInputs(vtkImageData* test, vtkImageData* reference, const std::s
     }
   }
   return std::string();
+}
+
+/** Step 1: checks both images and reads the compared, mask and area arrays. */
+std::string ReadInputs(vtkImageData* test, vtkImageData* reference, const std::string& arrayName,
+  const std::string& maskName, const std::string& areaName, Inputs& in)
+{
+  int dims[3];
+  std::string problem = CheckImages(test, reference, dims);
+  if (problem.empty())
+  {
+    problem = ReadCompared(test, reference, arrayName, in);
+  }
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  in.Width = dims[0];
+  in.Height = dims[1];
+  in.Compared.assign(static_cast<std::size_t>(reference->GetNumberOfPoints()), 1);
+  problem = ReadMask(reference, maskName, in);
+  if (problem.empty())
+  {
+    problem = ReadArea(reference, areaName, in);
+  }
+  return problem.empty() ? CheckReferenceFinite(arrayName, in) : problem;
 }
 
 /** Step 2: drops masked pixels whose test value is not finite, counting them. */

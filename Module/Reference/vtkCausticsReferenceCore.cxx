@@ -1,6 +1,12 @@
 #include "vtkCausticsReferenceCore.h"
 
+#include "vtkSMPTools.h"
+
 #include <embree3/rtcore.h>
+
+#define GLM_ENABLE_EXPERIMENTAL // For glm::compMax (gtx)
+#include <glm/glm.hpp>
+#include <glm/gtx/component_wise.hpp>
 
 #include <algorithm>
 #include <array>
@@ -22,121 +28,74 @@ namespace
 const double Pi = 3.14159265358979323846;
 const double Infinity = std::numeric_limits<double>::infinity();
 
-/** Small double-precision vector for the tracer's maths (also used for RGB). */
-struct V3
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point from, Clock::time_point to)
 {
-  double x = 0.0, y = 0.0, z = 0.0;
-  V3() = default;
-  V3(double a, double b, double c)
-    : x(a)
-    , y(b)
-    , z(c)
-  {
-  }
-  explicit V3(const Vec3& v)
-    : x(v[0])
-    , y(v[1])
-    , z(v[2])
-  {
-  }
-  explicit V3(const float* v)
-    : x(v[0])
-    , y(v[1])
-    , z(v[2])
-  {
-  }
-  double operator[](int i) const { return i == 0 ? this->x : (i == 1 ? this->y : this->z); }
-  Vec3 ToVec3() const { return { { this->x, this->y, this->z } }; }
-  void ToFloat(float* out) const
-  {
-    out[0] = static_cast<float>(this->x);
-    out[1] = static_cast<float>(this->y);
-    out[2] = static_cast<float>(this->z);
-  }
-};
+  return std::chrono::duration<double>(to - from).count();
+}
 
-V3 operator+(const V3& a, const V3& b)
+/** caustics::Vec3 (the scene's public type) to GLM and back, at the tracer's boundary. */
+inline glm::dvec3 ToGlm(const Vec3& v)
 {
-  return { a.x + b.x, a.y + b.y, a.z + b.z };
+  return glm::dvec3(v[0], v[1], v[2]);
 }
-V3 operator-(const V3& a, const V3& b)
+inline Vec3 ToVec3(const glm::dvec3& v)
 {
-  return { a.x - b.x, a.y - b.y, a.z - b.z };
+  return { { v.x, v.y, v.z } };
 }
-V3 operator-(const V3& a)
+
+/**
+ * Vertices, photon and beam records keep floats. (Not glm::make_vec3, which copies
+ * through a temporary vec3 that the compiler keeps in memory: 5 % slower gathers.)
+ */
+glm::dvec3 FromFloat(const float* v)
 {
-  return { -a.x, -a.y, -a.z };
+  return glm::dvec3(v[0], v[1], v[2]);
 }
-V3 operator*(const V3& a, double s)
+void StoreFloat(const glm::dvec3& v, float* out)
 {
-  return { a.x * s, a.y * s, a.z * s };
+  out[0] = static_cast<float>(v.x);
+  out[1] = static_cast<float>(v.y);
+  out[2] = static_cast<float>(v.z);
 }
-V3 operator*(const V3& a, const V3& b) // per channel
+
+/** Adds an RGB flux to a statistics entry (which keeps the public Vec3). */
+void Accumulate(Vec3& sum, const glm::dvec3& v)
 {
-  return { a.x * b.x, a.y * b.y, a.z * b.z };
-}
-V3& operator+=(V3& a, const V3& b)
-{
-  a.x += b.x;
-  a.y += b.y;
-  a.z += b.z;
-  return a;
-}
-double Dot(const V3& a, const V3& b)
-{
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-V3 Cross(const V3& a, const V3& b)
-{
-  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
-}
-double Length(const V3& a)
-{
-  return std::sqrt(Dot(a, a));
-}
-V3 Normalize(const V3& a)
-{
-  const double length = Length(a);
-  return length > 0.0 ? a * (1.0 / length) : a;
-}
-double MaxComponent(const V3& a)
-{
-  return std::max(a.x, std::max(a.y, a.z));
-}
-V3 Exp(const V3& a)
-{
-  return { std::exp(a.x), std::exp(a.y), std::exp(a.z) };
-}
-bool IsFinite(const V3& a)
-{
-  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
-Vec3& operator+=(Vec3& a, const V3& b)
-{
-  a[0] += b.x;
-  a[1] += b.y;
-  a[2] += b.z;
-  return a;
-}
-Vec3& operator+=(Vec3& a, const Vec3& b)
-{
-  a[0] += b[0];
-  a[1] += b[1];
-  a[2] += b[2];
-  return a;
+  sum[0] += v.x;
+  sum[1] += v.y;
+  sum[2] += v.z;
 }
 
 /** Any unit vector perpendicular to unit w, and a third completing a right-handed basis. */
-void Basis(const V3& w, V3& u, V3& v)
+void Basis(const glm::dvec3& w, glm::dvec3& u, glm::dvec3& v)
 {
-  const V3 helper = std::abs(w.x) < 0.6 ? V3(1, 0, 0) : V3(0, 1, 0);
-  u = Normalize(Cross(w, helper));
-  v = Cross(w, u);
+  const glm::dvec3 helper = std::abs(w.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  u = glm::normalize(glm::cross(w, helper));
+  v = glm::cross(w, u);
+}
+
+/**
+ * Snell refraction of unit d about unit n facing it, eta = etaIncident / etaTransmitted;
+ * false on total internal reflection. Not glm::refract: that one does not clamp
+ * |cos| <= 1 against rounding and calls grazing TIR (sin^2 = 1) a refraction.
+ */
+bool RefractDirection(const glm::dvec3& d, const glm::dvec3& n, double eta, glm::dvec3& refracted)
+{
+  const double cosI = -glm::dot(d, n);
+  const double sin2T = eta * eta * std::max(0.0, 1.0 - cosI * cosI);
+  if (sin2T >= 1.0)
+  {
+    return false;
+  }
+  const double cosT = std::sqrt(1.0 - sin2T);
+  refracted = glm::normalize(d * eta + n * (eta * cosI - cosT));
+  return true;
 }
 
 /** Parameter range [t0, t1] of o + t d, t in [tmin, tmax], inside an axis-aligned box. */
-bool ClipToBox(
-  const double box[6], const V3& o, const V3& d, double tmin, double tmax, double& t0, double& t1)
+bool ClipToBox(const double box[6], const glm::dvec3& o, const glm::dvec3& d, double tmin,
+  double tmax, double& t0, double& t1)
 {
   t0 = tmin;
   t1 = tmax;
@@ -200,74 +159,48 @@ private:
 // --- Threads ---
 
 /**
- * Runs work(item) for every item in [0, count) on `threads` threads. The calling
- * thread takes part and is the only one that reports progress (VTK observers are
- * not thread-safe). An exception in any worker stops the loop and is rethrown.
+ * Runs work(item) for every item in [0, count) with vtkSMPTools, on the threads of
+ * the enclosing vtkSMPTools::LocalScope. Results never depend on which thread runs an
+ * item (each item owns its random stream and its output slot). Only the calling
+ * thread reports progress (VTK observers are not thread-safe); it takes part in the
+ * loop, so it sees the count of finished items grow. vtkSMPTools does not carry
+ * exceptions out of every backend: the first one is kept, the remaining items are
+ * skipped, and it is rethrown here.
  */
-void ParallelFor(std::int64_t count, int threads, const std::function<void(std::int64_t)>& work,
+void ParallelFor(std::int64_t count, const std::function<void(std::int64_t)>& work,
   const std::function<void(double)>& progress)
 {
-  std::atomic<std::int64_t> next(0), done(0);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<std::int64_t> done(0);
   std::atomic<bool> failed(false);
   std::exception_ptr failure;
   std::mutex failureMutex;
-  auto run = [&](bool reporter)
-  {
-    for (;;)
+  vtkSMPTools::For(0, count, 1,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      if (failed)
+      for (vtkIdType item = begin; item < end && !failed; ++item)
       {
-        return;
-      }
-      const std::int64_t item = next++;
-      if (item >= count)
-      {
-        return;
-      }
-      try
-      {
-        work(item);
-      }
-      catch (...)
-      {
-        std::lock_guard<std::mutex> lock(failureMutex);
-        if (!failure)
+        try
         {
-          failure = std::current_exception();
+          work(item);
         }
-        failed = true;
-        return;
+        catch (...)
+        {
+          std::lock_guard<std::mutex> lock(failureMutex);
+          if (!failure)
+          {
+            failure = std::current_exception();
+          }
+          failed = true;
+          return;
+        }
+        const std::int64_t finished = ++done;
+        if (progress && std::this_thread::get_id() == caller)
+        {
+          progress(static_cast<double>(finished) / static_cast<double>(count));
+        }
       }
-      const std::int64_t finished = ++done;
-      if (reporter && progress)
-      {
-        progress(static_cast<double>(finished) / static_cast<double>(count));
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const std::int64_t helpers = std::min<std::int64_t>(threads, count) - 1;
-  try
-  {
-    for (std::int64_t t = 0; t < helpers; ++t)
-    {
-      pool.emplace_back(run, false);
-    }
-  }
-  catch (...)
-  {
-    failed = true;
-    for (auto& thread : pool)
-    {
-      thread.join();
-    }
-    throw;
-  }
-  run(true);
-  for (auto& thread : pool)
-  {
-    thread.join();
-  }
+    });
   if (failure)
   {
     std::rethrow_exception(failure);
@@ -280,9 +213,9 @@ struct Hit
   double t = 0.0;
   int mesh = -1;
   unsigned int primitive = 0;
-  V3 position;
-  V3 geometricNormal; ///< unit face normal, on the side the vertex normals point to
-  V3 shadingNormal;   ///< unit interpolated vertex normal
+  glm::dvec3 position{ 0.0 };
+  glm::dvec3 geometricNormal{ 0.0 }; ///< unit face normal, on the side the vertex normals point to
+  glm::dvec3 shadingNormal{ 0.0 };   ///< unit interpolated vertex normal
 };
 
 /** How photons leave one light: a stratified grid over a rectangle, disk or cone. */
@@ -297,19 +230,19 @@ struct Emitter
   };
   Shape shape = Shape::None;
   const Light* light = nullptr;
-  V3 center;  ///< rectangle/disk: centre on the emission plane; cone: the apex
-  V3 u, v, w; ///< w: travel direction (plane normal, cone axis)
+  glm::dvec3 center{ 0.0 }; ///< rectangle/disk: centre on the emission plane; cone: the apex
+  glm::dvec3 u{ 0.0 }, v{ 0.0 }, w{ 0.0 }; ///< w: travel direction (plane normal, cone axis)
   double halfU = 0.0, halfV = 0.0, radius = 0.0, cosMax = 1.0;
   std::int64_t nx = 0, ny = 0;
-  double measure = 0.0; ///< m^2 or sr
-  V3 photonFlux;        ///< radiometric x measure / count (spot falloff applied per photon)
+  double measure = 0.0;         ///< m^2 or sr
+  glm::dvec3 photonFlux{ 0.0 }; ///< radiometric x measure / count (spot falloff applied per photon)
   std::int64_t Count() const { return this->nx * this->ny; }
 };
 
 /** One step of a photon path: where it is, where it goes, what it carries. */
 struct Branch
 {
-  V3 origin, direction, flux, firstHit;
+  glm::dvec3 origin{ 0.0 }, direction{ 0.0 }, flux{ 0.0 }, firstHit{ 0.0 };
   int events = 0;
   int inside = -1; ///< mesh index of the refractor the segment runs in, -1 outside
 };
@@ -369,9 +302,9 @@ public:
   }
 
   /** Irradiance sum_p flux_p K2(|x - x_p|, r) over photons whose normal agrees with n. */
-  V3 Estimate(const V3& x, const V3& n, double r, double normalCosine) const
+  glm::dvec3 Estimate(const glm::dvec3& x, const glm::dvec3& n, double r, double normalCosine) const
   {
-    V3 sum;
+    glm::dvec3 sum{ 0.0 };
     if (this->Entries.empty() || !(r > 0.0))
     {
       return sum;
@@ -379,14 +312,14 @@ public:
     const double r2 = r * r;
     auto accumulate = [&](const Entry& e)
     {
-      const V3 d = V3(e.position) - x;
-      const double d2 = Dot(d, d);
-      if (d2 >= r2 || Dot(V3(e.normal), n) < normalCosine)
+      const glm::dvec3 d = FromFloat(e.position) - x;
+      const double d2 = glm::dot(d, d);
+      if (d2 >= r2 || glm::dot(FromFloat(e.normal), n) < normalCosine)
       {
         return;
       }
       const double k = EpanechnikovKernel2D(d2, r);
-      sum += V3(e.flux) * k;
+      sum += FromFloat(e.flux) * k;
     };
     const std::int64_t lo[3] = { this->Coord(x.x - r), this->Coord(x.y - r), this->Coord(x.z - r) };
     const std::int64_t hi[3] = { this->Coord(x.x + r), this->Coord(x.y + r), this->Coord(x.z + r) };
@@ -510,22 +443,18 @@ double FresnelConductor(double cosIncident, double n, double k)
 
 Vec3 Reflect(const Vec3& d, const Vec3& n)
 {
-  const double c = 2.0 * (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
-  return { { d[0] - c * n[0], d[1] - c * n[1], d[2] - c * n[2] } };
+  // glm::reflect is d - n (n . d) 2: the same bits as d - (2 n . d) n (scaling by 2 is exact).
+  return ToVec3(glm::reflect(ToGlm(d), ToGlm(n)));
 }
 
 bool Refract(const Vec3& d, const Vec3& n, double eta, Vec3& refracted)
 {
-  const double cosI = -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
-  const double sin2T = eta * eta * std::max(0.0, 1.0 - cosI * cosI);
-  if (sin2T >= 1.0)
+  glm::dvec3 t;
+  if (!RefractDirection(ToGlm(d), ToGlm(n), eta, t))
   {
     return false;
   }
-  const double cosT = std::sqrt(1.0 - sin2T);
-  const double c = eta * cosI - cosT;
-  V3 t(eta * d[0] + c * n[0], eta * d[1] + c * n[1], eta * d[2] + c * n[2]);
-  refracted = Normalize(t).ToVec3();
+  refracted = ToVec3(t);
   return true;
 }
 
@@ -592,7 +521,84 @@ void ReferenceImage::Resize(int w, int h)
 // ---------------------------------------------------------------------------------------
 // Validation
 
-std::string ValidateReferenceScene(const SceneData& scene)
+namespace
+{
+/** Array sizes, finite vertices and indices in range. */
+std::string ValidateMeshArrays(const SceneData& scene, std::size_t m)
+{
+  const Mesh& mesh = scene.Meshes[m];
+  if (mesh.positions.size() % 3 != 0 || mesh.normals.size() != mesh.positions.size())
+  {
+    return Name(scene, m) + " has " + std::to_string(mesh.positions.size()) +
+      " position values and " + std::to_string(mesh.normals.size()) +
+      " normal values; both must hold 3 per vertex";
+  }
+  if (mesh.indices.size() % 3 != 0)
+  {
+    return Name(scene, m) + " has " + std::to_string(mesh.indices.size()) +
+      " indices, not a multiple of 3";
+  }
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+  {
+    if (!std::isfinite(mesh.positions[i]) || !std::isfinite(mesh.normals[i]))
+    {
+      return Name(scene, m) + ": vertex " + std::to_string(i / 3) + " has a non-finite " +
+        (std::isfinite(mesh.positions[i]) ? "normal" : "position");
+    }
+  }
+  const std::size_t vertices = mesh.positions.size() / 3;
+  for (std::size_t i = 0; i < mesh.indices.size(); ++i)
+  {
+    if (mesh.indices[i] >= vertices)
+    {
+      return Name(scene, m) + ": triangle " + std::to_string(i / 3) + " refers to vertex " +
+        std::to_string(mesh.indices[i]) + " of " + std::to_string(vertices);
+    }
+  }
+  return std::string();
+}
+
+/** The role and the coefficients it uses. */
+std::string ValidateMaterial(const SceneData& scene, std::size_t m)
+{
+  const Material& material = scene.Materials[scene.Meshes[m].material];
+  const int role = static_cast<int>(material.role);
+  if (role < 0 || role > 3)
+  {
+    return Name(scene, m) + " has an unknown role " + std::to_string(role);
+  }
+  if (!IsNonNegative(material.albedo))
+  {
+    return Name(scene, m) + ": albedo must be finite and >= 0";
+  }
+  if (material.role == Role::Refractor && !(std::isfinite(material.ior) && material.ior > 0.0))
+  {
+    return Name(scene, m) + ": index of refraction " + std::to_string(material.ior) +
+      " must be finite and > 0";
+  }
+  if (material.role == Role::Refractor && !IsNonNegative(material.attenuation))
+  {
+    return Name(scene, m) + ": attenuation must be finite and >= 0 (1/m)";
+  }
+  if (material.role != Role::Reflector)
+  {
+    return std::string();
+  }
+  if (!IsNonNegative(material.metalN) || !IsNonNegative(material.metalK))
+  {
+    return Name(scene, m) + ": complex IOR n, k must be finite and >= 0";
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    if (material.metalN[c] + material.metalK[c] <= 0.0)
+    {
+      return Name(scene, m) + ": complex IOR n + ik is zero in channel " + std::to_string(c);
+    }
+  }
+  return std::string();
+}
+
+std::string ValidateMeshes(const SceneData& scene)
 {
   if (scene.Materials.size() != scene.Meshes.size())
   {
@@ -607,97 +613,50 @@ std::string ValidateReferenceScene(const SceneData& scene)
       return Name(scene, m) + " refers to material " + std::to_string(mesh.material) +
         ", which does not exist";
     }
-    if (mesh.positions.size() % 3 != 0 || mesh.normals.size() != mesh.positions.size())
+    std::string problem = ValidateMeshArrays(scene, m);
+    if (problem.empty())
     {
-      return Name(scene, m) + " has " + std::to_string(mesh.positions.size()) +
-        " position values and " + std::to_string(mesh.normals.size()) +
-        " normal values; both must hold 3 per vertex";
+      problem = ValidateMaterial(scene, m);
     }
-    if (mesh.indices.size() % 3 != 0)
+    if (!problem.empty())
     {
-      return Name(scene, m) + " has " + std::to_string(mesh.indices.size()) +
-        " indices, not a multiple of 3";
-    }
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    {
-      if (!std::isfinite(mesh.positions[i]) || !std::isfinite(mesh.normals[i]))
-      {
-        return Name(scene, m) + ": vertex " + std::to_string(i / 3) + " has a non-finite " +
-          (std::isfinite(mesh.positions[i]) ? "normal" : "position");
-      }
-    }
-    const std::size_t vertices = mesh.positions.size() / 3;
-    for (std::size_t i = 0; i < mesh.indices.size(); ++i)
-    {
-      if (mesh.indices[i] >= vertices)
-      {
-        return Name(scene, m) + ": triangle " + std::to_string(i / 3) + " refers to vertex " +
-          std::to_string(mesh.indices[i]) + " of " + std::to_string(vertices);
-      }
-    }
-    const Material& material = scene.Materials[mesh.material];
-    const int role = static_cast<int>(material.role);
-    if (role < 0 || role > 3)
-    {
-      return Name(scene, m) + " has an unknown role " + std::to_string(role);
-    }
-    if (!IsNonNegative(material.albedo))
-    {
-      return Name(scene, m) + ": albedo must be finite and >= 0";
-    }
-    if (material.role == Role::Refractor && !(std::isfinite(material.ior) && material.ior > 0.0))
-    {
-      return Name(scene, m) + ": index of refraction " + std::to_string(material.ior) +
-        " must be finite and > 0";
-    }
-    if (material.role == Role::Refractor && !IsNonNegative(material.attenuation))
-    {
-      return Name(scene, m) + ": attenuation must be finite and >= 0 (1/m)";
-    }
-    if (material.role == Role::Reflector)
-    {
-      if (!IsNonNegative(material.metalN) || !IsNonNegative(material.metalK))
-      {
-        return Name(scene, m) + ": complex IOR n, k must be finite and >= 0";
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        if (material.metalN[c] + material.metalK[c] <= 0.0)
-        {
-          return Name(scene, m) + ": complex IOR n + ik is zero in channel " + std::to_string(c);
-        }
-      }
+      return problem;
     }
   }
-  for (std::size_t l = 0; l < scene.Lights.size(); ++l)
+  return std::string();
+}
+
+std::string ValidateLight(const Light& light, std::size_t l)
+{
+  const std::string name = "light " + std::to_string(l);
+  const int type = static_cast<int>(light.type);
+  if (type < 0 || type > 2)
   {
-    const Light& light = scene.Lights[l];
-    const std::string name = "light " + std::to_string(l);
-    const int type = static_cast<int>(light.type);
-    if (type < 0 || type > 2)
-    {
-      return name + " has an unknown type " + std::to_string(type);
-    }
-    if (!IsNonNegative(light.radiometric))
-    {
-      return name + ": radiometric value must be finite and >= 0 (W/m^2 or W/sr)";
-    }
-    const V3 direction(light.direction);
-    if (!IsFinite(direction) || std::abs(Length(direction) - 1.0) > 1e-6)
-    {
-      return name + ": direction must be a finite unit vector";
-    }
-    if (light.type != Light::Type::Directional && !IsFinite(light.position))
-    {
-      return name + ": position must be finite";
-    }
-    if (light.type == Light::Type::Spot &&
-      !(light.cosOuter >= -1.0 && light.cosOuter <= 1.0 && light.cosInner >= -1.0 &&
-        light.cosInner <= 1.0))
-    {
-      return name + ": spot cone cosines must lie in [-1, 1]";
-    }
+    return name + " has an unknown type " + std::to_string(type);
   }
+  if (!IsNonNegative(light.radiometric))
+  {
+    return name + ": radiometric value must be finite and >= 0 (W/m^2 or W/sr)";
+  }
+  if (!IsFinite(light.direction) || std::abs(glm::length(ToGlm(light.direction)) - 1.0) > 1e-6)
+  {
+    return name + ": direction must be a finite unit vector";
+  }
+  if (light.type != Light::Type::Directional && !IsFinite(light.position))
+  {
+    return name + ": position must be finite";
+  }
+  if (light.type == Light::Type::Spot &&
+    !(light.cosOuter >= -1.0 && light.cosOuter <= 1.0 && light.cosInner >= -1.0 &&
+      light.cosInner <= 1.0))
+  {
+    return name + ": spot cone cosines must lie in [-1, 1]";
+  }
+  return std::string();
+}
+
+std::string ValidateViewAndMedium(const SceneData& scene)
+{
   const Camera& view = scene.View;
   if (view.width <= 0 || view.height <= 0)
   {
@@ -712,18 +671,30 @@ std::string ValidateReferenceScene(const SceneData& scene)
     }
   }
   const Medium& medium = scene.Participating;
-  if (medium.enabled)
+  if (!medium.enabled)
   {
-    if (!IsNonNegative(medium.sigmaS) || !IsNonNegative(medium.sigmaA))
-    {
-      return "medium coefficients must be finite and >= 0 (1/m)";
-    }
-    if (!(std::abs(medium.g) < 1.0))
-    {
-      return "medium anisotropy g = " + std::to_string(medium.g) + " must lie in (-1, 1)";
-    }
+    return std::string();
+  }
+  if (!IsNonNegative(medium.sigmaS) || !IsNonNegative(medium.sigmaA))
+  {
+    return "medium coefficients must be finite and >= 0 (1/m)";
+  }
+  if (!(std::abs(medium.g) < 1.0))
+  {
+    return "medium anisotropy g = " + std::to_string(medium.g) + " must lie in (-1, 1)";
   }
   return std::string();
+}
+}
+
+std::string ValidateReferenceScene(const SceneData& scene)
+{
+  std::string problem = ValidateMeshes(scene);
+  for (std::size_t l = 0; problem.empty() && l < scene.Lights.size(); ++l)
+  {
+    problem = ValidateLight(scene.Lights[l], l);
+  }
+  return problem.empty() ? ValidateViewAndMedium(scene) : problem;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -733,7 +704,6 @@ struct ReferenceTracer::Internals
 {
   const SceneData* Scene = nullptr;
   ReferenceSettings Settings;
-  int Threads = 1;
 
   RTCDevice Device = nullptr;
   RTCScene Geometry = nullptr;
@@ -746,7 +716,7 @@ struct ReferenceTracer::Internals
   double Epsilon = 1e-6; ///< ray offset off surfaces, m
 
   bool MediumOn = false;
-  V3 SigmaS, SigmaT;
+  glm::dvec3 SigmaS{ 0.0 }, SigmaT{ 0.0 };
   double G = 0.0;
 
   std::vector<ReferencePhoton> Photons;
@@ -793,6 +763,86 @@ struct ReferenceTracer::Internals
   const Material& MaterialOf(int mesh) const
   {
     return this->Scene->Materials[this->Scene->Meshes[mesh].material];
+  }
+
+  // --- The render's steps ---
+
+  /** Takes the scene and settings, and derives the bounds, the medium and the march step. */
+  void Prepare(
+    const SceneData& scene, const ReferenceSettings& settings, const ProgressFunction& progress)
+  {
+    this->Scene = &scene;
+    this->Settings = settings;
+    this->Progress = progress;
+    this->LastReported = -1.0;
+    this->ComputeBounds();
+    const Medium& medium = scene.Participating;
+    this->SigmaS = ToGlm(medium.sigmaS);
+    this->SigmaT = ToGlm(medium.sigmaS) + ToGlm(medium.sigmaA);
+    this->G = medium.g;
+    this->MediumOn = medium.enabled && this->HasGeometry && glm::compMax(this->SigmaT) > 0.0;
+    if (this->Settings.rayMarchStep <= 0.0)
+    {
+      const double* b = this->Bounds;
+      const double size = this->HasGeometry
+        ? std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+            (b[5] - b[4]) * (b[5] - b[4]))
+        : 0.0;
+      this->Settings.rayMarchStep = size > 0.0 ? size / 256.0 : 1.0;
+    }
+  }
+
+  /**
+   * Runs the stages on Settings.threads threads through a vtkSMPTools::LocalScope
+   * (which changes vtkSMPTools' global thread count for its duration, so concurrent
+   * renders with different counts are not supported); 0 keeps vtkSMPTools' own count
+   * (all cores unless VTK_SMP_MAX_THREADS or vtkSMPTools::Initialize says otherwise).
+   */
+  void RunStages(ReferenceImage& image, ReferenceStatistics& statistics)
+  {
+    if (this->Settings.threads > 0)
+    {
+      vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->Settings.threads },
+        [&]() { this->TraceAndEstimate(image, statistics); });
+    }
+    else
+    {
+      this->TraceAndEstimate(image, statistics);
+    }
+  }
+
+  /** Photon tracing, the view pass and the beam estimate, each timed. */
+  void TraceAndEstimate(ReferenceImage& image, ReferenceStatistics& statistics)
+  {
+    const auto photonStart = Clock::now();
+    this->Stage(0.0, 0.45);
+    if (this->HasGeometry)
+    {
+      this->TracePhotons(statistics);
+    }
+    else
+    {
+      statistics.lights.assign(this->Scene->Lights.size(), ReferenceLightStatistics());
+      statistics.depositedByEvents.assign(this->Settings.maxBounces + 1, Vec3{ { 0, 0, 0 } });
+    }
+    const auto viewStart = Clock::now();
+    statistics.photonSeconds = Seconds(photonStart, viewStart);
+    this->RenderView(image);
+    const auto volumeStart = Clock::now();
+    statistics.viewSeconds = Seconds(viewStart, volumeStart);
+    this->RenderVolumeCaustics(image);
+    statistics.volumeSeconds = Seconds(volumeStart, Clock::now());
+    this->Stage(0.0, 1.0);
+    this->ReportProgress(1.0);
+  }
+
+  /** Frees what only one render needs (the deposits and beams stay for GetPhotons()). */
+  void Release()
+  {
+    this->ReleaseEmbree();
+    std::vector<double>().swap(this->MediumStart);
+    std::vector<double>().swap(this->MediumEnd);
+    this->Scene = nullptr;
   }
 
   // --- Scene set-up ---
@@ -895,7 +945,7 @@ struct ReferenceTracer::Internals
 
   // --- Ray queries ---
 
-  bool Intersect(const V3& o, const V3& d, double tfar, Hit& hit) const
+  bool Intersect(const glm::dvec3& o, const glm::dvec3& d, double tfar, Hit& hit) const
   {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -926,30 +976,34 @@ struct ReferenceTracer::Internals
     hit.primitive = query.hit.primID;
     const Mesh& mesh = this->Scene->Meshes[hit.mesh];
     const std::uint32_t* ids = &mesh.indices[3 * static_cast<std::size_t>(hit.primitive)];
-    const V3 a(&mesh.positions[3 * ids[0]]), b(&mesh.positions[3 * ids[1]]),
-      c(&mesh.positions[3 * ids[2]]);
-    const V3 na(&mesh.normals[3 * ids[0]]), nb(&mesh.normals[3 * ids[1]]),
-      nc(&mesh.normals[3 * ids[2]]);
+    const glm::dvec3 a = FromFloat(&mesh.positions[3 * ids[0]]),
+                     b = FromFloat(&mesh.positions[3 * ids[1]]),
+                     c = FromFloat(&mesh.positions[3 * ids[2]]);
+    const glm::dvec3 na = FromFloat(&mesh.normals[3 * ids[0]]),
+                     nb = FromFloat(&mesh.normals[3 * ids[1]]),
+                     nc = FromFloat(&mesh.normals[3 * ids[2]]);
     const double u = query.hit.u, v = query.hit.v, w = 1.0 - u - v;
     // The point from barycentrics in double lies on the triangle's plane (up to
     // double rounding), unlike o + t d in float.
     hit.position = a * w + b * u + c * v;
-    hit.geometricNormal = Normalize(Cross(b - a, c - a));
-    if (Dot(hit.geometricNormal, na + nb + nc) < 0.0)
+    // A zero-area triangle keeps a zero face normal (glm::normalize would make NaNs).
+    const glm::dvec3 face = glm::cross(b - a, c - a);
+    hit.geometricNormal = glm::dot(face, face) > 0.0 ? glm::normalize(face) : face;
+    if (glm::dot(hit.geometricNormal, na + nb + nc) < 0.0)
     {
       hit.geometricNormal = -hit.geometricNormal;
     }
-    const V3 shading = na * w + nb * u + nc * v;
-    const double length = Length(shading);
+    const glm::dvec3 shading = na * w + nb * u + nc * v;
+    const double length = glm::length(shading);
     hit.shadingNormal = length > 1e-12 ? shading * (1.0 / length) : hit.geometricNormal;
-    if (Dot(hit.shadingNormal, hit.geometricNormal) <= 0.0)
+    if (glm::dot(hit.shadingNormal, hit.geometricNormal) <= 0.0)
     {
       hit.shadingNormal = hit.geometricNormal;
     }
     return true;
   }
 
-  bool Occluded(const V3& o, const V3& d, double tnear, double tfar) const
+  bool Occluded(const glm::dvec3& o, const glm::dvec3& d, double tnear, double tfar) const
   {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -977,11 +1031,12 @@ struct ReferenceTracer::Internals
    * passes through the point (an offset along the normal would shift it sideways by
    * Epsilon); only rays within ~0.6 degrees of the surface are also lifted off it.
    */
-  V3 Offset(const V3& position, const V3& normal, const V3& direction) const
+  glm::dvec3 Offset(
+    const glm::dvec3& position, const glm::dvec3& normal, const glm::dvec3& direction) const
   {
-    const double cosine = Dot(direction, normal);
+    const double cosine = glm::dot(direction, normal);
     const double along = this->Epsilon / std::max(std::abs(cosine), 0.01);
-    V3 origin = position + direction * along;
+    glm::dvec3 origin = position + direction * along;
     const double lift = this->Epsilon - along * std::abs(cosine);
     if (lift > 0.0)
     {
@@ -991,111 +1046,50 @@ struct ReferenceTracer::Internals
   }
 
   /** Medium transmittance along o + t d for t in [0, length] (the medium fills Bounds). */
-  V3 Transmittance(const V3& o, const V3& d, double length) const
+  glm::dvec3 Transmittance(const glm::dvec3& o, const glm::dvec3& d, double length) const
   {
     double t0, t1;
     if (!this->MediumOn || !ClipToBox(this->Bounds, o, d, 0.0, length, t0, t1) || t1 <= t0)
     {
-      return V3(1, 1, 1);
+      return glm::dvec3(1, 1, 1);
     }
-    return Exp(this->SigmaT * -(t1 - t0));
+    return glm::exp(this->SigmaT * -(t1 - t0));
   }
 
   // --- Photon emission ---
+
+  /**
+   * The domain photons of one light are aimed at: the sphere bounding the specular
+   * objects, with a 1% margin so that rounding never trims the silhouette.
+   */
+  struct Target
+  {
+    glm::dvec3 center{ 0.0 };
+    double margin = 0.0; ///< added to the specular box on every side
+    double radius = 0.0; ///< of the sphere, margin included
+  };
 
   Emitter MakeEmitter(const Light& light, std::int64_t requested) const
   {
     Emitter e;
     e.light = &light;
-    if (!this->HasSpecular || requested <= 0 || MaxComponent(V3(light.radiometric)) <= 0.0)
+    if (!this->HasSpecular || requested <= 0 || glm::compMax(ToGlm(light.radiometric)) <= 0.0)
     {
       return e;
     }
-    // Bounding sphere of the specular objects, with a 1% margin so that rounding
-    // never trims the silhouette.
     const double* sb = this->SpecularBounds;
-    const V3 c(0.5 * (sb[0] + sb[1]), 0.5 * (sb[2] + sb[3]), 0.5 * (sb[4] + sb[5]));
-    const V3 half(0.5 * (sb[1] - sb[0]), 0.5 * (sb[3] - sb[2]), 0.5 * (sb[5] - sb[4]));
-    const double margin = 0.01 * Length(half) + this->Epsilon;
-    const double radius = Length(half) + margin;
-
+    Target target;
+    target.center = glm::dvec3(0.5 * (sb[0] + sb[1]), 0.5 * (sb[2] + sb[3]), 0.5 * (sb[4] + sb[5]));
+    const glm::dvec3 half(0.5 * (sb[1] - sb[0]), 0.5 * (sb[3] - sb[2]), 0.5 * (sb[5] - sb[4]));
+    target.margin = 0.01 * glm::length(half) + this->Epsilon;
+    target.radius = glm::length(half) + target.margin;
     if (light.type == Light::Type::Directional)
     {
-      e.w = Normalize(V3(light.direction));
-      Basis(e.w, e.u, e.v);
-      // Rectangle covering the projection of the (margin-expanded) box, or the disk
-      // covering the bounding sphere: whichever is smaller.
-      double lo[2] = { Infinity, Infinity }, hi[2] = { -Infinity, -Infinity };
-      for (int corner = 0; corner < 8; ++corner)
-      {
-        const V3 p(corner & 1 ? sb[1] + margin : sb[0] - margin,
-          corner & 2 ? sb[3] + margin : sb[2] - margin,
-          corner & 4 ? sb[5] + margin : sb[4] - margin);
-        const double pu = Dot(p - c, e.u), pv = Dot(p - c, e.v);
-        lo[0] = std::min(lo[0], pu);
-        hi[0] = std::max(hi[0], pu);
-        lo[1] = std::min(lo[1], pv);
-        hi[1] = std::max(hi[1], pv);
-      }
-      const double rectangle = (hi[0] - lo[0]) * (hi[1] - lo[1]);
-      const double disk = Pi * radius * radius;
-      // The emission plane lies before every mesh (the whole scene's bounds).
-      double reach = 0.0;
-      for (int corner = 0; corner < 8; ++corner)
-      {
-        const V3 p(this->Bounds[corner & 1 ? 1 : 0], this->Bounds[corner & 2 ? 3 : 2],
-          this->Bounds[corner & 4 ? 5 : 4]);
-        reach = std::max(reach, Length(p - c));
-      }
-      reach += radius + this->Epsilon;
-      if (rectangle <= disk)
-      {
-        e.shape = Emitter::Shape::Rectangle;
-        e.halfU = 0.5 * (hi[0] - lo[0]);
-        e.halfV = 0.5 * (hi[1] - lo[1]);
-        e.center = c + e.u * (0.5 * (lo[0] + hi[0])) + e.v * (0.5 * (lo[1] + hi[1])) - e.w * reach;
-        e.measure = rectangle;
-        // Strata about square: nx / ny follows the rectangle's aspect ratio.
-        const double aspect = e.halfV > 0.0 ? e.halfU / e.halfV : 1.0;
-        e.nx = std::max<std::int64_t>(
-          1, std::min<std::int64_t>(requested, std::llround(std::sqrt(requested * aspect))));
-        e.ny = std::max<std::int64_t>(1, requested / e.nx);
-      }
-      else
-      {
-        e.shape = Emitter::Shape::Disk;
-        e.radius = radius;
-        e.center = c - e.w * reach;
-        e.measure = disk;
-        e.nx = e.ny =
-          std::max<std::int64_t>(1, static_cast<std::int64_t>(std::sqrt(double(requested))));
-      }
+      this->AimParallel(e, target, requested);
     }
     else
     {
-      e.shape = Emitter::Shape::Cone;
-      e.center = V3(light.position);
-      const V3 toCenter = c - e.center;
-      const double distance = Length(toCenter);
-      // Cap subtending the bounding sphere, or every direction from inside it.
-      V3 axis = distance > 0.0 ? toCenter * (1.0 / distance) : V3(light.direction);
-      double cosMax = -1.0;
-      if (distance > radius)
-      {
-        cosMax = std::sqrt(1.0 - (radius / distance) * (radius / distance));
-      }
-      // A spot cone narrower than that cap is the better domain (no wasted photons).
-      if (light.type == Light::Type::Spot && light.cosOuter > cosMax)
-      {
-        axis = V3(light.direction);
-        cosMax = light.cosOuter;
-      }
-      e.w = Normalize(axis);
-      Basis(e.w, e.u, e.v);
-      e.cosMax = cosMax;
-      e.measure = 2.0 * Pi * (1.0 - cosMax);
-      e.nx = e.ny =
-        std::max<std::int64_t>(1, static_cast<std::int64_t>(std::sqrt(double(requested))));
+      AimCone(e, target, requested);
     }
     if (!(e.measure > 0.0))
     {
@@ -1103,8 +1097,109 @@ struct ReferenceTracer::Internals
       e.nx = e.ny = 0;
       return e;
     }
-    e.photonFlux = V3(light.radiometric) * (e.measure / static_cast<double>(e.Count()));
+    e.photonFlux = ToGlm(light.radiometric) * (e.measure / static_cast<double>(e.Count()));
     return e;
+  }
+
+  /**
+   * Directional light: the rectangle covering the projection of the (margin-expanded)
+   * specular box, or the disk covering the target sphere, whichever is smaller, on a
+   * plane before every mesh.
+   */
+  void AimParallel(Emitter& e, const Target& target, std::int64_t requested) const
+  {
+    e.w = glm::normalize(ToGlm(e.light->direction));
+    Basis(e.w, e.u, e.v);
+    double lo[2], hi[2];
+    this->ProjectSpecularBox(e, target, lo, hi);
+    const double rectangle = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+    const double disk = Pi * target.radius * target.radius;
+    const double reach = this->SceneReach(target.center) + (target.radius + this->Epsilon);
+    if (rectangle <= disk)
+    {
+      e.shape = Emitter::Shape::Rectangle;
+      e.halfU = 0.5 * (hi[0] - lo[0]);
+      e.halfV = 0.5 * (hi[1] - lo[1]);
+      e.center =
+        target.center + e.u * (0.5 * (lo[0] + hi[0])) + e.v * (0.5 * (lo[1] + hi[1])) - e.w * reach;
+      e.measure = rectangle;
+      // Strata about square: nx / ny follows the rectangle's aspect ratio.
+      const double aspect = e.halfV > 0.0 ? e.halfU / e.halfV : 1.0;
+      e.nx = std::max<std::int64_t>(
+        1, std::min<std::int64_t>(requested, std::llround(std::sqrt(requested * aspect))));
+      e.ny = std::max<std::int64_t>(1, requested / e.nx);
+    }
+    else
+    {
+      e.shape = Emitter::Shape::Disk;
+      e.radius = target.radius;
+      e.center = target.center - e.w * reach;
+      e.measure = disk;
+      e.nx = e.ny =
+        std::max<std::int64_t>(1, static_cast<std::int64_t>(std::sqrt(double(requested))));
+    }
+  }
+
+  /** Extent [lo, hi] of the margin-expanded specular box along e.u and e.v. */
+  void ProjectSpecularBox(const Emitter& e, const Target& target, double lo[2], double hi[2]) const
+  {
+    const double* sb = this->SpecularBounds;
+    const double margin = target.margin;
+    lo[0] = lo[1] = Infinity;
+    hi[0] = hi[1] = -Infinity;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const glm::dvec3 p(corner & 1 ? sb[1] + margin : sb[0] - margin,
+        corner & 2 ? sb[3] + margin : sb[2] - margin, corner & 4 ? sb[5] + margin : sb[4] - margin);
+      const double pu = glm::dot(p - target.center, e.u), pv = glm::dot(p - target.center, e.v);
+      lo[0] = std::min(lo[0], pu);
+      hi[0] = std::max(hi[0], pu);
+      lo[1] = std::min(lo[1], pv);
+      hi[1] = std::max(hi[1], pv);
+    }
+  }
+
+  /** Largest distance from `center` to a corner of the whole scene's bounds. */
+  double SceneReach(const glm::dvec3& center) const
+  {
+    double reach = 0.0;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const glm::dvec3 p(this->Bounds[corner & 1 ? 1 : 0], this->Bounds[corner & 2 ? 3 : 2],
+        this->Bounds[corner & 4 ? 5 : 4]);
+      reach = std::max(reach, glm::length(p - center));
+    }
+    return reach;
+  }
+
+  /**
+   * Point and spot lights: the cap subtending the target sphere (every direction from
+   * inside it), or the spot's outer cone when that is narrower (no wasted photons).
+   */
+  static void AimCone(Emitter& e, const Target& target, std::int64_t requested)
+  {
+    const Light& light = *e.light;
+    e.shape = Emitter::Shape::Cone;
+    e.center = ToGlm(light.position);
+    const glm::dvec3 toCenter = target.center - e.center;
+    const double distance = glm::length(toCenter);
+    glm::dvec3 axis = distance > 0.0 ? toCenter * (1.0 / distance) : ToGlm(light.direction);
+    double cosMax = -1.0;
+    if (distance > target.radius)
+    {
+      cosMax = std::sqrt(1.0 - (target.radius / distance) * (target.radius / distance));
+    }
+    if (light.type == Light::Type::Spot && light.cosOuter > cosMax)
+    {
+      axis = ToGlm(light.direction);
+      cosMax = light.cosOuter;
+    }
+    e.w = glm::normalize(axis);
+    Basis(e.w, e.u, e.v);
+    e.cosMax = cosMax;
+    e.measure = 2.0 * Pi * (1.0 - cosMax);
+    e.nx = e.ny =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::sqrt(double(requested))));
   }
 
   /** Photon `index`: a jittered sample in its stratum. */
@@ -1137,14 +1232,14 @@ struct ReferenceTracer::Internals
         const double rho2 = x * x + y * y, rho = std::sqrt(rho2);
         const double cosTheta = 1.0 - rho2 * (1.0 - e.cosMax);
         const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-        V3 d = e.w * cosTheta;
+        glm::dvec3 d = e.w * cosTheta;
         if (rho > 0.0)
         {
           d += (e.u * x + e.v * y) * (sinTheta / rho);
         }
         b.origin = e.center;
-        b.direction = Normalize(d);
-        b.flux = b.flux * e.light->SpotFactor(Dot(b.direction, V3(e.light->direction)));
+        b.direction = glm::normalize(d);
+        b.flux = b.flux * e.light->SpotFactor(glm::dot(b.direction, ToGlm(e.light->direction)));
         break;
       }
       case Emitter::Shape::None:
@@ -1156,7 +1251,7 @@ struct ReferenceTracer::Internals
   // --- Photon tracing ---
 
   /** Largest ratio of the branch's flux to the photon's emitted flux over channels. */
-  static double Weight(const V3& flux, const V3& emitted)
+  static double Weight(const glm::dvec3& flux, const glm::dvec3& emitted)
   {
     double w = 0.0;
     for (int c = 0; c < 3; ++c)
@@ -1170,7 +1265,7 @@ struct ReferenceTracer::Internals
   }
 
   /** Russian roulette below the threshold (unbiased); false when the branch dies. */
-  bool Survives(V3& flux, const V3& emitted, Random& random, ChunkResult& out) const
+  bool Survives(glm::dvec3& flux, const glm::dvec3& emitted, Random& random, ChunkResult& out) const
   {
     const double w = Weight(flux, emitted);
     const double threshold = this->Settings.rouletteThreshold;
@@ -1185,84 +1280,54 @@ struct ReferenceTracer::Internals
     const double q = w / threshold;
     if (random.Uniform() < q)
     {
-      const V3 boosted = flux * (1.0 / q);
-      out.statistics.roulette += flux - boosted;
+      const glm::dvec3 boosted = flux * (1.0 / q);
+      Accumulate(out.statistics.roulette, flux - boosted);
       flux = boosted;
       return true;
     }
-    out.statistics.roulette += flux;
+    Accumulate(out.statistics.roulette, flux);
     return false;
   }
 
   void Deposit(const Branch& s, const Hit& hit, int lightIndex, ChunkResult& out) const
   {
     ReferencePhoton photon;
-    hit.position.ToFloat(photon.position);
-    const V3 facing =
-      Dot(s.direction, hit.geometricNormal) < 0.0 ? hit.geometricNormal : -hit.geometricNormal;
-    facing.ToFloat(photon.normal);
-    s.direction.ToFloat(photon.direction);
-    s.flux.ToFloat(photon.flux);
-    s.firstHit.ToFloat(photon.firstHit);
+    StoreFloat(hit.position, photon.position);
+    const glm::dvec3 facing =
+      glm::dot(s.direction, hit.geometricNormal) < 0.0 ? hit.geometricNormal : -hit.geometricNormal;
+    StoreFloat(facing, photon.normal);
+    StoreFloat(s.direction, photon.direction);
+    StoreFloat(s.flux, photon.flux);
+    StoreFloat(s.firstHit, photon.firstHit);
     photon.mesh = static_cast<std::uint32_t>(hit.mesh);
     photon.light = static_cast<std::uint16_t>(lightIndex);
     photon.events = static_cast<std::uint8_t>(s.events);
     out.photons.push_back(photon);
-    out.statistics.deposited += s.flux;
+    Accumulate(out.statistics.deposited, s.flux);
     ++out.statistics.photonsDeposited;
-    out.depositedByEvents[s.events] += s.flux;
+    Accumulate(out.depositedByEvents[s.events], s.flux);
   }
 
   /**
    * Follows one branch until it is absorbed, escapes, is deposited, or splits at a
    * dielectric (its children go on `stack`).
    */
-  void FollowBranch(Branch s, const V3& emitted, int lightIndex, Random& random,
+  void FollowBranch(Branch s, const glm::dvec3& emitted, int lightIndex, Random& random,
     std::vector<Branch>& stack, ChunkResult& out) const
   {
-    const int maxBounces = this->Settings.maxBounces;
     for (;;)
     {
       Hit hit;
       const bool found = this->Intersect(s.origin, s.direction, Infinity, hit);
-      const double length = found ? hit.t : Infinity;
-      if (s.inside >= 0)
+      if (!found && s.inside >= 0)
       {
-        if (!found)
-        {
-          out.statistics.escaped += s.flux; // an open refractor mesh
-          return;
-        }
-        const V3 attenuation(this->MaterialOf(s.inside).attenuation);
-        if (MaxComponent(attenuation) > 0.0)
-        {
-          const V3 kept = s.flux * Exp(attenuation * -length);
-          out.statistics.absorbed += s.flux - kept;
-          s.flux = kept;
-        }
+        Accumulate(out.statistics.escaped, s.flux); // an open refractor mesh
+        return;
       }
-      else if (this->MediumOn)
-      {
-        double t0, t1;
-        if (ClipToBox(this->Bounds, s.origin, s.direction, 0.0, length, t0, t1) && t1 > t0)
-        {
-          if (out.beamPass && s.events > 0)
-          {
-            ReferenceBeam beam;
-            (s.origin + s.direction * t0).ToFloat(beam.start);
-            s.direction.ToFloat(beam.direction);
-            beam.length = static_cast<float>(t1 - t0);
-            s.flux.ToFloat(beam.flux);
-            out.beams.push_back(beam);
-          }
-          const V3 kept = s.flux * Exp(this->SigmaT * -(t1 - t0));
-          out.statistics.absorbed += s.flux - kept;
-          s.flux = kept;
-        }
-      }
+      this->Attenuate(s, found ? hit.t : Infinity, out);
       if (!found)
       {
-        out.statistics.escaped += s.flux;
+        Accumulate(out.statistics.escaped, s.flux);
         return;
       }
       const Material& material = this->MaterialOf(hit.mesh);
@@ -1270,7 +1335,7 @@ struct ReferenceTracer::Internals
       {
         if (s.events == 0)
         {
-          out.statistics.direct += s.flux;
+          Accumulate(out.statistics.direct, s.flux);
         }
         else if (!out.beamPass)
         {
@@ -1278,9 +1343,9 @@ struct ReferenceTracer::Internals
         }
         return;
       }
-      if (s.events >= maxBounces)
+      if (s.events >= this->Settings.maxBounces)
       {
-        out.statistics.bounceLimit += s.flux;
+        Accumulate(out.statistics.bounceLimit, s.flux);
         return;
       }
       ++s.events;
@@ -1288,95 +1353,172 @@ struct ReferenceTracer::Internals
       {
         s.firstHit = hit.position;
       }
-      // Normals on the side the ray arrives from.
-      const bool front = Dot(s.direction, hit.geometricNormal) < 0.0;
-      const V3 ng = front ? hit.geometricNormal : -hit.geometricNormal;
-      const V3 ns = front ? hit.shadingNormal : -hit.shadingNormal;
+      if (material.role != Role::Reflector)
+      {
+        this->SplitAtDielectric(s, hit, material, emitted, random, stack, out);
+        return;
+      }
+      if (!this->ReflectOffConductor(s, hit, material, emitted, random, out))
+      {
+        return;
+      }
+    }
+  }
 
-      if (material.role == Role::Reflector)
+  /**
+   * Losses along the segment of length `length` just travelled: Beer-Lambert inside
+   * a refractor, extinction in the medium (which also records the segment as a beam
+   * in the beam pass).
+   */
+  void Attenuate(Branch& s, double length, ChunkResult& out) const
+  {
+    if (s.inside >= 0)
+    {
+      const glm::dvec3 attenuation = ToGlm(this->MaterialOf(s.inside).attenuation);
+      if (glm::compMax(attenuation) > 0.0)
       {
-        V3 n = ns;
-        V3 r(Reflect(s.direction.ToVec3(), n.ToVec3()));
-        // Interpolated normals can send the ray into the surface: fall back on the face.
-        if (Dot(s.direction, n) >= 0.0 || Dot(r, ng) <= 0.0)
-        {
-          n = ng;
-          r = V3(Reflect(s.direction.ToVec3(), n.ToVec3()));
-        }
-        const double cosI = -Dot(s.direction, n);
-        V3 fresnel;
-        for (int c = 0; c < 3; ++c)
-        {
-          (c == 0 ? fresnel.x : (c == 1 ? fresnel.y : fresnel.z)) =
-            FresnelConductor(cosI, material.metalN[c], material.metalK[c]);
-        }
-        const V3 kept = s.flux * fresnel;
-        out.statistics.absorbed += s.flux - kept;
-        s.flux = kept;
-        s.origin = this->Offset(hit.position, ng, r);
-        s.direction = r;
-        if (!this->Survives(s.flux, emitted, random, out))
-        {
-          return;
-        }
-        continue;
-      }
-
-      // Dielectric: entering when the ray meets the outward face normal head-on.
-      const double etaI = front ? 1.0 : material.ior;
-      const double etaT = front ? material.ior : 1.0;
-      auto scatter = [&](const V3& n, double& reflectance, V3& reflected, V3& refracted)
-      {
-        reflectance = FresnelDielectric(-Dot(s.direction, n), etaI, etaT);
-        reflected = V3(Reflect(s.direction.ToVec3(), n.ToVec3()));
-        Vec3 t;
-        if (reflectance < 1.0 && Refract(s.direction.ToVec3(), n.ToVec3(), etaI / etaT, t))
-        {
-          refracted = V3(t);
-        }
-        else
-        {
-          reflectance = 1.0;
-        }
-        // Valid when both leave on their proper side of the actual (flat) surface.
-        return Dot(s.direction, n) < 0.0 && Dot(reflected, ng) > 0.0 &&
-          (reflectance >= 1.0 || Dot(refracted, ng) < 0.0);
-      };
-      double reflectance;
-      V3 reflected, refracted;
-      if (!scatter(ns, reflectance, reflected, refracted))
-      {
-        scatter(ng, reflectance, reflected, refracted);
-      }
-      Branch children[2];
-      int count = 0;
-      if (reflectance > 0.0)
-      {
-        Branch& child = children[count++];
-        child = s;
-        child.flux = s.flux * reflectance;
-        child.direction = reflected;
-        child.origin = this->Offset(hit.position, ng, reflected);
-        child.inside = front ? s.inside : hit.mesh;
-      }
-      if (reflectance < 1.0)
-      {
-        Branch& child = children[count++];
-        child = s;
-        child.flux = s.flux * (1.0 - reflectance);
-        child.direction = refracted;
-        child.origin = this->Offset(hit.position, ng, refracted);
-        child.inside = front ? hit.mesh : -1;
-      }
-      for (int i = 0; i < count; ++i)
-      {
-        if (this->Survives(children[i].flux, emitted, random, out))
-        {
-          stack.push_back(children[i]);
-        }
+        Absorb(s, s.flux * glm::exp(attenuation * -length), out);
       }
       return;
     }
+    double t0, t1;
+    if (this->MediumOn && ClipToBox(this->Bounds, s.origin, s.direction, 0.0, length, t0, t1) &&
+      t1 > t0)
+    {
+      if (out.beamPass && s.events > 0)
+      {
+        out.beams.push_back(MakeBeam(s, t0, t1));
+      }
+      Absorb(s, s.flux * glm::exp(this->SigmaT * -(t1 - t0)), out);
+    }
+  }
+
+  /** The branch keeps `kept` of its flux; the rest counts as absorbed. */
+  static void Absorb(Branch& s, const glm::dvec3& kept, ChunkResult& out)
+  {
+    Accumulate(out.statistics.absorbed, s.flux - kept);
+    s.flux = kept;
+  }
+
+  /** The part [t0, t1] of a branch's segment that lies in the medium. */
+  static ReferenceBeam MakeBeam(const Branch& s, double t0, double t1)
+  {
+    ReferenceBeam beam;
+    StoreFloat(s.origin + s.direction * t0, beam.start);
+    StoreFloat(s.direction, beam.direction);
+    beam.length = static_cast<float>(t1 - t0);
+    StoreFloat(s.flux, beam.flux);
+    return beam;
+  }
+
+  /**
+   * The hit's face and shading normals turned to the side the ray arrives from; true
+   * when that is the front (the side the vertex normals point to).
+   */
+  static bool FacingNormals(
+    const glm::dvec3& direction, const Hit& hit, glm::dvec3& ng, glm::dvec3& ns)
+  {
+    const bool front = glm::dot(direction, hit.geometricNormal) < 0.0;
+    ng = front ? hit.geometricNormal : -hit.geometricNormal;
+    ns = front ? hit.shadingNormal : -hit.shadingNormal;
+    return front;
+  }
+
+  /**
+   * Conductor: mirror reflection weighted by the complex-index Fresnel reflectance per
+   * channel. False when Russian roulette ends the branch.
+   */
+  bool ReflectOffConductor(Branch& s, const Hit& hit, const Material& material,
+    const glm::dvec3& emitted, Random& random, ChunkResult& out) const
+  {
+    glm::dvec3 ng, n;
+    FacingNormals(s.direction, hit, ng, n);
+    glm::dvec3 r = glm::reflect(s.direction, n);
+    // Interpolated normals can send the ray into the surface: fall back on the face.
+    if (glm::dot(s.direction, n) >= 0.0 || glm::dot(r, ng) <= 0.0)
+    {
+      n = ng;
+      r = glm::reflect(s.direction, n);
+    }
+    const double cosI = -glm::dot(s.direction, n);
+    glm::dvec3 fresnel{ 0.0 };
+    for (int c = 0; c < 3; ++c)
+    {
+      fresnel[c] = FresnelConductor(cosI, material.metalN[c], material.metalK[c]);
+    }
+    Absorb(s, s.flux * fresnel, out);
+    s.origin = this->Offset(hit.position, ng, r);
+    s.direction = r;
+    return this->Survives(s.flux, emitted, random, out);
+  }
+
+  /**
+   * Fresnel reflectance and the reflected and refracted directions of d on normal n
+   * (shading or face), from index etaI into etaT. True when both directions leave on
+   * their proper side of the actual (flat) face ng.
+   */
+  static bool ScatterDielectric(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ng,
+    double etaI, double etaT, double& reflectance, glm::dvec3& reflected, glm::dvec3& refracted)
+  {
+    reflectance = FresnelDielectric(-glm::dot(d, n), etaI, etaT);
+    reflected = glm::reflect(d, n);
+    if (!(reflectance < 1.0 && RefractDirection(d, n, etaI / etaT, refracted)))
+    {
+      reflectance = 1.0;
+    }
+    return glm::dot(d, n) < 0.0 && glm::dot(reflected, ng) > 0.0 &&
+      (reflectance >= 1.0 || glm::dot(refracted, ng) < 0.0);
+  }
+
+  /**
+   * Dielectric: the branch splits into its reflected (flux x R) and refracted (flux x
+   * (1 - R)) children, which go on `stack` unless Russian roulette ends them.
+   */
+  void SplitAtDielectric(const Branch& s, const Hit& hit, const Material& material,
+    const glm::dvec3& emitted, Random& random, std::vector<Branch>& stack, ChunkResult& out) const
+  {
+    glm::dvec3 ng, ns;
+    const bool front = FacingNormals(s.direction, hit, ng, ns);
+    // Entering when the ray meets the outward face normal head-on.
+    const double etaI = front ? 1.0 : material.ior;
+    const double etaT = front ? material.ior : 1.0;
+    double reflectance;
+    glm::dvec3 reflected{ 0.0 }, refracted{ 0.0 };
+    if (!ScatterDielectric(s.direction, ns, ng, etaI, etaT, reflectance, reflected, refracted))
+    {
+      ScatterDielectric(s.direction, ng, ng, etaI, etaT, reflectance, reflected, refracted);
+    }
+    Branch children[2];
+    int count = 0;
+    if (reflectance > 0.0)
+    {
+      children[count++] = this->Child(
+        s, s.flux * reflectance, reflected, hit.position, ng, front ? s.inside : hit.mesh);
+    }
+    if (reflectance < 1.0)
+    {
+      children[count++] = this->Child(
+        s, s.flux * (1.0 - reflectance), refracted, hit.position, ng, front ? hit.mesh : -1);
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      if (this->Survives(children[i].flux, emitted, random, out))
+      {
+        stack.push_back(children[i]);
+      }
+    }
+  }
+
+  /** A branch leaving `position` along `direction` with `flux`, inside refractor `inside`. */
+  Branch Child(const Branch& parent, const glm::dvec3& flux, const glm::dvec3& direction,
+    const glm::dvec3& position, const glm::dvec3& ng, int inside) const
+  {
+    Branch child = parent;
+    child.flux = flux;
+    child.direction = direction;
+    child.origin = this->Offset(position, ng, direction);
+    child.inside = inside;
+    return child;
   }
 
   void TraceChunk(const Emitter& emitter, int lightIndex, std::int64_t begin, std::int64_t end,
@@ -1391,8 +1533,8 @@ struct ReferenceTracer::Internals
     {
       Random random(this->Settings.seed, stream, static_cast<std::uint64_t>(index));
       const Branch start = this->Emit(emitter, index, random);
-      out.statistics.emitted += start.flux;
-      if (!(MaxComponent(start.flux) > 0.0))
+      Accumulate(out.statistics.emitted, start.flux);
+      if (!(glm::compMax(start.flux) > 0.0))
       {
         continue;
       }
@@ -1419,7 +1561,7 @@ struct ReferenceTracer::Internals
     const std::int64_t chunks = (emitter.Count() + chunkSize - 1) / chunkSize;
     std::vector<ChunkResult> results(static_cast<std::size_t>(chunks));
     ParallelFor(
-      chunks, this->Threads,
+      chunks,
       [&](std::int64_t chunk)
       {
         results[chunk].beamPass = beamPass;
@@ -1427,30 +1569,36 @@ struct ReferenceTracer::Internals
           std::min(emitter.Count(), (chunk + 1) * chunkSize), results[chunk]);
       },
       progress);
-    ReferenceLightStatistics& total = statistics.lights[light];
     for (ChunkResult& chunk : results)
     {
-      this->Beams.insert(this->Beams.end(), chunk.beams.begin(), chunk.beams.end());
-      std::vector<ReferenceBeam>().swap(chunk.beams); // free as we go
-      if (beamPass)
-      {
-        continue;
-      }
-      this->Photons.insert(this->Photons.end(), chunk.photons.begin(), chunk.photons.end());
-      std::vector<ReferencePhoton>().swap(chunk.photons);
-      const ReferenceLightStatistics& s = chunk.statistics;
-      total.photonsDeposited += s.photonsDeposited;
-      total.emitted += s.emitted;
-      total.direct += s.direct;
-      total.deposited += s.deposited;
-      total.escaped += s.escaped;
-      total.absorbed += s.absorbed;
-      total.bounceLimit += s.bounceLimit;
-      total.roulette += s.roulette;
-      for (std::size_t k = 0; k < chunk.depositedByEvents.size(); ++k)
-      {
-        statistics.depositedByEvents[k] += chunk.depositedByEvents[k];
-      }
+      this->MergeChunk(chunk, statistics.lights[light], statistics);
+    }
+  }
+
+  /** Moves one chunk's records into the tracer and adds up its statistics. */
+  void MergeChunk(
+    ChunkResult& chunk, ReferenceLightStatistics& total, ReferenceStatistics& statistics)
+  {
+    this->Beams.insert(this->Beams.end(), chunk.beams.begin(), chunk.beams.end());
+    std::vector<ReferenceBeam>().swap(chunk.beams); // free as we go
+    if (chunk.beamPass)
+    {
+      return;
+    }
+    this->Photons.insert(this->Photons.end(), chunk.photons.begin(), chunk.photons.end());
+    std::vector<ReferencePhoton>().swap(chunk.photons);
+    const ReferenceLightStatistics& s = chunk.statistics;
+    total.photonsDeposited += s.photonsDeposited;
+    Accumulate(total.emitted, ToGlm(s.emitted));
+    Accumulate(total.direct, ToGlm(s.direct));
+    Accumulate(total.deposited, ToGlm(s.deposited));
+    Accumulate(total.escaped, ToGlm(s.escaped));
+    Accumulate(total.absorbed, ToGlm(s.absorbed));
+    Accumulate(total.bounceLimit, ToGlm(s.bounceLimit));
+    Accumulate(total.roulette, ToGlm(s.roulette));
+    for (std::size_t k = 0; k < chunk.depositedByEvents.size(); ++k)
+    {
+      Accumulate(statistics.depositedByEvents[k], ToGlm(chunk.depositedByEvents[k]));
     }
   }
 
@@ -1485,7 +1633,7 @@ struct ReferenceTracer::Internals
   // --- Camera view ---
 
   /** Length of pixel ray (i, j) from its near-plane origin to the far plane. */
-  double FarDistance(double i, double j, const V3& origin) const
+  double FarDistance(double i, double j, const glm::dvec3& origin) const
   {
     const Camera& view = this->Scene->View;
     const double ndcX = 2.0 * (i + 0.5) / view.width - 1.0;
@@ -1497,45 +1645,45 @@ struct ReferenceTracer::Internals
       world[r] = view.clipToWorld[4 * r] * clip[0] + view.clipToWorld[4 * r + 1] * clip[1] +
         view.clipToWorld[4 * r + 2] * clip[2] + view.clipToWorld[4 * r + 3] * clip[3];
     }
-    const V3 far(world[0] / world[3], world[1] / world[3], world[2] / world[3]);
-    const double distance = Length(far - origin);
+    const glm::dvec3 far(world[0] / world[3], world[1] / world[3], world[2] / world[3]);
+    const double distance = glm::length(far - origin);
     return std::isfinite(distance) ? distance : Infinity;
   }
 
-  void PixelRay(double i, double j, V3& origin, V3& direction) const
+  void PixelRay(double i, double j, glm::dvec3& origin, glm::dvec3& direction) const
   {
     Vec3 o, d;
     this->Scene->View.PixelRay(i, j, o, d);
-    origin = V3(o);
-    direction = V3(d);
+    origin = ToGlm(o);
+    direction = ToGlm(d);
   }
 
   /** Receiver area seen by pixel (i, j) around x: its corner rays on the tangent plane. */
-  double PixelArea(int i, int j, const V3& x, const V3& n, double distance) const
+  double PixelArea(int i, int j, const glm::dvec3& x, const glm::dvec3& n, double distance) const
   {
-    V3 corners[4];
+    glm::dvec3 corners[4];
     const double offsets[4][2] = { { -0.5, -0.5 }, { 0.5, -0.5 }, { 0.5, 0.5 }, { -0.5, 0.5 } };
     bool valid = true;
     for (int c = 0; c < 4 && valid; ++c)
     {
-      V3 o, d;
+      glm::dvec3 o{ 0.0 }, d{ 0.0 };
       this->PixelRay(i + offsets[c][0], j + offsets[c][1], o, d);
-      const double denominator = Dot(d, n);
-      const double t = Dot(x - o, n) / denominator;
+      const double denominator = glm::dot(d, n);
+      const double t = glm::dot(x - o, n) / denominator;
       valid = std::abs(denominator) > 1e-9 && t > 0.0 && std::isfinite(t);
       corners[c] = o + d * t;
     }
     double area =
-      valid ? 0.5 * Length(Cross(corners[2] - corners[0], corners[3] - corners[1])) : 0.0;
+      valid ? 0.5 * glm::length(glm::cross(corners[2] - corners[0], corners[3] - corners[1])) : 0.0;
     if (!(area > 0.0) || !std::isfinite(area))
     {
       // A corner ray misses the tangent plane (grazing view): use the pixel's
       // spread at this distance over the obliquity instead.
-      V3 o0, d0, o1, d1;
+      glm::dvec3 o0, d0, o1, d1;
       this->PixelRay(i, j, o0, d0);
       this->PixelRay(i + 1, j, o1, d1);
-      const double spread = Length((o1 - o0) + (d1 - d0) * distance);
-      area = spread * spread / std::max(std::abs(Dot(d0, n)), 1e-3);
+      const double spread = glm::length((o1 - o0) + (d1 - d0) * distance);
+      area = spread * spread / std::max(std::abs(glm::dot(d0, n)), 1e-3);
     }
     return area;
   }
@@ -1545,49 +1693,51 @@ struct ReferenceTracer::Internals
    * distance (infinite for directional lights) and the irradiance on a surface facing
    * it (E, or I x spot falloff / d^2). False when none arrives.
    */
-  static bool Incident(const Light& light, const V3& x, V3& toLight, double& distance, V3& incident)
+  static bool Incident(const Light& light, const glm::dvec3& x, glm::dvec3& toLight,
+    double& distance, glm::dvec3& incident)
   {
-    incident = V3(light.radiometric);
+    incident = ToGlm(light.radiometric);
     distance = Infinity;
     if (light.type == Light::Type::Directional)
     {
-      toLight = -V3(light.direction);
+      toLight = -ToGlm(light.direction);
     }
     else
     {
-      const V3 offset = V3(light.position) - x;
-      distance = Length(offset);
+      const glm::dvec3 offset = ToGlm(light.position) - x;
+      distance = glm::length(offset);
       if (!(distance > 0.0))
       {
         return false;
       }
       toLight = offset * (1.0 / distance);
-      incident =
-        incident * (light.SpotFactor(-Dot(toLight, V3(light.direction))) / (distance * distance));
+      incident = incident *
+        (light.SpotFactor(-glm::dot(toLight, ToGlm(light.direction))) / (distance * distance));
     }
-    return MaxComponent(incident) > 0.0;
+    return glm::compMax(incident) > 0.0;
   }
 
   /** Shadowed irradiance at a surface point from every light, no specular event. */
-  V3 DirectIrradiance(const V3& x, const V3& ng, const V3& ns) const
+  glm::dvec3 DirectIrradiance(const glm::dvec3& x, const glm::dvec3& ng, const glm::dvec3& ns) const
   {
-    V3 total;
+    glm::dvec3 total{ 0.0 };
     for (const Light& light : this->Scene->Lights)
     {
-      V3 toLight, incident;
+      glm::dvec3 toLight{ 0.0 }, incident{ 0.0 };
       double distance;
       if (!Incident(light, x, toLight, distance, incident))
       {
         continue;
       }
-      const double cosine = Dot(ns, toLight);
-      if (cosine <= 0.0 || Dot(ng, toLight) <= 0.0)
+      const double cosine = glm::dot(ns, toLight);
+      if (cosine <= 0.0 || glm::dot(ng, toLight) <= 0.0)
       {
         continue;
       }
-      const V3 origin = this->Offset(x, ng, toLight);
-      const double reach =
-        std::isfinite(distance) ? Length(V3(light.position) - origin) - this->Epsilon : Infinity;
+      const glm::dvec3 origin = this->Offset(x, ng, toLight);
+      const double reach = std::isfinite(distance)
+        ? glm::length(ToGlm(light.position) - origin) - this->Epsilon
+        : Infinity;
       if (reach <= 0.0 || this->Occluded(origin, toLight, 0.0, reach))
       {
         continue;
@@ -1598,9 +1748,10 @@ struct ReferenceTracer::Internals
   }
 
   /** Single-scattered direct light along the camera ray, ray-marched with shadow rays. */
-  V3 Airlight(const V3& o, const V3& v, double t0, double t1, Random& random) const
+  glm::dvec3 Airlight(
+    const glm::dvec3& o, const glm::dvec3& v, double t0, double t1, Random& random) const
   {
-    V3 radiance;
+    glm::dvec3 radiance{ 0.0 };
     const double step = this->Settings.rayMarchStep;
     const std::int64_t steps = std::max<std::int64_t>(1, std::llround(std::ceil((t1 - t0) / step)));
     const double delta = (t1 - t0) / static_cast<double>(steps);
@@ -1608,11 +1759,11 @@ struct ReferenceTracer::Internals
     {
       // One jittered sample per stratum: unbiased, no banding.
       const double s = t0 + (static_cast<double>(k) + random.Uniform()) * delta;
-      const V3 x = o + v * s;
-      const V3 toCamera = Exp(this->SigmaT * -(s - t0));
+      const glm::dvec3 x = o + v * s;
+      const glm::dvec3 toCamera = glm::exp(this->SigmaT * -(s - t0));
       for (const Light& light : this->Scene->Lights)
       {
-        V3 toLight, incident;
+        glm::dvec3 toLight{ 0.0 }, incident{ 0.0 };
         double distance;
         if (!Incident(light, x, toLight, distance, incident) ||
           this->Occluded(x, toLight, this->Epsilon, distance))
@@ -1620,7 +1771,7 @@ struct ReferenceTracer::Internals
           continue;
         }
         // Light travels along -toLight, leaves towards the camera along -v.
-        const double phase = HenyeyGreenstein(Dot(toLight, v), this->G);
+        const double phase = HenyeyGreenstein(glm::dot(toLight, v), this->G);
         radiance += this->SigmaS * incident * this->Transmittance(x, toLight, distance) * toCamera *
           (phase * delta);
       }
@@ -1628,100 +1779,134 @@ struct ReferenceTracer::Internals
     return radiance;
   }
 
+  /**
+   * Pass 1: visibility, geometry buffers, direct light, airlight; pass 2: the caustic
+   * gather at the receiver pixels.
+   */
   void RenderView(ReferenceImage& image)
   {
     const Camera& view = this->Scene->View;
-    const int width = view.width, height = view.height;
-    image.Resize(width, height);
-    this->MediumStart.assign(static_cast<std::size_t>(width) * height, 0.0);
-    this->MediumEnd.assign(static_cast<std::size_t>(width) * height, 0.0);
-    std::vector<double> radii(static_cast<std::size_t>(width) * height, 0.0);
-    std::vector<Hit> hits(static_cast<std::size_t>(width) * height);
-
-    // Pass 1: visibility, geometry buffers, direct light, airlight.
+    const std::size_t pixels = static_cast<std::size_t>(view.width) * view.height;
+    image.Resize(view.width, view.height);
+    this->MediumStart.assign(pixels, 0.0);
+    this->MediumEnd.assign(pixels, 0.0);
+    std::vector<double> radii(pixels, 0.0);
+    std::vector<Hit> hits(pixels);
     ParallelFor(
-      height, this->Threads,
+      view.height,
       [&](std::int64_t row)
       {
-        const int j = static_cast<int>(row);
-        for (int i = 0; i < width; ++i)
+        for (int i = 0; i < view.width; ++i)
         {
-          const std::size_t id = static_cast<std::size_t>(j) * width + i;
-          V3 o, v;
-          this->PixelRay(i, j, o, v);
-          const double far = this->FarDistance(i, j, o);
-          Hit& hit = hits[id];
-          hit.mesh = -1;
-          bool found = this->HasGeometry && this->Intersect(o, v, far, hit);
-          // Optionally look through refractors, unbent, as the GPU's opaque G-buffer does.
-          while (found && !this->Settings.cameraSeesRefractors &&
-            this->MaterialOf(hit.mesh).role == Role::Refractor)
-          {
-            const V3 next = this->Offset(hit.position, hit.geometricNormal, v);
-            const double skipped = Length(next - o);
-            found = this->Intersect(next, v, far - skipped, hit);
-            hit.t += found ? skipped : 0.0;
-          }
-          const double end = found ? hit.t : far;
-          if (found)
-          {
-            const bool front = Dot(v, hit.geometricNormal) < 0.0;
-            hit.geometricNormal = front ? hit.geometricNormal : -hit.geometricNormal;
-            hit.shadingNormal = front ? hit.shadingNormal : -hit.shadingNormal;
-            hit.position.ToFloat(&image.position[3 * id]);
-            hit.shadingNormal.ToFloat(&image.normal[3 * id]);
-            const Material& material = this->MaterialOf(hit.mesh);
-            if (material.role == Role::Receiver)
-            {
-              image.mask[id] = 1.0f;
-              V3(material.albedo).ToFloat(&image.albedo[3 * id]);
-              const double area = this->PixelArea(i, j, hit.position, hit.geometricNormal, hit.t);
-              image.pixelArea[id] = static_cast<float>(area);
-              radii[id] = this->Settings.kernelRadius > 0.0
-                ? this->Settings.kernelRadius
-                : this->Settings.kernelRadiusPixels * std::sqrt(area);
-              this->DirectIrradiance(hit.position, hit.geometricNormal, hit.shadingNormal)
-                .ToFloat(&image.direct[3 * id]);
-            }
-          }
-          V3 transmittance(1, 1, 1);
-          double t0, t1;
-          if (this->MediumOn && ClipToBox(this->Bounds, o, v, 0.0, end, t0, t1) && t1 > t0)
-          {
-            transmittance = Exp(this->SigmaT * -(t1 - t0));
-            this->MediumStart[id] = t0;
-            this->MediumEnd[id] = t1;
-            Random random(this->Settings.seed ^ 0x5bd1e995ULL, 0x9e37ULL + id, 1);
-            this->Airlight(o, v, t0, t1, random).ToFloat(&image.airlight[3 * id]);
-          }
-          transmittance.ToFloat(&image.transmittance[3 * id]);
+          this->ShadePixel(i, static_cast<int>(row), hits, radii, image);
         }
       },
       this->Stage(0.45, 0.35));
+    this->GatherCaustics(hits, radii, image);
+  }
 
-    // Pass 2: caustic irradiance from the deposits. Cells of the median radius keep
-    // most queries to 27 cells.
-    if (this->Photons.empty())
+  /** Pixel (i, j): its first visible surface, what lies there, and the medium before it. */
+  void ShadePixel(
+    int i, int j, std::vector<Hit>& hits, std::vector<double>& radii, ReferenceImage& image)
+  {
+    const std::size_t id = static_cast<std::size_t>(j) * this->Scene->View.width + i;
+    glm::dvec3 o{ 0.0 }, v{ 0.0 };
+    this->PixelRay(i, j, o, v);
+    const double far = this->FarDistance(i, j, o);
+    Hit& hit = hits[id];
+    const bool found = this->FirstVisibleSurface(o, v, far, hit);
+    if (found)
+    {
+      this->ShadeSurface(i, j, id, v, hit, radii[id], image);
+    }
+    this->ShadeMedium(id, o, v, found ? hit.t : far, image);
+  }
+
+  /**
+   * The camera ray's first surface within `far`. Optionally it looks through
+   * refractors, unbent, as the GPU's opaque G-buffer does.
+   */
+  bool FirstVisibleSurface(const glm::dvec3& o, const glm::dvec3& v, double far, Hit& hit) const
+  {
+    hit.mesh = -1;
+    bool found = this->HasGeometry && this->Intersect(o, v, far, hit);
+    while (found && !this->Settings.cameraSeesRefractors &&
+      this->MaterialOf(hit.mesh).role == Role::Refractor)
+    {
+      const glm::dvec3 next = this->Offset(hit.position, hit.geometricNormal, v);
+      const double skipped = glm::length(next - o);
+      found = this->Intersect(next, v, far - skipped, hit);
+      hit.t += found ? skipped : 0.0;
+    }
+    return found;
+  }
+
+  /**
+   * Geometry buffers of a visible surface (its normals turned to the camera), and on a
+   * receiver its albedo, pixel area, kernel radius and direct irradiance.
+   */
+  void ShadeSurface(int i, int j, std::size_t id, const glm::dvec3& v, Hit& hit, double& radius,
+    ReferenceImage& image) const
+  {
+    glm::dvec3 ng, ns;
+    FacingNormals(v, hit, ng, ns);
+    hit.geometricNormal = ng;
+    hit.shadingNormal = ns;
+    StoreFloat(hit.position, &image.position[3 * id]);
+    StoreFloat(hit.shadingNormal, &image.normal[3 * id]);
+    const Material& material = this->MaterialOf(hit.mesh);
+    if (material.role != Role::Receiver)
     {
       return;
     }
-    std::vector<double> positive;
-    for (double r : radii)
+    image.mask[id] = 1.0f;
+    StoreFloat(ToGlm(material.albedo), &image.albedo[3 * id]);
+    const double area = this->PixelArea(i, j, hit.position, hit.geometricNormal, hit.t);
+    image.pixelArea[id] = static_cast<float>(area);
+    radius = this->Settings.kernelRadius > 0.0
+      ? this->Settings.kernelRadius
+      : this->Settings.kernelRadiusPixels * std::sqrt(area);
+    StoreFloat(this->DirectIrradiance(hit.position, hit.geometricNormal, hit.shadingNormal),
+      &image.direct[3 * id]);
+  }
+
+  /**
+   * Transmittance to the camera and airlight along the camera ray's part [0, end]
+   * inside the medium; the interval is kept for the beam estimate.
+   */
+  void ShadeMedium(
+    std::size_t id, const glm::dvec3& o, const glm::dvec3& v, double end, ReferenceImage& image)
+  {
+    glm::dvec3 transmittance(1, 1, 1);
+    double t0, t1;
+    if (this->MediumOn && ClipToBox(this->Bounds, o, v, 0.0, end, t0, t1) && t1 > t0)
     {
-      if (r > 0.0 && std::isfinite(r))
-      {
-        positive.push_back(r);
-      }
+      transmittance = glm::exp(this->SigmaT * -(t1 - t0));
+      this->MediumStart[id] = t0;
+      this->MediumEnd[id] = t1;
+      Random random(this->Settings.seed ^ 0x5bd1e995ULL, 0x9e37ULL + id, 1);
+      StoreFloat(this->Airlight(o, v, t0, t1, random), &image.airlight[3 * id]);
     }
-    if (positive.empty())
+    StoreFloat(transmittance, &image.transmittance[3 * id]);
+  }
+
+  /**
+   * Pass 2: caustic irradiance from the deposits at every receiver pixel. Grid cells of
+   * the median kernel radius keep most queries to 27 cells.
+   */
+  void GatherCaustics(
+    const std::vector<Hit>& hits, const std::vector<double>& radii, ReferenceImage& image)
+  {
+    double cell = 0.0;
+    if (this->Photons.empty() || !MedianPositive(radii, cell))
     {
       return;
     }
-    std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
     PhotonGrid grid;
-    grid.Build(this->Photons, positive[positive.size() / 2]);
+    grid.Build(this->Photons, cell);
+    const int width = this->Scene->View.width;
     ParallelFor(
-      height, this->Threads,
+      this->Scene->View.height,
       [&](std::int64_t row)
       {
         for (int i = 0; i < width; ++i)
@@ -1732,13 +1917,32 @@ struct ReferenceTracer::Internals
             continue;
           }
           const Hit& hit = hits[id];
-          grid
-            .Estimate(
-              hit.position, hit.geometricNormal, radii[id], this->Settings.kernelNormalCosine)
-            .ToFloat(&image.caustic[3 * id]);
+          StoreFloat(grid.Estimate(hit.position, hit.geometricNormal, radii[id],
+                       this->Settings.kernelNormalCosine),
+            &image.caustic[3 * id]);
         }
       },
       this->Stage(0.8, 0.05));
+  }
+
+  /** Median of the positive finite values; false when there is none. */
+  static bool MedianPositive(const std::vector<double>& values, double& median)
+  {
+    std::vector<double> positive;
+    for (double r : values)
+    {
+      if (r > 0.0 && std::isfinite(r))
+      {
+        positive.push_back(r);
+      }
+    }
+    if (positive.empty())
+    {
+      return false;
+    }
+    std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
+    median = positive[positive.size() / 2];
+    return true;
   }
 
   // --- Volume caustics: beam radiance estimate ---
@@ -1747,12 +1951,12 @@ struct ReferenceTracer::Internals
   bool ProjectBeam(const ReferenceBeam& beam, double p[2][2]) const
   {
     const Camera& view = this->Scene->View;
-    const V3 a(beam.start);
-    const V3 b = a + V3(beam.direction) * beam.length;
+    const glm::dvec3 a = FromFloat(beam.start);
+    const glm::dvec3 b = a + FromFloat(beam.direction) * static_cast<double>(beam.length);
     double clip[2][4];
     for (int e = 0; e < 2; ++e)
     {
-      const V3& x = e == 0 ? a : b;
+      const glm::dvec3& x = e == 0 ? a : b;
       for (int r = 0; r < 4; ++r)
       {
         clip[e][r] = view.worldToClip[4 * r] * x.x + view.worldToClip[4 * r + 1] * x.y +
@@ -1787,6 +1991,65 @@ struct ReferenceTracer::Internals
     return std::isfinite(p[0][0] + p[0][1] + p[1][0] + p[1][1]);
   }
 
+  /**
+   * Screen tiles of 16 x 16 pixels, each listing the beams (indices into the current
+   * batch) whose kernel may reach it.
+   */
+  struct BeamTiles
+  {
+    static const int Size = 16;
+    int tilesX = 0, tilesY = 0;
+    double reach = 0.0; ///< pixels: how far from its projected line a beam's kernel reaches
+    std::vector<std::array<double, 4>> projected; ///< per beam of the batch: its ends, pixels
+    std::vector<std::vector<std::uint32_t>> lists;
+
+    BeamTiles(int width, int height, double kernelPixels)
+      : tilesX((width + Size - 1) / Size)
+      , tilesY((height + Size - 1) / Size)
+      // c pixel footprints, plus slack for the footprint varying across a pixel in
+      // perspective.
+      , reach(1.1 * kernelPixels + 1.5)
+    {
+    }
+
+    /** Lists beam `index`, projected to pixel coordinates p, in the tiles it reaches. */
+    void Add(std::uint32_t index, const double p[2][2])
+    {
+      this->projected[index] = { { p[0][0], p[0][1], p[1][0], p[1][1] } };
+      const double reach = this->reach;
+      const double lo[2] = { std::min(p[0][0], p[1][0]) - reach,
+        std::min(p[0][1], p[1][1]) - reach };
+      const double hi[2] = { std::max(p[0][0], p[1][0]) + reach,
+        std::max(p[0][1], p[1][1]) + reach };
+      const int tx0 = std::max(0, static_cast<int>(std::floor(lo[0] / Size)));
+      const int ty0 = std::max(0, static_cast<int>(std::floor(lo[1] / Size)));
+      const int tx1 = std::min(this->tilesX - 1, static_cast<int>(std::floor(hi[0] / Size)));
+      const int ty1 = std::min(this->tilesY - 1, static_cast<int>(std::floor(hi[1] / Size)));
+      const double sx = p[1][0] - p[0][0], sy = p[1][1] - p[0][1];
+      const double length2 = sx * sx + sy * sy;
+      const double tileHalfDiagonal = Size * 0.5 * std::sqrt(2.0);
+      for (int ty = ty0; ty <= ty1; ++ty)
+      {
+        for (int tx = tx0; tx <= tx1; ++tx)
+        {
+          // Distance from the tile centre to the projected segment.
+          const double cx = (tx + 0.5) * Size, cy = (ty + 0.5) * Size;
+          double t = length2 > 0.0 ? ((cx - p[0][0]) * sx + (cy - p[0][1]) * sy) / length2 : 0.0;
+          t = std::min(1.0, std::max(0.0, t));
+          const double dx = p[0][0] + t * sx - cx, dy = p[0][1] + t * sy - cy;
+          if (dx * dx + dy * dy <= (tileHalfDiagonal + reach) * (tileHalfDiagonal + reach))
+          {
+            this->lists[static_cast<std::size_t>(ty) * this->tilesX + tx].push_back(index);
+          }
+        }
+      }
+    }
+  };
+
+  /**
+   * Beams are binned to screen tiles in batches (bounded memory); tiles are then
+   * shaded in parallel, each pixel summing its beams in index order (deterministic).
+   */
   void RenderVolumeCaustics(ReferenceImage& image)
   {
     if (!this->MediumOn || this->Beams.empty())
@@ -1794,70 +2057,23 @@ struct ReferenceTracer::Internals
       return;
     }
     const Camera& view = this->Scene->View;
-    const int width = view.width, height = view.height;
-    const int tileSize = 16;
-    const int tilesX = (width + tileSize - 1) / tileSize;
-    const int tilesY = (height + tileSize - 1) / tileSize;
-    const double c = this->Settings.volumeKernelRadiusPixels;
-    // Reach of a beam's kernel on screen, in pixels: c pixel footprints, plus slack
-    // for the footprint varying across a pixel in perspective.
-    const double reach = 1.1 * c + 1.5;
-    const double tileHalfDiagonal = tileSize * 0.5 * std::sqrt(2.0);
-    std::vector<double> accumulated(3 * static_cast<std::size_t>(width) * height, 0.0);
-
-    // Beams are binned to screen tiles in batches (bounded memory); tiles are then
-    // shaded in parallel, each pixel summing its beams in index order (deterministic).
+    BeamTiles tiles(view.width, view.height, this->Settings.volumeKernelRadiusPixels);
+    std::vector<double> accumulated(3 * static_cast<std::size_t>(view.width) * view.height, 0.0);
     const std::size_t batch = std::size_t(1) << 20;
     for (std::size_t first = 0; first < this->Beams.size(); first += batch)
     {
       const std::size_t last = std::min(this->Beams.size(), first + batch);
-      std::vector<std::vector<std::uint32_t>> tiles(static_cast<std::size_t>(tilesX) * tilesY);
-      std::vector<std::array<double, 4>> projected(last - first);
-      for (std::size_t b = first; b < last; ++b)
-      {
-        double p[2][2];
-        if (!this->ProjectBeam(this->Beams[b], p))
-        {
-          continue;
-        }
-        projected[b - first] = { { p[0][0], p[0][1], p[1][0], p[1][1] } };
-        const double lo[2] = { std::min(p[0][0], p[1][0]) - reach,
-          std::min(p[0][1], p[1][1]) - reach };
-        const double hi[2] = { std::max(p[0][0], p[1][0]) + reach,
-          std::max(p[0][1], p[1][1]) + reach };
-        const int tx0 = std::max(0, static_cast<int>(std::floor(lo[0] / tileSize)));
-        const int ty0 = std::max(0, static_cast<int>(std::floor(lo[1] / tileSize)));
-        const int tx1 = std::min(tilesX - 1, static_cast<int>(std::floor(hi[0] / tileSize)));
-        const int ty1 = std::min(tilesY - 1, static_cast<int>(std::floor(hi[1] / tileSize)));
-        const double sx = p[1][0] - p[0][0], sy = p[1][1] - p[0][1];
-        const double length2 = sx * sx + sy * sy;
-        for (int ty = ty0; ty <= ty1; ++ty)
-        {
-          for (int tx = tx0; tx <= tx1; ++tx)
-          {
-            // Distance from the tile centre to the projected segment.
-            const double cx = (tx + 0.5) * tileSize, cy = (ty + 0.5) * tileSize;
-            double t = length2 > 0.0 ? ((cx - p[0][0]) * sx + (cy - p[0][1]) * sy) / length2 : 0.0;
-            t = std::min(1.0, std::max(0.0, t));
-            const double dx = p[0][0] + t * sx - cx, dy = p[0][1] + t * sy - cy;
-            if (dx * dx + dy * dy <= (tileHalfDiagonal + reach) * (tileHalfDiagonal + reach))
-            {
-              tiles[static_cast<std::size_t>(ty) * tilesX + tx].push_back(
-                static_cast<std::uint32_t>(b - first));
-            }
-          }
-        }
-      }
+      this->BinBeams(first, last, tiles);
       ParallelFor(
-        static_cast<std::int64_t>(tiles.size()), this->Threads,
+        static_cast<std::int64_t>(tiles.lists.size()),
         [&](std::int64_t tile)
         {
-          const std::vector<std::uint32_t>& list = tiles[tile];
+          const std::vector<std::uint32_t>& list = tiles.lists[tile];
           if (!list.empty())
           {
-            this->ShadeTile(static_cast<int>(tile % tilesX) * tileSize,
-              static_cast<int>(tile / tilesX) * tileSize, tileSize, list, projected, first, reach,
-              accumulated);
+            this->ShadeTile(static_cast<int>(tile % tiles.tilesX) * BeamTiles::Size,
+              static_cast<int>(tile / tiles.tilesX) * BeamTiles::Size, BeamTiles::Size, list,
+              tiles.projected, first, tiles.reach, accumulated);
           }
         },
         this->Stage(0.85 + 0.15 * double(first) / this->Beams.size(),
@@ -1866,6 +2082,51 @@ struct ReferenceTracer::Internals
     for (std::size_t k = 0; k < accumulated.size(); ++k)
     {
       image.volumeCaustic[k] = static_cast<float>(accumulated[k]);
+    }
+  }
+
+  /** Projects the beams [first, last) and lists them in the tiles they reach. */
+  void BinBeams(std::size_t first, std::size_t last, BeamTiles& tiles) const
+  {
+    tiles.projected.assign(last - first, std::array<double, 4>());
+    tiles.lists.assign(static_cast<std::size_t>(tiles.tilesX) * tiles.tilesY, {});
+    for (std::size_t b = first; b < last; ++b)
+    {
+      double p[2][2];
+      if (this->ProjectBeam(this->Beams[b], p))
+      {
+        tiles.Add(static_cast<std::uint32_t>(b - first), p);
+      }
+    }
+  }
+
+  /** A pixel's camera ray in a tile, its spread to the next pixel, and its beam sum. */
+  struct TileRay
+  {
+    glm::dvec3 origin{ 0.0 }, direction{ 0.0 }, spreadOrigin{ 0.0 }, spreadDirection{ 0.0 },
+      sum{ 0.0 };
+    double start = 0.0, end = 0.0; ///< the ray's part in the medium
+  };
+
+  /** The camera rays of pixels [x0, x1) x [y0, y1), rows of tileSize. */
+  void SetUpTileRays(int x0, int y0, int x1, int y1, int tileSize, std::vector<TileRay>& rays) const
+  {
+    const int width = this->Scene->View.width;
+    rays.assign(static_cast<std::size_t>(tileSize) * tileSize, TileRay());
+    for (int j = y0; j < y1; ++j)
+    {
+      for (int i = x0; i < x1; ++i)
+      {
+        TileRay& pixel = rays[(j - y0) * tileSize + (i - x0)];
+        const std::size_t id = static_cast<std::size_t>(j) * width + i;
+        pixel.start = this->MediumStart[id];
+        pixel.end = this->MediumEnd[id];
+        glm::dvec3 o1, v1;
+        this->PixelRay(i, j, pixel.origin, pixel.direction);
+        this->PixelRay(i + (i + 1 < width ? 1 : -1), j, o1, v1);
+        pixel.spreadOrigin = o1 - pixel.origin;
+        pixel.spreadDirection = v1 - pixel.direction;
+      }
     }
   }
 
@@ -1881,27 +2142,8 @@ struct ReferenceTracer::Internals
     const Camera& view = this->Scene->View;
     const int width = view.width;
     const int x1 = std::min(view.width, x0 + tileSize), y1 = std::min(view.height, y0 + tileSize);
-    struct PixelRayData
-    {
-      V3 origin, direction, spreadOrigin, spreadDirection, sum;
-      double start = 0.0, end = 0.0;
-    };
-    std::vector<PixelRayData> pixels(static_cast<std::size_t>(tileSize) * tileSize);
-    for (int j = y0; j < y1; ++j)
-    {
-      for (int i = x0; i < x1; ++i)
-      {
-        PixelRayData& pixel = pixels[(j - y0) * tileSize + (i - x0)];
-        const std::size_t id = static_cast<std::size_t>(j) * width + i;
-        pixel.start = this->MediumStart[id];
-        pixel.end = this->MediumEnd[id];
-        V3 o1, v1;
-        this->PixelRay(i, j, pixel.origin, pixel.direction);
-        this->PixelRay(i + (i + 1 < width ? 1 : -1), j, o1, v1);
-        pixel.spreadOrigin = o1 - pixel.origin;
-        pixel.spreadDirection = v1 - pixel.direction;
-      }
-    }
+    std::vector<TileRay> pixels;
+    this->SetUpTileRays(x0, y0, x1, y1, tileSize, pixels);
     const double c = this->Settings.volumeKernelRadiusPixels;
     for (std::uint32_t index : list)
     {
@@ -1932,7 +2174,7 @@ struct ReferenceTracer::Internals
         for (int i = std::max(x0, static_cast<int>(std::ceil(lo - 0.5))); i < x1 && i + 0.5 <= hi;
              ++i)
         {
-          PixelRayData& pixel = pixels[(j - y0) * tileSize + (i - x0)];
+          TileRay& pixel = pixels[(j - y0) * tileSize + (i - x0)];
           if (pixel.end > pixel.start)
           {
             pixel.sum += this->BeamContribution(beam, pixel.origin, pixel.direction, pixel.start,
@@ -1945,7 +2187,7 @@ struct ReferenceTracer::Internals
     {
       for (int i = x0; i < x1; ++i)
       {
-        const V3& sum = pixels[(j - y0) * tileSize + (i - x0)].sum;
+        const glm::dvec3& sum = pixels[(j - y0) * tileSize + (i - x0)].sum;
         const std::size_t id = static_cast<std::size_t>(j) * width + i;
         accumulated[3 * id] += sum.x;
         accumulated[3 * id + 1] += sum.y;
@@ -1960,13 +2202,14 @@ struct ReferenceTracer::Internals
    * with d the distance between the two lines and alpha their angle; flux and
    * transmittances are taken at the closest approach.
    */
-  V3 BeamContribution(const ReferenceBeam& beam, const V3& o, const V3& v, double sa, double sb,
-    const V3& spreadOrigin, const V3& spreadDirection, double pixels) const
+  glm::dvec3 BeamContribution(const ReferenceBeam& beam, const glm::dvec3& o, const glm::dvec3& v,
+    double sa, double sb, const glm::dvec3& spreadOrigin, const glm::dvec3& spreadDirection,
+    double pixels) const
   {
-    const V3 p(beam.start), b(beam.direction);
+    const glm::dvec3 p = FromFloat(beam.start), b = FromFloat(beam.direction);
     const double length = beam.length;
-    const V3 w0 = o - p;
-    const double a = Dot(v, b), d = Dot(v, w0), e = Dot(b, w0);
+    const glm::dvec3 w0 = o - p;
+    const double a = glm::dot(v, b), d = glm::dot(v, w0), e = glm::dot(b, w0);
     const double sin2 = 1.0 - a * a;
     double s, t, along;
     if (sin2 > 1e-8)
@@ -1979,28 +2222,28 @@ struct ReferenceTracer::Internals
     {
       // Nearly parallel: the kernel covers the overlapping length of the beam.
       t = 0.5 * length;
-      s = Dot(p + b * t - o, v);
+      s = glm::dot(p + b * t - o, v);
       along = length;
     }
     if (t < 0.0 || t > length || s < sa || s > sb)
     {
-      return V3();
+      return glm::dvec3(0.0);
     }
-    const V3 gap = (o + v * s) - (p + b * t);
-    const double d2 = Dot(gap, gap);
-    const V3 spread = spreadOrigin + spreadDirection * s;
-    const double radius2 = pixels * pixels * Dot(spread, spread);
+    const glm::dvec3 gap = (o + v * s) - (p + b * t);
+    const double d2 = glm::dot(gap, gap);
+    const glm::dvec3 spread = spreadOrigin + spreadDirection * s;
+    const double radius2 = pixels * pixels * glm::dot(spread, spread);
     if (!(d2 < radius2))
     {
-      return V3();
+      return glm::dvec3(0.0);
     }
     const double radius = std::sqrt(radius2);
     const double acrossRay =
       sin2 > 1e-8 ? EpanechnikovKernel1D(std::sqrt(d2), radius) / std::sqrt(sin2) : Infinity;
     const double kernel = std::min(acrossRay, EpanechnikovKernel2D(d2, radius) * along);
     const double phase = HenyeyGreenstein(-a, this->G); // beam along b, out along -v
-    const V3 decay = Exp(this->SigmaT * -(t + (s - sa)));
-    return this->SigmaS * V3(beam.flux) * decay * (phase * kernel);
+    const glm::dvec3 decay = glm::exp(this->SigmaT * -(t + (s - sa)));
+    return this->SigmaS * FromFloat(beam.flux) * decay * (phase * kernel);
   }
 };
 
@@ -2031,10 +2274,7 @@ bool ReferenceTracer::Render(const SceneData& scene, const ReferenceSettings& se
   ReferenceImage& image, ReferenceStatistics& statistics, const ProgressFunction& progress,
   std::string& error)
 {
-  using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
-  auto seconds = [](Clock::time_point a, Clock::time_point b)
-  { return std::chrono::duration<double>(b - a).count(); };
   Internals& in = *this->Internal;
   this->ReleasePhotons();
   statistics = ReferenceStatistics();
@@ -2043,80 +2283,31 @@ bool ReferenceTracer::Render(const SceneData& scene, const ReferenceSettings& se
   {
     return false;
   }
-  in.Scene = &scene;
-  in.Settings = settings;
-  in.Threads = settings.threads > 0
-    ? settings.threads
-    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  in.Progress = progress;
-  in.LastReported = -1.0;
-  in.ComputeBounds();
-  const Medium& medium = scene.Participating;
-  in.SigmaS = V3(medium.sigmaS);
-  in.SigmaT = V3(medium.sigmaS) + V3(medium.sigmaA);
-  in.G = medium.g;
-  in.MediumOn = medium.enabled && in.HasGeometry && MaxComponent(in.SigmaT) > 0.0;
-  if (in.Settings.rayMarchStep <= 0.0)
-  {
-    const double* b = in.Bounds;
-    const double size = in.HasGeometry
-      ? std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-          (b[5] - b[4]) * (b[5] - b[4]))
-      : 0.0;
-    in.Settings.rayMarchStep = size > 0.0 ? size / 256.0 : 1.0;
-  }
-
-  bool ok = true;
+  in.Prepare(scene, settings, progress);
+  bool ok = false;
   try
   {
-    if (in.HasGeometry && !in.BuildEmbree(error))
+    if (!in.HasGeometry || in.BuildEmbree(error))
     {
-      ok = false;
-    }
-    if (ok)
-    {
-      const auto photonStart = Clock::now();
-      in.Stage(0.0, 0.45);
-      if (in.HasGeometry)
-      {
-        in.TracePhotons(statistics);
-      }
-      else
-      {
-        statistics.lights.assign(scene.Lights.size(), ReferenceLightStatistics());
-        statistics.depositedByEvents.assign(settings.maxBounces + 1, Vec3{ { 0, 0, 0 } });
-      }
-      const auto viewStart = Clock::now();
-      statistics.photonSeconds = seconds(photonStart, viewStart);
-      in.RenderView(image);
-      const auto volumeStart = Clock::now();
-      statistics.viewSeconds = seconds(viewStart, volumeStart);
-      in.RenderVolumeCaustics(image);
-      statistics.volumeSeconds = seconds(volumeStart, Clock::now());
-      in.Stage(0.0, 1.0);
-      in.ReportProgress(1.0);
+      in.RunStages(image, statistics);
+      ok = true;
     }
   }
   catch (const std::bad_alloc&)
   {
     error = "out of memory (reduce the photon count or the image size)";
-    ok = false;
   }
   catch (const std::exception& e)
   {
     error = std::string("reference render failed: ") + e.what();
-    ok = false;
   }
-  in.ReleaseEmbree();
-  std::vector<double>().swap(in.MediumStart);
-  std::vector<double>().swap(in.MediumEnd);
-  in.Scene = nullptr;
+  in.Release();
   if (!ok)
   {
     this->ReleasePhotons();
     return false;
   }
-  statistics.totalSeconds = seconds(start, Clock::now());
+  statistics.totalSeconds = Seconds(start, Clock::now());
   return true;
 }
 }

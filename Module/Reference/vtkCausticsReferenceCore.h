@@ -86,7 +86,7 @@ struct ReferenceSettings
   std::int64_t volumePhotonsPerLight = 100000; ///< separate set traced for beams (medium only)
   int maxBounces = 8;
   std::uint64_t seed = 1;
-  int threads = 0;                       ///< 0: all cores
+  int threads = 0;                       ///< 0: vtkSMPTools' own count (all cores)
   double kernelRadius = 0.0;             ///< m; > 0 fixes the surface kernel radius
   double kernelRadiusPixels = 2.0;       ///< else radius = this x sqrt(pixel footprint area)
   double kernelNormalCosine = 0.9;       ///< photons count where n_photon . n_pixel >= this

@@ -110,6 +110,96 @@ bool ReadVec3(std::istream& in, caustics::Vec3& v)
 {
   return static_cast<bool>(in >> v[0] >> v[1] >> v[2]);
 }
+
+/** True when a cached image has the requested size and every output array. */
+bool HasOutputArrays(vtkImageData* image, const int size[2])
+{
+  int dims[3] = { 0, 0, 0 };
+  if (image)
+  {
+    image->GetDimensions(dims);
+  }
+  bool valid = image && dims[0] == size[0] && dims[1] == size[1];
+  for (const OutputArray& entry : OutputArrays)
+  {
+    vtkDataArray* array = valid ? image->GetPointData()->GetArray(entry.name) : nullptr;
+    valid = valid && array && array->GetNumberOfComponents() == entry.components;
+  }
+  return valid;
+}
+
+bool ReadLightStatistics(std::istream& in, caustics::ReferenceLightStatistics& s)
+{
+  std::string word;
+  return (in >> word) && word == "light" &&
+    (in >> s.photonsEmitted >> s.photonsDeposited >> s.emissionMeasure) &&
+    ReadVec3(in, s.emitted) && ReadVec3(in, s.direct) && ReadVec3(in, s.deposited) &&
+    ReadVec3(in, s.escaped) && ReadVec3(in, s.absorbed) && ReadVec3(in, s.bounceLimit) &&
+    ReadVec3(in, s.roulette);
+}
+
+/**
+ * The statistics sidecar of a cache entry (a small text file next to the image);
+ * false unless it is complete and belongs to this version and key.
+ */
+bool ReadStatistics(
+  const std::string& path, const std::string& key, caustics::ReferenceStatistics& statistics)
+{
+  std::ifstream in(path);
+  std::string word, version, storedKey;
+  std::size_t lights = 0, events = 0;
+  bool valid = (in >> word >> version) && word == "version" && version == ReferenceVersion &&
+    (in >> word >> storedKey) && word == "key" && storedKey == key && (in >> word >> lights) &&
+    word == "lights" && lights < 100000;
+  for (std::size_t l = 0; valid && l < lights; ++l)
+  {
+    caustics::ReferenceLightStatistics s;
+    valid = ReadLightStatistics(in, s);
+    statistics.lights.push_back(s);
+  }
+  valid = valid && (in >> word >> events) && word == "events" && events <= 65;
+  for (std::size_t k = 0; valid && k < events; ++k)
+  {
+    caustics::Vec3 v;
+    valid = ReadVec3(in, v);
+    statistics.depositedByEvents.push_back(v);
+  }
+  return valid && (in >> word >> statistics.beams) && word == "beams" && (in >> word) &&
+    word == "seconds" &&
+    (in >> statistics.photonSeconds >> statistics.viewSeconds >> statistics.volumeSeconds >>
+      statistics.totalSeconds);
+}
+
+/** Writes the statistics sidecar ReadStatistics() reads; false when writing fails. */
+bool WriteStatistics(
+  const std::string& path, const std::string& key, const caustics::ReferenceStatistics& statistics)
+{
+  std::ofstream out(path);
+  out << std::setprecision(17);
+  out << "version " << ReferenceVersion << "\nkey " << key << "\nlights "
+      << statistics.lights.size() << "\n";
+  for (const auto& s : statistics.lights)
+  {
+    out << "light " << s.photonsEmitted << ' ' << s.photonsDeposited << ' ' << s.emissionMeasure;
+    for (const auto* v :
+      { &s.emitted, &s.direct, &s.deposited, &s.escaped, &s.absorbed, &s.bounceLimit, &s.roulette })
+    {
+      WriteVec3(out, *v);
+    }
+    out << "\n";
+  }
+  out << "events " << statistics.depositedByEvents.size() << "\n";
+  for (const auto& v : statistics.depositedByEvents)
+  {
+    WriteVec3(out, v);
+    out << "\n";
+  }
+  out << "beams " << statistics.beams << "\nseconds " << statistics.photonSeconds << ' '
+      << statistics.viewSeconds << ' ' << statistics.volumeSeconds << ' ' << statistics.totalSeconds
+      << "\n";
+  out.close();
+  return static_cast<bool>(out);
+}
 }
 
 struct vtkCausticsReferenceRenderer::Internals
@@ -401,6 +491,35 @@ bool vtkCausticsReferenceRenderer::Update()
     return this->Fail("bad scene: " + problem);
   }
   const caustics::ReferenceSettings settings = this->GetSettings();
+  if (!this->CheckWorkload(scene, settings))
+  {
+    return false;
+  }
+  std::string key;
+  if (this->UseCache && !this->CacheDirectory.empty())
+  {
+    key = ComputeCacheKey(scene, settings);
+    this->CacheFile = this->CacheDirectory + "/reference-" + key + ".exr";
+    this->LoadedFromCache = this->LoadFromCache(key);
+  }
+  if (!this->LoadedFromCache)
+  {
+    if (!this->Render(scene, settings))
+    {
+      return false;
+    }
+    if (!key.empty())
+    {
+      this->StoreInCache(key);
+    }
+  }
+  this->WallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+bool vtkCausticsReferenceRenderer::CheckWorkload(
+  const caustics::SceneData& scene, const caustics::ReferenceSettings& settings)
+{
   if (scene.HasSpecular && !scene.Lights.empty() && settings.photonsPerLight <= 0)
   {
     return this->Fail("PhotonsPerLight is 0: the scene has specular objects and lights, "
@@ -425,21 +544,12 @@ bool vtkCausticsReferenceRenderer::Update()
       " m is too small for a scene of " + std::to_string(scene.Scale()) +
       " m (more than 1e5 steps per ray)");
   }
+  return true;
+}
 
-  std::string key;
-  if (this->UseCache && !this->CacheDirectory.empty())
-  {
-    key = ComputeCacheKey(scene, settings);
-    this->CacheFile = this->CacheDirectory + "/reference-" + key + ".exr";
-    if (this->LoadFromCache(key))
-    {
-      this->LoadedFromCache = true;
-      this->WallTime =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      return true;
-    }
-  }
-
+bool vtkCausticsReferenceRenderer::Render(
+  const caustics::SceneData& scene, const caustics::ReferenceSettings& settings)
+{
   caustics::ReferenceImage image;
   std::string error;
   double progress = 0.0;
@@ -457,11 +567,6 @@ bool vtkCausticsReferenceRenderer::Update()
     return this->Fail(error);
   }
   this->MakeOutput(image);
-  if (!key.empty())
-  {
-    this->StoreInCache(key);
-  }
-  this->WallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
 
@@ -509,54 +614,15 @@ bool vtkCausticsReferenceRenderer::LoadFromCache(const std::string& key)
   }
   std::string error;
   vtkSmartPointer<vtkImageData> image = vtkCausticsImageIO::ReadEXR(exr, &error);
-  int dims[3] = { 0, 0, 0 };
-  if (image)
-  {
-    image->GetDimensions(dims);
-  }
-  bool valid = image && dims[0] == this->ImageSize[0] && dims[1] == this->ImageSize[1];
-  for (const OutputArray& entry : OutputArrays)
-  {
-    vtkDataArray* array = valid ? image->GetPointData()->GetArray(entry.name) : nullptr;
-    valid = valid && array && array->GetNumberOfComponents() == entry.components;
-  }
-  // Statistics: a small text file next to the image.
   caustics::ReferenceStatistics statistics;
-  std::ifstream in(sidecar);
-  std::string word, version, storedKey;
-  std::size_t lights = 0, events = 0;
-  valid = valid && (in >> word >> version) && word == "version" && version == ReferenceVersion &&
-    (in >> word >> storedKey) && word == "key" && storedKey == key && (in >> word >> lights) &&
-    word == "lights" && lights < 100000;
-  for (std::size_t l = 0; valid && l < lights; ++l)
-  {
-    caustics::ReferenceLightStatistics s;
-    valid = (in >> word) && word == "light" &&
-      (in >> s.photonsEmitted >> s.photonsDeposited >> s.emissionMeasure) &&
-      ReadVec3(in, s.emitted) && ReadVec3(in, s.direct) && ReadVec3(in, s.deposited) &&
-      ReadVec3(in, s.escaped) && ReadVec3(in, s.absorbed) && ReadVec3(in, s.bounceLimit) &&
-      ReadVec3(in, s.roulette);
-    statistics.lights.push_back(s);
-  }
-  valid = valid && (in >> word >> events) && word == "events" && events <= 65;
-  for (std::size_t k = 0; valid && k < events; ++k)
-  {
-    caustics::Vec3 v;
-    valid = ReadVec3(in, v);
-    statistics.depositedByEvents.push_back(v);
-  }
-  valid = valid && (in >> word >> statistics.beams) && word == "beams" && (in >> word) &&
-    word == "seconds" &&
-    (in >> statistics.photonSeconds >> statistics.viewSeconds >> statistics.volumeSeconds >>
-      statistics.totalSeconds);
-  if (!valid)
+  if (!HasOutputArrays(image, this->ImageSize) || !ReadStatistics(sidecar, key, statistics))
   {
     vtkWarningMacro(<< "ignoring unreadable cache entry " << exr
                     << (error.empty() ? std::string() : ": " + error));
     return false;
   }
   auto output = vtkSmartPointer<vtkImageData>::New();
-  output->SetDimensions(dims[0], dims[1], 1);
+  output->SetDimensions(this->ImageSize[0], this->ImageSize[1], 1);
   for (const OutputArray& entry : OutputArrays)
   {
     output->GetPointData()->AddArray(image->GetPointData()->GetArray(entry.name));
@@ -590,35 +656,10 @@ void vtkCausticsReferenceRenderer::StoreInCache(const std::string& key)
   }
   std::string error;
   bool ok = vtkCausticsImageIO::WriteEXR(this->Output, layers, exrTemp, &error);
-  if (ok)
+  if (ok && !WriteStatistics(textTemp, key, this->Internal->Statistics))
   {
-    const caustics::ReferenceStatistics& statistics = this->Internal->Statistics;
-    std::ofstream out(textTemp);
-    out << std::setprecision(17);
-    out << "version " << ReferenceVersion << "\nkey " << key << "\nlights "
-        << statistics.lights.size() << "\n";
-    for (const auto& s : statistics.lights)
-    {
-      out << "light " << s.photonsEmitted << ' ' << s.photonsDeposited << ' ' << s.emissionMeasure;
-      for (const auto* v : { &s.emitted, &s.direct, &s.deposited, &s.escaped, &s.absorbed,
-             &s.bounceLimit, &s.roulette })
-      {
-        WriteVec3(out, *v);
-      }
-      out << "\n";
-    }
-    out << "events " << statistics.depositedByEvents.size() << "\n";
-    for (const auto& v : statistics.depositedByEvents)
-    {
-      WriteVec3(out, v);
-      out << "\n";
-    }
-    out << "beams " << statistics.beams << "\nseconds " << statistics.photonSeconds << ' '
-        << statistics.viewSeconds << ' ' << statistics.volumeSeconds << ' '
-        << statistics.totalSeconds << "\n";
-    out.close();
-    ok = static_cast<bool>(out);
-    error = ok ? error : "cannot write " + textTemp;
+    ok = false;
+    error = "cannot write " + textTemp;
   }
   // The statistics go first: a reader needs both and checks the image last.
   ok = ok && std::rename(textTemp.c_str(), (base + ".txt").c_str()) == 0 &&

@@ -140,7 +140,13 @@ public:
   ///@}
 
   ///@{
-  /** Worker threads; 0 (default) uses every core. Results do not depend on it. */
+  /**
+   * Worker threads, run by vtkSMPTools. 0 (default) keeps vtkSMPTools' own count: every
+   * core unless VTK_SMP_MAX_THREADS or vtkSMPTools::Initialize() says otherwise. A
+   * count > 0 applies through vtkSMPTools::LocalScope, which sets vtkSMPTools' global
+   * count for the duration of Update(): do not run renders with different counts
+   * concurrently. Results do not depend on it.
+   */
   vtkSetClampMacro(NumberOfThreads, int, 0, 4096);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
@@ -215,8 +221,9 @@ public:
 
   ///@{
   /**
-   * Folder of cached results. Default: $CAUSTICS_REFERENCE_CACHE, else
-   * <build dir>/reference-cache.
+   * Folder of cached results. Default: the environment variable
+   * CAUSTICS_REFERENCE_CACHE as it is when the renderer is constructed, else
+   * <build dir>/reference-cache (compiled in as CAUSTICS_REFERENCE_CACHE_DIR).
    */
   vtkSetStdStringFromCharMacro(CacheDirectory);
   vtkGetCharFromStdStringMacro(CacheDirectory);
@@ -307,6 +314,8 @@ private:
   bool Fail(const std::string& message);
   bool CheckSettings();
   bool AcquireScene();
+  bool CheckWorkload(const caustics::SceneData& scene, const caustics::ReferenceSettings& settings);
+  bool Render(const caustics::SceneData& scene, const caustics::ReferenceSettings& settings);
   bool LoadFromCache(const std::string& key);
   void StoreInCache(const std::string& key);
   void MakeOutput(const caustics::ReferenceImage& image);

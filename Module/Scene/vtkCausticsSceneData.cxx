@@ -1,5 +1,8 @@
 #include "vtkCausticsSceneData.h"
 
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp> // For glm::make_mat4, glm::value_ptr
+
 #include <algorithm>
 #include <cmath>
 
@@ -116,55 +119,126 @@ void BoundingSphere(const double bounds[6], Vec3& center, double& radius)
   radius = 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-/** Row-major 4x4 inverse by Gauss-Jordan elimination with partial pivoting. */
+/** Inverse of a row-major 4x4 matrix; false when it is singular. */
 bool Invert(const double in[16], double out[16])
 {
-  double a[4][8];
-  for (int r = 0; r < 4; ++r)
+  // GLM is column-major, so it reads the row-major array as the transpose; the inverse
+  // of the transpose is the transpose of the inverse, written back in the same layout.
+  const glm::dmat4 matrix = glm::make_mat4(in);
+  const double determinant = glm::determinant(matrix);
+  if (determinant == 0.0 || !std::isfinite(determinant))
   {
-    for (int c = 0; c < 4; ++c)
-    {
-      a[r][c] = in[4 * r + c];
-      a[r][c + 4] = r == c ? 1.0 : 0.0;
-    }
+    return false;
   }
-  for (int c = 0; c < 4; ++c)
-  {
-    int pivot = c;
-    for (int r = c + 1; r < 4; ++r)
-    {
-      pivot = std::abs(a[r][c]) > std::abs(a[pivot][c]) ? r : pivot;
-    }
-    if (a[pivot][c] == 0.0)
-    {
-      return false;
-    }
-    std::swap(a[c], a[pivot]);
-    const double scale = 1.0 / a[c][c];
-    for (double& v : a[c])
-    {
-      v *= scale;
-    }
-    for (int r = 0; r < 4; ++r)
-    {
-      if (r != c)
-      {
-        const double factor = a[r][c];
-        for (int k = 0; k < 8; ++k)
-        {
-          a[r][k] -= factor * a[c][k];
-        }
-      }
-    }
-  }
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      out[4 * r + c] = a[r][c + 4];
-    }
-  }
+  const glm::dmat4 inverse = glm::inverse(matrix);
+  std::copy(glm::value_ptr(inverse), glm::value_ptr(inverse) + 16, out);
   return true;
+}
+
+/**
+ * Directional light: an orthographic view along the light, centred on the focus, from
+ * before the whole scene (`reach`: radius around the focus centre holding it).
+ */
+void AimOrthographic(
+  LightView& view, const Light& light, const Vec3& focusCenter, double focusRadius, double reach)
+{
+  view.axis = Normalize(light.direction);
+  const double back = 1.01 * reach;
+  for (int i = 0; i < 3; ++i)
+  {
+    view.eye[i] = focusCenter[i] - back * view.axis[i];
+  }
+  view.halfExtent = focusRadius;
+  view.nearPlane = 0.005 * reach;
+  view.farPlane = back + reach;
+}
+
+/**
+ * Point and spot lights: a perspective view from the light subtending the focus
+ * sphere, or the spot cone when narrower, at most 75 degrees off axis.
+ */
+void AimPerspective(LightView& view, const Light& light, const Vec3& focusCenter,
+  double focusRadius, const Vec3& sceneCenter, double sceneRadius)
+{
+  view.eye = light.position;
+  const Vec3 toFocus{ { focusCenter[0] - view.eye[0], focusCenter[1] - view.eye[1],
+    focusCenter[2] - view.eye[2] } };
+  const double distance = std::sqrt(Dot(toFocus, toFocus));
+  // Largest half angle a single frustum covers well (texel solid angles vary by
+  // cos^3; beyond ~75 degrees the texels at the rim become useless).
+  const double maxHalfAngle = 75.0 * 3.14159265358979323846 / 180.0;
+  double halfAngle;
+  if (distance > focusRadius * 1.0001)
+  {
+    view.axis = Normalize(toFocus);
+    halfAngle = std::asin(std::min(1.0, focusRadius / distance));
+  }
+  else
+  {
+    view.axis = light.type == Light::Type::Spot ? Normalize(light.direction) : Normalize(toFocus);
+    halfAngle = maxHalfAngle;
+  }
+  if (light.type == Light::Type::Spot)
+  {
+    const double outer = std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+    if (outer < halfAngle)
+    {
+      // The cone is narrower than the focus: look along the spot axis instead.
+      view.axis = Normalize(light.direction);
+      halfAngle = outer;
+    }
+  }
+  view.clamped = halfAngle > maxHalfAngle;
+  halfAngle = std::min(halfAngle, maxHalfAngle);
+  view.halfExtent = std::tan(halfAngle) * 1.0001;
+  const Vec3 eyeToScene{ { sceneCenter[0] - view.eye[0], sceneCenter[1] - view.eye[1],
+    sceneCenter[2] - view.eye[2] } };
+  view.farPlane = std::sqrt(Dot(eyeToScene, eyeToScene)) + sceneRadius;
+  view.nearPlane = 1e-4 * view.farPlane;
+}
+
+/** The view's basis, worldToClip (eye transform, then projection) and its inverse. */
+void SetViewTransforms(LightView& view)
+{
+  const Vec3 helper = std::abs(view.axis[1]) < 0.9 ? Vec3{ { 0, 1, 0 } } : Vec3{ { 1, 0, 0 } };
+  view.right = Normalize(Cross(view.axis, helper));
+  view.up = Cross(view.right, view.axis);
+
+  // World to eye (right, up, -axis as x, y, z), then the projection.
+  double worldToEye[16] = { view.right[0], view.right[1], view.right[2], -Dot(view.right, view.eye),
+    view.up[0], view.up[1], view.up[2], -Dot(view.up, view.eye), -view.axis[0], -view.axis[1],
+    -view.axis[2], Dot(view.axis, view.eye), 0, 0, 0, 1 };
+  const double n = view.nearPlane, f = view.farPlane, e = view.halfExtent;
+  double projection[16] = { 0 };
+  if (view.perspective)
+  {
+    projection[0] = 1.0 / e;
+    projection[5] = 1.0 / e;
+    projection[10] = -(f + n) / (f - n);
+    projection[11] = -2.0 * f * n / (f - n);
+    projection[14] = -1.0;
+  }
+  else
+  {
+    projection[0] = 1.0 / e;
+    projection[5] = 1.0 / e;
+    projection[10] = -2.0 / (f - n);
+    projection[11] = -(f + n) / (f - n);
+    projection[15] = 1.0;
+  }
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k)
+      {
+        sum += projection[4 * r + k] * worldToEye[4 * k + c];
+      }
+      view.worldToClip[4 * r + c] = sum;
+    }
+  }
+  view.valid = Invert(view.worldToClip, view.clipToWorld);
 }
 }
 
@@ -215,95 +289,15 @@ LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus f
   const double reach = std::sqrt(Dot(offset, offset)) + sceneRadius;
 
   view.perspective = light.type != Light::Type::Directional;
-  if (!view.perspective)
-  {
-    view.axis = Normalize(light.direction);
-    const double back = 1.01 * reach;
-    for (int i = 0; i < 3; ++i)
-    {
-      view.eye[i] = focusCenter[i] - back * view.axis[i];
-    }
-    view.halfExtent = focusRadius;
-    view.nearPlane = 0.005 * reach;
-    view.farPlane = back + reach;
-  }
-  else
-  {
-    view.eye = light.position;
-    const Vec3 toFocus{ { focusCenter[0] - view.eye[0], focusCenter[1] - view.eye[1],
-      focusCenter[2] - view.eye[2] } };
-    const double distance = std::sqrt(Dot(toFocus, toFocus));
-    // Largest half angle a single frustum covers well (texel solid angles vary by
-    // cos^3; beyond ~75 degrees the texels at the rim become useless).
-    const double maxHalfAngle = 75.0 * 3.14159265358979323846 / 180.0;
-    double halfAngle;
-    if (distance > focusRadius * 1.0001)
-    {
-      view.axis = Normalize(toFocus);
-      halfAngle = std::asin(std::min(1.0, focusRadius / distance));
-    }
-    else
-    {
-      view.axis = light.type == Light::Type::Spot ? Normalize(light.direction) : Normalize(toFocus);
-      halfAngle = maxHalfAngle;
-    }
-    if (light.type == Light::Type::Spot)
-    {
-      const double outer = std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
-      if (outer < halfAngle)
-      {
-        // The cone is narrower than the focus: look along the spot axis instead.
-        view.axis = Normalize(light.direction);
-        halfAngle = outer;
-      }
-    }
-    view.clamped = halfAngle > maxHalfAngle;
-    halfAngle = std::min(halfAngle, maxHalfAngle);
-    view.halfExtent = std::tan(halfAngle) * 1.0001;
-    const Vec3 eyeToScene{ { sceneCenter[0] - view.eye[0], sceneCenter[1] - view.eye[1],
-      sceneCenter[2] - view.eye[2] } };
-    view.farPlane = std::sqrt(Dot(eyeToScene, eyeToScene)) + sceneRadius;
-    view.nearPlane = 1e-4 * view.farPlane;
-  }
-  const Vec3 helper = std::abs(view.axis[1]) < 0.9 ? Vec3{ { 0, 1, 0 } } : Vec3{ { 1, 0, 0 } };
-  view.right = Normalize(Cross(view.axis, helper));
-  view.up = Cross(view.right, view.axis);
-
-  // World to eye (right, up, -axis as x, y, z), then the projection.
-  double worldToEye[16] = { view.right[0], view.right[1], view.right[2], -Dot(view.right, view.eye),
-    view.up[0], view.up[1], view.up[2], -Dot(view.up, view.eye), -view.axis[0], -view.axis[1],
-    -view.axis[2], Dot(view.axis, view.eye), 0, 0, 0, 1 };
-  const double n = view.nearPlane, f = view.farPlane, e = view.halfExtent;
-  double projection[16] = { 0 };
   if (view.perspective)
   {
-    projection[0] = 1.0 / e;
-    projection[5] = 1.0 / e;
-    projection[10] = -(f + n) / (f - n);
-    projection[11] = -2.0 * f * n / (f - n);
-    projection[14] = -1.0;
+    AimPerspective(view, light, focusCenter, focusRadius, sceneCenter, sceneRadius);
   }
   else
   {
-    projection[0] = 1.0 / e;
-    projection[5] = 1.0 / e;
-    projection[10] = -2.0 / (f - n);
-    projection[11] = -(f + n) / (f - n);
-    projection[15] = 1.0;
+    AimOrthographic(view, light, focusCenter, focusRadius, reach);
   }
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      double sum = 0.0;
-      for (int k = 0; k < 4; ++k)
-      {
-        sum += projection[4 * r + k] * worldToEye[4 * k + c];
-      }
-      view.worldToClip[4 * r + c] = sum;
-    }
-  }
-  view.valid = Invert(view.worldToClip, view.clipToWorld);
+  SetViewTransforms(view);
   return view;
 }
 
