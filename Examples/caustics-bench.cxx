@@ -265,7 +265,7 @@ Measurement:
   --frames N                 timed frames per configuration, 5..1000 (default 7)
   --warmup N                 untimed frames first, 2..100 (default 2)
   --reference-photons N      photons per light of the ground truth (default 2e7);
-                             cached in $CAUSTICS_REFERENCE_CACHE or the build tree
+                             cached in $CAUSTICS_REFERENCE_CACHE or ~/.cache/vtkcaustics
   --reference-ladder A,B,... photon counts at which the reference is timed, each
                              below --reference-photons (default 1e5,1e6,1e7)
   --reference-repeats N      renders per ladder count, 1..20; the median time is

@@ -215,12 +215,21 @@ vtkCausticsReferenceRenderer::vtkCausticsReferenceRenderer()
   , Output(vtkSmartPointer<vtkImageData>::New())
   , Internal(new Internals)
 {
-#ifdef CAUSTICS_REFERENCE_CACHE_DIR
-  this->CacheDirectory = CAUSTICS_REFERENCE_CACHE_DIR;
-#endif
-  if (const char* dir = vtksys::SystemTools::GetEnv("CAUSTICS_REFERENCE_CACHE"))
+  // The user's cache, not a path compiled in: the library stays relocatable.
+  const char* variable = vtksys::SystemTools::GetEnv("CAUSTICS_REFERENCE_CACHE");
+  const char* xdg = vtksys::SystemTools::GetEnv("XDG_CACHE_HOME");
+  const char* home = vtksys::SystemTools::GetEnv("HOME");
+  if (variable && *variable)
   {
-    this->CacheDirectory = dir;
+    this->CacheDirectory = variable;
+  }
+  else if (xdg && *xdg)
+  {
+    this->CacheDirectory = std::string(xdg) + "/vtkcaustics/reference";
+  }
+  else if (home && *home)
+  {
+    this->CacheDirectory = std::string(home) + "/.cache/vtkcaustics/reference";
   }
 }
 

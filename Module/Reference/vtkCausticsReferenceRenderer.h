@@ -223,7 +223,8 @@ public:
   /**
    * Folder of cached results. Default: the environment variable
    * CAUSTICS_REFERENCE_CACHE as it is when the renderer is constructed, else
-   * <build dir>/reference-cache (compiled in as CAUSTICS_REFERENCE_CACHE_DIR).
+   * $XDG_CACHE_HOME/vtkcaustics/reference, else ~/.cache/vtkcaustics/reference
+   * (empty, no cache, without a home). The tests set it to <build>/reference-cache.
    */
   vtkSetStdStringFromCharMacro(CacheDirectory);
   vtkGetCharFromStdStringMacro(CacheDirectory);
