@@ -83,6 +83,63 @@ const char* StageName(GLenum stage)
       return "compute";
   }
 }
+
+/**
+ * What every stage's source starts with: the version, the defines, then the
+ * binding table (the common include declares the material table at
+ * CAUSTICS_MATERIAL_BINDING, and the stages name their buffers' binding points)
+ * and the common include.
+ */
+std::string SourcePrefix(const std::map<std::string, std::string>& defines)
+{
+  std::ostringstream header;
+  header << "#version 450 core\n";
+  for (const auto& define : defines)
+  {
+    header << "#define " << define.first << " " << define.second << "\n";
+  }
+  header << vtkCausticsBindingsSource << "\n" << vtkCausticsCommon << "\n#line 1\n";
+  return header.str();
+}
+
+/** Compiles one stage; on failure `error` gets the program's name and the log. */
+bool CompileStage(GLuint shader, GLenum stage, const std::string& source, const std::string& name,
+  std::string& error)
+{
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint status = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
+  if (status)
+  {
+    return true;
+  }
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::string log(std::max(length, 1), '\0');
+  glGetShaderInfoLog(shader, length, nullptr, &log[0]);
+  error = "program '" + name + "': " + StageName(stage) + " shader failed to compile:\n" + log;
+  return false;
+}
+
+/** Links the program; on failure `error` gets the program's name and the log. */
+bool LinkProgram(GLuint program, const std::string& name, std::string& error)
+{
+  glLinkProgram(program);
+  GLint status = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &status);
+  if (status)
+  {
+    return true;
+  }
+  GLint length = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+  std::string log(std::max(length, 1), '\0');
+  glGetProgramInfoLog(program, length, nullptr, &log[0]);
+  error = "program '" + name + "' failed to link:\n" + log;
+  return false;
+}
 }
 
 void vtkCausticsShaderProgram::SetVertexSource(const char* source)
@@ -145,30 +202,18 @@ bool vtkCausticsShaderProgram::Build()
   }
   in.Locations.clear();
   in.LastError.clear();
-
-  std::ostringstream header;
-  header << "#version 450 core\n";
-  for (const auto& define : in.Defines)
-  {
-    header << "#define " << define.first << " " << define.second << "\n";
-  }
-  // The binding table first: the common include declares the material table at
-  // CAUSTICS_MATERIAL_BINDING, and the stages name their buffers' binding points.
-  header << vtkCausticsBindingsSource << "\n" << vtkCausticsCommon << "\n#line 1\n";
-  const std::string prefix = header.str();
-
   std::vector<std::pair<GLenum, const std::string*>> stages;
   if (!in.Compute.empty())
   {
     stages.emplace_back(GL_COMPUTE_SHADER, &in.Compute);
   }
+  else if (in.Vertex.empty() || in.Fragment.empty())
+  {
+    in.LastError = "program '" + in.Name + "' needs vertex and fragment sources";
+    return false;
+  }
   else
   {
-    if (in.Vertex.empty() || in.Fragment.empty())
-    {
-      in.LastError = "program '" + in.Name + "' needs vertex and fragment sources";
-      return false;
-    }
     stages.emplace_back(GL_VERTEX_SHADER, &in.Vertex);
     if (!in.Geometry.empty())
     {
@@ -177,46 +222,18 @@ bool vtkCausticsShaderProgram::Build()
     stages.emplace_back(GL_FRAGMENT_SHADER, &in.Fragment);
   }
 
+  const std::string prefix = SourcePrefix(in.Defines);
   const GLuint program = glCreateProgram();
   std::vector<GLuint> shaders;
   bool ok = true;
   for (const auto& stage : stages)
   {
-    const GLuint shader = glCreateShader(stage.first);
-    const std::string source = prefix + *stage.second;
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint status = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
-    if (!status)
-    {
-      GLint length = 0;
-      glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-      std::string log(std::max(length, 1), '\0');
-      glGetShaderInfoLog(shader, length, nullptr, &log[0]);
-      in.LastError = "program '" + in.Name + "': " + StageName(stage.first) +
-        " shader failed to compile:\n" + log;
-      ok = false;
-    }
-    glAttachShader(program, shader);
-    shaders.push_back(shader);
+    shaders.push_back(glCreateShader(stage.first));
+    ok = CompileStage(shaders.back(), stage.first, prefix + *stage.second, in.Name, in.LastError) &&
+      ok;
+    glAttachShader(program, shaders.back());
   }
-  if (ok)
-  {
-    glLinkProgram(program);
-    GLint status = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &status);
-    if (!status)
-    {
-      GLint length = 0;
-      glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-      std::string log(std::max(length, 1), '\0');
-      glGetProgramInfoLog(program, length, nullptr, &log[0]);
-      in.LastError = "program '" + in.Name + "' failed to link:\n" + log;
-      ok = false;
-    }
-  }
+  ok = ok && LinkProgram(program, in.Name, in.LastError);
   for (GLuint shader : shaders)
   {
     glDetachShader(program, shader);
