@@ -55,8 +55,9 @@ def main():
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--frames", type=int, default=5)
     parser.add_argument("--output", default="compare-builds")
-    parser.add_argument("bench_args", nargs="*", help="more caustics-bench options (after --)")
-    args = parser.parse_args()
+    # Anything else is passed on to caustics-bench (e.g. --reference-photons 2e6).
+    args, bench_args = parser.parse_known_args()
+    args.bench_args = [a for a in bench_args if a != "--"]
 
     cache = os.path.abspath(os.path.join(args.output, "reference-cache"))
     os.makedirs(cache, exist_ok=True)
