@@ -69,7 +69,7 @@ Scene (default: ball-lens):
                              point/spot intensity = W/sr)
   MESH.ply|obj|stl           a mesh placed on a floor under a sun, camera fit
   --role ROLE                mesh role: refractor (default), reflector, receiver
-  --ior N                    index of refraction of the scene's refractors (>= 1)
+  --ior N                    index of refraction of the scene's refractors, 1..100
   --time SECONDS             animation time (pool waves; glTF animations)
   --camera-index I           glTF camera to use (default 0; -1 = fit the view)
 
@@ -83,11 +83,13 @@ Technique and quality:
 
 Overrides:
   --light-direction X,Y,Z    direction the first light travels (made directional)
-  --light-intensity V        first light: W/m^2 (directional) or W/sr (point/spot)
+  --light-intensity V        first light: W/m^2 (directional) or W/sr (point/spot),
+                             0..1e30
   --camera-position X,Y,Z    --camera-focal X,Y,Z    --camera-up X,Y,Z
+                             (the up vector must not be parallel to the view)
   --view-angle DEGREES       vertical field of view, (0, 180)
   --medium SS,SA,G           homogeneous medium: scattering and absorption
-                             coefficients in 1/m, Henyey-Greenstein g
+                             coefficients in 1/m (0..1e9), Henyey-Greenstein g
 
 Output:
   --output PREFIX            output file prefix (default: caustics)
@@ -153,6 +155,14 @@ std::array<double, 3> ParseDirection(const std::string& option, const std::strin
   return direction;
 }
 
+/** A limit for messages: "100", "1e+30". */
+std::string Number(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 std::string Lower(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), ::tolower);
@@ -181,6 +191,11 @@ void DeclareSceneOptions(caustics_cli::Arguments& arguments, Options& options, b
       if (options.IOR < 1.0)
       {
         throw UsageError("--ior must be >= 1 (vacuum), got " + value);
+      }
+      if (options.IOR > vtkCausticsGLTFImporter::MAX_IOR)
+      {
+        throw UsageError("--ior must be <= " + Number(vtkCausticsGLTFImporter::MAX_IOR) +
+          " (the largest index of refraction supported), got " + value);
       }
     });
   arguments.Value("--time",
@@ -226,6 +241,12 @@ void DeclareLightAndCameraOptions(caustics_cli::Arguments& arguments, Options& o
       {
         throw UsageError("--light-intensity must be >= 0");
       }
+      if (options.LightIntensity > vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY)
+      {
+        throw UsageError(
+          "--light-intensity must be <= " + Number(vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY) +
+          " (the largest the GPU passes represent in float), got " + value);
+      }
       options.HasLightIntensity = true;
     });
   arguments.Value("--camera-position",
@@ -266,6 +287,12 @@ void DeclareMediumAndOutputOptions(caustics_cli::Arguments& arguments, Options& 
       if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
       {
         throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
+      }
+      const double most = vtkCausticsGLTFImporter::MAX_MEDIUM_COEFFICIENT;
+      if (options.Medium[0] > most || options.Medium[1] > most)
+      {
+        throw UsageError("--medium coefficients must be <= " + Number(most) +
+          " per metre (opaque within a nanometre; larger ones overflow float), got " + value);
       }
       options.HasMedium = true;
     });
@@ -445,6 +472,34 @@ void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* ren
   }
 }
 
+/**
+ * An up vector parallel to the line of sight leaves OrthogonalizeViewUp nothing
+ * to work with and gives a blank image: refused, naming the options that set it.
+ */
+void CheckViewUp(const Options& options, vtkCamera* camera)
+{
+  double position[3], focal[3], up[3], view[3], side[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  camera->GetViewUp(up);
+  vtkMath::Subtract(focal, position, view);
+  vtkMath::Cross(view, up, side);
+  // sin(angle) > 1e-6, as the glTF importer asks of its cameras.
+  if (vtkMath::Norm(side) > 1e-6 * vtkMath::Norm(view) * vtkMath::Norm(up))
+  {
+    return;
+  }
+  std::ostringstream message;
+  message << "the camera's up vector (" << up[0] << "," << up[1] << "," << up[2]
+          << (options.HasCameraUp ? ", from --camera-up" : ", from the scene")
+          << ") is parallel to its view direction ("
+          << (options.HasCameraPosition || options.HasCameraFocal
+                 ? "from --camera-position to --camera-focal"
+                 : "the scene's camera")
+          << "); give a --camera-up off the line of sight";
+  throw UsageError(message.str());
+}
+
 void ApplyOverrides(const Options& options, vtkRenderer* renderer)
 {
   vtkLight* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
@@ -489,6 +544,7 @@ void ApplyOverrides(const Options& options, vtkRenderer* renderer)
   {
     throw UsageError("the camera position and focal point coincide");
   }
+  CheckViewUp(options, camera);
   camera->OrthogonalizeViewUp();
   renderer->ResetCameraClippingRange();
   if (options.HasMedium)

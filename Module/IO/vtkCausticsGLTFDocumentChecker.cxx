@@ -1,5 +1,7 @@
 #include "vtkCausticsGLTFDocumentChecker.h"
 
+#include "vtkCausticsGLTFImporter.h"
+
 #include "vtkMath.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -31,6 +33,9 @@ const double Pi = vtkMath::Pi();
 const double NaN = std::numeric_limits<double>::quiet_NaN();
 /** Upper bound of "any finite number" (VTK_DOUBLE_MAX is only 1e299). */
 const double Huge = std::numeric_limits<double>::max();
+const double MaxIOR = vtkCausticsGLTFImporter::MAX_IOR;
+const double MaxLightIntensity = vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY;
+const double MinAttenuationDistance = vtkCausticsGLTFImporter::MIN_ATTENUATION_DISTANCE;
 
 std::string Quoted(const std::string& text)
 {
@@ -607,16 +612,15 @@ private:
       }
       if (accessor.isMember("sparse"))
       {
-        const Json::Value& sparse = accessor["sparse"];
-        if (!sparse.isObject() ||
-          !this->Integer(sparse, "count", path + ".sparse", 1, INT32_MAX, true) ||
-          !this->Index(
-            sparse["indices"], "bufferView", path + ".sparse.indices", "bufferViews", true) ||
-          !this->Index(
-            sparse["values"], "bufferView", path + ".sparse.values", "bufferViews", true))
-        {
-          return this->Fail(path + ".sparse is malformed");
-        }
+        // VTK 9.1's loader drops an accessor whose sparse byteOffsets are absent (they
+        // are optional, default 0), which shifts every later accessor index: a
+        // primitive then reads a wrong or missing accessor (std::bad_array_new_length).
+        // It also never sizes the array of a sparse accessor without a bufferView
+        // before writing into it, nor bounds the sparse indices. Refused until the
+        // importer densifies sparse accessors itself.
+        return this->Fail(path +
+          ".sparse: sparse accessors are not supported (store the "
+          "accessor's values densely in a bufferView)");
       }
     }
     return true;
@@ -725,12 +729,20 @@ private:
       }
     }
     const Json::Value& ior = extensions["KHR_materials_ior"];
-    if (ior.isMember("ior") && !(ior["ior"].isNumeric() && ior["ior"].asDouble() >= 1.0))
+    if (ior.isMember("ior") &&
+      !(ior["ior"].isNumeric() && ior["ior"].asDouble() >= 1.0 && ior["ior"].asDouble() <= MaxIOR))
     {
+      const double value = ior["ior"].isNumeric() ? ior["ior"].asDouble() : NaN;
       std::ostringstream message;
-      message << extPath << ".KHR_materials_ior.ior = "
-              << (ior["ior"].isNumeric() ? ior["ior"].asDouble() : NaN)
-              << " is not a physical index of refraction (it must be finite and >= 1)";
+      message << extPath << ".KHR_materials_ior.ior = " << value;
+      if (value > MaxIOR)
+      {
+        message << " is beyond the largest index of refraction supported (" << MaxIOR << ")";
+      }
+      else
+      {
+        message << " is not a physical index of refraction (it must be finite and >= 1)";
+      }
       if (material.isMember("name"))
       {
         message << " in material " << Quoted(material["name"].asString());
@@ -746,7 +758,7 @@ private:
       !this->Number(
         volume, "thicknessFactor", Member(extPath, "KHR_materials_volume"), 0.0, Huge) ||
       !this->Number(volume, "attenuationDistance", Member(extPath, "KHR_materials_volume"),
-        VTK_DBL_MIN, Huge) ||
+        MinAttenuationDistance, Huge) ||
       !this->Numbers(
         volume, "attenuationColor", Member(extPath, "KHR_materials_volume"), 3, 0.0, 1.0))
     {
@@ -915,6 +927,14 @@ private:
         !this->Number(light, "range", path, VTK_DBL_MIN, Huge))
       {
         return false;
+      }
+      if (light.get("intensity", 1.0).asDouble() > MaxLightIntensity)
+      {
+        std::ostringstream message;
+        message << path << ".intensity = " << light["intensity"].asDouble()
+                << " is beyond the largest intensity the GPU passes represent ("
+                << MaxLightIntensity << ", float range)";
+        return this->Fail(message.str());
       }
       if (type == "spot")
       {

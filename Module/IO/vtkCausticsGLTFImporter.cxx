@@ -29,6 +29,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -109,6 +111,79 @@ std::vector<int> SceneNodes(const Json::Value& nodes, const Json::Value& roots)
   return order;
 }
 
+/**
+ * A lower-case-extension path for VTK's loader: the file itself when its extension
+ * is already lower case, else a symbolic link (or a copy) in a temporary folder,
+ * removed with this object. An empty path when no alias can be made.
+ */
+class LowerCaseAlias
+{
+public:
+  LowerCaseAlias() = default;
+  LowerCaseAlias(const LowerCaseAlias&) = delete;
+  LowerCaseAlias& operator=(const LowerCaseAlias&) = delete;
+  ~LowerCaseAlias()
+  {
+    if (!this->Folder.empty())
+    {
+      std::error_code ignored;
+      std::filesystem::remove_all(this->Folder, ignored);
+    }
+  }
+
+  std::string For(const std::string& path)
+  {
+    const std::string extension = vtksys::SystemTools::GetFilenameLastExtension(path);
+    const std::string lower = vtksys::SystemTools::LowerCase(extension);
+    if (extension == lower)
+    {
+      return path;
+    }
+    std::error_code error;
+    std::string folder =
+      (std::filesystem::temp_directory_path(error) / "caustics-gltf-XXXXXX").string();
+    if (error || !mkdtemp(&folder[0]))
+    {
+      return std::string();
+    }
+    this->Folder = folder;
+    const std::filesystem::path alias = std::filesystem::path(folder) / ("scene" + lower);
+    const std::filesystem::path target = vtksys::SystemTools::CollapseFullPath(path);
+    std::filesystem::create_symlink(target, alias, error);
+    if (error)
+    {
+      error.clear();
+      std::filesystem::copy_file(target, alias, error);
+    }
+    return error ? std::string() : alias.string();
+  }
+
+private:
+  std::string Folder;
+};
+
+/**
+ * Drops the images and textures from what VTK's loader will load. The caustics
+ * read only a material's constant factors, and VTK 9.1's image loading crashes on
+ * a corrupt or truncated PNG or JPEG (and reports "Not a PNG file!" without the
+ * file's name), so images are never decoded; the importer warns about textured
+ * materials instead.
+ */
+void SkipImages(vtkGLTFDocumentLoader::Model& model)
+{
+  model.Images.clear();
+  model.Textures.clear();
+  for (auto& material : model.Materials)
+  {
+    for (auto* info : { &material.PbrMetallicRoughness.BaseColorTexture,
+           &material.PbrMetallicRoughness.MetallicRoughnessTexture, &material.NormalTexture,
+           &material.OcclusionTexture, &material.EmissiveTexture })
+    {
+      info->Index = -1;
+    }
+  }
+}
+
 /** The first vertex index of a primitive beyond its POSITION count, as a problem; "" if none. */
 std::string VertexIndexProblem(vtkPolyData* geometry)
 {
@@ -157,10 +232,14 @@ std::string NodeTransformProblem(
   if (isCamera && directed && Normalize(up))
   {
     // A view needs an up vector off its axis: sin(angle) > 1e-6, far above
-    // rounding, is what OrthogonalizeViewUp can work with.
+    // rounding, is what OrthogonalizeViewUp can work with (else a blank image).
     caustics::Vec3 side;
     vtkMath::Cross(forward.data(), up.data(), side.data());
-    directed = vtkMath::Norm(side.data()) > 1e-6;
+    if (!(vtkMath::Norm(side.data()) > 1e-6))
+    {
+      return "the world transform maps the camera's up axis (+y) onto its view axis (-z): the "
+             "up vector is parallel to the view direction";
+    }
   }
   else if (isCamera)
   {
@@ -354,9 +433,9 @@ int vtkCausticsGLTFImporter::SplitContainer(const std::string& path, const std::
     return this->Fail(
       "unknown extension " + caustics::gltf::QuotedName(extension) + " (expected .gltf or .glb)");
   }
-  if (binary != (extension == ".glb"))
+  if (binary != (lowerExtension == ".glb"))
   {
-    // VTK's loader decides between JSON and binary glTF by this exact extension.
+    // VTK's loader decides between JSON and binary glTF by the extension.
     return this->Fail(binary ? "binary glTF content needs the file extension '.glb'"
                              : "a '.glb' file must start with the binary glTF magic 'glTF'");
   }
@@ -434,14 +513,29 @@ int vtkCausticsGLTFImporter::RunLoader(const std::string& path, bool binary)
     return this->Fail(std::string("VTK's glTF loader failed to ") + step +
       (messages.empty() ? std::string() : ": " + messages.back()));
   };
-  if (binary && !this->Loader->LoadFileBuffer(path, glbBuffer))
+  // VTK 9.1's loader accepts only the exact extensions ".gltf" and ".glb"; a
+  // "scene.GLTF" is read through a lower-case alias. Relative buffer URIs still
+  // resolve next to the real file: the model's file name is set back below.
+  LowerCaseAlias alias;
+  const std::string loaderPath = alias.For(path);
+  if (loaderPath.empty())
+  {
+    return this->Fail("cannot read a file with an upper-case extension (no temporary folder "
+                      "for a lower-case alias); rename it to .gltf or .glb");
+  }
+  if (binary && !this->Loader->LoadFileBuffer(loaderPath, glbBuffer))
   {
     return loaderFailed("read the binary chunk");
   }
-  if (!this->Loader->LoadModelMetaDataFromFile(path))
+  if (!this->Loader->LoadModelMetaDataFromFile(loaderPath))
   {
     return loaderFailed("read the JSON");
   }
+  if (loaderPath != path)
+  {
+    this->Loader->GetInternalModel()->FileName = vtksys::SystemTools::CollapseFullPath(path);
+  }
+  SkipImages(*this->Loader->GetInternalModel());
   if (!this->Loader->LoadModelData(glbBuffer))
   {
     return loaderFailed("load the buffers");

@@ -15,9 +15,12 @@
  *    JSON syntax, asset version 2.x, required extensions, every index (scene,
  *    node, mesh, material, accessor, buffer view, buffer, camera, light, texture,
  *    image, sampler, skin), finite numbers everywhere, buffer and accessor sizes,
- *    a node graph without cycles or shared children, and physical ranges (IOR >= 1,
- *    factors in [0, 1], cone angles, camera frusta, selected camera index);
- * 2. it then runs VTK's vtkGLTFDocumentLoader and checks what it decoded: vertex
+ *    a node graph without cycles or shared children, and physical ranges (IOR in
+ *    [1, MAX_IOR], factors in [0, 1], intensities within float range, cone
+ *    angles, camera frusta, selected camera index); sparse accessors are refused;
+ * 2. it then runs VTK's vtkGLTFDocumentLoader (through a lower-case alias for a
+ *    ".GLTF" or ".GLB" name, and with images and textures dropped: they are never
+ *    decoded, as caustics read constant factors only) and checks what it decoded: vertex
  *    indices within the vertex count and finite, non-degenerate world transforms
  *    for lights and cameras. Any failure leaves the renderer untouched, returns
  *    false from Update()/Read() and sets GetLastError() to one line naming the
@@ -75,6 +78,23 @@ public:
    */
   bool Read();
   bool Update() { return this->Read(); }
+  ///@}
+
+  ///@{
+  /**
+   * Limits of what the GPU passes represent, checked by this importer and by
+   * caustics-render's options (docs/scene-input.md). The passes compute in 32-bit
+   * floats (largest 3.4e38): an intensity is multiplied by solid angles, 1/r^2 and
+   * photon densities, so 1e30 leaves 1e8 of headroom; an IOR of 1e20 already gives
+   * NaN in the screen-space refraction, while real materials stay below 5, so 100
+   * is the cap; medium coefficients above 1e9 per metre (opaque within a nanometre)
+   * are not physical and their products overflow, and an attenuation distance
+   * below 1e-9 m would give such a coefficient.
+   */
+  static constexpr double MAX_IOR = 100.0;
+  static constexpr double MAX_LIGHT_INTENSITY = 1e30;
+  static constexpr double MAX_MEDIUM_COEFFICIENT = 1e9;
+  static constexpr double MIN_ATTENUATION_DISTANCE = 1e-9;
   ///@}
 
   /** One line naming the file and the problem of the last import; empty after a success. */

@@ -801,3 +801,127 @@ TEST_F(GLTFImporterTest, RejectsAbsurdPhysicalParameters)
   error = this->ExpectFailure(WriteGLTF("znear.gltf", doc));
   EXPECT_TRUE(Contains(error, "cameras[0].perspective.znear = 0, but it must be > 0")) << error;
 }
+
+TEST_F(GLTFImporterTest, RejectsValuesBeyondFloatRange)
+{
+  // 3.5e38 is finite in double but not in the GPU's float: it used to pass.
+  Json::Value doc = SceneDocument();
+  doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 3.5e38;
+  std::string error = this->ExpectFailure(WriteGLTF("intensity-float.gltf", doc));
+  EXPECT_TRUE(Contains(error,
+    "lights[0].intensity = 3.5e+38 is beyond the largest intensity the GPU passes represent"))
+    << error;
+
+  // An IOR of 1e20 gave NaN pixels in the screen-space refraction.
+  doc = SceneDocument();
+  doc["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = 1e20;
+  error = this->ExpectFailure(WriteGLTF("ior-huge.gltf", doc));
+  EXPECT_TRUE(Contains(error,
+    "materials[1].extensions.KHR_materials_ior.ior = 1e+20 is beyond the largest index of "
+    "refraction supported (100) in material 'glass'"))
+    << error;
+
+  // A tiny attenuation distance gives an attenuation coefficient beyond float.
+  doc = SceneDocument();
+  doc["materials"][1]["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 1e-300;
+  error = this->ExpectFailure(WriteGLTF("attenuation.gltf", doc));
+  EXPECT_TRUE(Contains(error, "attenuationDistance = 1e-300, but it must be >= 1e-09")) << error;
+
+  // The limits themselves are accepted.
+  doc = SceneDocument();
+  doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] =
+    vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY;
+  doc["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = vtkCausticsGLTFImporter::MAX_IOR;
+  EXPECT_TRUE(this->Import(WriteGLTF("limits.gltf", doc))) << this->Importer->GetLastError();
+}
+
+TEST_F(GLTFImporterTest, RejectsCameraUpAlongItsView)
+{
+  // Column-major: x -> x, y -> -z, z -> +z: the camera looks along -z and its up
+  // is -z too, which gave a blank image.
+  Json::Value doc = SceneDocument();
+  doc["nodes"][9].removeMember("translation");
+  doc["nodes"][9]["matrix"] = Numbers({ 1, 0, 0, 0, 0, 0, -1, 0, 0, 0, 1, 0, 0, 1, 5, 1 });
+  const std::string error = this->ExpectFailure(WriteGLTF("upalongview.gltf", doc));
+  EXPECT_TRUE(Contains(error,
+    "nodes[9]: the world transform maps the camera's up axis (+y) "
+    "onto its view axis (-z): the up vector is parallel"))
+    << error;
+}
+
+TEST_F(GLTFImporterTest, ReadsUpperCaseExtensions)
+{
+  ASSERT_TRUE(this->Import(WriteGLTF("upper.GLTF", SceneDocument())))
+    << this->Importer->GetLastError();
+  EXPECT_EQ(this->Renderer->GetActors()->GetNumberOfItems(), 5);
+
+  // The buffer in a .bin next to the file: found next to the real file, not the alias.
+  Json::Value doc = SceneDocument();
+  const auto bytes = SceneBuffer();
+  WriteText("upper-buffer.bin", std::string(bytes.begin(), bytes.end()));
+  doc["buffers"][0]["uri"] = "upper-buffer.bin";
+  vtkNew<vtkRenderer> second;
+  this->Window->AddRenderer(second);
+  this->Window->RemoveRenderer(this->Renderer);
+  ASSERT_TRUE(this->Import(WriteGLTF("upper-external.Gltf", doc)))
+    << this->Importer->GetLastError();
+  EXPECT_EQ(second->GetActors()->GetNumberOfItems(), 5);
+
+  vtkNew<vtkRenderer> third;
+  this->Window->AddRenderer(third);
+  this->Window->RemoveRenderer(second);
+  ASSERT_TRUE(this->Import(WriteGLB("upper.GLB", SceneDocument())))
+    << this->Importer->GetLastError();
+  EXPECT_EQ(third->GetActors()->GetNumberOfItems(), 5);
+}
+
+TEST_F(GLTFImporterTest, NeverDecodesImages)
+{
+  // Images: a PNG signature followed by junk, a PNG cut after its signature, and a
+  // text file named .png. VTK 9.1 crashed on the first two and printed "Not a PNG
+  // file!" without a file name on the third. The caustics read no textures, so
+  // the images are not decoded at all; the textured material gets a warning.
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  auto pngURI = [](const std::string& bytes)
+  {
+    return "data:image/png;base64," +
+      DataURI(std::vector<unsigned char>(bytes.begin(), bytes.end())).substr(37);
+  };
+  WriteText("garbage.png", "this is not an image\n");
+  Json::Value doc = SceneDocument();
+  doc["images"][0]["uri"] = pngURI(signature + std::string(64, '\x7f'));
+  doc["images"][1]["uri"] = pngURI(signature + std::string("\0\0\0\rIHDR", 8));
+  doc["images"][2]["uri"] = "garbage.png";
+  for (int t = 0; t < 3; ++t)
+  {
+    doc["textures"][t]["source"] = t;
+  }
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = 0;
+  doc["materials"][2]["pbrMetallicRoughness"]["metallicRoughnessTexture"]["index"] = 1;
+  doc["materials"][3]["normalTexture"]["index"] = 2;
+  ASSERT_TRUE(this->Import(WriteGLTF("images.gltf", doc))) << this->Importer->GetLastError();
+  EXPECT_EQ(this->Renderer->GetActors()->GetNumberOfItems(), 5);
+  const std::string messages = this->Messages->GetOutput();
+  EXPECT_FALSE(Contains(messages, "Not a PNG")) << messages;
+  EXPECT_TRUE(Contains(messages, "images.gltf: materials[0] uses baseColorTexture")) << messages;
+}
+
+TEST_F(GLTFImporterTest, RefusesSparseAccessors)
+{
+  // A valid sparse accessor (zeros with one vertex replaced) used as POSITION:
+  // VTK 9.1's loader threw std::bad_array_new_length on it.
+  Json::Value doc = SceneDocument();
+  Json::Value sparse;
+  sparse["componentType"] = 5126;
+  sparse["count"] = 3;
+  sparse["type"] = "VEC3";
+  sparse["sparse"]["count"] = 1;
+  sparse["sparse"]["indices"]["bufferView"] = 1;
+  sparse["sparse"]["indices"]["componentType"] = 5123;
+  sparse["sparse"]["values"]["bufferView"] = 2;
+  doc["accessors"][3] = sparse;
+  doc["meshes"][3]["primitives"][0]["attributes"]["POSITION"] = 3;
+  const std::string error = this->ExpectFailure(WriteGLTF("sparse.gltf", doc));
+  EXPECT_TRUE(Contains(error, "accessors[3].sparse: sparse accessors are not supported")) << error;
+  EXPECT_FALSE(Contains(error, "bad_array")) << error;
+}
