@@ -978,9 +978,10 @@ private:
 };
 
 // --- STL container check --------------------------------------------------------------------
-// vtkSTLReader merges coincident points with a vtkMergePoints locator, whose bucket
-// index of a NaN or infinite coordinate is undefined (an out-of-bounds access), so
-// coordinates are checked here first.
+// vtkSTLReader merges coincident points with a vtkMergePoints locator, which
+// converts each coordinate to a bucket index: undefined behaviour for a NaN (a NaN
+// converted to int). So coordinates are checked here first, naming the triangle
+// or line.
 
 /**
  * A binary STL is an 80-byte header, a 32-bit triangle count and 50 bytes per

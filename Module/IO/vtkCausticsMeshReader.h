@@ -24,7 +24,8 @@
  *      the last line above); material names of at most 99 bytes (vtkOBJReader's
  *      buffer);
  *    - STL: a binary file's size against its triangle count; every vertex
- *      coordinate finite (vtkSTLReader's point merging indexes buckets with it);
+ *      coordinate finite (vtkSTLReader's point merging converts it to a bucket
+ *      index);
  * 3. runs VTK's reader, turning its first error into this reader's error (VTK's
  *    reason, e.g. "Premature EOF ... line 5", quoted) and passing its warnings on
  *    with the file name; the reader's executive's "returned failure for request"

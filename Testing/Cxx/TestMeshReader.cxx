@@ -471,7 +471,7 @@ TEST_F(MeshReaderTest, RefusesNonFinitePositionsAndRepairsNonFiniteNormals)
   std::string stl = BinarySTL(2, 2);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(&stl[84 + 50 + 12 + 4], &nan, 4); // second triangle, first vertex, y
-  // vtkSTLReader's point merging would index its buckets with the NaN: checked first.
+  // vtkSTLReader's point merging would convert the NaN to a bucket index: checked first.
   error = this->ExpectFailure(WriteFile("nan.stl", stl));
   EXPECT_TRUE(Contains(error, "nan.stl: triangle 2 has a NaN or infinite vertex coordinate"))
     << error;
