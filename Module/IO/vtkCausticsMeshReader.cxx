@@ -4,13 +4,18 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkObjectFactory.h"
 #include "vtkPLYReader.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -18,40 +23,177 @@
 #include "vtkSTLReader.h"
 #include "vtksys/SystemTools.hxx"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 vtkStandardNewMacro(vtkCausticsMeshReader);
 
 namespace
 {
+/** Characters of the file that a message quotes: enough to recognise the place. */
+constexpr std::size_t QuoteLength = 60;
+/** Characters of a VTK reader's message passed on (it may quote the file itself). */
+constexpr std::size_t ReasonLength = 120;
+/**
+ * vtkOBJReader (9.1) reads lines with fgets into a 256 KiB buffer and fails on a
+ * longer one, quoting all of it; its content (without '\n') is at most this long.
+ */
+constexpr std::size_t OBJLineLimit = 256 * 1024 - 2;
+/** vtkOBJReader copies a material name with sscanf("%s") into a 100-byte buffer. */
+constexpr std::size_t OBJNameLimit = 99;
+/** Longest PLY header line accepted; real ones are a few dozen bytes. */
+constexpr std::size_t PLYHeaderLineLimit = 4096;
+
 std::string LowerExtension(const std::string& fileName)
 {
   return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(fileName));
 }
 
-bool ReadWholeFile(const std::string& path, std::string& contents)
+/**
+ * `text` fit for a one-line message: at most `limit` characters, bytes outside
+ * printable ASCII written as \xNN, "..." where it was cut. A 5 MB line or binary
+ * junk from a bad file thus never floods the terminal.
+ */
+std::string Printable(std::string_view text, std::size_t limit)
 {
-  std::ifstream file(path, std::ios::binary);
-  if (!file)
+  static const char* const hex = "0123456789abcdef";
+  std::string out;
+  std::size_t i = 0;
+  for (; i < text.size(); ++i)
   {
-    return false;
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const bool printable = c >= 0x20 && c < 0x7f;
+    if (out.size() + (printable ? 1 : 4) > limit)
+    {
+      break;
+    }
+    if (printable)
+    {
+      out.push_back(static_cast<char>(c));
+    }
+    else
+    {
+      out += "\\x";
+      out.push_back(hex[c >> 4]);
+      out.push_back(hex[c & 15]);
+    }
   }
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  contents = buffer.str();
-  return !file.bad();
+  if (i < text.size())
+  {
+    out += "...";
+  }
+  return out;
 }
 
-/** Keeps the message of a VTK error/warning event, without VTK's "file, line" preamble. */
-std::string EventText(const char* text)
+/** A piece of the file, quoted for a message. */
+std::string Quote(std::string_view text)
+{
+  return "'" + Printable(text, QuoteLength) + "'";
+}
+
+/**
+ * Why `path` cannot be a mesh file, judged by stat() alone, or "". Opening a FIFO
+ * blocks until a writer comes and /dev/zero never ends, so only regular files go on.
+ */
+std::string PathProblem(const std::string& path, std::uint64_t& size)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    const int error = errno;
+    return error == ENOENT || error == ENOTDIR
+      ? "no such file"
+      : std::string("cannot be examined: ") + std::strerror(error);
+  }
+  if (S_ISDIR(info.st_mode))
+  {
+    return "is a folder, not a mesh file";
+  }
+  if (!S_ISREG(info.st_mode))
+  {
+    const char* kind = S_ISFIFO(info.st_mode)          ? "a FIFO (named pipe)"
+      : S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode) ? "a device"
+      : S_ISSOCK(info.st_mode)                         ? "a socket"
+                                                       : "something else";
+    return std::string("is ") + kind + ", not a regular file";
+  }
+  size = static_cast<std::uint64_t>(info.st_size);
+  return std::string();
+}
+
+/**
+ * Lines of a stream, counted from 1, each at most `limit` bytes (so a huge line
+ * costs no more memory than that); a "\r\n" ending counts as "\n".
+ */
+class LineReader
+{
+public:
+  LineReader(std::istream& in, std::size_t limit)
+    : Buffer(in.rdbuf())
+    , Limit(limit)
+  {
+  }
+
+  /**
+   * Reads the next line into `line`. False at the end of the stream, or for a line
+   * over the limit (TooLong(); `line` then holds its first `limit` bytes).
+   */
+  bool Next(std::string& line)
+  {
+    using Traits = std::char_traits<char>;
+    line.clear();
+    int c = this->Buffer->sbumpc();
+    if (c == Traits::eof())
+    {
+      return false;
+    }
+    ++this->Number;
+    for (; c != Traits::eof() && c != '\n'; c = this->Buffer->sbumpc())
+    {
+      if (line.size() == this->Limit)
+      {
+        this->Long = true;
+        return false;
+      }
+      line.push_back(static_cast<char>(c));
+    }
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.pop_back();
+    }
+    return true;
+  }
+
+  bool TooLong() const { return this->Long; }
+  long long GetNumber() const { return this->Number; }
+  std::size_t GetLimit() const { return this->Limit; }
+
+private:
+  std::streambuf* Buffer;
+  std::size_t Limit;
+  long long Number = 0;
+  bool Long = false;
+};
+
+/**
+ * The message of a VTK error/warning event on one printable line, without VTK's
+ * "file, line" preamble and without the mesh's path (this reader's message starts
+ * with it), and short: it may quote the bad file.
+ */
+std::string EventText(const char* text, const std::string& path)
 {
   std::string message = text ? text : "";
   // vtkErrorMacro texts look like "ERROR: In file, line N\nClass (0x...): message\n\n".
@@ -60,31 +202,57 @@ std::string EventText(const char* text)
   {
     message = message.substr(object + 3);
   }
+  // "error while reading file /long/path/mesh.stl at line 5: ..." would push the
+  // reason past the length kept.
+  for (std::size_t at = message.find(path); !path.empty() && at != std::string::npos;
+       at = message.find(path, at))
+  {
+    const std::size_t begin = at >= 5 && message.compare(at - 5, 5, "file ") == 0 ? at - 5 : at;
+    const std::size_t end = at + path.size() < message.size() && message[at + path.size()] == ' '
+      ? at + path.size() + 1
+      : at + path.size();
+    message.erase(begin, end - begin);
+    at = begin;
+  }
   while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
   {
     message.pop_back();
   }
   std::replace(message.begin(), message.end(), '\n', ' ');
-  return message;
+  return Printable(message, ReasonLength);
 }
 
-/** Errors and warnings of VTK's reader, in order. */
+/** Errors and warnings of VTK's reader, in order, and errors of its executive. */
 struct ReaderMessages
 {
+  vtkObject* Reader = nullptr;
+  std::string Path;
   std::vector<std::string> Errors;
   std::vector<std::string> Warnings;
+  /**
+   * The executive's "returned failure for request: <vtkInformation dump>" after the
+   * reader's own error; kept out of the output window, where a program that shows
+   * the last line of the first error would show "FORWARD_DIRECTION: 0".
+   */
+  std::vector<std::string> ExecutiveErrors;
 };
 
-void CollectMessages(vtkObject*, unsigned long event, void* clientData, void* callData)
+void CollectMessages(vtkObject* caller, unsigned long event, void* clientData, void* callData)
 {
   auto* messages = static_cast<ReaderMessages*>(clientData);
-  (event == vtkCommand::ErrorEvent ? messages->Errors : messages->Warnings)
-    .push_back(EventText(static_cast<const char*>(callData)));
+  const std::string text = EventText(static_cast<const char*>(callData), messages->Path);
+  if (caller != messages->Reader)
+  {
+    messages->ExecutiveErrors.push_back(text);
+    return;
+  }
+  (event == vtkCommand::ErrorEvent ? messages->Errors : messages->Warnings).push_back(text);
 }
 
 // --- PLY container check --------------------------------------------------------------------
 // vtkPLYReader (VTK 9.1) frees invalid pointers when the body is shorter than the
-// header says, so the body is walked here first. This reads no geometry: VTK does.
+// header says, so the body is walked here first, streamed from the file. This
+// keeps no geometry: VTK reads it.
 
 /** Bytes of a PLY scalar type, 0 when the name is not a PLY type. */
 int PlyTypeSize(const std::string& type)
@@ -138,45 +306,69 @@ struct PlyElement
 class PlyChecker
 {
 public:
-  std::string Check(const std::string& contents)
+  std::string Check(std::istream& in)
   {
-    std::string problem = this->ParseHeader(contents);
+    this->Buffer = in.rdbuf();
+    std::string problem = this->ParseHeader(in);
     if (!problem.empty())
     {
       return problem;
     }
     for (const PlyElement& element : this->Elements)
     {
-      const bool isFace = element.name == "face";
-      for (std::uint64_t i = 0; i < element.count; ++i)
+      problem = this->CheckElement(element);
+      if (!problem.empty())
       {
-        for (const PlyProperty& property : element.properties)
+        return problem;
+      }
+    }
+    return std::string();
+  }
+
+private:
+  enum class Read
+  {
+    Ok,
+    End,      ///< the data ended
+    NotNumber ///< an ASCII token that is not a number
+  };
+
+  std::string CheckElement(const PlyElement& element)
+  {
+    const bool isFace = element.name == "face";
+    for (std::uint64_t i = 0; i < element.count; ++i)
+    {
+      for (const PlyProperty& property : element.properties)
+      {
+        double count = 1.0;
+        if (!property.countType.empty())
         {
-          double count = 1.0;
-          if (!property.countType.empty() && !this->Value(property.countType, count))
+          const Read read = this->Value(property.countType, count);
+          if (read != Read::Ok)
           {
-            return this->Truncated(element, i);
+            return this->ReadProblem(read, element, i);
           }
-          if (!(count >= 0.0) || count != std::floor(count))
+        }
+        if (!(count >= 0.0) || count != std::floor(count))
+        {
+          return "element '" + element.name + "' " + std::to_string(i) + ": list length " +
+            std::to_string(count) + " is not a non-negative integer";
+        }
+        const bool isIndex = isFace && !property.countType.empty() &&
+          (property.name == "vertex_indices" || property.name == "vertex_index");
+        for (double k = 0; k < count; ++k)
+        {
+          double value = 0.0;
+          const Read read = this->Value(property.type, value);
+          if (read != Read::Ok)
           {
-            return "element '" + element.name + "' " + std::to_string(i) + ": list length " +
-              std::to_string(count) + " is not a non-negative integer";
+            return this->ReadProblem(read, element, i);
           }
-          const bool isIndex = isFace && !property.countType.empty() &&
-            (property.name == "vertex_indices" || property.name == "vertex_index");
-          for (double k = 0; k < count; ++k)
+          if (isIndex && !(value >= 0.0 && value < static_cast<double>(this->VertexCount)))
           {
-            double value = 0.0;
-            if (!this->Value(property.type, value))
-            {
-              return this->Truncated(element, i);
-            }
-            if (isIndex && !(value >= 0.0 && value < static_cast<double>(this->VertexCount)))
-            {
-              return "face " + std::to_string(i) + " refers to vertex " +
-                std::to_string(static_cast<long long>(value)) + ", but the file has " +
-                std::to_string(this->VertexCount) + " vertices";
-            }
+            return "face " + std::to_string(i) + " refers to vertex " +
+              std::to_string(static_cast<long long>(value)) + ", but the file has " +
+              std::to_string(this->VertexCount) + " vertices";
           }
         }
       }
@@ -184,29 +376,22 @@ public:
     return std::string();
   }
 
-private:
-  std::string ParseHeader(const std::string& contents)
+  std::string ParseHeader(std::istream& in)
   {
-    std::istringstream header(contents);
+    LineReader lines(in, PLYHeaderLineLimit);
     std::string line;
-    if (!std::getline(header, line) || line.compare(0, 3, "ply") != 0)
+    if (!lines.Next(line) || line.compare(0, 3, "ply") != 0)
     {
       return "not a PLY file (it does not start with 'ply')";
     }
     bool haveFormat = false;
-    while (std::getline(header, line))
+    while (lines.Next(line))
     {
-      if (!line.empty() && line.back() == '\r')
-      {
-        line.pop_back();
-      }
       std::istringstream words(line);
       std::string keyword;
       words >> keyword;
       if (keyword == "end_header")
       {
-        this->Cursor = static_cast<std::size_t>(header.tellg());
-        this->Data = &contents;
         if (!haveFormat)
         {
           return "the header has no 'format' line";
@@ -229,12 +414,17 @@ private:
       }
       else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
       {
-        problem = "unknown header line '" + line + "'";
+        problem = "unknown header line " + Quote(line);
       }
       if (!problem.empty())
       {
         return problem;
       }
+    }
+    if (lines.TooLong())
+    {
+      return "header line " + std::to_string(lines.GetNumber()) + " is longer than " +
+        std::to_string(lines.GetLimit()) + " bytes: " + Quote(line);
     }
     return "the header has no 'end_header' line";
   }
@@ -254,7 +444,7 @@ private:
     }
     else
     {
-      return "unknown PLY format '" + format + "'";
+      return "unknown PLY format " + Quote(format);
     }
     return std::string();
   }
@@ -267,7 +457,7 @@ private:
     words >> element.name >> count;
     if (!words || count < 0)
     {
-      return "malformed header line '" + line + "'";
+      return "malformed header line " + Quote(line);
     }
     element.count = static_cast<std::uint64_t>(count);
     this->Elements.push_back(element);
@@ -279,7 +469,7 @@ private:
   {
     if (this->Elements.empty())
     {
-      return "header line '" + line + "' comes before any element";
+      return "header line " + Quote(line) + " comes before any element";
     }
     PlyProperty property;
     words >> property.type;
@@ -288,13 +478,13 @@ private:
       words >> property.countType >> property.type;
       if (PlyTypeSize(property.countType) == 0 || PlyTypeIsFloat(property.countType))
       {
-        return "header line '" + line + "': bad list length type";
+        return "header line " + Quote(line) + ": bad list length type";
       }
     }
     words >> property.name;
     if (!words || PlyTypeSize(property.type) == 0)
     {
-      return "malformed header line '" + line + "'";
+      return "malformed header line " + Quote(line);
     }
     this->Elements.back().properties.push_back(property);
     return std::string();
@@ -325,46 +515,59 @@ private:
     return "the header declares no 'vertex' element";
   }
 
-  std::string Truncated(const PlyElement& element, std::uint64_t index) const
+  std::string ReadProblem(Read read, const PlyElement& element, std::uint64_t index) const
   {
-    return "the file ends inside element '" + element.name + "' " + std::to_string(index) + " of " +
-      std::to_string(element.count) + " (truncated?)";
+    const std::string where = "element '" + element.name + "' " + std::to_string(index);
+    if (read == Read::NotNumber)
+    {
+      return where + ": " + Quote(this->Token) + " is not a number";
+    }
+    return "the file ends inside " + where + " of " + std::to_string(element.count) +
+      " (truncated?)";
   }
 
-  /** Reads the next value of a PLY type; false at the end of the data or on a non-number. */
-  bool Value(const std::string& type, double& value)
+  /** Reads the next value of a PLY type. */
+  Read Value(const std::string& type, double& value)
   {
-    const std::string& data = *this->Data;
-    if (this->Ascii)
+    return this->Ascii ? this->AsciiValue(value) : this->BinaryValue(type, value);
+  }
+
+  /** The next whitespace-separated token as a number; a token is kept to 64 bytes. */
+  Read AsciiValue(double& value)
+  {
+    using Traits = std::char_traits<char>;
+    int c = this->Buffer->sgetc();
+    while (c != Traits::eof() && std::isspace(c))
     {
-      while (
-        this->Cursor < data.size() && std::isspace(static_cast<unsigned char>(data[this->Cursor])))
-      {
-        ++this->Cursor;
-      }
-      const std::size_t begin = this->Cursor;
-      while (
-        this->Cursor < data.size() && !std::isspace(static_cast<unsigned char>(data[this->Cursor])))
-      {
-        ++this->Cursor;
-      }
-      if (begin == this->Cursor)
-      {
-        return false;
-      }
-      const std::string token = data.substr(begin, this->Cursor - begin);
-      char* end = nullptr;
-      value = std::strtod(token.c_str(), &end);
-      return end && *end == '\0';
+      c = this->Buffer->snextc();
     }
+    this->Token.clear();
+    bool tooLong = false;
+    for (; c != Traits::eof() && !std::isspace(c); c = this->Buffer->snextc())
+    {
+      tooLong = tooLong || this->Token.size() == 64;
+      if (!tooLong)
+      {
+        this->Token.push_back(static_cast<char>(c));
+      }
+    }
+    if (this->Token.empty())
+    {
+      return Read::End;
+    }
+    char* end = nullptr;
+    value = std::strtod(this->Token.c_str(), &end);
+    return !tooLong && end && *end == '\0' ? Read::Ok : Read::NotNumber;
+  }
+
+  Read BinaryValue(const std::string& type, double& value)
+  {
     const int size = PlyTypeSize(type);
-    if (this->Cursor + size > data.size())
-    {
-      return false;
-    }
     unsigned char bytes[8];
-    std::memcpy(bytes, data.data() + this->Cursor, size);
-    this->Cursor += size;
+    if (this->Buffer->sgetn(reinterpret_cast<char*>(bytes), size) != size)
+    {
+      return Read::End;
+    }
     const std::uint16_t probe = 1;
     const bool hostLittle = *reinterpret_cast<const unsigned char*>(&probe) == 1;
     if (this->BigEndian == hostLittle)
@@ -383,7 +586,7 @@ private:
       {
         std::memcpy(&value, bytes, 8);
       }
-      return true;
+      return Read::Ok;
     }
     std::uint64_t raw = 0;
     std::memcpy(&raw, bytes, size); // host order after the swap above
@@ -399,97 +602,508 @@ private:
     {
       value = static_cast<double>(raw);
     }
-    return true;
+    return Read::Ok;
   }
 
   std::vector<PlyElement> Elements;
-  const std::string* Data = nullptr;
-  std::size_t Cursor = 0;
+  std::streambuf* Buffer = nullptr;
+  std::string Token; ///< the last ASCII token read
   std::uint64_t VertexCount = 0;
   bool Ascii = false;
   bool BigEndian = false;
 };
 
-/**
- * vtkOBJReader reads a vertex coordinate it cannot parse ("nan", "1.0.0") as 0
- * without a word, so vertex lines are checked here. Returns the problem or "".
- */
-std::string CheckOBJVertices(const std::string& contents)
+// --- OBJ container check --------------------------------------------------------------------
+// vtkOBJReader (VTK 9.1) trusts the file: an out-of-range normal or texture
+// coordinate index reads out of bounds (a crash for a far one, garbage normals for a
+// near one), a coordinate it cannot parse ("nan", "1.0.0") becomes 0 or the previous
+// line's value, a NUL byte or a long material name breaks its C string handling. So
+// the file is streamed here first, keeping only counts.
+
+bool IsSpace(char c)
 {
-  std::istringstream lines(contents);
-  std::string line;
-  for (int number = 1; std::getline(lines, line); ++number)
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/** The whitespace-separated words of `line` (views into it). */
+void SplitWords(std::string_view line, std::vector<std::string_view>& words)
+{
+  words.clear();
+  std::size_t i = 0;
+  while (i < line.size())
   {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if (keyword != "v")
+    while (i < line.size() && IsSpace(line[i]))
     {
-      continue;
+      ++i;
     }
-    std::string token;
-    for (int c = 0; c < 3; ++c)
+    const std::size_t begin = i;
+    while (i < line.size() && !IsSpace(line[i]))
     {
-      if (!(words >> token))
-      {
-        return "line " + std::to_string(number) + ": a vertex needs x, y and z";
-      }
-      char* end = nullptr;
-      const double value = std::strtod(token.c_str(), &end);
-      if (!end || *end != '\0' || !std::isfinite(value))
-      {
-        return "line " + std::to_string(number) + ": vertex coordinate '" + token +
-          "' is not a finite number";
-      }
+      ++i;
+    }
+    if (i > begin)
+    {
+      words.push_back(line.substr(begin, i - begin));
     }
   }
-  return std::string();
 }
+
+/** Why a vertex coordinate stored as float is unusable, or "". */
+std::string CoordinateProblem(double value)
+{
+  if (!std::isfinite(value))
+  {
+    return "is not a finite number";
+  }
+  return std::fabs(value) > FLT_MAX ? "is outside the range of a 32-bit float (3.4e38)"
+                                    : std::string();
+}
+
+/** Why `word` is not a decimal number that fits a 32-bit float (as VTK keeps it), or "". */
+std::string NumberProblem(std::string_view word)
+{
+  // Only the decimal syntax vtkOBJReader's stream parsing reads: strtod would also
+  // take "0x1p3", "infinity" or "nan", which the stream reads as 0.
+  const bool decimal = word.size() <= 64 &&
+    std::all_of(word.begin(), word.end(),
+      [](char c) {
+        return std::isdigit(static_cast<unsigned char>(c)) ||
+          (c != '\0' && std::strchr("+-.eE", c));
+      });
+  if (!decimal)
+  {
+    return "is not a finite number";
+  }
+  char* end = nullptr;
+  const std::string text(word);
+  const double value = std::strtod(text.c_str(), &end);
+  return !end || *end != '\0' ? "is not a finite number" : CoordinateProblem(value);
+}
+
+/** One kind of indexed OBJ data: vertices ("v"), texture coordinates ("vt"), normals ("vn"). */
+struct ObjArray
+{
+  const char* Name;           ///< "vertex"
+  const char* Plural;         ///< "vertices"
+  long long Count = 0;        ///< lines seen so far
+  long long MaxIndex = 0;     ///< largest positive index used
+  long long MaxIndexLine = 0; ///< the line of the first use of MaxIndex
+};
+
+/**
+ * Streams an OBJ file: counts its v/vt/vn lines, checks vertex coordinates, and
+ * checks every index of its f/l/p lines, positive (absolute, checked against the
+ * whole file's count at the end, as vtkOBJReader allows forward references) or
+ * negative (relative to the lines above, as vtkOBJReader resolves them).
+ */
+class ObjChecker
+{
+public:
+  /** Returns the first problem, or "". */
+  std::string Check(std::istream& in)
+  {
+    LineReader lines(in, OBJLineLimit);
+    std::string line;
+    while (lines.Next(line))
+    {
+      const std::string problem = this->CheckLine(line, lines);
+      if (!problem.empty())
+      {
+        return "line " + std::to_string(this->Line) + ": " + problem;
+      }
+    }
+    if (lines.TooLong())
+    {
+      return "line " + std::to_string(lines.GetNumber()) + " is longer than " +
+        std::to_string(lines.GetLimit()) + " bytes (vtkOBJReader's limit): " + Quote(line);
+    }
+    return this->IndexRangeProblem();
+  }
+
+  /** The first 'vn' line that is not three finite numbers, or "" (the normals are then fine). */
+  std::string BadNormal;
+  /** The number of 'f' elements. */
+  long long Faces = 0;
+
+private:
+  std::string CheckLine(const std::string& line, LineReader& lines)
+  {
+    this->Line = lines.GetNumber();
+    if (line.find('\0') != std::string::npos)
+    {
+      return "holds a NUL byte (a binary file?): " + Quote(line);
+    }
+    SplitWords(line, this->Words);
+    if (this->Words.empty())
+    {
+      return std::string();
+    }
+    const std::string_view keyword = this->Words[0];
+    this->Faces += keyword == "f" ? 1 : 0;
+    if (keyword == "v")
+    {
+      ++this->Vertices.Count;
+      return this->CheckVertex();
+    }
+    if (keyword == "vn")
+    {
+      ++this->Normals.Count;
+      this->CheckNormal(line);
+      return std::string();
+    }
+    if (keyword == "vt")
+    {
+      ++this->TexCoords.Count;
+      return std::string();
+    }
+    if (keyword == "usemtl" || keyword == "mtllib")
+    {
+      return this->CheckName();
+    }
+    if (keyword == "f" || keyword == "l" || keyword == "p")
+    {
+      return this->CheckElement(keyword[0], lines);
+    }
+    return std::string();
+  }
+
+  std::string CheckVertex()
+  {
+    if (this->Words.size() < 4)
+    {
+      return "a vertex needs x, y and z";
+    }
+    for (std::size_t c = 1; c <= 3; ++c)
+    {
+      const std::string problem = NumberProblem(this->Words[c]);
+      if (!problem.empty())
+      {
+        return "vertex coordinate " + Quote(this->Words[c]) + " " + problem;
+      }
+    }
+    return std::string();
+  }
+
+  /** Bad normals are repaired, not refused: the first is remembered for the warning. */
+  void CheckNormal(const std::string& line)
+  {
+    if (!this->BadNormal.empty())
+    {
+      return;
+    }
+    bool good = this->Words.size() >= 4;
+    for (std::size_t c = 1; good && c <= 3; ++c)
+    {
+      good = NumberProblem(this->Words[c]).empty();
+    }
+    if (!good)
+    {
+      this->BadNormal = "line " + std::to_string(this->Line) + ": normal " + Quote(line) +
+        " is not three finite numbers";
+    }
+  }
+
+  std::string CheckName() const
+  {
+    if (this->Words.size() >= 2 && this->Words[1].size() > OBJNameLimit)
+    {
+      return "name " + Quote(this->Words[1]) + " is longer than " + std::to_string(OBJNameLimit) +
+        " bytes (vtkOBJReader's limit)";
+    }
+    return std::string();
+  }
+
+  /**
+   * A face ("f v[/vt[/vn]] ..."), line ("l v[/vt] ...") or point ("p v ...") element,
+   * continued on the next line after a final "\". vtkOBJReader only uses the vertex
+   * index of lines and points.
+   */
+  std::string CheckElement(char kind, LineReader& lines)
+  {
+    std::string continued; // a continuation line, which this->Words then views
+    int vertices = 0, texCoords = 0, normals = 0;
+    for (std::size_t w = 1; w < this->Words.size(); ++w)
+    {
+      if (this->Words[w] == "\\" && w + 1 == this->Words.size())
+      {
+        if (!lines.Next(continued))
+        {
+          return lines.TooLong() ? "the continuation line is longer than " +
+              std::to_string(lines.GetLimit()) + " bytes (vtkOBJReader's limit)"
+                                 : "the file ends after a '\\' continuation";
+        }
+        this->Line = lines.GetNumber();
+        SplitWords(continued, this->Words);
+        this->Words.insert(this->Words.begin(), std::string_view());
+        w = 0; // the loop steps to the first word of the continuation
+        continue;
+      }
+      const std::string problem =
+        this->CheckElementVertex(kind, this->Words[w], texCoords, normals);
+      if (!problem.empty())
+      {
+        return problem;
+      }
+      ++vertices;
+    }
+    const int needed = kind == 'f' ? 3 : kind == 'l' ? 2 : 1;
+    if (vertices < needed)
+    {
+      return std::string(kind == 'f' ? "a face"
+                 : kind == 'l'       ? "a line"
+                                     : "a point element") +
+        " needs at least " + std::to_string(needed) + " vertices";
+    }
+    if ((texCoords != 0 && texCoords != vertices) || (normals != 0 && normals != vertices))
+    {
+      return "a face gives texture coordinates or normals for some of its vertices only";
+    }
+    return std::string();
+  }
+
+  /** One "v", "v/vt", "v/vt/vn" or "v//vn" word; counts the vt and vn it gives. */
+  std::string CheckElementVertex(char kind, std::string_view word, int& texCoords, int& normals)
+  {
+    std::string_view parts[3];
+    std::size_t count = 0;
+    for (std::size_t begin = 0;; ++count)
+    {
+      const std::size_t slash = word.find('/', begin);
+      if (count < 3)
+      {
+        parts[count] = word.substr(begin, slash == std::string_view::npos ? slash : slash - begin);
+      }
+      if (slash == std::string_view::npos)
+      {
+        ++count;
+        break;
+      }
+      begin = slash + 1;
+    }
+    const bool wellFormed = count <= 3 && !parts[0].empty() && !(count == 2 && parts[1].empty()) &&
+      !(count == 3 && parts[2].empty()) &&
+      (kind == 'f' || count == 1 || (kind == 'l' && count == 2));
+    if (!wellFormed)
+    {
+      const char* forms = kind == 'f' ? "v, v/vt, v/vt/vn or v//vn"
+        : kind == 'l'                 ? "v or v/vt"
+                                      : "v";
+      return "malformed element vertex " + Quote(word) + " (expected " + forms + ")";
+    }
+    std::string problem = this->CheckIndex(parts[0], this->Vertices);
+    if (problem.empty() && kind == 'f' && count >= 2 && !parts[1].empty())
+    {
+      ++texCoords;
+      problem = this->CheckIndex(parts[1], this->TexCoords);
+    }
+    if (problem.empty() && kind == 'f' && count == 3)
+    {
+      ++normals;
+      problem = this->CheckIndex(parts[2], this->Normals);
+    }
+    return problem;
+  }
+
+  /**
+   * An index into `array`: 1..count (checked at the end, when the count is known),
+   * or -1..-(lines so far), counting back from the last line above.
+   */
+  std::string CheckIndex(std::string_view text, ObjArray& array)
+  {
+    const bool negative = text[0] == '-';
+    const std::string_view digits = text.substr(text[0] == '+' || negative ? 1 : 0);
+    if (digits.empty() ||
+      !std::all_of(digits.begin(), digits.end(),
+        [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
+    {
+      return std::string(array.Name) + " index " + Quote(text) + " is not an integer";
+    }
+    long long value = 0;
+    for (std::size_t i = 0; i < digits.size() && value <= INT_MAX; ++i)
+    {
+      value = 10 * value + (digits[i] - '0');
+    }
+    if (value > INT_MAX)
+    {
+      // vtkOBJReader reads indices as int; no file holds that many lines anyway.
+      return std::string(array.Name) + " index " + Quote(text) + " is out of range";
+    }
+    if (value == 0)
+    {
+      return std::string(array.Name) + " index 0 is invalid (OBJ indices start at 1)";
+    }
+    if (negative)
+    {
+      if (value > array.Count)
+      {
+        return "relative " + std::string(array.Name) + " index -" + std::to_string(value) +
+          " is out of range: only " + std::to_string(array.Count) + " " +
+          (array.Count == 1 ? array.Name : array.Plural) + " above it";
+      }
+      return std::string();
+    }
+    if (value > array.MaxIndex)
+    {
+      array.MaxIndex = value;
+      array.MaxIndexLine = this->Line;
+    }
+    return std::string();
+  }
+
+  /** The earliest positive index past its array's end, once the file is read. */
+  std::string IndexRangeProblem() const
+  {
+    const ObjArray* worst = nullptr;
+    for (const ObjArray* array : { &this->Vertices, &this->TexCoords, &this->Normals })
+    {
+      if (array->MaxIndex > array->Count && (!worst || array->MaxIndexLine < worst->MaxIndexLine))
+      {
+        worst = array;
+      }
+    }
+    if (!worst)
+    {
+      return std::string();
+    }
+    return "line " + std::to_string(worst->MaxIndexLine) + ": " + worst->Name + " index " +
+      std::to_string(worst->MaxIndex) + " is out of range: the file has " +
+      std::to_string(worst->Count) + " " + (worst->Count == 1 ? worst->Name : worst->Plural);
+  }
+
+  ObjArray Vertices{ "vertex", "vertices" };
+  ObjArray TexCoords{ "texture coordinate", "texture coordinates" };
+  ObjArray Normals{ "normal", "normals" };
+  std::vector<std::string_view> Words;
+  long long Line = 0;
+};
+
+// --- STL container check --------------------------------------------------------------------
+// vtkSTLReader merges coincident points with a vtkMergePoints locator, which
+// converts each coordinate to a bucket index: undefined behaviour for a NaN (a NaN
+// converted to int). So coordinates are checked here first, naming the triangle
+// or line.
 
 /**
  * A binary STL is an 80-byte header, a 32-bit triangle count and 50 bytes per
- * triangle. vtkSTLReader reads what is there, so a short file would silently lose
+ * triangle: a normal, three vertices (12 little-endian floats) and 2 attribute
+ * bytes. vtkSTLReader reads what is there, so a short file would silently lose
  * triangles. Returns the problem or "".
  */
-std::string CheckBinarySTL(const std::string& contents)
+std::string CheckBinarySTL(std::istream& in, std::uint64_t size)
 {
-  if (contents.size() < 84)
+  unsigned char header[84];
+  if (size < 84 || !in.read(reinterpret_cast<char*>(header), 84))
   {
     return "binary STL shorter than its 84-byte header";
   }
   std::uint32_t count = 0;
   for (int i = 3; i >= 0; --i)
   {
-    count = (count << 8) | static_cast<unsigned char>(contents[80 + i]);
+    count = (count << 8) | header[80 + i];
   }
   const std::uint64_t expected = 84 + 50 * static_cast<std::uint64_t>(count);
-  if (contents.size() < expected)
+  if (size < expected)
   {
     return "binary STL declares " + std::to_string(count) + " triangles but holds only " +
-      std::to_string((contents.size() - 84) / 50) + " (truncated?)";
+      std::to_string((size - 84) / 50) + " (truncated?)";
+  }
+  unsigned char record[50];
+  for (std::uint32_t t = 0; t < count; ++t)
+  {
+    if (!in.read(reinterpret_cast<char*>(record), 50))
+    {
+      return "binary STL cannot be read to its end";
+    }
+    for (int v = 3; v < 12; ++v) // the vertices, after the normal
+    {
+      std::uint32_t bits = 0;
+      for (int i = 3; i >= 0; --i)
+      {
+        bits = (bits << 8) | record[4 * v + i];
+      }
+      float value;
+      std::memcpy(&value, &bits, 4);
+      if (!std::isfinite(value))
+      {
+        return "triangle " + std::to_string(t + 1) + " has a NaN or infinite vertex coordinate";
+      }
+    }
   }
   return std::string();
 }
 
-/** The container problem VTK's reader would crash on or silently lose data over, or "". */
-std::string ContainerProblem(
-  const std::string& path, const std::string& extension, const std::string& contents)
+/** The "vertex x y z" lines of an ASCII STL, read as vtkSTLReader does (strtod). */
+std::string CheckAsciiSTL(std::istream& in)
 {
-  if (extension == ".ply")
+  LineReader lines(in, 4096); // longer lines: vtkSTLReader reports them as parse errors
+  std::string line;
+  std::vector<std::string_view> words;
+  while (lines.Next(line))
   {
-    return PlyChecker().Check(contents);
-  }
-  if (extension == ".obj")
-  {
-    return CheckOBJVertices(contents);
-  }
-  if (extension == ".stl" &&
-    vtksys::SystemTools::DetectFileType(path.c_str()) != vtksys::SystemTools::FileTypeText)
-  {
-    // Same test as vtkSTLReader uses to pick binary over ASCII.
-    return CheckBinarySTL(contents);
+    SplitWords(line, words);
+    if (words.size() < 4 || vtksys::SystemTools::LowerCase(std::string(words[0])) != "vertex")
+    {
+      continue;
+    }
+    for (std::size_t c = 1; c <= 3; ++c)
+    {
+      const std::string word(words[c]);
+      char* end = nullptr;
+      const double value = std::strtod(word.c_str(), &end);
+      const std::string problem = end == word.c_str() ? std::string() : CoordinateProblem(value);
+      if (!problem.empty())
+      {
+        return "line " + std::to_string(lines.GetNumber()) + ": vertex coordinate " + Quote(word) +
+          " " + problem;
+      }
+    }
   }
   return std::string();
+}
+
+/** What the container check found: a problem that refuses the file, a bad normal to repair. */
+struct ContainerReport
+{
+  std::string Problem;
+  std::string BadNormal;
+  long long OBJFaces = -1; ///< the 'f' elements of an OBJ file
+};
+
+/**
+ * The container problem VTK's reader would crash on or silently lose data over,
+ * found by streaming the file once.
+ */
+ContainerReport CheckContainer(
+  const std::string& path, const std::string& extension, std::uint64_t size)
+{
+  ContainerReport report;
+  std::ifstream file(path, std::ios::binary);
+  if (!file)
+  {
+    report.Problem = "cannot be read (permissions?)";
+    return report;
+  }
+  if (extension == ".ply")
+  {
+    report.Problem = PlyChecker().Check(file);
+  }
+  else if (extension == ".obj")
+  {
+    ObjChecker checker;
+    report.Problem = checker.Check(file);
+    report.BadNormal = checker.BadNormal;
+    report.OBJFaces = checker.Faces;
+  }
+  else if (vtksys::SystemTools::DetectFileType(path.c_str()) != vtksys::SystemTools::FileTypeText)
+  {
+    // .stl: the same test as vtkSTLReader uses to pick binary over ASCII.
+    report.Problem = CheckBinarySTL(file, size);
+  }
+  else
+  {
+    report.Problem = CheckAsciiSTL(file);
+  }
+  return report;
 }
 
 /** VTK's reader for the extension (.ply, .obj, else .stl), set to read path. */
@@ -514,22 +1128,93 @@ vtkSmartPointer<vtkPolyDataAlgorithm> NewVTKReader(
 }
 
 /**
- * Counts the polygons and strips with at least three vertices: usable ones (all
- * vertices finite) and those with a NaN/Inf vertex. Returns the first vertex index
- * out of range as a problem, or "".
+ * Removes point and cell arrays shorter than the points or cells they describe,
+ * except the point normals (RepairNormals() reports those). vtkOBJReader attaches
+ * its texture coordinate list as it is when every face uses texture coordinate i
+ * with vertex i, however many "vt" lines there are; filters would read past its end.
  */
-std::string CountFaces(vtkPolyData* mesh, vtkIdType& usable, vtkIdType& withNonFinite)
+void RemoveShortArrays(vtkPolyData* mesh)
+{
+  const vtkIdType counts[2] = { mesh->GetNumberOfPoints(), mesh->GetNumberOfCells() };
+  vtkDataSetAttributes* attributes[2] = { mesh->GetPointData(), mesh->GetCellData() };
+  for (int a = 0; a < 2; ++a)
+  {
+    for (int i = attributes[a]->GetNumberOfArrays() - 1; i >= 0; --i)
+    {
+      vtkAbstractArray* array = attributes[a]->GetAbstractArray(i);
+      if (array->GetNumberOfTuples() < counts[a] && array != mesh->GetPointData()->GetNormals())
+      {
+        attributes[a]->RemoveArray(i);
+      }
+    }
+  }
+}
+
+/** Index of the first tuple of `array` with a NaN/Inf component, or -1. */
+vtkIdType FirstNonFinite(vtkDataArray* array)
+{
+  const int components = array->GetNumberOfComponents();
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      if (!std::isfinite(array->GetComponent(i, c)))
+      {
+        return i;
+      }
+    }
+  }
+  return -1;
+}
+
+/**
+ * Whether triangle abc has non-zero area relative to its own size: the test
+ * vtkCausticsSceneExtractor drops triangles by, so a mesh that passes here keeps at
+ * least one triangle there.
+ */
+bool HasArea(vtkPoints* points, vtkIdType a, vtkIdType b, vtkIdType c)
+{
+  double pa[3], pb[3], pc[3], e1[3], e2[3], normal[3];
+  points->GetPoint(a, pa);
+  points->GetPoint(b, pb);
+  points->GetPoint(c, pc);
+  vtkMath::Subtract(pb, pa, e1);
+  vtkMath::Subtract(pc, pa, e2);
+  vtkMath::Cross(e1, e2, normal);
+  const double edgeScale = std::max(vtkMath::Dot(e1, e1), vtkMath::Dot(e2, e2));
+  return edgeScale > 0.0 && vtkMath::Norm(normal) > 1e-12 * edgeScale;
+}
+
+/** Whether a polygon (fan) or strip (`strip`) has a triangle of non-zero area. */
+bool CellHasArea(vtkPoints* points, vtkIdType npts, const vtkIdType* ids, bool strip)
+{
+  for (vtkIdType k = 1; k + 1 < npts; ++k)
+  {
+    if (HasArea(points, strip ? ids[k - 1] : ids[0], ids[k], ids[k + 1]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/**
+ * Counts the polygons and strips with at least three vertices, and those of them
+ * with a triangle of non-zero area. Returns the first vertex index out of range as
+ * a problem, or "".
+ */
+std::string CountFaces(vtkPolyData* mesh, vtkIdType& faces, vtkIdType& withArea)
 {
   const vtkIdType numPoints = mesh->GetNumberOfPoints();
-  usable = withNonFinite = 0;
+  faces = withArea = 0;
   for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
   {
+    const bool strip = cells == mesh->GetStrips();
     vtkIdType npts = 0;
     const vtkIdType* ids = nullptr;
     vtkIdType cellIndex = 0;
     for (cells->InitTraversal(); cells->GetNextCell(npts, ids); ++cellIndex)
     {
-      bool finite = npts >= 3;
       for (vtkIdType k = 0; k < npts; ++k)
       {
         if (ids[k] < 0 || ids[k] >= numPoints)
@@ -538,12 +1223,12 @@ std::string CountFaces(vtkPolyData* mesh, vtkIdType& usable, vtkIdType& withNonF
             std::to_string(ids[k] + 1) + " (1-based), but the file has " +
             std::to_string(numPoints) + " vertices";
         }
-        double p[3];
-        mesh->GetPoint(ids[k], p);
-        finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
       }
-      usable += finite ? 1 : 0;
-      withNonFinite += finite || npts < 3 ? 0 : 1;
+      if (npts >= 3)
+      {
+        ++faces;
+        withArea += CellHasArea(mesh->GetPoints(), npts, ids, strip) ? 1 : 0;
+      }
     }
   }
   return std::string();
@@ -587,8 +1272,8 @@ bool vtkCausticsMeshReader::SetRoleFromName(const char* name)
   }
   else
   {
-    this->Fail("unknown role '" + role +
-      "' (known: none, receiver, reflector or mirror, refractor or glass)");
+    this->Fail("unknown role " + Quote(role) +
+      " (known: none, receiver, reflector or mirror, refractor or glass)");
     return false;
   }
   return true;
@@ -608,22 +1293,22 @@ int vtkCausticsMeshReader::RequestData(
   this->ReadError.clear();
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
 
-  // 1. The file and its extension.
+  // 1. The file: a regular file with a known extension.
   if (!this->FileName || !*this->FileName)
   {
     return this->ReadFail("no mesh file name given");
   }
   const std::string path = this->FileName;
-  std::string contents;
-  if (!this->ReadFile(path, contents))
+  std::uint64_t size = 0;
+  if (!this->CheckFile(path, size))
   {
     return 0;
   }
   // 2. The container, where VTK's reader would crash or silently lose data.
-  const std::string problem = ContainerProblem(path, LowerExtension(path), contents);
-  if (!problem.empty())
+  const ContainerReport container = CheckContainer(path, LowerExtension(path), size);
+  if (!container.Problem.empty())
   {
-    return this->ReadFail(path + ": " + problem);
+    return this->ReadFail(path + ": " + container.Problem);
   }
   // 3. VTK's reader; its complaints become this reader's error.
   vtkSmartPointer<vtkPolyDataAlgorithm> reader = this->RunVTKReader(path);
@@ -633,6 +1318,18 @@ int vtkCausticsMeshReader::RequestData(
     return 0;
   }
   output->ShallowCopy(reader->GetOutput());
+  RemoveShortArrays(output);
+  // 5. What VTK's reader dropped, and the normals, repaired rather than refused.
+  if (container.OBJFaces > output->GetNumberOfPolys())
+  {
+    // vtkOBJReader drops such faces when it duplicates vertices for per-face data.
+    vtkWarningMacro(<< path << ": vtkOBJReader dropped "
+                    << container.OBJFaces - output->GetNumberOfPolys() << " of "
+                    << container.OBJFaces
+                    << " faces (faces without normals or texture coordinates in a file where "
+                       "other faces have them)");
+  }
+  this->RepairNormals(path, output, container.BadNormal);
   return 1;
 }
 
@@ -642,27 +1339,19 @@ int vtkCausticsMeshReader::ReadFail(const std::string& message)
   return this->Fail(message);
 }
 
-int vtkCausticsMeshReader::ReadFile(const std::string& path, std::string& contents)
+int vtkCausticsMeshReader::CheckFile(const std::string& path, std::uint64_t& size)
 {
-  if (!vtksys::SystemTools::FileExists(path))
+  const std::string problem = PathProblem(path, size);
+  if (!problem.empty())
   {
-    return this->ReadFail(path + ": no such file");
+    return this->ReadFail(path + ": " + problem);
   }
-  if (vtksys::SystemTools::FileIsDirectory(path))
-  {
-    return this->ReadFail(path + ": is a folder, not a mesh file");
-  }
-  const std::string extension = LowerExtension(path);
   if (!IsSupportedExtension(path))
   {
-    return this->ReadFail(
-      path + ": unknown mesh extension '" + extension + "' (supported: .ply, .obj, .stl)");
+    return this->ReadFail(path + ": unknown mesh extension " + Quote(LowerExtension(path)) +
+      " (supported: .ply, .obj, .stl)");
   }
-  if (!ReadWholeFile(path, contents))
-  {
-    return this->ReadFail(path + ": cannot be read (permissions?)");
-  }
-  if (contents.empty())
+  if (size == 0)
   {
     return this->ReadFail(path + ": the file is empty, no triangles");
   }
@@ -673,15 +1362,23 @@ vtkSmartPointer<vtkPolyDataAlgorithm> vtkCausticsMeshReader::RunVTKReader(const 
 {
   vtkSmartPointer<vtkPolyDataAlgorithm> reader = NewVTKReader(path, LowerExtension(path));
   ReaderMessages messages;
+  messages.Reader = reader;
+  messages.Path = path;
   vtkNew<vtkCallbackCommand> collect;
   collect->SetCallback(CollectMessages);
   collect->SetClientData(&messages);
   reader->AddObserver(vtkCommand::ErrorEvent, collect);
   reader->AddObserver(vtkCommand::WarningEvent, collect);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, collect);
   reader->Update();
   if (!messages.Errors.empty())
   {
     this->ReadFail(path + ": VTK's " + reader->GetClassName() + " failed: " + messages.Errors[0]);
+    return nullptr;
+  }
+  if (!messages.ExecutiveErrors.empty())
+  {
+    this->ReadFail(path + ": VTK's " + reader->GetClassName() + " failed without giving a reason");
     return nullptr;
   }
   for (const std::string& warning : messages.Warnings)
@@ -693,24 +1390,65 @@ vtkSmartPointer<vtkPolyDataAlgorithm> vtkCausticsMeshReader::RunVTKReader(const 
 
 int vtkCausticsMeshReader::CheckGeometry(const std::string& path, vtkPolyData* mesh)
 {
-  vtkIdType usable = 0, withNonFinite = 0;
-  const std::string problem = CountFaces(mesh, usable, withNonFinite);
+  vtkIdType faces = 0, withArea = 0;
+  const std::string problem = CountFaces(mesh, faces, withArea);
   if (!problem.empty())
   {
     return this->ReadFail(path + ": " + problem);
   }
-  if (usable == 0)
+  const vtkIdType badPoint = mesh->GetPoints() ? FirstNonFinite(mesh->GetPoints()->GetData()) : -1;
+  if (badPoint >= 0)
   {
-    return this->ReadFail(path + ": no triangles with finite vertices (" +
-      std::to_string(mesh->GetNumberOfPoints()) + " vertices, " +
-      std::to_string(mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips()) + " faces)");
+    return this->ReadFail(path + ": vertex " + std::to_string(badPoint + 1) +
+      " (1-based) has a NaN or infinite coordinate");
   }
-  if (withNonFinite > 0)
+  if (faces == 0)
   {
-    vtkWarningMacro(<< path << ": " << withNonFinite
-                    << " face(s) have NaN/Inf vertices; caustics will drop them");
+    return this->ReadFail(path + ": no triangles (" + std::to_string(mesh->GetNumberOfPoints()) +
+      " vertices, no faces)");
+  }
+  if (withArea == 0)
+  {
+    return this->ReadFail(path + ": no triangle with non-zero area (" +
+      (faces == 1 ? std::string("its only face is")
+                  : "all " + std::to_string(faces) + " faces are") +
+      " degenerate)");
   }
   return 1;
+}
+
+void vtkCausticsMeshReader::RepairNormals(
+  const std::string& path, vtkPolyData* mesh, std::string problem)
+{
+  vtkDataArray* normals = mesh->GetPointData()->GetNormals();
+  if (problem.empty() && normals && normals->GetNumberOfTuples() != mesh->GetNumberOfPoints())
+  {
+    // vtkOBJReader attaches its "vn" list as point normals when every face uses
+    // normal i with vertex i, even when there are fewer "vn" than "v" lines.
+    problem = "the file gives " + std::to_string(normals->GetNumberOfTuples()) + " normals for " +
+      std::to_string(mesh->GetNumberOfPoints()) + " vertices";
+  }
+  if (problem.empty() && normals)
+  {
+    const vtkIdType bad = FirstNonFinite(normals);
+    if (bad >= 0)
+    {
+      problem = "vertex " + std::to_string(bad + 1) + " (1-based) has a NaN or infinite normal";
+    }
+  }
+  if (problem.empty())
+  {
+    return;
+  }
+  // Without normals, vtkCausticsSceneExtractor (and VTK's mapper, for display)
+  // compute them from the triangles.
+  mesh->GetPointData()->SetNormals(nullptr);
+  if (mesh->GetPointData()->GetNormals())
+  {
+    mesh->GetPointData()->RemoveArray(mesh->GetPointData()->GetNormals()->GetName());
+  }
+  vtkWarningMacro(<< path << ": " << problem
+                  << "; the file's normals are ignored and recomputed from the triangles");
 }
 
 vtkSmartPointer<vtkActor> vtkCausticsMeshReader::CreateActor()

@@ -3,24 +3,49 @@
  * @brief   Reads a triangle mesh from .ply, .obj or .stl and makes a caustics actor of it.
  *
  * The file is read by VTK's own reader for its extension (case-insensitive):
- * vtkPLYReader, vtkOBJReader or vtkSTLReader. Those readers report some bad files
- * only as warnings, accept faces that refer to missing vertices, silently drop the
- * tail of a truncated binary STL, read unparsable OBJ coordinates as 0, and
- * vtkPLYReader 9.1 crashes on a truncated PLY.
+ * vtkPLYReader, vtkOBJReader or vtkSTLReader. Those readers trust the file: they
+ * report some bad files only as warnings, accept faces that refer to missing
+ * vertices, silently drop the tail of a truncated binary STL, read unparsable OBJ
+ * numbers ("nan", "1.0.0") as 0 or as the previous line's value, read out of bounds
+ * on an out-of-range OBJ normal or texture coordinate index (a crash for a far one,
+ * garbage normals for a near one), and vtkPLYReader 9.1 crashes on a truncated PLY.
  * So RequestData():
- * 1. checks that the file exists and that its extension is known;
- * 2. checks the container before VTK reads it: a PLY's header and that its body
- *    holds every element the header declares (with face indices in range), an
- *    OBJ's vertex coordinates (vtkOBJReader reads "nan" or "1.0.0" as 0), a
- *    binary STL's size against its triangle count;
- * 3. runs VTK's reader, turning its errors into this reader's error and passing
- *    its warnings on with the file name;
- * 4. checks the result: every face refers to an existing vertex, at least one
- *    polygon has only finite vertices (polygons with NaN/Inf vertices are
- *    reported in a warning; vtkCausticsSceneExtractor drops them).
+ * 1. checks the path with stat() before opening it: it must be a regular file
+ *    (a FIFO or a device such as /dev/zero would block or never end), with a known
+ *    extension, not empty;
+ * 2. streams the file once (nothing is kept but counts) to check the container
+ *    before VTK reads it:
+ *    - PLY: the header, and that the body holds every element the header declares,
+ *      with face indices in range;
+ *    - OBJ: lines of at most 262142 bytes (vtkOBJReader's buffer) without NUL
+ *      bytes; "v" lines of three decimal numbers that fit a 32-bit float; every
+ *      vertex, texture coordinate and normal index of the "f", "l" and "p" lines,
+ *      absolute (1..count of "v"/"vt"/"vn" lines in the file) or relative (-1 is
+ *      the last line above); material names of at most 99 bytes (vtkOBJReader's
+ *      buffer);
+ *    - STL: a binary file's size against its triangle count; every vertex
+ *      coordinate finite (vtkSTLReader's point merging converts it to a bucket
+ *      index);
+ * 3. runs VTK's reader, turning its first error into this reader's error (VTK's
+ *    reason, e.g. "Premature EOF ... line 5", quoted) and passing its warnings on
+ *    with the file name; the reader's executive's "returned failure for request"
+ *    dump is kept out of the output window;
+ * 4. checks the result: every face refers to an existing vertex, every vertex
+ *    position is finite (a NaN/Inf position is an error), and at least one
+ *    polygon has a triangle of non-zero area (the area test of
+ *    vtkCausticsSceneExtractor, which drops degenerate triangles);
+ * 5. repairs normals: when an OBJ "vn" line is not three finite numbers, a PLY
+ *    normal is NaN/Inf, or the normals do not cover every vertex, a warning names
+ *    the file and the first bad one, and the point normals are dropped, so that
+ *    vtkCausticsSceneExtractor (and VTK's mapper) recompute them from the
+ *    triangles; other point or cell arrays shorter than the points or cells are
+ *    dropped silently (caustics does not use them). When vtkOBJReader dropped
+ *    faces (it drops faces without normals when others have them), a warning
+ *    says how many.
  * A failure leaves the output empty, returns 0 from RequestData (Update() then
  * reports it through the executive) and sets GetLastError() to one line naming
- * the file and the problem.
+ * the file and the problem. Text from the file is quoted at most 60 characters
+ * long, with bytes outside printable ASCII escaped as \xNN.
  *
  * CreateActor() reads the file if needed and returns an actor with the material
  * chosen by Role, RefractiveIndex and Color, set through vtkCausticsMaterial so
@@ -31,11 +56,12 @@
 #ifndef vtkCausticsMeshReader_h
 #define vtkCausticsMeshReader_h
 
-#include "vtkPolyDataAlgorithm.h"
 #include "vtkIOCausticsModule.h" // For export macro
-#include "vtkSmartPointer.h"            // For return value
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // For return value
 
-#include <string> // For std::string
+#include <cstdint> // For std::uint64_t
+#include <string>  // For std::string
 
 class vtkActor;
 
@@ -127,14 +153,19 @@ private:
 
   ///@{
   /**
-   * Steps of RequestData(): read the file (it exists, has a supported extension,
-   * is not empty); run VTK's reader on it; check the faces it produced. Each
-   * returns 1, or ReadFail()'s 0 (nullptr for RunVTKReader).
+   * Steps of RequestData(): check the path (a regular file with a supported
+   * extension, not empty; its size is returned); run VTK's reader on it; check the
+   * faces it produced. Each returns 1, or ReadFail()'s 0 (nullptr for RunVTKReader).
    */
-  int ReadFile(const std::string& path, std::string& contents);
+  int CheckFile(const std::string& path, std::uint64_t& size);
   vtkSmartPointer<vtkPolyDataAlgorithm> RunVTKReader(const std::string& path);
   int CheckGeometry(const std::string& path, vtkPolyData* mesh);
   ///@}
+  /**
+   * Drops the point normals of `mesh`, with a warning, when `problem` (a bad OBJ
+   * "vn" line) is set or a normal is NaN/Inf; consumers then recompute them.
+   */
+  void RepairNormals(const std::string& path, vtkPolyData* mesh, std::string problem);
   /** Fail() for a read: the message is also kept as ReadError. */
   int ReadFail(const std::string& message);
 };

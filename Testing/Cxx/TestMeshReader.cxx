@@ -7,6 +7,7 @@
 #include "vtkActor.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
@@ -15,6 +16,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -95,6 +100,29 @@ protected:
 bool Contains(const std::string& text, const std::string& part)
 {
   return text.find(part) != std::string::npos;
+}
+
+/** Three vertices of a triangle in z = 0, as OBJ lines. */
+const std::string Triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+/** An ASCII PLY header for `vertices` vertices (x, y, z and, if asked, normals) and `faces` faces.
+ */
+std::string PlyHeader(int vertices, int faces, bool normals = false)
+{
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+    "\nproperty float x\nproperty float y\nproperty float z\n" +
+    (normals ? "property float nx\nproperty float ny\nproperty float nz\n" : "") + "element face " +
+    std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+/** An error line fit for a terminal: short, printable ASCII only. */
+void ExpectShortAndPrintable(const std::string& error)
+{
+  EXPECT_LT(error.size(), 400u) << error.substr(0, 400);
+  EXPECT_TRUE(std::all_of(error.begin(), error.end(),
+    [](char c)
+    { return static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7f; }))
+    << error.substr(0, 400);
 }
 }
 
@@ -230,7 +258,9 @@ TEST_F(MeshReaderTest, RejectsFacesWithMissingVertices)
   // vtkOBJReader and vtkPLYReader both accept these and return invalid point ids.
   std::string error =
     this->ExpectFailure(WriteFile("badface.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"));
-  EXPECT_TRUE(Contains(error, "refers to vertex 7 (1-based), but the file has 3 vertices"))
+  EXPECT_TRUE(Contains(error,
+    "badface.obj: line 4: vertex index 7 is out of range: the file has 3 "
+    "vertices"))
     << error;
 
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
@@ -300,4 +330,263 @@ TEST_F(MeshReaderTest, RejectsAbsurdMaterialParameters)
   ASSERT_NE(actor, nullptr) << reader->GetLastError();
   EXPECT_EQ(vtkCausticsMaterial::Describe(actor).ior, 1.33);
   EXPECT_STREQ(reader->GetLastError(), "");
+}
+
+// Issue 18: vtkOBJReader reads out of bounds on an out-of-range normal or texture
+// coordinate index (SIGSEGV for a far one, garbage normals for a near one).
+TEST_F(MeshReaderTest, RejectsOutOfRangeObjIndicesBeforeVTKReadsThem)
+{
+  // The issue's file: reaching this line at all means vtkOBJReader did not crash.
+  std::string error = this->ExpectFailure(
+    WriteFile("far-normal.obj", Triangle + "vn 0 0 1\nf 1//100000000 2//100000000 3//100000000\n"));
+  EXPECT_TRUE(Contains(
+    error, "far-normal.obj: line 5: normal index 100000000 is out of range: the file has 1 normal"))
+    << error;
+
+  error =
+    this->ExpectFailure(WriteFile("near-normal.obj", Triangle + "vn 0 0 1\nf 1//1 2//1 3//2\n"));
+  EXPECT_TRUE(Contains(error, "near-normal.obj: line 5: normal index 2 is out of range")) << error;
+
+  error =
+    this->ExpectFailure(WriteFile("far-texcoord.obj", Triangle + "vt 0 0\nf 1/1 2/99999999 3/1\n"));
+  EXPECT_TRUE(Contains(error,
+    "line 5: texture coordinate index 99999999 is out of range: the "
+    "file has 1 texture coordinate"))
+    << error;
+
+  // Relative indices count back from the lines above, as vtkOBJReader resolves them.
+  error = this->ExpectFailure(WriteFile("relative.obj", Triangle + "f -1 -2 -4\n"));
+  EXPECT_TRUE(Contains(error,
+    "relative.obj: line 4: relative vertex index -4 is out of range: only 3 vertices above it"))
+    << error;
+  error = this->ExpectFailure(
+    WriteFile("relative-normal.obj", Triangle + "f 1//-1 2//-1 3//-1\nvn 0 0 1\n"));
+  EXPECT_TRUE(Contains(error, "line 4: relative normal index -1 is out of range: only 0 normals"))
+    << error;
+
+  // Beyond int (vtkOBJReader's sscanf("%d") would overflow), zero, and not numbers.
+  error = this->ExpectFailure(
+    WriteFile("overflow.obj", Triangle + "vn 0 0 1\nf 1//1 2//1 3//99999999999999999999\n"));
+  EXPECT_TRUE(Contains(error, "line 5: normal index '99999999999999999999' is out of range"))
+    << error;
+  error = this->ExpectFailure(WriteFile("zero.obj", Triangle + "f 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "line 4: vertex index 0 is invalid (OBJ indices start at 1)"))
+    << error;
+  error = this->ExpectFailure(WriteFile("words.obj", Triangle + "f 1/a 2 3\n"));
+  EXPECT_TRUE(Contains(error, "line 4: texture coordinate index 'a' is not an integer")) << error;
+  error = this->ExpectFailure(WriteFile("slashes.obj", Triangle + "f 1/1/1/1 2 3\n"));
+  EXPECT_TRUE(Contains(error, "line 4: malformed element vertex '1/1/1/1'")) << error;
+  error = this->ExpectFailure(WriteFile("mixed.obj", Triangle + "vn 0 0 1\nf 1//1 2 3\n"));
+  EXPECT_TRUE(Contains(error, "line 5: a face gives texture coordinates or normals for some"))
+    << error;
+  error = this->ExpectFailure(WriteFile("badline.obj", Triangle + "l 1 9\n"));
+  EXPECT_TRUE(Contains(error, "line 4: vertex index 9 is out of range: the file has 3 vertices"))
+    << error;
+  error = this->ExpectFailure(
+    WriteFile("material.obj", Triangle + "usemtl " + std::string(150, 'm') + "\nf 1 2 3\n"));
+  EXPECT_TRUE(Contains(error, "line 4: name 'mmm")) << error;
+  EXPECT_TRUE(Contains(error, "is longer than 99 bytes")) << error;
+}
+
+TEST_F(MeshReaderTest, ReadsValidObjIndexForms)
+{
+  // Relative indices, per-face normals and texture coordinates, a forward
+  // reference and a '\' continuation are all valid OBJ.
+  const std::string path = WriteFile("forms.obj",
+    Triangle +
+      "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf -3/-3/-1 -2/-2/-1 -1/-1/-1\n"
+      "f 1/1/1 2/2/1 \\\n4/3/1\nv 1 1 0\nf 2/2/1 4/1/1 3/3/1\nl 1 2/1\np -1\n");
+  vtkNew<vtkCausticsMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 3);
+  EXPECT_FALSE(Contains(this->Messages->GetOutput(), "dropped")) << this->Messages->GetOutput();
+
+  // vtkOBJReader drops faces without normals when others have them: said, not silent.
+  const std::string mixed =
+    WriteFile("mixed-faces.obj", Triangle + "v 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n");
+  reader->SetFileName(mixed.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_TRUE(
+    Contains(this->Messages->GetOutput(), "mixed-faces.obj: vtkOBJReader dropped 1 of 2 faces"))
+    << this->Messages->GetOutput();
+}
+
+// Issue 18: "vn nan" was read as (0, -1, 0) without a word; NaN/Inf positions.
+TEST_F(MeshReaderTest, RefusesNonFinitePositionsAndRepairsNonFiniteNormals)
+{
+  // A bad normal: a warning naming the file and line; the normals are dropped so
+  // that they are recomputed from the triangles.
+  const std::string path =
+    WriteFile("nan-normal.obj", Triangle + "vn 0 0 1\nvn nan 0 1\nf 1//1 2//2 3//1\n");
+  vtkNew<vtkCausticsMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 1);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNormals(), nullptr);
+  const std::string messages = this->Messages->GetOutput();
+  EXPECT_TRUE(Contains(messages,
+    "nan-normal.obj: line 5: normal 'vn nan 0 1' is not three "
+    "finite numbers; the file's normals are ignored and recomputed"))
+    << messages;
+
+  // The same for a PLY whose reader gives NaN normals.
+  const std::string ply = WriteFile(
+    "inf-normal.ply", PlyHeader(3, 1, true) + "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 inf 0 1\n3 0 1 2\n");
+  reader->SetFileName(ply.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNormals(), nullptr);
+  EXPECT_TRUE(Contains(this->Messages->GetOutput(),
+    "inf-normal.ply: vertex 3 (1-based) has a NaN or infinite normal; the file's normals are "
+    "ignored and recomputed"))
+    << this->Messages->GetOutput();
+
+  // vtkOBJReader attaches 3 normals to 4 vertices when faces use normal i with vertex i.
+  const std::string few = WriteFile("few-normals.obj",
+    Triangle + "v 1 1 0\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\nf 2 4 3\n");
+  reader->SetFileName(few.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 2);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNormals(), nullptr);
+  EXPECT_TRUE(Contains(this->Messages->GetOutput(),
+    "few-normals.obj: the file gives 3 normals for 4 vertices; the file's normals are ignored"))
+    << this->Messages->GetOutput();
+
+  // Positions: an error, in every format.
+  std::string error = this->ExpectFailure(WriteFile("inf.obj", Triangle + "v 1 inf 0\nf 1 2 4\n"));
+  EXPECT_TRUE(Contains(error, "inf.obj: line 4: vertex coordinate 'inf' is not a finite number"))
+    << error;
+  error = this->ExpectFailure(WriteFile("big.obj", Triangle + "v 1e39 0 0\nf 1 2 4\n"));
+  EXPECT_TRUE(Contains(error, "line 4: vertex coordinate '1e39' is outside the range of a 32-bit"))
+    << error;
+  error =
+    this->ExpectFailure(WriteFile("nan.ply", PlyHeader(3, 1) + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "nan.ply: vertex 2 (1-based) has a NaN or infinite coordinate"))
+    << error;
+  std::string stl = BinarySTL(2, 2);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&stl[84 + 50 + 12 + 4], &nan, 4); // second triangle, first vertex, y
+  // vtkSTLReader's point merging would convert the NaN to a bucket index: checked first.
+  error = this->ExpectFailure(WriteFile("nan.stl", stl));
+  EXPECT_TRUE(Contains(error, "nan.stl: triangle 2 has a NaN or infinite vertex coordinate"))
+    << error;
+  error = this->ExpectFailure(WriteFile("nan-ascii.stl",
+    "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\nvertex 0 1 0\n"
+    "endloop\nendfacet\nendsolid s\n"));
+  EXPECT_TRUE(Contains(error, "nan-ascii.stl: line 5: vertex coordinate 'nan' is not a finite"))
+    << error;
+}
+
+// Issue 18: a truncated ASCII STL reported only "FORWARD_DIRECTION: 0", the last
+// line of the executive's dump that came before this reader's error.
+TEST_F(MeshReaderTest, ReportsVTKReasonForTruncatedAsciiStl)
+{
+  const std::string error = this->ExpectFailure(WriteFile(
+    "cut-ascii.stl", "solid cut\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"));
+  EXPECT_TRUE(Contains(error, "cut-ascii.stl: VTK's vtkSTLReader failed: ")) << error;
+  EXPECT_TRUE(Contains(error, "Premature EOF")) << error;
+  ExpectShortAndPrintable(error);
+  // The reader's own error comes first; VTK's executive dump of the inner reader's
+  // failure is not shown.
+  const std::string messages = this->Messages->GetOutput();
+  EXPECT_FALSE(Contains(messages, "Algorithm vtkSTLReader")) << messages;
+  EXPECT_FALSE(Contains(messages.substr(0, messages.find(error)), "FORWARD_DIRECTION")) << messages;
+}
+
+// Issue 18: a PLY whose triangles all have zero area was accepted, and rendering
+// failed later with "Bad plane coordinate system".
+TEST_F(MeshReaderTest, RejectsMeshWithoutTriangleArea)
+{
+  std::string error = this->ExpectFailure(
+    WriteFile("flat.ply", PlyHeader(4, 2) + "0 0 0\n1 1 1\n2 2 2\n0 0 0\n3 0 1 2\n3 0 3 1\n"));
+  EXPECT_TRUE(
+    Contains(error, "flat.ply: no triangle with non-zero area (all 2 faces are degenerate)"))
+    << error;
+  error = this->ExpectFailure(WriteFile("point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n"));
+  EXPECT_TRUE(Contains(error, "point.obj: no triangle with non-zero area")) << error;
+
+  // One good triangle among degenerate ones is enough (the extractor drops the rest).
+  const std::string path = WriteFile(
+    "mostly-flat.ply", PlyHeader(4, 2) + "0 0 0\n1 1 1\n2 2 2\n0 1 0\n3 0 1 2\n3 0 1 3\n");
+  vtkNew<vtkCausticsMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 2);
+}
+
+// Issue 18: a 5 MB one-line OBJ or binary junk was echoed to stderr.
+TEST_F(MeshReaderTest, QuotesOnlyShortPrintableExcerpts)
+{
+  std::string error =
+    this->ExpectFailure(WriteFile("one-line.obj", "v " + std::string(5 << 20, '1') + "\n"));
+  EXPECT_TRUE(Contains(error, "one-line.obj: line 1 is longer than 262142 bytes")) << error;
+  ExpectShortAndPrintable(error);
+  // The limit is vtkOBJReader's own: a line just within it reads.
+  const std::string longest =
+    WriteFile("longest-line.obj", "#" + std::string(262141, 'c') + "\n" + Triangle + "f 1 2 3\n");
+  vtkNew<vtkCausticsMeshReader> reader;
+  reader->SetFileName(longest.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 1);
+
+  error =
+    this->ExpectFailure(WriteFile("long-word.obj", "v 1 2 " + std::string(100000, 'x') + "\n"));
+  EXPECT_TRUE(Contains(error, "line 1: vertex coordinate 'xxx")) << error;
+  EXPECT_TRUE(Contains(error, "...' is not a finite number")) << error;
+  ExpectShortAndPrintable(error);
+
+  std::string junk;
+  for (int i = 0; i < 100000; ++i)
+  {
+    junk.push_back(static_cast<char>((i * 7919 + i / 13) & 0xff));
+  }
+  for (const char* name : { "junk.obj", "junk.ply", "junk.stl" })
+  {
+    error = this->ExpectFailure(WriteFile(name, junk));
+    EXPECT_TRUE(Contains(error, name)) << error;
+    ExpectShortAndPrintable(error);
+  }
+  // Text junk goes as far as VTK's ASCII STL parser, whose message quotes it.
+  error = this->ExpectFailure(WriteFile(
+    "text-junk.stl", "solid " + std::string(3000, 'q') + "\n" + std::string(5000, 'z') + "\n"));
+  EXPECT_TRUE(Contains(error, "text-junk.stl: ")) << error;
+  ExpectShortAndPrintable(error);
+  error = this->ExpectFailure(
+    WriteFile("long-header.ply", "ply\nformat ascii 1.0\ncomment " + std::string(10000, 'c')));
+  EXPECT_TRUE(Contains(error, "long-header.ply: header line 3 is longer than 4096 bytes")) << error;
+  ExpectShortAndPrintable(error);
+  const std::string messages = this->Messages->GetOutput();
+  for (char c : { '1', 'x', 'q', 'z', 'c' })
+  {
+    EXPECT_FALSE(Contains(messages, std::string(100, c))) << "nothing echoes the file: " << c;
+  }
+}
+
+// Issue 18: a FIFO or /dev/zero given as a mesh hung the program.
+TEST_F(MeshReaderTest, RefusesFilesThatAreNotRegular)
+{
+  vtksys::SystemTools::MakeDirectory(OutputDir);
+  const std::string fifo = OutputDir + "/pipe.obj";
+  unlink(fifo.c_str());
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string error = this->ExpectFailure(fifo);
+  EXPECT_TRUE(Contains(error, fifo + ": is a FIFO (named pipe), not a regular file")) << error;
+  unlink(fifo.c_str());
+
+  const std::string zero = OutputDir + "/zero.stl";
+  unlink(zero.c_str());
+  ASSERT_EQ(symlink("/dev/zero", zero.c_str()), 0);
+  error = this->ExpectFailure(zero);
+  EXPECT_TRUE(Contains(error, zero + ": is a device, not a regular file")) << error;
+  unlink(zero.c_str());
+
+  error = this->ExpectFailure(OutputDir);
+  EXPECT_TRUE(Contains(error, ": is a folder, not a mesh file")) << error;
 }
