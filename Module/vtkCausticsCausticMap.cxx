@@ -4,7 +4,6 @@
 #include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
-#include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
 #include "vtkCausticsPhotonGrid.h"
@@ -104,10 +103,10 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
 
 bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
-  vtkCausticsPhotonBuffer* photons, vtkCausticsPhotonBufferHierarchy* hierarchy,
+  const caustics::PhotonRecords& landed, vtkCausticsPhotonBufferHierarchy* hierarchy,
   const caustics::Camera* camera)
 {
-  if (!this->Internal->HasView || !photons || !hierarchy)
+  if (!this->Internal->HasView || !landed.IsSet() || !hierarchy)
   {
     vtkErrorMacro(<< "Splat needs RenderReceivers() first, a photon buffer and its hierarchy");
     return false;
@@ -137,8 +136,8 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
     state->vtkglEnable(GL_BLEND);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     state->vtkglEnable(GL_PROGRAM_POINT_SIZE);
-    vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
-      photons->GetHitFluxTexture(), hierarchy->GetSplatRadiusTexture() };
+    vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux,
+      hierarchy->GetSplatRadiusTexture() };
     const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "splatRadiusTexture" };
     for (int i = 0; i < 4; ++i)
     {

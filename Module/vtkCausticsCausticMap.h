@@ -35,7 +35,6 @@
 #include <memory> // For std::unique_ptr
 
 class vtkCausticsGBuffer;
-class vtkCausticsPhotonBuffer;
 class vtkCausticsPhotonBufferHierarchy;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
@@ -51,6 +50,7 @@ struct Camera;
 struct CausticMapSettings;
 struct LightView;
 struct PhotonGrid;
+struct PhotonRecords;
 namespace gl
 {
 class FullScreenTriangle;
@@ -83,13 +83,14 @@ public:
 
   /**
    * Clears the levels and draws the splat lists of `hierarchy` (gathered from the
-   * photons of `grid`, traced into `photons`) into them, each kernel's radius within
+   * photons of `grid` that landed (`landed`, in the photon record layout of
+   * vtkCausticsPhotonGrid.h)) into them, each kernel's radius within
    * the settings' MinimumSplatRadius and MaximumSplatRadius. Clusters get the
    * settings' ClusterRadius(), and no less than MinimumCameraSplatRadius pixel
    * footprints of `camera` (may be null: no floor). False if a program failed.
    */
   bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
-    const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+    const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
     vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
 
   /**

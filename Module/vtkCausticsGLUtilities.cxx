@@ -82,6 +82,58 @@ bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int
   return true;
 }
 
+bool PhotonPlanes::Ensure(vtkOpenGLRenderWindow* renWin, int width, int height)
+{
+  bool resized = EnsureTexture(this->Position, renWin, width, height, GL_RGBA32F);
+  resized |= EnsureTexture(this->Direction, renWin, width, height, GL_RGBA32F);
+  resized |= EnsureTexture(this->Flux, renWin, width, height, GL_RGBA32F);
+  return resized;
+}
+
+bool PhotonPlanes::EnsureWithRadius(vtkOpenGLRenderWindow* renWin, int width, int height)
+{
+  bool resized = this->Ensure(renWin, width, height);
+  resized |= EnsureTexture(this->Radius, renWin, width, height, GL_R32F);
+  return resized;
+}
+
+void PhotonPlanes::ClearPositions()
+{
+  const float none[4] = { 0, 0, 0, 0 };
+  glClearTexImage(this->Position->GetHandle(), 0, GL_RGBA, GL_FLOAT, none);
+}
+
+void PhotonPlanes::BindImages(unsigned int first, unsigned int access) const
+{
+  vtkTextureObject* planes[] = { this->Position, this->Direction, this->Flux };
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    glBindImageTexture(first + i, planes[i]->GetHandle(), 0, GL_FALSE, 0, access, GL_RGBA32F);
+  }
+}
+
+void PhotonPlanes::BindRadiusImage(unsigned int unit, unsigned int access) const
+{
+  glBindImageTexture(unit, this->Radius->GetHandle(), 0, GL_FALSE, 0, access, GL_R32F);
+}
+
+caustics::PhotonRecords PhotonPlanes::Records() const
+{
+  caustics::PhotonRecords records;
+  records.Position = this->Position;
+  records.Direction = this->Direction;
+  records.Flux = this->Flux;
+  return records;
+}
+
+void PhotonPlanes::Release(vtkWindow* window)
+{
+  this->Position->ReleaseGraphicsResources(window);
+  this->Direction->ReleaseGraphicsResources(window);
+  this->Flux->ReleaseGraphicsResources(window);
+  this->Radius->ReleaseGraphicsResources(window);
+}
+
 void ToColumnMajor(const double rowMajor[16], float columnMajor[16])
 {
   for (int r = 0; r < 4; ++r)

@@ -10,15 +10,18 @@
 #ifndef vtkCausticsGLUtilities_h
 #define vtkCausticsGLUtilities_h
 
+#include "vtkCausticsPhotonGrid.h"      // For caustics::PhotonRecords
+#include "vtkNew.h"                     // For vtkNew
 #include "vtkRenderingCausticsModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For vtkSmartPointer
+#include "vtkTextureObject.h"           // For vtkNew<vtkTextureObject>
 
 #include <cstddef> // For std::size_t
 #include <string>  // For std::string
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
-class vtkTextureObject;
+class vtkWindow;
 
 namespace caustics
 {
@@ -104,6 +107,41 @@ private:
   unsigned int Name = 0;
   std::size_t Size = 0;
   Usage Use = Usage::Draw;
+};
+
+/**
+ * Owns the three RGBA32F textures of one grid of photon records
+ * (caustics::PhotonRecords, the one photon record layout of vtkCausticsPhotonGrid.h)
+ * and, for landed photons, their kernel radii (R32F, m). The stages that write
+ * photons (the emitter, the transports) keep one; Records() is what they hand on.
+ */
+class VTKRENDERINGCAUSTICS_EXPORT PhotonPlanes
+{
+public:
+  /** Sizes the planes to width x height (reallocating only on change); true if it did. */
+  bool Ensure(vtkOpenGLRenderWindow* renWin, int width, int height);
+  /** Also sizes the kernel-radius texture (landed photons whose transport sizes kernels). */
+  bool EnsureWithRadius(vtkOpenGLRenderWindow* renWin, int width, int height);
+  /** Zeroes the position plane: no photon anywhere (the other planes are then ignored). */
+  void ClearPositions();
+  /**
+   * Binds the planes to image units first, first + 1, first + 2 (position, direction,
+   * flux) with the given access (GL_READ_ONLY, GL_WRITE_ONLY, GL_READ_WRITE).
+   */
+  void BindImages(unsigned int first, unsigned int access) const;
+  /** Binds the kernel-radius texture to image unit `unit`. */
+  void BindRadiusImage(unsigned int unit, unsigned int access) const;
+  /** The textures, for the next stage. */
+  caustics::PhotonRecords Records() const;
+  /** The kernel radii (m, R32F); unallocated unless EnsureWithRadius() was called. */
+  vtkTextureObject* KernelRadius() const { return this->Radius; }
+  void Release(vtkWindow* window);
+
+private:
+  vtkNew<vtkTextureObject> Position;
+  vtkNew<vtkTextureObject> Direction;
+  vtkNew<vtkTextureObject> Flux;
+  vtkNew<vtkTextureObject> Radius;
 };
 
 /** A vertex array with no attributes, for drawing a full-screen triangle from gl_VertexID. */

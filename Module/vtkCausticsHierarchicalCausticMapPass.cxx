@@ -199,12 +199,14 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
     }
     const caustics::PhotonGrid& grid = light.Emitter->GetGrid();
     this->BeginStage("hcm traversal");
-    const bool gathered = light.Hierarchy->Gather(renWin, this->Settings, grid, light.Photons,
-      light.MapView, static_cast<int>(scene.Lights[i].type), &scene.View);
+    const bool gathered =
+      light.Hierarchy->Gather(renWin, this->Settings, grid, light.Photons->GetLanded(),
+        light.MapView, static_cast<int>(scene.Lights[i].type), &scene.View);
     this->EndStage("hcm traversal");
     this->BeginStage("hcm splat");
     light.Traced = gathered &&
-      light.Map->Splat(renWin, this->Settings, grid, light.Photons, light.Hierarchy, &scene.View);
+      light.Map->Splat(
+        renWin, this->Settings, grid, light.Photons->GetLanded(), light.Hierarchy, &scene.View);
     this->EndStage("hcm splat");
     ok = ok && light.Traced;
   }
@@ -340,10 +342,10 @@ bool vtkCausticsHierarchicalCausticMapPass::ReadPhotonBuffer(int light, vtkImage
     return false;
   }
   this->GetLastWindow()->MakeCurrent();
-  vtkCausticsPhotonBuffer* photons = this->Internal->Lights[light]->Photons;
-  auto position = caustics::gl::ReadTexture(photons->GetHitPositionTexture(), "HitPosition", 4);
-  auto normal = caustics::gl::ReadTexture(photons->GetHitNormalTexture(), "HitNormal", 4);
-  auto flux = caustics::gl::ReadTexture(photons->GetHitFluxTexture(), "HitFlux", 4);
+  const caustics::PhotonRecords landed = this->Internal->Lights[light]->Photons->GetLanded();
+  auto position = caustics::gl::ReadTexture(landed.Position, "HitPosition", 4);
+  auto normal = caustics::gl::ReadTexture(landed.Direction, "HitNormal", 4);
+  auto flux = caustics::gl::ReadTexture(landed.Flux, "HitFlux", 4);
   output->ShallowCopy(position);
   output->GetPointData()->AddArray(normal->GetPointData()->GetArray(0));
   output->GetPointData()->AddArray(flux->GetPointData()->GetArray(0));

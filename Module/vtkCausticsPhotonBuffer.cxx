@@ -131,6 +131,7 @@ struct vtkCausticsPhotonBuffer::Internals
   caustics::hcm::ReceiverBoundsCache Receivers;
   caustics::gl::StorageBuffer Statistics; // STAT_* counters
   caustics::gl::StorageBuffer Lists;      // control words, then two work lists
+  caustics::gl::PhotonPlanes Landed;      // the trace's in-place state, then its hits
 };
 
 vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
@@ -250,9 +251,7 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
 std::size_t vtkCausticsPhotonBuffer::AllocateOutputs(
   vtkOpenGLRenderWindow* renWin, int width, int height)
 {
-  caustics::gl::EnsureTexture(this->HitPosition, renWin, width, height, GL_RGBA32F);
-  caustics::gl::EnsureTexture(this->HitNormal, renWin, width, height, GL_RGBA32F);
-  caustics::gl::EnsureTexture(this->HitFlux, renWin, width, height, GL_RGBA32F);
+  this->Internal->Landed.Ensure(renWin, width, height);
   using Usage = caustics::gl::StorageBuffer::Usage;
   this->Internal->Statistics.Allocate(caustics::hcm::StatSize * sizeof(std::uint32_t), Usage::Copy);
   this->Internal->Statistics.Clear();
@@ -280,7 +279,7 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
   trace.ChordLength = 1.01 * Diagonal(scene.SpecularBounds);
   trace.AirLength = 1.01 * Diagonal(scene.Bounds);
   trace.FluxUnit = this->FluxUnit;
-  vtkTextureObject* inputs[] = { grid.Position, grid.Direction, grid.Flux,
+  vtkTextureObject* inputs[] = { grid.Emitted.Position, grid.Emitted.Direction, grid.Emitted.Flux,
     this->FrontLayer->GetPositionTexture(), this->FrontLayer->GetNormalTexture(),
     this->BackLayer->GetPositionTexture(), this->BackLayer->GetNormalTexture(),
     receivers->GetPositionTexture(), receivers->GetNormalTexture() };
@@ -302,15 +301,16 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
 
 void vtkCausticsPhotonBuffer::BindTraceOutputs(vtkCausticsSceneGeometry* geometry)
 {
-  vtkTextureObject* outputs[] = { this->HitPosition, this->HitNormal, this->HitFlux };
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    glBindImageTexture(i, outputs[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  }
+  this->Internal->Landed.BindImages(0, GL_READ_WRITE);
   this->Internal->Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_PHOTON_STATISTICS_BINDING);
   this->Internal->Lists.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_CONTROL_BINDING);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, this->Internal->Lists.Handle());
   geometry->BindMaterials();
+}
+
+caustics::PhotonRecords vtkCausticsPhotonBuffer::GetLanded() const
+{
+  return this->Internal->Landed.Records();
 }
 
 bool vtkCausticsPhotonBuffer::GetStatistics(Statistics& statistics)
@@ -343,9 +343,7 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->FrontLayer->ReleaseGraphicsResources(win);
   this->BackLayer->ReleaseGraphicsResources(win);
-  this->HitPosition->ReleaseGraphicsResources(win);
-  this->HitNormal->ReleaseGraphicsResources(win);
-  this->HitFlux->ReleaseGraphicsResources(win);
+  this->Internal->Landed.Release(win);
   this->SortProgram->ReleaseGraphicsResources(win);
   this->InsideProgram->ReleaseGraphicsResources(win);
   this->AirProgram->ReleaseGraphicsResources(win);

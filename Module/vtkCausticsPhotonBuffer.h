@@ -30,12 +30,10 @@
  *    layer shows where the estimate projects, until the estimate stops moving:
  *    exact in one step on planar receivers), else a march of MarchSteps samples
  *    that brackets the first change of side, bisection and a last plane step.
- * Outputs, textures of the photon grid's size (RGBA32F), one texel per photon:
- * - HitPosition: xyz of the hit, w = path length from the light d_i (m; for a
- *   directional light, from the view's eye plane); w > 0 marks a valid photon;
- * - HitNormal: receiver normal as modelled, w = |N.D_i| (cosine of incidence);
- * - HitFlux: rgb flux (W), a = the texel's measure omega_i (m^2 directional,
- *   sr point/spot), as Eq. 2 of §3.3 needs.
+ * Output: GetLanded(), the landed photons in the photon record layout of
+ * vtkCausticsPhotonGrid.h (position, w = path length from the light d_i, > 0 for a
+ * landed photon; receiver normal, w = |N.D_i|; flux, a = the texel's measure
+ * omega_i, as Eq. 2 of §3.3 needs).
  * GPU counters (photons and flux in, landed, lost inside, escaped, internally
  * reflected, absorbed) are kept every frame and read only on request
  * (GetStatistics, which stalls). MaximumInternalEvents and MarchSteps are members
@@ -68,6 +66,7 @@ namespace caustics
 struct CausticMapSettings;
 struct LightView;
 struct PhotonGrid;
+struct PhotonRecords;
 struct SceneData;
 }
 
@@ -120,20 +119,17 @@ public:
   bool GetStatistics(Statistics& statistics);
 #endif
 
+#ifndef __VTK_WRAP__
+  /**
+   * The photons of the last Render() that landed on a receiver, in the photon record
+   * layout of vtkCausticsPhotonGrid.h (one texel per photon of the grid; position.w
+   * > 0 marks a landed photon).
+   */
+  caustics::PhotonRecords GetLanded() const;
+#endif
+
   ///@{
-  /** Outputs of the last Render() (see the class description). */
-  vtkTextureObject* GetHitPositionTexture()
-  {
-    return this->HitPosition;
-  }
-  vtkTextureObject* GetHitNormalTexture()
-  {
-    return this->HitNormal;
-  }
-  vtkTextureObject* GetHitFluxTexture()
-  {
-    return this->HitFlux;
-  }
+  /** The refractor layers of the last Render(), front and back faces. */
   vtkCausticsGBuffer* GetFrontLayer()
   {
     return this->FrontLayer;
@@ -153,9 +149,6 @@ protected:
   double FluxUnit = 1.0; // W per unit of the GPU flux counters, set by Trace()
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;
-  vtkNew<vtkTextureObject> HitPosition;
-  vtkNew<vtkTextureObject> HitNormal;
-  vtkNew<vtkTextureObject> HitFlux;
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;

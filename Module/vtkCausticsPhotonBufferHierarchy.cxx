@@ -3,7 +3,6 @@
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsCausticMapSettings.h"
 #include "vtkCausticsGLUtilities.h"
-#include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
@@ -153,13 +152,13 @@ void vtkCausticsPhotonBufferHierarchy::Layout(int width, int height, int startRe
 
 bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
+  const caustics::PhotonRecords& landed, const caustics::LightView& mapView, int lightType,
   const caustics::Camera* camera)
 {
   const int mapResolution = settings.CausticMapResolution;
   const int width = grid.Width;
   const int height = grid.Height;
-  if (!photons || grid.IsEmpty() || mapResolution <= 0)
+  if (!landed.IsSet() || grid.IsEmpty() || mapResolution <= 0)
   {
     vtkErrorMacro(<< "Gather needs a rendered photon buffer and a caustic map resolution");
     return false;
@@ -191,15 +190,15 @@ bool vtkCausticsPhotonBufferHierarchy::Gather(vtkOpenGLRenderWindow* renWin,
   this->Internal->Control.Allocate(sizeof(control), Usage::Copy);
   this->Internal->Control.Write(0, sizeof(control), control);
 
-  if (!flat && !this->BuildMipmap(renWin, photons, mapView, mapResolution))
+  if (!flat && !this->BuildMipmap(renWin, landed, mapView, mapResolution))
   {
     return false;
   }
-  return this->Traverse(renWin, settings, grid, photons, mapView, lightType, camera);
+  return this->Traverse(renWin, settings, grid, landed, mapView, lightType, camera);
 }
 
 bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int mapResolution)
+  const caustics::PhotonRecords& landed, const caustics::LightView& mapView, int mapResolution)
 {
   if (this->StartLevel < 1)
   {
@@ -210,8 +209,8 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
   {
     return false;
   }
-  vtkTextureObject* position = photons->GetHitPositionTexture();
-  vtkTextureObject* flux = photons->GetHitFluxTexture();
+  vtkTextureObject* position = landed.Position;
+  vtkTextureObject* flux = landed.Flux;
   position->Activate();
   flux->Activate();
   program->SetUniformi("hitPosition", position->GetTextureUnit());
@@ -236,11 +235,10 @@ bool vtkCausticsPhotonBufferHierarchy::BuildMipmap(vtkOpenGLRenderWindow* renWin
 
 bool vtkCausticsPhotonBufferHierarchy::Traverse(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
-  vtkCausticsPhotonBuffer* photons, const caustics::LightView& mapView, int lightType,
+  const caustics::PhotonRecords& landed, const caustics::LightView& mapView, int lightType,
   const caustics::Camera* camera)
 {
-  vtkTextureObject* inputs[] = { photons->GetHitPositionTexture(), photons->GetHitNormalTexture(),
-    photons->GetHitFluxTexture() };
+  vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux };
   const char* names[] = { "hitPosition", "hitNormal", "hitFlux" };
   for (vtkTextureObject* input : inputs)
   {

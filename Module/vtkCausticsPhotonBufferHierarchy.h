@@ -60,7 +60,6 @@
 #include <memory> // For std::unique_ptr
 #include <vector> // For std::vector
 
-class vtkCausticsPhotonBuffer;
 class vtkCausticsShaderProgram;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
@@ -72,6 +71,7 @@ struct Camera;
 struct CausticMapSettings;
 struct LightView;
 struct PhotonGrid;
+struct PhotonRecords;
 namespace gl
 {
 class StorageBuffer;
@@ -87,7 +87,8 @@ public:
 
 #ifndef __VTK_WRAP__
   /**
-   * Gathers the photons of `grid`, traced into `photons`, into splat lists for a
+   * Gathers the photons of `grid` that landed (`landed`, in the photon record layout of
+   * vtkCausticsPhotonGrid.h), into splat lists for a
    * caustic map seen through `mapView` (CausticMapResolution texels per side at the
    * finest level) as `settings` says (the gather, cluster and splat modes and
    * sizes); `lightType` is caustics::Light::Type; `camera` (may be null: no camera
@@ -95,7 +96,7 @@ public:
    * program failed.
    */
   bool Gather(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
-    const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+    const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
     const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
 
   /** GPU counters of the last Gather(); flux in W summed over RGB. */
@@ -170,10 +171,10 @@ private:
   std::unique_ptr<Internals> Internal; // the GPU buffers
 
   void Layout(int width, int height, int startResolution);
-  bool BuildMipmap(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonBuffer* photons,
+  bool BuildMipmap(vtkOpenGLRenderWindow* renWin, const caustics::PhotonRecords& landed,
     const caustics::LightView& mapView, int mapResolution);
   bool Traverse(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
-    const caustics::PhotonGrid& grid, vtkCausticsPhotonBuffer* photons,
+    const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
     const caustics::LightView& mapView, int lightType, const caustics::Camera* camera);
   /** Traverse() in steps: the uniforms of every level, and those of level k. */
   void SetGatherUniforms(vtkCausticsShaderProgram* gather,

@@ -23,6 +23,7 @@ vtkStandardNewMacro(vtkCausticsPhotonEmitter);
 
 vtkCausticsPhotonEmitter::vtkCausticsPhotonEmitter()
   : Triangle(new caustics::gl::FullScreenTriangle)
+  , Planes(new caustics::gl::PhotonPlanes)
 {
   this->Program->SetName("photon emission");
   this->Program->SetVertexSource(vtkCausticsFullScreenVS);
@@ -33,6 +34,7 @@ vtkCausticsPhotonEmitter::vtkCausticsPhotonEmitter()
 vtkCausticsPhotonEmitter::~vtkCausticsPhotonEmitter()
 {
   delete this->Triangle;
+  delete this->Planes;
 }
 
 bool vtkCausticsPhotonEmitter::Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLightBuffers* lights,
@@ -47,10 +49,7 @@ bool vtkCausticsPhotonEmitter::Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLi
   }
   const int n = lights->GetResolution();
   const int width = n, height = this->SplitFresnel ? 2 * n : n;
-  bool resized = false;
-  resized |= caustics::gl::EnsureTexture(this->PositionTexture, renWin, width, height, GL_RGBA32F);
-  resized |= caustics::gl::EnsureTexture(this->DirectionTexture, renWin, width, height, GL_RGBA32F);
-  resized |= caustics::gl::EnsureTexture(this->FluxTexture, renWin, width, height, GL_RGBA32F);
+  const bool resized = this->Planes->Ensure(renWin, width, height);
   this->DescribeGrid(scene.Lights[light], lights->GetView(light), light, n);
 
   vtkOpenGLState* state = renWin->GetState();
@@ -59,9 +58,10 @@ bool vtkCausticsPhotonEmitter::Emit(vtkOpenGLRenderWindow* renWin, vtkCausticsLi
   this->Framebuffer->Bind();
   if (resized || this->Framebuffer->GetNumberOfColorAttachments() != 3)
   {
-    this->Framebuffer->AddColorAttachment(0, this->PositionTexture);
-    this->Framebuffer->AddColorAttachment(1, this->DirectionTexture);
-    this->Framebuffer->AddColorAttachment(2, this->FluxTexture);
+    const caustics::PhotonRecords records = this->Planes->Records();
+    this->Framebuffer->AddColorAttachment(0, records.Position);
+    this->Framebuffer->AddColorAttachment(1, records.Direction);
+    this->Framebuffer->AddColorAttachment(2, records.Flux);
   }
   this->Framebuffer->ActivateDrawBuffers(3);
   vtkOpenGLState::ScopedglViewport viewport(state);
@@ -113,16 +113,12 @@ void vtkCausticsPhotonEmitter::DescribeGrid(
   grid.BranchRows = resolution;
   grid.Height = this->SplitFresnel ? 2 * resolution : resolution;
   grid.MaximumPhotonFlux = caustics::MaximumTexelFlux(source, view, resolution);
-  grid.Position = this->PositionTexture;
-  grid.Direction = this->DirectionTexture;
-  grid.Flux = this->FluxTexture;
+  grid.Emitted = this->Planes->Records();
 }
 
 void vtkCausticsPhotonEmitter::ReleaseGraphicsResources(vtkWindow* win)
 {
-  this->PositionTexture->ReleaseGraphicsResources(win);
-  this->DirectionTexture->ReleaseGraphicsResources(win);
-  this->FluxTexture->ReleaseGraphicsResources(win);
+  this->Planes->Release(win);
   this->Framebuffer->ReleaseGraphicsResources(win);
   this->Program->ReleaseGraphicsResources(win);
   this->Triangle->Release();

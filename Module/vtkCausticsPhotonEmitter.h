@@ -46,6 +46,7 @@ struct SceneData;
 namespace gl
 {
 class FullScreenTriangle;
+class PhotonPlanes;
 }
 }
 
@@ -73,18 +74,18 @@ public:
 #endif
 
   ///@{
-  /** Outputs of the last Emit() (see the class description). */
+  /** Outputs of the last Emit(): the planes of GetGrid().Emitted (null before). */
   vtkTextureObject* GetPositionTexture()
   {
-    return this->PositionTexture;
+    return this->Grid.Emitted.Position;
   }
   vtkTextureObject* GetDirectionTexture()
   {
-    return this->DirectionTexture;
+    return this->Grid.Emitted.Direction;
   }
   vtkTextureObject* GetFluxTexture()
   {
-    return this->FluxTexture;
+    return this->Grid.Emitted.Flux;
   }
   ///@}
 
@@ -104,9 +105,6 @@ protected:
 
   bool SplitFresnel = true;
   caustics::PhotonGrid Grid;
-  vtkNew<vtkTextureObject> PositionTexture;
-  vtkNew<vtkTextureObject> DirectionTexture;
-  vtkNew<vtkTextureObject> FluxTexture;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   vtkNew<vtkCausticsShaderProgram> Program;
 
@@ -119,6 +117,7 @@ private:
     const caustics::Light& source, const caustics::LightView& view, int light, int resolution);
 
   caustics::gl::FullScreenTriangle* Triangle;
+  caustics::gl::PhotonPlanes* Planes; // what Grid.Emitted shows
 };
 
 #endif

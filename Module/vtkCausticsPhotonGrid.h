@@ -12,6 +12,27 @@
  * Emission produces this value and every later stage takes it as an argument: the
  * photon buffer's trace, the hierarchy, the caustic map, the screen-space transfer
  * and the splatter (which splats one hit per texel of a grid of this layout).
+ *
+ * Photons are stored in one record layout, caustics::PhotonRecords: three RGBA32F
+ * textures of the grid's size, texel (x, y) holding photon x + y * Width. What the
+ * channels hold depends on the photon's state (the same table is in
+ * glsl/vtkCausticsCommon.glsl, for the shaders):
+ *
+ * | plane     | emitted (after the first specular event)       | landed on a receiver |
+ * |-----------|------------------------------------------------|----------------------------------------------|
+ * | Position  | xyz m; w: 0 none, 1 leaving into air, 2 inside a refractor | xyz m; w: path length
+ * from the light (m), > 0 | | Direction | xyz unit direction; w: the texel's measure     | xyz
+ * receiver normal as modelled; w: abs(N.D) on arrival | | Flux      | rgb W; a: specular events so
+ * far (1)           | rgb W; a: the texel's measure                |
+ *
+ * The measure is what one emission texel covers: m^2 across a directional light's
+ * beam, sr from a point or spot light; with the path length and abs(N.D) it gives
+ * the photon's unoccluded footprint on the receiver. A directional light's path
+ * length is measured from its view's eye plane. Every transport (screen-space
+ * transfer, caustic-map trace, straight photons) writes landed photons in this
+ * layout and every reconstruction (splatter, caustic-map hierarchy and splats)
+ * reads it; the kernel radius a reconstruction gives each photon is its own R32F
+ * texture beside the records.
  */
 #ifndef vtkCausticsPhotonGrid_h
 #define vtkCausticsPhotonGrid_h
@@ -25,6 +46,23 @@ class vtkTextureObject;
 
 namespace caustics
 {
+/**
+ * The three textures of one grid of photon records (see the file description for
+ * their layout). A view: the stage that writes them owns them (caustics::gl::PhotonPlanes).
+ */
+struct PhotonRecords
+{
+  vtkTextureObject* Position = nullptr;
+  vtkTextureObject* Direction = nullptr; ///< direction in flight, receiver normal once landed
+  vtkTextureObject* Flux = nullptr;
+
+  /** True when all three textures are set. */
+  bool IsSet() const
+  {
+    return this->Position != nullptr && this->Direction != nullptr && this->Flux != nullptr;
+  }
+};
+
 struct PhotonGrid
 {
   int Light = -1;     ///< index of the emitting light in SceneData::Lights
@@ -36,16 +74,11 @@ struct PhotonGrid
    * the largest texel of its view). The GPU flux counters count in units of it.
    */
   double MaximumPhotonFlux = 1.0;
-  ///@{
   /**
-   * The emitted photons, RGBA32F textures of Width x Height owned by the emitter
-   * (see vtkCausticsPhotonEmitter): where each leaves its first specular surface
-   * (w = state), its direction (w = the texel's measure), its flux (rgb W).
+   * The emitted photons, owned by the emitter (see vtkCausticsPhotonEmitter): where
+   * each leaves its first specular surface, its direction, its flux.
    */
-  vtkTextureObject* Position = nullptr;
-  vtkTextureObject* Direction = nullptr;
-  vtkTextureObject* Flux = nullptr;
-  ///@}
+  PhotonRecords Emitted;
 
   /** Photon slots (texels) of the grid; the valid photons are fewer. */
   std::size_t Count() const

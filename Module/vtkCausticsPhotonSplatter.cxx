@@ -31,12 +31,17 @@ vtkCausticsPhotonSplatter::~vtkCausticsPhotonSplatter()
 }
 
 bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
-  const caustics::PhotonGrid& grid, vtkTextureObject* hitPosition, vtkTextureObject* hitNormal,
-  vtkTextureObject* hitFlux, vtkCausticsGBuffer* target, const float worldToClip[16])
+  const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
+  vtkTextureObject* kernelRadius, vtkCausticsGBuffer* target, const float worldToClip[16])
 {
   if (grid.IsEmpty())
   {
     return true; // no photons: nothing to deposit
+  }
+  if (!landed.IsSet() || !kernelRadius)
+  {
+    vtkErrorMacro(<< "Splat needs the landed photons' three record textures and their radii");
+    return false;
   }
   if (!this->Program->Bind(renWin))
   {
@@ -56,10 +61,11 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglEnable(GL_PROGRAM_POINT_SIZE);
 
-  vtkTextureObject* inputs[] = { hitPosition, hitNormal, hitFlux, target->GetPositionTexture(),
-    target->GetNormalTexture() };
-  const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "targetPosition", "targetNormal" };
-  for (int i = 0; i < 5; ++i)
+  vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux, kernelRadius,
+    target->GetPositionTexture(), target->GetNormalTexture() };
+  const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "kernelRadius", "targetPosition",
+    "targetNormal" };
+  for (int i = 0; i < 6; ++i)
   {
     inputs[i]->Activate();
     this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());

@@ -36,6 +36,7 @@ class vtkWindow;
 namespace caustics
 {
 struct PhotonGrid;
+struct PhotonRecords;
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonSplatter : public vtkObject
@@ -72,14 +73,14 @@ public:
 
 #ifndef __VTK_WRAP__
   /**
-   * Splats the hits of the photons of `grid`, one per grid texel, read from the
-   * three textures of the grid's size (position xyz with w > 0 for a hit; normal
-   * xyz with w = radius in m; flux rgb in W) into the bound framebuffer, whose
+   * Splats the photons of `grid` that landed, `landed` in the photon record layout of
+   * vtkCausticsPhotonGrid.h (position.w > 0 marks one), each with its kernel radius
+   * (m) from `kernelRadius` (R32F, the grid's size), into the bound framebuffer, whose
    * pixels' surfaces are in `target` (same size), seen through worldToClip
    * (column-major). Returns false if the program failed.
    */
   bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
-    vtkTextureObject* hitPosition, vtkTextureObject* hitNormal, vtkTextureObject* hitFlux,
+    const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius,
     vtkCausticsGBuffer* target, const float worldToClip[16]);
 #endif
 

@@ -101,9 +101,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   int Current = 0;
   int Capacity = 0;
   // Splat records of the photons that ended on receivers this bounce.
-  vtkNew<vtkTextureObject> SplatPosition;
-  vtkNew<vtkTextureObject> SplatNormal;
-  vtkNew<vtkTextureObject> SplatFlux;
+  caustics::gl::PhotonPlanes Landed; // with their kernel radii
 
   // Camera of the frame, for the stages.
   float ClipToWorld[16];
@@ -231,9 +229,7 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     in.Payloads[k].Allocate(PayloadBytes * in.Capacity);
     in.Counters[k].Allocate(16);
   }
-  caustics::gl::EnsureTexture(in.SplatPosition, renWin, grid.Width, grid.Height, GL_RGBA32F);
-  caustics::gl::EnsureTexture(in.SplatNormal, renWin, grid.Width, grid.Height, GL_RGBA32F);
-  caustics::gl::EnsureTexture(in.SplatFlux, renWin, grid.Width, grid.Height, GL_RGBA32F);
+  in.Landed.EnsureWithRadius(renWin, grid.Width, grid.Height);
 
   // Compact the emitter's grid into the first transfer map.
   in.Current = 0;
@@ -246,9 +242,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   const caustics::Light& source = scene.Lights[light];
   const caustics::Medium& medium = scene.Participating;
   caustics::ssp::TextureUnits units(renWin);
-  p->SetUniformi("emitPosition", units.Bind(grid.Position));
-  p->SetUniformi("emitDirection", units.Bind(grid.Direction));
-  p->SetUniformi("emitFlux", units.Bind(grid.Flux));
+  p->SetUniformi("emitPosition", units.Bind(grid.Emitted.Position));
+  p->SetUniformi("emitDirection", units.Bind(grid.Emitted.Direction));
+  p->SetUniformi("emitFlux", units.Bind(grid.Emitted.Flux));
   p->SetUniformi(
     "lightPosition", units.Bind(f.LightBuffers->GetGBuffer(light)->GetPositionTexture()));
   p->SetUniform2i("grid", grid.Width, grid.Height);
@@ -258,6 +254,9 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
   p->SetUniform3f("lightDirection", static_cast<float>(source.direction[0]),
     static_cast<float>(source.direction[1]), static_cast<float>(source.direction[2]));
+  const caustics::Vec3& eye = f.LightBuffers->GetView(light).eye;
+  p->SetUniform3f(
+    "viewEye", static_cast<float>(eye[0]), static_cast<float>(eye[1]), static_cast<float>(eye[2]));
   p->SetUniformi("mediumOn", medium.enabled ? 1 : 0);
   p->SetUniform3f("sigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
     static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
@@ -293,8 +292,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   const caustics::SceneData& scene = *f.Scene;
   const int c = in.Current, n = 1 - c;
   in.ClearCounter(n);
-  const float none[4] = { 0, 0, 0, 0 };
-  glClearTexImage(in.SplatPosition->GetHandle(), 0, GL_RGBA, GL_FLOAT, none);
+  in.Landed.ClearPositions();
 
   vtkCausticsShaderProgram* p = in.TransferProgram;
   if (!p->Bind(renWin))
@@ -309,9 +307,8 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   in.Payloads[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
   in.Counters[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
   f.Geometry->BindMaterials();
-  glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(2, in.SplatFlux->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  in.Landed.BindImages(0, GL_WRITE_ONLY);
+  in.Landed.BindRadiusImage(3, GL_WRITE_ONLY);
   const caustics::Medium& medium = scene.Participating;
   p->SetUniformi("capacity", in.Capacity);
   p->SetUniformi("gridWidth", in.Emitter->GetGrid().Width);
@@ -340,9 +337,9 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
     GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  for (GLuint unit = 0; unit < 3; ++unit)
+  for (GLuint unit = 0; unit < 4; ++unit)
   {
-    glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, unit < 3 ? GL_RGBA32F : GL_R32F);
   }
   p->Unbind(renWin);
   return true;
@@ -361,20 +358,22 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     {
       return false;
     }
-    glBindImageTexture(0, in.SplatPosition->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, in.SplatNormal->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    in.Landed.BindImages(0, GL_READ_ONLY);
+    in.Landed.BindRadiusImage(3, GL_READ_WRITE);
     p->SetUniform2i("grid", grid.Width, grid.Height);
     p->SetUniformi("branchRows", grid.BranchRows);
     p->SetUniformf("spacings", static_cast<float>(this->SplatRadiusSpacings));
     p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     p->Unbind(renWin);
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
   return in.Splatter->Splat(
-    renWin, grid, in.SplatPosition, in.SplatNormal, in.SplatFlux, f.CameraGBuffer, f.WorldToClip);
+    renWin, grid, in.Landed.Records(), in.Landed.KernelRadius(), f.CameraGBuffer, f.WorldToClip);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin, int, int)
@@ -629,9 +628,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
     in.Payloads[k].Release();
     in.Counters[k].Release();
   }
-  in.SplatPosition->ReleaseGraphicsResources(w);
-  in.SplatNormal->ReleaseGraphicsResources(w);
-  in.SplatFlux->ReleaseGraphicsResources(w);
+  in.Landed.Release(w);
   in.Capacity = 0;
   in.HasLayers = in.HasRefractorLayers = false;
 }

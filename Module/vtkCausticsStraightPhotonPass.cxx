@@ -9,7 +9,6 @@
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsStraightPhotonPassCS.h" // The transport shader
 #include "vtkObjectFactory.h"
-#include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
 vtkStandardNewMacro(vtkCausticsStraightPhotonPass);
@@ -20,7 +19,7 @@ struct vtkCausticsStraightPhotonPass::Internals
   vtkNew<vtkCausticsGBuffer> Receivers;       // transport: receivers seen from the light
   vtkNew<vtkCausticsShaderProgram> Program;   // transport: the hit records
   vtkNew<vtkCausticsPhotonSplatter> Splatter; // reconstruction (shared)
-  vtkNew<vtkTextureObject> Hits[3];           // position, normal + radius, flux
+  caustics::gl::PhotonPlanes Landed;          // transport's output, with kernel radii
 };
 
 vtkCausticsStraightPhotonPass::vtkCausticsStraightPhotonPass()
@@ -46,8 +45,8 @@ bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& i
     ok = !in.LightBuffers->GetView(light).valid ||
       (s.Emitter->Emit(in.Window, in.LightBuffers, light, in.Geometry, *in.Scene) &&
         this->Transport(in, light) &&
-        s.Splatter->Splat(in.Window, s.Emitter->GetGrid(), s.Hits[0], s.Hits[1], s.Hits[2],
-          in.CameraGBuffer, in.WorldToClip));
+        s.Splatter->Splat(in.Window, s.Emitter->GetGrid(), s.Landed.Records(),
+          s.Landed.KernelRadius(), in.CameraGBuffer, in.WorldToClip));
   }
   return ok;
 }
@@ -56,32 +55,33 @@ bool vtkCausticsStraightPhotonPass::Transport(const FrameInputs& in, int light)
 {
   auto& s = *this->Internal;
   const caustics::PhotonGrid& grid = s.Emitter->GetGrid();
+  const caustics::LightView& view = in.LightBuffers->GetView(light);
   const int n = grid.BranchRows;
   float lightToClip[16];
-  caustics::gl::ToColumnMajor(in.LightBuffers->GetView(light).worldToClip, lightToClip);
+  caustics::gl::ToColumnMajor(view.worldToClip, lightToClip);
   const int receiver = vtkCausticsSceneGeometry::RoleBit(1);
   if (!s.Receivers->Render(in.Window, in.Geometry, lightToClip, n, n, receiver) ||
     !s.Program->Bind(in.Window))
   {
     return false;
   }
-  // Image units 0-4: the photons and the receivers (normals are RGBA16F); 5-7: hits.
-  vtkTextureObject* images[] = { grid.Position, grid.Direction, grid.Flux,
-    s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture(), s.Hits[0], s.Hits[1],
-    s.Hits[2] };
-  for (int i = 0; i < 8; ++i)
+  // Image units 0-4: the photons and the receivers (normals are RGBA16F); 5-8: the
+  // landed photons and their kernel radii.
+  vtkTextureObject* images[] = { grid.Emitted.Position, grid.Emitted.Direction, grid.Emitted.Flux,
+    s.Receivers->GetPositionTexture(), s.Receivers->GetNormalTexture() };
+  for (int i = 0; i < 5; ++i)
   {
-    if (i >= 5)
-    {
-      caustics::gl::EnsureTexture(images[i], in.Window, grid.Width, grid.Height, GL_RGBA32F);
-    }
-    glBindImageTexture(i, images[i]->GetHandle(), 0, GL_FALSE, 0,
-      i < 5 ? GL_READ_ONLY : GL_WRITE_ONLY, i == 4 ? GL_RGBA16F : GL_RGBA32F);
+    glBindImageTexture(
+      i, images[i]->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, i == 4 ? GL_RGBA16F : GL_RGBA32F);
   }
+  s.Landed.EnsureWithRadius(in.Window, grid.Width, grid.Height);
+  s.Landed.BindImages(5, GL_WRITE_ONLY);
+  s.Landed.BindRadiusImage(8, GL_WRITE_ONLY);
   const caustics::Light& source = in.Scene->Lights[light];
   const bool directional = source.type == caustics::Light::Type::Directional;
   const caustics::Vec3& v = directional ? source.direction : source.position;
   const float lightVector[4] = { float(v[0]), float(v[1]), float(v[2]), directional ? 0.f : 1.f };
+  s.Program->SetUniform3f("viewEye", float(view.eye[0]), float(view.eye[1]), float(view.eye[2]));
   s.Program->SetUniform2i("grid", grid.Width, grid.Height);
   s.Program->SetUniformi("resolution", n);
   s.Program->SetUniform4f("light", lightVector);
@@ -99,7 +99,5 @@ void vtkCausticsStraightPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   s.Receivers->ReleaseGraphicsResources(w);
   s.Program->ReleaseGraphicsResources(w);
   s.Splatter->ReleaseGraphicsResources(w);
-  s.Hits[0]->ReleaseGraphicsResources(w);
-  s.Hits[1]->ReleaseGraphicsResources(w);
-  s.Hits[2]->ReleaseGraphicsResources(w);
+  s.Landed.Release(w);
 }

@@ -29,6 +29,17 @@ float CausticsSpotFactor(float cosAngle, float cosOuter, float cosInner)
   return t * t;
 }
 
+// The photon record (caustics::PhotonRecords, vtkCausticsPhotonGrid.h): three
+// RGBA32F planes, one texel per photon of the emitter's grid.
+//              emitted (after the first specular event)   landed on a receiver
+//   position   xyz m; w: 0 none, 1 into air, 2 inside      xyz m; w: path length from the light (m), > 0
+//   direction  xyz unit direction; w: texel measure        xyz receiver normal as modelled; w: |N.D|
+//   flux       rgb W; a: specular events so far (1)        rgb W; a: texel measure
+// The measure is m^2 across a directional light's beam, sr from a point or spot
+// light; a directional light's path length starts at its view's eye plane. The
+// kernel radius (m) a reconstruction gives a landed photon is an R32F texture
+// beside them.
+
 // One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).
 struct CausticsMaterial
 {

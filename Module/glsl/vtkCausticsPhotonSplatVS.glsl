@@ -1,8 +1,10 @@
 // One point sprite per photon hit, sized to cover the photon's kernel disk on
 // the receiver as the target view sees it.
-uniform sampler2D hitPosition; // xyz world, w > 0: a photon landed here
-uniform sampler2D hitNormal;   // xyz receiver normal as modelled, w = kernel radius (m)
-uniform sampler2D hitFlux;     // rgb W
+// The landed photons (the photon record layout of vtkCausticsCommon.glsl).
+uniform sampler2D hitPosition;  // xyz world, w > 0: a photon landed here
+uniform sampler2D hitNormal;    // xyz receiver normal as modelled
+uniform sampler2D hitFlux;      // rgb W
+uniform sampler2D kernelRadius; // r: the kernel's radius (m)
 uniform int hitWidth;
 uniform mat4 worldToClip;
 uniform vec2 viewport;
@@ -31,20 +33,21 @@ void main()
 {
   ivec2 texel = ivec2(gl_VertexID % hitWidth, gl_VertexID / hitWidth);
   vec4 position = texelFetch(hitPosition, texel, 0);
-  vec4 normalRadius = texelFetch(hitNormal, texel, 0);
+  vec3 normal = texelFetch(hitNormal, texel, 0).xyz;
+  float radius = texelFetch(kernelRadius, texel, 0).r;
   vec3 flux = texelFetch(hitFlux, texel, 0).rgb;
   vec4 clip = worldToClip * vec4(position.xyz, 1.0);
   if (position.w <= 0.0 || clip.w <= 0.0 || dot(flux, vec3(1.0)) <= 0.0 ||
-    !(normalRadius.w > 0.0))
+    !(radius > 0.0))
   {
     Discard();
     return;
   }
-  vec3 n = normalize(normalRadius.xyz);
+  vec3 n = normalize(normal);
   vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
   vec3 e1 = normalize(cross(n, helper));
   vec3 e2 = cross(n, e1);
-  float r = normalRadius.w;
+  float r = radius;
   vec2 centre = ToPixels(position.xyz);
   // Projected radius along the two tangents; a tilted disk's ellipse fits in sqrt(2) x max.
   float pixels = max(length(ToPixels(position.xyz + r * e1) - centre),

@@ -117,7 +117,10 @@ float SspHenyeyGreenstein(float cosTheta, float g)
 }
 
 // What a photon carries besides its ray: flux.rgb (W), flux.a = specular events
-// so far; info.x = a stable photon id (deterministic Russian roulette).
+// so far; info.x = a stable photon id (its emitter texel: deterministic Russian
+// roulette, neighbours for the radius rule), info.y = its path length from the
+// light so far (m, float bits), info.z = its emission texel's measure (m^2 or sr,
+// float bits): what a landed photon record holds (vtkCausticsCommon.glsl).
 struct SspPayload
 {
   vec4 flux;

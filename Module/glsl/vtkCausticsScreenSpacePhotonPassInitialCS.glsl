@@ -18,7 +18,7 @@ layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounte
 };
 
 uniform sampler2D emitPosition;  // xyz, w = state (0: no photon)
-uniform sampler2D emitDirection; // xyz unit
+uniform sampler2D emitDirection; // xyz unit, w = the texel's measure (m^2 or sr)
 uniform sampler2D emitFlux;      // rgb W, a = specular events (1)
 uniform sampler2D lightPosition; // light G-buffer: w = material index of the first hit
 uniform ivec2 grid;              // emitter grid: N x N or N x 2N
@@ -26,6 +26,7 @@ uniform int resolution;          // N
 uniform int lightType;           // 0 directional, 1 point, 2 spot
 uniform vec3 lightOrigin;
 uniform vec3 lightDirection;
+uniform vec3 viewEye; // a point of the light view's eye plane (directional lights)
 uniform int mediumOn;
 uniform vec3 sigmaT; // 1/m
 uniform vec3 boundsMin;
@@ -60,8 +61,12 @@ void main()
   float material = texelFetch(lightPosition, ivec2(texel.x, texel.y % resolution), 0).w;
   uint index = atomicAdd(nextCount, 1u);
   nextRays[index].origin = position;
-  nextRays[index].direction = vec4(texelFetch(emitDirection, texel, 0).xyz, material);
+  vec4 direction = texelFetch(emitDirection, texel, 0);
+  nextRays[index].direction = vec4(direction.xyz, material);
   nextPayloads[index].flux = vec4(flux.rgb, 1.0);
-  // Its id is its texel: splats find their neighbours in the grid by it.
-  nextPayloads[index].info = uvec4(uint(texel.y * grid.x + texel.x), 0u, 0u, 0u);
+  // Its id is its texel: splats find their neighbours in the grid by it. Its path
+  // so far runs from the light (a directional light's view's eye plane).
+  float path = lightType == 0 ? dot(p - viewEye, lightDirection) : distance(p, lightOrigin);
+  nextPayloads[index].info = uvec4(
+    uint(texel.y * grid.x + texel.x), floatBitsToUint(path), floatBitsToUint(direction.w), 0u);
 }

@@ -15,8 +15,11 @@
 // branch of the emitter).
 layout(local_size_x = 16, local_size_y = 16) in;
 
+// The landed photons (the photon record layout of vtkCausticsCommon.glsl) and
+// their kernel radii.
 layout(rgba32f, binding = 0) uniform readonly image2D splatPosition;
-layout(rgba32f, binding = 1) uniform image2D splatNormal;
+layout(rgba32f, binding = 1) uniform readonly image2D splatNormal;
+layout(r32f, binding = 3) uniform image2D splatRadius;
 
 uniform ivec2 grid;
 uniform int branchRows; // rows of one emitter branch (N), grid.y when not split
@@ -63,9 +66,8 @@ void main()
   {
     return;
   }
-  vec4 normalRadius = imageLoad(splatNormal, texel);
   vec3 x = position.xyz;
-  vec3 n = normalRadius.xyz;
+  vec3 n = imageLoad(splatNormal, texel).xyz;
   int branch = texel.y / branchRows;
   vec3 ex = Spacing(texel, ivec2(1, 0), branch, x, n);
   vec3 ey = Spacing(texel, ivec2(0, 1), branch, x, n);
@@ -90,6 +92,6 @@ void main()
     }
     spacing = nearest < 3.0e38 ? nearest : 0.0;
   }
-  float radius = max(normalRadius.w, spacings * spacing);
-  imageStore(splatNormal, texel, vec4(n, radius));
+  float radius = max(imageLoad(splatRadius, texel).r, spacings * spacing);
+  imageStore(splatRadius, texel, vec4(radius));
 }

@@ -2,8 +2,8 @@
 // 1. its flux loses what the segment absorbed: Beer-Lambert inside a refractor,
 //    the medium's extinction (within the scene's bounds) in air;
 // 2. on a receiver it ends (caustic shadowing falls out of first-hit termination,
-//    §1.2): a splat record (position, normal + kernel radius, flux) for
-//    vtkCausticsPhotonSplatter at its texel of the emitter grid, if the camera
+//    §1.2): a landed photon record (vtkCausticsCommon.glsl) and its kernel radius
+//    for vtkCausticsPhotonSplatter at its texel of the emitter grid, if the camera
 //    sees the side the photon lit (the radius pass widens the radius later);
 // 3. on a reflector or refractor, below the bounce limit, it is reflected or
 //    refracted with the exact Fresnel weight: conductors scale the flux; at a
@@ -43,6 +43,7 @@ layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounte
 layout(rgba32f, binding = 0) uniform writeonly image2D splatPosition;
 layout(rgba32f, binding = 1) uniform writeonly image2D splatNormal;
 layout(rgba32f, binding = 2) uniform writeonly image2D splatFlux;
+layout(r32f, binding = 3) uniform writeonly image2D splatKernelRadius;
 
 uniform int capacity;
 uniform int gridWidth;
@@ -169,9 +170,10 @@ void main()
     // At the photon's texel of the emitter grid, where its neighbours are found.
     uint id = payload.info.x;
     ivec2 texel = ivec2(int(id % uint(gridWidth)), int(id / uint(gridWidth)));
-    imageStore(splatPosition, texel, vec4(x, 1.0));
-    imageStore(splatNormal, texel, vec4(n, radius));
-    imageStore(splatFlux, texel, vec4(flux, 0.0));
+    imageStore(splatPosition, texel, vec4(x, uintBitsToFloat(payload.info.y) + t));
+    imageStore(splatNormal, texel, vec4(n, abs(dot(n, d))));
+    imageStore(splatFlux, texel, vec4(flux, uintBitsToFloat(payload.info.z)));
+    imageStore(splatKernelRadius, texel, vec4(radius));
     return;
   }
 
@@ -209,5 +211,6 @@ void main()
   nextRays[index].origin = vec4(x, state);
   nextRays[index].direction = vec4(normalize(direction), float(materialIndex));
   nextPayloads[index].flux = vec4(flux, float(events + 1));
-  nextPayloads[index].info = payload.info;
+  nextPayloads[index].info =
+    uvec4(payload.info.x, floatBitsToUint(uintBitsToFloat(payload.info.y) + t), payload.info.zw);
 }

@@ -1,7 +1,8 @@
 // Straight transport (vtkCausticsStraightPhotonPass): a photon that still travels
 // along its light ray lands where that ray meets its first receiver, which the
-// light's receiver-only G-buffer shows in the photon's own texel. Writes the
-// splatter's hit records; photons that turned (or found no receiver) get w = 0.
+// light's receiver-only G-buffer shows in the photon's own texel. Writes the landed
+// photon records (vtkCausticsCommon.glsl) and their kernel radii; photons that
+// turned (or found no receiver) get position.w = 0.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(rgba32f, binding = 0) uniform readonly image2D emitPosition;  // xyz, w = state (0: none)
@@ -12,11 +13,13 @@ layout(rgba16f, binding = 4) uniform readonly image2D receiverNormal;
 uniform ivec2 grid;
 uniform int resolution; // N: rows N..2N-1 are the Fresnel-reflected branch
 uniform vec4 light;     // w = 0: direction of a directional light; w = 1: position
+uniform vec3 viewEye;   // a point of the light view's eye plane (directional lights)
 uniform float spacings;
 
 layout(rgba32f, binding = 5) uniform writeonly image2D outPosition;
 layout(rgba32f, binding = 6) uniform writeonly image2D outNormal;
 layout(rgba32f, binding = 7) uniform writeonly image2D outFlux;
+layout(r32f, binding = 8) uniform writeonly image2D outRadius;
 
 void main()
 {
@@ -40,8 +43,9 @@ void main()
   // distance for point lights), stretched by 1/cos on the receiver.
   float cosine = max(abs(dot(n, ray)), 1e-3);
   float distance = light.w == 0.0 ? 1.0 : length(hit.xyz - light.xyz);
-  float radius = spacings * distance * sqrt(d.w / cosine);
-  imageStore(outPosition, t, vec4(hit.xyz, 1.0));
-  imageStore(outNormal, t, vec4(n, radius));
-  imageStore(outFlux, t, vec4(imageLoad(emitFlux, t).rgb, 0.0));
+  float path = max(light.w == 0.0 ? dot(hit.xyz - viewEye, light.xyz) : distance, 1e-6);
+  imageStore(outPosition, t, vec4(hit.xyz, path));
+  imageStore(outNormal, t, vec4(n, abs(dot(n, ray))));
+  imageStore(outFlux, t, vec4(imageLoad(emitFlux, t).rgb, d.w));
+  imageStore(outRadius, t, vec4(spacings * distance * sqrt(d.w / cosine)));
 }

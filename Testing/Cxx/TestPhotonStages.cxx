@@ -138,19 +138,19 @@ TEST(PhotonSplatter, DepositsEachPhotonsFlux)
   ASSERT_TRUE(view->Render(
     f.GL(), f.Pass->GetGeometry(), matrix, size, size, vtkCausticsSceneGeometry::RoleBit(1)));
 
-  // Three photons on the floor, radius 0.2 m (6.4 pixels).
+  // Three photons landed on the floor (the photon record layout), radius 0.2 m (6.4 pixels).
   const float hits[3][4] = { { 0.0f, 0.0f, 0.0f, 1.0f }, { 1.0f, 0.0f, 1.0f, 1.0f },
     { -2.0f, 0.0f, 0.5f, 1.0f } };
-  const float normals[3][4] = { { 0, 1, 0, 0.2f }, { 0, 1, 0, 0.2f }, { 0, 1, 0, 0.2f } };
+  const float normals[3][4] = { { 0, 1, 0, 1 }, { 0, 1, 0, 1 }, { 0, 1, 0, 1 } };
   const float fluxes[3][4] = { { 1, 2, 3, 0 }, { 0.5f, 0.5f, 0.5f, 0 }, { 2, 1, 0, 0 } };
-  vtkNew<vtkTextureObject> position, normal, flux;
-  for (auto* texture : { position.GetPointer(), normal.GetPointer(), flux.GetPointer() })
-  {
-    caustics::gl::EnsureTexture(texture, f.GL(), 3, 1, GL_RGBA32F);
-  }
-  glTextureSubImage2D(position->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, hits);
-  glTextureSubImage2D(normal->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, normals);
-  glTextureSubImage2D(flux->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, fluxes);
+  const float radii[3] = { 0.2f, 0.2f, 0.2f };
+  caustics::gl::PhotonPlanes landed;
+  landed.EnsureWithRadius(f.GL(), 3, 1);
+  const caustics::PhotonRecords records = landed.Records();
+  glTextureSubImage2D(records.Position->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, hits);
+  glTextureSubImage2D(records.Direction->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, normals);
+  glTextureSubImage2D(records.Flux->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, fluxes);
+  glTextureSubImage2D(landed.KernelRadius()->GetHandle(), 0, 0, 0, 3, 1, GL_RED, GL_FLOAT, radii);
 
   vtkNew<vtkTextureObject> target;
   caustics::gl::EnsureTexture(target, f.GL(), size, size, GL_RGBA32F);
@@ -169,7 +169,7 @@ TEST(PhotonSplatter, DepositsEachPhotonsFlux)
   caustics::PhotonGrid grid; // three hits in one row
   grid.Width = 3;
   grid.Height = grid.BranchRows = 1;
-  ASSERT_TRUE(splatter->Splat(f.GL(), grid, position, normal, flux, view, matrix));
+  ASSERT_TRUE(splatter->Splat(f.GL(), grid, records, landed.KernelRadius(), view, matrix));
   state->PopFramebufferBindings();
 
   auto irradiance = caustics::gl::ReadTexture(target, "E", 4);
@@ -197,10 +197,7 @@ TEST(PhotonSplatter, DepositsEachPhotonsFlux)
     Array(irradiance)->GetComponent(id, 0), 2.0 / (M_PI * 0.04), 0.05 * 2.0 / (M_PI * 0.04));
   splatter->ReleaseGraphicsResources(f.Window);
   view->ReleaseGraphicsResources(f.Window);
-  for (auto* texture :
-    { position.GetPointer(), normal.GetPointer(), flux.GetPointer(), target.GetPointer() })
-  {
-    texture->ReleaseGraphicsResources(f.Window);
-  }
+  landed.Release(f.Window);
+  target->ReleaseGraphicsResources(f.Window);
   framebuffer->ReleaseGraphicsResources(f.Window);
 }
