@@ -8,13 +8,11 @@
  * vtkCausticsCausticMap) take it by const reference when they run, so nothing is
  * copied into them per frame and each knob has one name from the pass to the
  * shaders. Section numbers are those of 001_7c07a484f7a872bb.txt (Wyman 2008).
- *
- * vtkCausticsSettingMacro and vtkCausticsSettingClampMacro are vtkSetMacro /
- * vtkSetClampMacro and vtkGetMacro for a member of such a settings struct, so that
- * a pass keeps VTK's Set/Get API (and its wrapping) over a plain value.
  */
 #ifndef vtkCausticsCausticMapSettings_h
 #define vtkCausticsCausticMapSettings_h
+
+#include "vtkCausticsSettingMacros.h" // For vtkCausticsSettingMacro (used with this struct)
 
 namespace caustics
 {
@@ -64,44 +62,5 @@ struct CausticMapSettings
   }
 };
 }
-
-/** vtkSetMacro + vtkGetMacro for member `name` of the settings struct `settings`. */
-#define vtkCausticsSettingMacro(settings, name, type)                                              \
-  virtual void Set##name(type _arg)                                                                \
-  {                                                                                                \
-    if (this->settings.name != _arg)                                                               \
-    {                                                                                              \
-      this->settings.name = _arg;                                                                  \
-      this->Modified();                                                                            \
-    }                                                                                              \
-  }                                                                                                \
-  virtual type Get##name()                                                                         \
-  {                                                                                                \
-    return this->settings.name;                                                                    \
-  }
-
-/** vtkSetClampMacro + vtkGetMacro for member `name` of the settings struct `settings`. */
-#define vtkCausticsSettingClampMacro(settings, name, type, min, max)                               \
-  virtual void Set##name(type _arg)                                                                \
-  {                                                                                                \
-    const type value = _arg < (min) ? (min) : (_arg > (max) ? (max) : _arg);                       \
-    if (this->settings.name != value)                                                              \
-    {                                                                                              \
-      this->settings.name = value;                                                                 \
-      this->Modified();                                                                            \
-    }                                                                                              \
-  }                                                                                                \
-  virtual type Get##name##MinValue()                                                               \
-  {                                                                                                \
-    return (min);                                                                                  \
-  }                                                                                                \
-  virtual type Get##name##MaxValue()                                                               \
-  {                                                                                                \
-    return (max);                                                                                  \
-  }                                                                                                \
-  virtual type Get##name()                                                                         \
-  {                                                                                                \
-    return this->settings.name;                                                                    \
-  }
 
 #endif

@@ -1,5 +1,7 @@
 #include "vtkCausticsScreenSpaceGodRays.h"
 
+#include "vtkCausticsScreenSpaceSettings.h"
+
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
@@ -138,7 +140,8 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
   return ok;
 }
 
-bool vtkCausticsScreenSpaceGodRays::Finish(vtkOpenGLRenderWindow* renWin, vtkTextureObject* volume)
+bool vtkCausticsScreenSpaceGodRays::Finish(vtkOpenGLRenderWindow* renWin,
+  const caustics::ScreenSpaceSettings& settings, vtkTextureObject* volume)
 {
   auto& in = *this->Internal;
   caustics::gl::EnsureTexture(volume, renWin, in.Width, in.Height, GL_RGBA32F);
@@ -146,8 +149,8 @@ bool vtkCausticsScreenSpaceGodRays::Finish(vtkOpenGLRenderWindow* renWin, vtkTex
   {
     return false;
   }
-  const float sigma = static_cast<float>(this->BlurPixels);
-  const int radius = static_cast<int>(std::ceil(3.0 * this->BlurPixels));
+  const float sigma = static_cast<float>(settings.GodRayBlurPixels);
+  const int radius = static_cast<int>(std::ceil(3.0 * settings.GodRayBlurPixels));
   vtkCausticsShaderProgram* p = in.BlurProgram;
   p->SetUniform2i("size", in.Width, in.Height);
   p->SetUniformf("sigma", sigma);
@@ -189,6 +192,5 @@ void vtkCausticsScreenSpaceGodRays::ReleaseGraphicsResources(vtkWindow* win)
 void vtkCausticsScreenSpaceGodRays::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "BlurPixels: " << this->BlurPixels << "\n";
   os << indent << "Size: " << this->Internal->Width << " x " << this->Internal->Height << "\n";
 }

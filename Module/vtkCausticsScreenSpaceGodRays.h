@@ -14,8 +14,8 @@
  *    W/(m^2 sr), with p the Henyey-Greenstein phase function, s and s' the paths
  *    in the medium along the photon and to the camera, A the pixel's footprint at
  *    the fragment; fragments behind the visible surface are dropped;
- * 3. Finish() blurs the image with a normalized separable Gaussian of
- *    BlurPixels standard deviation (constant screen-space support, as the paper)
+ * 3. Finish() blurs the image with a normalized separable Gaussian of the
+ *    settings' GodRayBlurPixels standard deviation (constant screen-space support, as the paper)
  *    into the pass's volume texture.
  * The medium fills the scene's bounding box and not the refractors, as in the
  * reference renderer (docs/reference.md).
@@ -35,6 +35,7 @@ class vtkWindow;
 namespace caustics
 {
 struct Medium;
+struct ScreenSpaceSettings;
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsScreenSpaceGodRays : public vtkObject
@@ -43,12 +44,6 @@ public:
   static vtkCausticsScreenSpaceGodRays* New();
   vtkTypeMacro(vtkCausticsScreenSpaceGodRays, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /** Standard deviation of the Gaussian blur in pixels; 0 copies. Default 1.5. */
-  vtkSetClampMacro(BlurPixels, double, 0.0, 16.0);
-  vtkGetMacro(BlurPixels, double);
-  ///@}
 
 #ifndef __VTK_WRAP__
   /** The camera and scene the segments are seen in. */
@@ -76,8 +71,12 @@ public:
     unsigned int payloadBuffer, unsigned int lineBuffer, unsigned int hitBuffer,
     unsigned int argumentBuffer);
 
-  /** Blurs the accumulated radiance into `volume` (made RGBA32F of the view's size). */
-  bool Finish(vtkOpenGLRenderWindow* renWin, vtkTextureObject* volume);
+  /**
+   * Blurs the accumulated radiance into `volume` (made RGBA32F of the view's size),
+   * with the settings' GodRayBlurPixels standard deviation (0 copies).
+   */
+  bool Finish(vtkOpenGLRenderWindow* renWin, const caustics::ScreenSpaceSettings& settings,
+    vtkTextureObject* volume);
 #endif
 
   void ReleaseGraphicsResources(vtkWindow* win);
@@ -85,8 +84,6 @@ public:
 protected:
   vtkCausticsScreenSpaceGodRays();
   ~vtkCausticsScreenSpaceGodRays() override;
-
-  double BlurPixels = 1.5;
 
 private:
   vtkCausticsScreenSpaceGodRays(const vtkCausticsScreenSpaceGodRays&) = delete;

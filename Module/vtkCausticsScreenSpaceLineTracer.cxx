@@ -1,5 +1,7 @@
 #include "vtkCausticsScreenSpaceLineTracer.h"
 
+#include "vtkCausticsScreenSpaceSettings.h"
+
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -270,8 +272,9 @@ void vtkCausticsScreenSpaceLineTracer::SetTimings(vtkCausticsTimings* timings)
   this->Internal->Timings = timings;
 }
 
-bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, const View& view,
-  unsigned int rayBuffer, unsigned int counterBuffer, int capacity, const std::string& stagePrefix)
+bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin,
+  const caustics::ScreenSpaceSettings& settings, const View& view, unsigned int rayBuffer,
+  unsigned int counterBuffer, int capacity, const std::string& stagePrefix)
 {
   auto& in = *this->Internal;
   vtkCausticsLayeredDepth* layers = view.Layers;
@@ -287,12 +290,12 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin, cons
   batch.Capacity = capacity;
   batch.Width = layers->GetWidth();
   batch.Height = layers->GetHeight();
-  batch.RowWidth = std::max(std::max(batch.Width, batch.Height), this->MinimumLineLength) + 1;
-  batch.Rows = std::max(1, std::min(this->RowsPerBatch, caustics::ssp::MaxTextureSize()));
+  batch.RowWidth = std::max(std::max(batch.Width, batch.Height), settings.MinimumLineLength) + 1;
+  batch.Rows = std::max(1, std::min(settings.RowsPerBatch, caustics::ssp::MaxTextureSize()));
   batch.Batches = capacity > 0 ? (capacity + batch.Rows - 1) / batch.Rows : 0;
-  batch.Tolerance = static_cast<float>(this->Tolerance);
+  batch.Tolerance = static_cast<float>(view.Tolerance);
   batch.PixelScale = caustics::ssp::PixelScale(view.WorldToClip, batch.Width, batch.Height);
-  batch.MinimumLength = static_cast<float>(this->MinimumLineLength);
+  batch.MinimumLength = static_cast<float>(settings.MinimumLineLength);
   in.Allocate(batch);
   if (capacity == 0)
   {
@@ -383,8 +386,5 @@ void vtkCausticsScreenSpaceLineTracer::ReleaseGraphicsResources(vtkWindow* win)
 void vtkCausticsScreenSpaceLineTracer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Tolerance: " << this->Tolerance << " m\n";
-  os << indent << "MinimumLineLength: " << this->MinimumLineLength << " fragments\n";
-  os << indent << "RowsPerBatch: " << this->RowsPerBatch << "\n";
   os << indent << "Batches (last trace): " << this->Internal->Batches << "\n";
 }

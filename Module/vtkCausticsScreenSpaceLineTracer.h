@@ -40,6 +40,11 @@
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
+namespace caustics
+{
+struct ScreenSpaceSettings;
+}
+
 class vtkCausticsLayeredDepth;
 class vtkCausticsTimings;
 class vtkOpenGLRenderWindow;
@@ -52,32 +57,6 @@ public:
   vtkTypeMacro(vtkCausticsScreenSpaceLineTracer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /**
-   * World-space intersection tolerance in metres: how far beyond a fragment's
-   * step of the ray a surface may lie and still be hit (the paper's epsilon, §5).
-   * Default 0.01.
-   */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0e6);
-  vtkGetMacro(Tolerance, double);
-  ///@}
-
-  ///@{
-  /** Fewest fragments per line, for rays almost parallel to the view (§2.1). Default 8. */
-  vtkSetClampMacro(MinimumLineLength, int, 1, 256);
-  vtkGetMacro(MinimumLineLength, int);
-  ///@}
-
-  ///@{
-  /**
-   * Rows of the offscreen target: rays traced per batch (§2.1: "if the number of
-   * rows in the render target is less than the number of photons, the process is
-   * repeated"). Capped by the GPU's largest texture. Default 8192.
-   */
-  vtkSetClampMacro(RowsPerBatch, int, 16, 16384);
-  vtkGetMacro(RowsPerBatch, int);
-  ///@}
-
   /** Timings to report the stages to (see Trace()), or nullptr. Not owned. */
   void SetTimings(vtkCausticsTimings* timings);
 
@@ -89,16 +68,27 @@ public:
     const float* WorldToClip = nullptr;      ///< column-major, the LDI's
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 }; ///< scene bounds (m): rays are clipped to them
     double ViewOrigin[4] = { 0, 0, 0, 1 };   ///< eye (w = 1) or view direction (w = 0)
+    /**
+     * World-space intersection tolerance (m): how far beyond a fragment's step of
+     * the ray a surface may lie and still be hit (the paper's epsilon, §5); the
+     * settings' Tolerance() for the scene.
+     */
+    double Tolerance = 0.01;
   };
 
   /**
    * Traces up to `capacity` rays of `rayBuffer` (count in the first uint of
-   * `counterBuffer`), naming the timed stages "<stagePrefix>line setup" and
+   * `counterBuffer`) in batches of the settings' RowsPerBatch rays (§2.1: "if the
+   * number of rows in the render target is less than the number of photons, the
+   * process is repeated"; capped by the GPU's largest texture), each line at least
+   * MinimumLineLength fragments long (rays almost parallel to the view), naming the timed stages
+   * "<stagePrefix>line setup" and
    * "<stagePrefix>line tracing" (rasterization and first-hit reduction). The hits
    * are in GetHitBuffer() afterwards. Returns false on a GL or program failure.
    */
-  bool Trace(vtkOpenGLRenderWindow* renWin, const View& view, unsigned int rayBuffer,
-    unsigned int counterBuffer, int capacity, const std::string& stagePrefix);
+  bool Trace(vtkOpenGLRenderWindow* renWin, const caustics::ScreenSpaceSettings& settings,
+    const View& view, unsigned int rayBuffer, unsigned int counterBuffer, int capacity,
+    const std::string& stagePrefix);
 #endif
 
   /** Hits of the last Trace() (SspHit per ray). */
@@ -118,10 +108,6 @@ public:
 protected:
   vtkCausticsScreenSpaceLineTracer();
   ~vtkCausticsScreenSpaceLineTracer() override;
-
-  double Tolerance = 0.01;
-  int MinimumLineLength = 8;
-  int RowsPerBatch = 8192;
 
 private:
   vtkCausticsScreenSpaceLineTracer(const vtkCausticsScreenSpaceLineTracer&) = delete;

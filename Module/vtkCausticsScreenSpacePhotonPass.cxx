@@ -186,7 +186,7 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsScreenSpacePhotonPass::GetCaustic
   CausticNeeds needs;
   needs.LitSpecular = true;
   // Traces find specular actors only in the layered depth image of the view.
-  needs.SpecularInView = this->SkipOffscreenSpecular;
+  needs.SpecularInView = this->Settings.SkipOffscreenSpecular;
   return needs;
 }
 
@@ -195,16 +195,16 @@ bool vtkCausticsScreenSpacePhotonPass::RenderLayers(vtkOpenGLRenderWindow* renWi
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const caustics::SceneData& scene = *f.Scene;
-  in.SceneLayers->SetMaximumNumberOfLayers(this->MaximumNumberOfLayers);
-  in.SceneLayers->SetPerObject(this->PerObjectLayers);
+  in.SceneLayers->SetMaximumNumberOfLayers(this->Settings.MaximumNumberOfLayers);
+  in.SceneLayers->SetPerObject(this->Settings.PerObjectLayers);
   in.SceneLayers->SetTimings(this->GetTimings(), "ssp layers ");
   in.HasLayers =
     in.SceneLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
   in.HasRefractorLayers = false;
-  if (in.HasLayers && this->RefractionTracing &&
+  if (in.HasLayers && this->Settings.RefractionTracing &&
     f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) > 0)
   {
-    in.RefractorLayers->SetMaximumNumberOfLayers(this->MaximumNumberOfLayers);
+    in.RefractorLayers->SetMaximumNumberOfLayers(this->Settings.MaximumNumberOfLayers);
     in.RefractorLayers->SetTimings(this->GetTimings(), "ssp refractor layers ");
     in.HasRefractorLayers =
       in.RefractorLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
@@ -280,8 +280,9 @@ bool vtkCausticsScreenSpacePhotonPass::TracePhotons(
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const int c = in.Current;
-  return in.Tracer->Trace(renWin, in.View, in.Rays[c].Handle(), in.Counters[c].Handle(),
-    in.Capacity, in.Prefix(light, f.LightBuffers->GetNumberOfLights(), bounce));
+  return in.Tracer->Trace(renWin, this->Settings, in.View, in.Rays[c].Handle(),
+    in.Counters[c].Handle(), in.Capacity,
+    in.Prefix(light, f.LightBuffers->GetNumberOfLights(), bounce));
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
@@ -312,7 +313,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   const caustics::Medium& medium = scene.Participating;
   p->SetUniformi("capacity", in.Capacity);
   p->SetUniformi("gridWidth", in.Emitter->GetGrid().Width);
-  p->SetUniformi("maxEvents", this->MaximumBounces);
+  p->SetUniformi("maxEvents", this->Settings.MaximumBounces);
   p->SetUniformMatrix4("worldToClip", f.WorldToClip);
   p->SetUniformMatrix4("clipToWorld", in.ClipToWorld);
   p->SetUniform2f("viewport", static_cast<float>(f.Width), static_cast<float>(f.Height));
@@ -320,8 +321,8 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
     static_cast<float>(in.View.ViewOrigin[1]), static_cast<float>(in.View.ViewOrigin[2]),
     static_cast<float>(in.View.ViewOrigin[3]) };
   p->SetUniform4f("viewOrigin", origin);
-  p->SetUniformf("splatRadius", static_cast<float>(this->SplatRadius));
-  p->SetUniformf("splatRadiusPixels", static_cast<float>(this->SplatRadiusPixels));
+  p->SetUniformf("splatRadius", static_cast<float>(this->Settings.SplatRadius));
+  p->SetUniformf("splatRadiusPixels", static_cast<float>(this->Settings.SplatRadiusPixels));
   p->SetUniformi("mediumOn", medium.enabled ? 1 : 0);
   p->SetUniform3f("sigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
     static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
@@ -351,7 +352,7 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
   auto& in = *this->Internal;
   const caustics::PhotonGrid& grid = in.Emitter->GetGrid();
   // Radii from the neighbours' spacing (see glsl/vtkCausticsScreenSpacePhotonPassRadiusCS.glsl).
-  if (this->SplatRadius <= 0.0 && this->SplatRadiusSpacings > 0.0)
+  if (this->Settings.SplatRadius <= 0.0 && this->Settings.SplatRadiusSpacings > 0.0)
   {
     vtkCausticsShaderProgram* p = in.RadiusProgram;
     if (!p->Bind(renWin))
@@ -362,7 +363,7 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     in.Landed.BindRadiusImage(3, GL_READ_WRITE);
     p->SetUniform2i("grid", grid.Width, grid.Height);
     p->SetUniformi("branchRows", grid.BranchRows);
-    p->SetUniformf("spacings", static_cast<float>(this->SplatRadiusSpacings));
+    p->SetUniformf("spacings", static_cast<float>(this->Settings.SplatRadiusSpacings));
     p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
@@ -425,14 +426,9 @@ void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
     std::copy(camera.position.begin(), camera.position.end(), in.View.ViewOrigin);
     in.View.ViewOrigin[3] = 1.0;
   }
-  this->LastTolerance = this->IntersectionTolerance > 0.0
-    ? this->IntersectionTolerance
-    : this->RelativeIntersectionTolerance * scene.Scale();
-  in.Tracer->SetTolerance(this->LastTolerance);
-  in.Tracer->SetMinimumLineLength(this->MinimumLineLength);
-  in.Tracer->SetRowsPerBatch(this->RowsPerBatch);
+  this->LastTolerance = this->Settings.Tolerance(scene.Scale());
+  in.View.Tolerance = this->LastTolerance;
   in.Tracer->SetTimings(this->GetTimings());
-  in.GodRays->SetBlurPixels(this->GodRayBlurPixels);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TraceLight(const FrameInputs& f, int light, bool godRays)
@@ -444,7 +440,7 @@ bool vtkCausticsScreenSpacePhotonPass::TraceLight(const FrameInputs& f, int ligh
   this->StartStage((prefix + "emission").c_str());
   bool ok = this->EmitPhotons(renWin, light);
   this->StopStage((prefix + "emission").c_str());
-  for (int bounce = 1; ok && bounce <= this->MaximumBounces; ++bounce)
+  for (int bounce = 1; ok && bounce <= this->Settings.MaximumBounces; ++bounce)
   {
     const std::string stage = in.Prefix(light, lights, bounce);
     ok = this->TracePhotons(renWin, light, bounce);
@@ -479,7 +475,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
     return false;
   }
   const caustics::Medium& medium = scene.Participating;
-  in.GodRaysOn = this->GodRays && medium.enabled &&
+  in.GodRaysOn = this->Settings.GodRays && medium.enabled &&
     (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
   if (in.GodRaysOn)
   {
@@ -508,7 +504,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderVolumeRadiance(
     return false;
   }
   this->StartStage("ssp god-ray blur");
-  const bool ok = this->Internal->GodRays->Finish(f.Window, target);
+  const bool ok = this->Internal->GodRays->Finish(f.Window, this->Settings, target);
   this->StopStage("ssp god-ray blur");
   return ok;
 }
@@ -517,7 +513,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(
   const FrameInputs& f, vtkTextureObject* target)
 {
   auto& in = *this->Internal;
-  if (!this->RefractionTracing || !in.HasRefractorLayers)
+  if (!this->Settings.RefractionTracing || !in.HasRefractorLayers)
   {
     return false;
   }
@@ -540,7 +536,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
   inputs.Tolerance = this->LastTolerance;
-  in.Refraction->SetMaximumEvents(std::max(2, this->MaximumBounces + 1));
+  in.Refraction->SetMaximumEvents(std::max(2, this->Settings.MaximumBounces + 1));
   const bool ok = in.Refraction->Render(f.Window, inputs, target);
   this->StopStage("ssp refraction tracing");
   return ok;
@@ -592,8 +588,8 @@ bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* 
   p->Unbind(renWin);
   const bool timed = this->GetTimings()->GetEnabled();
   this->GetTimings()->EnabledOff();
-  const bool ok = in.Tracer->Trace(
-    renWin, in.View, in.Rays[0].Handle(), in.Counters[0].Handle(), count, "ssp shadow ");
+  const bool ok = in.Tracer->Trace(renWin, this->Settings, in.View, in.Rays[0].Handle(),
+    in.Counters[0].Handle(), count, "ssp shadow ");
   this->GetTimings()->SetEnabled(timed);
   if (!ok)
   {
@@ -636,21 +632,22 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
 void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "MaximumNumberOfLayers: " << this->MaximumNumberOfLayers << "\n";
-  os << indent << "PerObjectLayers: " << this->PerObjectLayers << "\n";
-  os << indent << "MaximumBounces: " << this->MaximumBounces << "\n";
-  os << indent << "IntersectionTolerance: " << this->IntersectionTolerance << " m (0: relative)\n";
-  os << indent << "RelativeIntersectionTolerance: " << this->RelativeIntersectionTolerance
+  os << indent << "MaximumNumberOfLayers: " << this->Settings.MaximumNumberOfLayers << "\n";
+  os << indent << "PerObjectLayers: " << this->Settings.PerObjectLayers << "\n";
+  os << indent << "MaximumBounces: " << this->Settings.MaximumBounces << "\n";
+  os << indent << "IntersectionTolerance: " << this->Settings.IntersectionTolerance
+     << " m (0: relative)\n";
+  os << indent << "RelativeIntersectionTolerance: " << this->Settings.RelativeIntersectionTolerance
      << " of the scene's diagonal\n";
   os << indent << "LastTolerance: " << this->LastTolerance << " m\n";
-  os << indent << "MinimumLineLength: " << this->MinimumLineLength << " fragments\n";
-  os << indent << "RowsPerBatch: " << this->RowsPerBatch << "\n";
-  os << indent << "SplatRadius: " << this->SplatRadius << " m (0: in pixel footprints)\n";
-  os << indent << "SplatRadiusPixels: " << this->SplatRadiusPixels << "\n";
-  os << indent << "SplatRadiusSpacings: " << this->SplatRadiusSpacings << "\n";
-  os << indent << "GodRays: " << this->GodRays << "\n";
-  os << indent << "GodRayBlurPixels: " << this->GodRayBlurPixels << "\n";
-  os << indent << "RefractionTracing: " << this->RefractionTracing << "\n";
-  os << indent << "SkipOffscreenSpecular: " << this->SkipOffscreenSpecular << "\n";
+  os << indent << "MinimumLineLength: " << this->Settings.MinimumLineLength << " fragments\n";
+  os << indent << "RowsPerBatch: " << this->Settings.RowsPerBatch << "\n";
+  os << indent << "SplatRadius: " << this->Settings.SplatRadius << " m (0: in pixel footprints)\n";
+  os << indent << "SplatRadiusPixels: " << this->Settings.SplatRadiusPixels << "\n";
+  os << indent << "SplatRadiusSpacings: " << this->Settings.SplatRadiusSpacings << "\n";
+  os << indent << "GodRays: " << this->Settings.GodRays << "\n";
+  os << indent << "GodRayBlurPixels: " << this->Settings.GodRayBlurPixels << "\n";
+  os << indent << "RefractionTracing: " << this->Settings.RefractionTracing << "\n";
+  os << indent << "SkipOffscreenSpecular: " << this->Settings.SkipOffscreenSpecular << "\n";
   os << indent << "Photon capacity (last frame): " << this->Internal->Capacity << "\n";
 }

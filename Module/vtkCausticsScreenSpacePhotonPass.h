@@ -42,7 +42,8 @@
 #define vtkCausticsScreenSpacePhotonPass_h
 
 #include "vtkCausticsRenderPass.h"
-#include "vtkRenderingCausticsModule.h" // For export macro
+#include "vtkCausticsScreenSpaceSettings.h" // For caustics::ScreenSpaceSettings
+#include "vtkRenderingCausticsModule.h"     // For export macro
 
 #include <memory> // For std::unique_ptr
 
@@ -64,21 +65,18 @@ public:
 
   ///@{
   /** Most depth layers peeled from the camera, in [1, 16]. Default 8 (§2.2). */
-  vtkSetClampMacro(MaximumNumberOfLayers, int, 1, 16);
-  vtkGetMacro(MaximumNumberOfLayers, int);
+  vtkCausticsSettingClampMacro(Settings, MaximumNumberOfLayers, int, 1, 16);
   ///@}
 
   ///@{
   /** One layered depth image per object instead of one for the scene (§2.2). Default off. */
-  vtkSetMacro(PerObjectLayers, bool);
-  vtkGetMacro(PerObjectLayers, bool);
+  vtkCausticsSettingMacro(Settings, PerObjectLayers, bool);
   vtkBooleanMacro(PerObjectLayers, bool);
   ///@}
 
   ///@{
   /** Most specular events (reflections, refractions) of a photon path, in [1, 8]. Default 3. */
-  vtkSetClampMacro(MaximumBounces, int, 1, 8);
-  vtkGetMacro(MaximumBounces, int);
+  vtkCausticsSettingClampMacro(Settings, MaximumBounces, int, 1, 8);
   ///@}
 
   ///@{
@@ -86,26 +84,22 @@ public:
    * Intersection tolerance in metres (the paper's world-space epsilon, §5); 0 uses
    * RelativeIntersectionTolerance x the scene's diagonal. Default 0.
    */
-  vtkSetClampMacro(IntersectionTolerance, double, 0.0, 1.0e6);
-  vtkGetMacro(IntersectionTolerance, double);
+  vtkCausticsSettingClampMacro(Settings, IntersectionTolerance, double, 0.0, 1.0e6);
   ///@}
 
   ///@{
   /** Intersection tolerance as a fraction of the scene's diagonal. Default 0.001. */
-  vtkSetClampMacro(RelativeIntersectionTolerance, double, 1.0e-6, 0.1);
-  vtkGetMacro(RelativeIntersectionTolerance, double);
+  vtkCausticsSettingClampMacro(Settings, RelativeIntersectionTolerance, double, 1.0e-6, 0.1);
   ///@}
 
   ///@{
   /** Fewest fragments per traced line (§2.1). Default 8. */
-  vtkSetClampMacro(MinimumLineLength, int, 1, 256);
-  vtkGetMacro(MinimumLineLength, int);
+  vtkCausticsSettingClampMacro(Settings, MinimumLineLength, int, 1, 256);
   ///@}
 
   ///@{
   /** Rows of the line-tracing target: photons per batch (§2.1). Default 8192. */
-  vtkSetClampMacro(RowsPerBatch, int, 16, 16384);
-  vtkGetMacro(RowsPerBatch, int);
+  vtkCausticsSettingClampMacro(Settings, RowsPerBatch, int, 16, 16384);
   ///@}
 
   ///@{
@@ -113,14 +107,12 @@ public:
    * Splat kernel radius in metres; 0 (default) uses SplatRadiusPixels pixel
    * footprints on the receiver, the reference renderer's rule.
    */
-  vtkSetClampMacro(SplatRadius, double, 0.0, 1.0e6);
-  vtkGetMacro(SplatRadius, double);
+  vtkCausticsSettingClampMacro(Settings, SplatRadius, double, 0.0, 1.0e6);
   ///@}
 
   ///@{
   /** Splat kernel radius in pixel footprints when SplatRadius is 0. Default 2. */
-  vtkSetClampMacro(SplatRadiusPixels, double, 0.5, 64.0);
-  vtkGetMacro(SplatRadiusPixels, double);
+  vtkCausticsSettingClampMacro(Settings, SplatRadiusPixels, double, 0.5, 64.0);
   ///@}
 
   ///@{
@@ -130,14 +122,12 @@ public:
    * same bounce, so that sparse photons do not print the grid (0: pixel rule only).
    * Default 2.
    */
-  vtkSetClampMacro(SplatRadiusSpacings, double, 0.0, 16.0);
-  vtkGetMacro(SplatRadiusSpacings, double);
+  vtkCausticsSettingClampMacro(Settings, SplatRadiusSpacings, double, 0.0, 16.0);
   ///@}
 
   ///@{
   /** Draw god-rays when the renderer has a scattering medium (§3.2). Default on. */
-  vtkSetMacro(GodRays, bool);
-  vtkGetMacro(GodRays, bool);
+  vtkCausticsSettingMacro(Settings, GodRays, bool);
   vtkBooleanMacro(GodRays, bool);
   ///@}
 
@@ -146,14 +136,12 @@ public:
    * Standard deviation of the god-rays' Gaussian blur in pixels (§3.2: constant
    * screen-space support); 0 turns the blur off. Default 1.5.
    */
-  vtkSetClampMacro(GodRayBlurPixels, double, 0.0, 16.0);
-  vtkGetMacro(GodRayBlurPixels, double);
+  vtkCausticsSettingClampMacro(Settings, GodRayBlurPixels, double, 0.0, 16.0);
   ///@}
 
   ///@{
   /** Trace the refraction of viewing rays through refractors (§4). Default on. */
-  vtkSetMacro(RefractionTracing, bool);
-  vtkGetMacro(RefractionTracing, bool);
+  vtkCausticsSettingMacro(Settings, RefractionTracing, bool);
   vtkBooleanMacro(RefractionTracing, bool);
   ///@}
 
@@ -164,8 +152,7 @@ public:
    * depth image). Off, specular actors outside the view still send their first
    * bounce from the light buffers. Default on.
    */
-  vtkSetMacro(SkipOffscreenSpecular, bool);
-  vtkGetMacro(SkipOffscreenSpecular, bool);
+  vtkCausticsSettingMacro(Settings, SkipOffscreenSpecular, bool);
   vtkBooleanMacro(SkipOffscreenSpecular, bool);
   ///@}
 
@@ -215,20 +202,7 @@ protected:
   bool SplatPhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);
   bool DrawGodRays(vtkOpenGLRenderWindow* renWin, int light, int bounce);
 
-  int MaximumNumberOfLayers = 8;
-  bool PerObjectLayers = false;
-  int MaximumBounces = 3;
-  double IntersectionTolerance = 0.0;
-  double RelativeIntersectionTolerance = 0.001;
-  int MinimumLineLength = 8;
-  int RowsPerBatch = 8192;
-  double SplatRadius = 0.0;
-  double SplatRadiusPixels = 2.0;
-  double SplatRadiusSpacings = 2.0;
-  bool GodRays = true;
-  double GodRayBlurPixels = 1.5;
-  bool RefractionTracing = true;
-  bool SkipOffscreenSpecular = true;
+  caustics::ScreenSpaceSettings Settings;
   double LastTolerance = 0.0;
 
 private:
