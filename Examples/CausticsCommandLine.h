@@ -1,16 +1,21 @@
 // The command-line conventions the caustics programs share (caustics-render,
 // caustics-bench, caustics-ceilings): options declared with their handler on top
 // of vtksys::CommandLineArguments, the number parsers with their one-line errors,
-// and the error kinds that main() turns into exit codes (2 for bad arguments, 3
-// when no OpenGL window can be made, 1 for anything else).
+// VTK's messages kept to one line, and RunMain(), which turns the error kinds into
+// one line on stderr and the exit codes (2 for bad arguments, 3 when no OpenGL
+// window can be made, 1 for anything else).
 #ifndef CausticsCommandLine_h
 #define CausticsCommandLine_h
 
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtksys/CommandLineArguments.hxx"
 
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <iostream>
 #include <list>
 #include <sstream>
 #include <stdexcept>
@@ -164,6 +169,103 @@ private:
   std::list<Option> Options; // a list: each option's address is its callback's data
   std::string Error;
 };
+/**
+ * VTK's messages, kept to one line each: errors are remembered (what failed names
+ * the first one), warnings are printed as "PROGRAM: warning: ...".
+ */
+class OneLineOutputWindow : public vtkOutputWindow
+{
+public:
+  static OneLineOutputWindow* New() { return new OneLineOutputWindow; }
+  void DisplayErrorText(const char* text) override
+  {
+    if (this->FirstError.empty())
+    {
+      this->FirstError = LastLine(text);
+    }
+  }
+  void DisplayWarningText(const char* text) override
+  {
+    std::cerr << this->Program << ": warning: " << LastLine(text) << "\n";
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+  void DisplayText(const char* text) override { std::cerr << text; }
+  /** The first error since the last call, cleared. */
+  std::string TakeError()
+  {
+    std::string error;
+    error.swap(this->FirstError);
+    return error;
+  }
+  std::string Program = "caustics";
+
+private:
+  /** VTK formats "ERROR: In file, line N\nvtkClass (0x...): message\n\n": keep the message. */
+  static std::string LastLine(const char* text)
+  {
+    std::string message = text ? text : "";
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+    {
+      message.pop_back();
+    }
+    const auto newline = message.rfind('\n');
+    message = newline == std::string::npos ? message : message.substr(newline + 1);
+    const auto colon = message.find("): ");
+    return colon == std::string::npos ? message : message.substr(colon + 3);
+  }
+  std::string FirstError;
+};
+
+/** Whether a VTK error that the program's body did not turn into an exception fails it. */
+enum class LoggedErrors
+{
+  Fail,    ///< the run fails (exit code 1) naming the first one
+  Remember ///< the body takes them (TakeError) where it can tell what they broke
+};
+
+/**
+ * The main() of a caustics program: installs a OneLineOutputWindow (VTK 9.1 also
+ * logs every error through loguru on stderr, which is silenced: one line is
+ * enough), runs `body`, and maps what it throws to one line "PROGRAM: error: ..."
+ * and an exit code: UsageError 2, NoWindowError 3, anything else 1, naming the
+ * first VTK error seen when there was one (usually the cause of what failed later).
+ */
+inline int RunMain(const char* program, LoggedErrors logged,
+  const std::function<int(OneLineOutputWindow* messages)>& body)
+{
+  vtkNew<OneLineOutputWindow> messages;
+  messages->Program = program;
+  vtkOutputWindow::SetInstance(messages);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  try
+  {
+    const int status = body(messages);
+    const std::string error = logged == LoggedErrors::Fail ? messages->TakeError() : "";
+    if (!error.empty())
+    {
+      throw std::runtime_error(error);
+    }
+    return status;
+  }
+  catch (const UsageError& e)
+  {
+    std::cerr << program << ": error: " << e.what() << "\n";
+    return 2;
+  }
+  catch (const NoWindowError& e)
+  {
+    std::cerr << program << ": error: " << e.what() << "\n";
+    return 3;
+  }
+  catch (const std::exception& e)
+  {
+    const std::string cause = messages->TakeError();
+    std::cerr << program
+              << ": error: " << (cause.empty() || cause == e.what() ? std::string(e.what()) : cause)
+              << "\n";
+    return 1;
+  }
+}
 }
 
 #endif

@@ -714,52 +714,7 @@ struct Row
   bool IsReference() const { return this->Technique == "reference"; }
 };
 
-/**
- * VTK's messages, kept to one line each: errors are remembered (the configuration
- * being measured then fails, naming the first one), warnings are printed as
- * "caustics-bench: warning: ...".
- */
-class OneLineOutputWindow : public vtkOutputWindow
-{
-public:
-  static OneLineOutputWindow* New() { return new OneLineOutputWindow; }
-  void DisplayErrorText(const char* text) override
-  {
-    if (this->FirstError.empty())
-    {
-      this->FirstError = LastLine(text);
-    }
-  }
-  void DisplayWarningText(const char* text) override
-  {
-    std::cerr << "caustics-bench: warning: " << LastLine(text) << "\n";
-  }
-  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
-  void DisplayText(const char* text) override { std::cerr << text; }
-  /** The first error since the last call, cleared. */
-  std::string TakeError()
-  {
-    std::string error;
-    error.swap(this->FirstError);
-    return error;
-  }
-
-private:
-  /** VTK formats "ERROR: In file, line N\nvtkClass (0x...): message\n\n": keep the message. */
-  static std::string LastLine(const char* text)
-  {
-    std::string message = text ? text : "";
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-    {
-      message.pop_back();
-    }
-    const auto newline = message.rfind('\n');
-    message = newline == std::string::npos ? message : message.substr(newline + 1);
-    const auto colon = message.find("): ");
-    return colon == std::string::npos ? message : message.substr(colon + 3);
-  }
-  std::string FirstError;
-};
+using caustics_cli::OneLineOutputWindow;
 
 /** Error of `test`'s CausticIrradiance against the reference image, on its receiver pixels. */
 vtkCausticsErrorMetrics::Result CompareWithReference(vtkImageData* test, vtkImageData* truth)
@@ -1735,36 +1690,16 @@ int Run(const Options& options, OneLineOutputWindow* messages)
 
 int main(int argc, char* argv[])
 {
-  vtkNew<OneLineOutputWindow> messages;
-  vtkOutputWindow::SetInstance(messages);
-  // VTK 9.1 also logs every error through loguru on stderr: one line is enough.
-  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  try
-  {
-    const Options options = Parse(argc, argv);
-    if (options.Help)
+  // Errors are taken per configuration: the one they broke fails, naming the first.
+  return caustics_cli::RunMain("caustics-bench", caustics_cli::LoggedErrors::Remember,
+    [&](OneLineOutputWindow* messages)
     {
-      std::cout << Usage;
-      return 0;
-    }
-    return Run(options, messages);
-  }
-  catch (const UsageError& e)
-  {
-    std::cerr << "caustics-bench: error: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const NoWindowError& e)
-  {
-    std::cerr << "caustics-bench: error: " << e.what() << "\n";
-    return 3;
-  }
-  catch (const std::exception& e)
-  {
-    // A VTK error seen first is usually the cause of what failed later.
-    const std::string cause = messages->TakeError();
-    std::cerr << "caustics-bench: error: "
-              << (cause.empty() || cause == e.what() ? std::string(e.what()) : cause) << "\n";
-    return 1;
-  }
+      const Options options = Parse(argc, argv);
+      if (options.Help)
+      {
+        std::cout << Usage;
+        return 0;
+      }
+      return Run(options, messages);
+    });
 }

@@ -495,30 +495,15 @@ int Run(const Options& options)
 
 int main(int argc, char* argv[])
 {
-  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  try
-  {
-    const Options options = Parse(argc, argv);
-    if (options.Help)
+  return caustics_cli::RunMain("caustics-ceilings", caustics_cli::LoggedErrors::Fail,
+    [&](caustics_cli::OneLineOutputWindow*)
     {
-      std::cout << Usage;
-      return 0;
-    }
-    return Run(options);
-  }
-  catch (const UsageError& e)
-  {
-    std::cerr << "caustics-ceilings: error: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const NoWindowError& e)
-  {
-    std::cerr << "caustics-ceilings: error: " << e.what() << "\n";
-    return 3;
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "caustics-ceilings: error: " << e.what() << "\n";
-    return 1;
-  }
+      const Options options = Parse(argc, argv);
+      if (options.Help)
+      {
+        std::cout << Usage;
+        return 0;
+      }
+      return Run(options);
+    });
 }

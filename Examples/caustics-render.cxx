@@ -589,40 +589,6 @@ double Median(std::vector<double> values)
  * VTK's messages, kept to one line each: errors are remembered (the run then fails
  * naming the first one), warnings are printed as "caustics-render: warning: ...".
  */
-class OneLineOutputWindow : public vtkOutputWindow
-{
-public:
-  static OneLineOutputWindow* New() { return new OneLineOutputWindow; }
-  void DisplayErrorText(const char* text) override
-  {
-    if (this->FirstError.empty())
-    {
-      this->FirstError = LastLine(text);
-    }
-  }
-  void DisplayWarningText(const char* text) override
-  {
-    std::cerr << "caustics-render: warning: " << LastLine(text) << "\n";
-  }
-  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
-  void DisplayText(const char* text) override { std::cerr << text; }
-  std::string FirstError;
-
-private:
-  /** VTK formats "ERROR: In file, line N\nvtkClass (0x...): message\n\n": keep the message. */
-  static std::string LastLine(const char* text)
-  {
-    std::string message = text ? text : "";
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-    {
-      message.pop_back();
-    }
-    const auto newline = message.rfind('\n');
-    message = newline == std::string::npos ? message : message.substr(newline + 1);
-    const auto colon = message.find("): ");
-    return colon == std::string::npos ? message : message.substr(colon + 3);
-  }
-};
 
 /** Each stage's GPU and CPU times over the frames, in the order the stages first ran. */
 struct StageTimes
@@ -806,42 +772,16 @@ std::string UsageText()
 
 int main(int argc, char* argv[])
 {
-  vtkNew<OneLineOutputWindow> messages;
-  vtkOutputWindow::SetInstance(messages);
-  // VTK 9.1 also logs every error through loguru on stderr: one line is enough.
-  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  try
-  {
-    bool help = false;
-    const Options options = Parse(argc, argv, help);
-    if (help)
+  return caustics_cli::RunMain("caustics-render", caustics_cli::LoggedErrors::Fail,
+    [&](caustics_cli::OneLineOutputWindow*)
     {
-      std::cout << UsageText();
-      return 0;
-    }
-    const int status = Run(options);
-    if (!messages->FirstError.empty())
-    {
-      throw std::runtime_error(messages->FirstError);
-    }
-    return status;
-  }
-  catch (const UsageError& e)
-  {
-    std::cerr << "caustics-render: error: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const NoWindowError& e)
-  {
-    std::cerr << "caustics-render: error: " << e.what() << "\n";
-    return 3;
-  }
-  catch (const std::exception& e)
-  {
-    // A VTK error seen first is usually the cause of what failed later.
-    const std::string cause = messages->FirstError;
-    std::cerr << "caustics-render: error: "
-              << (cause.empty() || cause == e.what() ? std::string(e.what()) : cause) << "\n";
-    return 1;
-  }
+      bool help = false;
+      const Options options = Parse(argc, argv, help);
+      if (help)
+      {
+        std::cout << UsageText();
+        return 0;
+      }
+      return Run(options);
+    });
 }
