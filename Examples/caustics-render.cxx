@@ -746,7 +746,17 @@ int Run(const Options& options)
   ApplyOverrides(options, renderer);
   vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(options);
   renderer->SetPass(pass);
+  // Refuse a photon grid this OpenGL cannot hold before anything is allocated (the
+  // frame checks again with the scene's lights: no outputs then either).
+  if (!pass->CheckResources(window))
+  {
+    throw std::runtime_error(pass->GetResourceError());
+  }
   StageTimes times = RenderFrames(options, window, pass);
+  if (*pass->GetResourceError())
+  {
+    throw std::runtime_error(pass->GetResourceError());
+  }
 
   std::vector<std::pair<std::string, std::string>> layers;
   vtkSmartPointer<vtkImageData> image = ReadLayers(options, pass, layers);

@@ -115,6 +115,23 @@ void vtkCausticsHierarchicalCausticMapPass::EndStage(const char* name)
   this->StopStage(name);
 }
 
+vtkCausticsRenderPass::PhotonStorage vtkCausticsHierarchicalCausticMapPass::GetPhotonStorage()
+{
+  // Per photon slot: the landed records and radius (52 B), the trace's work lists
+  // (8 B), the hierarchy's nodes (40 B per node, a third of the slots), traversal
+  // list (4 B per node and photon) and splat lists (4 B x 4 map levels), and the
+  // refractors' front and back layers seen from the light (28 B per texel, two
+  // slots per texel). Beside the grid: the caustic map's levels (RGBA32F) and its
+  // receiver G-buffer (28 B per texel). All of it once per light.
+  const double map = static_cast<double>(this->Settings.CausticMapResolution);
+  PhotonStorage storage;
+  storage.BytesPerPhoton = 52.0 + 8.0 + 40.0 / 3.0 + 4.0 * 4.0 / 3.0 + 16.0 + 28.0;
+  storage.LargestBufferPerPhoton = 16.0; // the splat lists
+  storage.FixedBytes = map * map * (16.0 * 4.0 / 3.0 + 28.0);
+  storage.PerLight = true;
+  return storage;
+}
+
 vtkCausticsRenderPass::CausticNeeds vtkCausticsHierarchicalCausticMapPass::GetCausticNeeds()
 {
   CausticNeeds needs;

@@ -283,6 +283,7 @@ protected:
 
   /** A light must reach a specular actor (the base pass tests it). */
   CausticNeeds GetCausticNeeds() override;
+  PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 

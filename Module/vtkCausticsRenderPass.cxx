@@ -4,6 +4,7 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
+#include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLightBuffers.h"
@@ -39,6 +40,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -219,6 +221,8 @@ struct vtkCausticsRenderPass::Internals
   caustics::gl::FullScreenTriangle Triangle;
   // Per-mesh bounds for the view test, refreshed when a mesh's version changes.
   std::vector<std::pair<unsigned long, Box>> MeshBounds;
+  std::string ResourceError;         // why the last CheckResources() failed
+  std::string ReportedResourceError; // the last one Render() reported (once each)
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -482,6 +486,80 @@ bool vtkCausticsRenderPass::PrepareScene(vtkRenderer* renderer)
   return true;
 }
 
+vtkCausticsRenderPass::PhotonStorage vtkCausticsRenderPass::GetPhotonStorage()
+{
+  return PhotonStorage();
+}
+
+const char* vtkCausticsRenderPass::GetResourceError() const
+{
+  return this->Internal->ResourceError.c_str();
+}
+
+bool vtkCausticsRenderPass::CheckResources(vtkRenderWindow* window)
+{
+  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!renWin)
+  {
+    this->Internal->ResourceError = "CheckResources needs an OpenGL render window";
+    return false;
+  }
+  renWin->Initialize(); // makes the context if the window has none yet
+  const caustics::SceneData* scene = this->Frame.Scene;
+  const int lights = scene ? static_cast<int>(scene->Lights.size()) : 1;
+  return this->CheckResourcesFor(renWin, std::max(lights, 1));
+}
+
+bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights)
+{
+  std::string& error = this->Internal->ResourceError;
+  error.clear();
+  renWin->MakeCurrent();
+  const caustics::gl::DeviceLimits limits = caustics::gl::QueryDeviceLimits(this->MaximumGPUMemory);
+  // The shared stages per photon slot: the emitted photons (3 x RGBA32F) and the
+  // light buffers (RGBA32F position and flux, RGBA16F normal, depth: 44 B per
+  // texel, two slots per texel), one set per light.
+  constexpr double SharedBytesPerPhoton = 48.0 + 22.0;
+  const PhotonStorage technique = this->GetPhotonStorage();
+  const int n = this->LightBufferResolution;
+  const double slots = 2.0 * n * n;
+  const double perLight = technique.PerLight ? lights : 1.0;
+  const double total =
+    slots * (SharedBytesPerPhoton * lights + technique.BytesPerPhoton * perLight) +
+    technique.FixedBytes * perLight;
+  const double largest = slots * technique.LargestBufferPerPhoton;
+  std::ostringstream why;
+  why << this->GetClassName() << ": LightBufferResolution " << n;
+  if (2 * n > limits.MaximumTextureSize)
+  {
+    why << " needs textures " << 2 * n << " texels high; this OpenGL allows "
+        << limits.MaximumTextureSize << ": at most " << limits.MaximumTextureSize / 2;
+  }
+  else if (largest > limits.MaximumStorageBlockBytes && limits.MaximumStorageBlockBytes > 0.0)
+  {
+    const int fits = static_cast<int>(
+      std::sqrt(limits.MaximumStorageBlockBytes / (2.0 * technique.LargestBufferPerPhoton)));
+    why << " needs a " << caustics::gl::FormatBytes(largest)
+        << " storage buffer; this OpenGL's shaders see at most "
+        << caustics::gl::FormatBytes(limits.MaximumStorageBlockBytes) << ": at most " << fits;
+  }
+  else if (limits.MemoryBudgetBytes > 0.0 && total > limits.MemoryBudgetBytes)
+  {
+    const double perSlot = SharedBytesPerPhoton * lights + technique.BytesPerPhoton * perLight;
+    const double room = limits.MemoryBudgetBytes - technique.FixedBytes * perLight;
+    const int fits = room > 0.0 ? static_cast<int>(std::sqrt(room / (2.0 * perSlot))) : 0;
+    why << " needs about " << caustics::gl::FormatBytes(total) << " of GPU memory for " << lights
+        << " light(s); the budget is " << caustics::gl::FormatBytes(limits.MemoryBudgetBytes)
+        << " (" << limits.MemorySource << "): at most " << fits;
+  }
+  else
+  {
+    return true;
+  }
+  error = why.str();
+  return false;
+}
+
 bool vtkCausticsRenderPass::SupportsCaustics(vtkOpenGLRenderWindow* renWin, bool buffers)
 {
   int major = 0, minor = 0;
@@ -662,8 +740,25 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
     this->RenderPlainVTK(s);
     return;
   }
-  this->RenderFrame(s, caustics);
+  this->RenderFrame(s, caustics && this->FitsTheDevice());
   vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+bool vtkCausticsRenderPass::FitsTheDevice()
+{
+  const int lights = static_cast<int>(this->Frame.Scene->Lights.size());
+  if (this->CheckResourcesFor(this->Frame.Window, std::max(lights, 1)))
+  {
+    this->Internal->ReportedResourceError.clear();
+    return true;
+  }
+  // Once per cause, not every frame: the frame renders without caustics.
+  if (this->Internal->ResourceError != this->Internal->ReportedResourceError)
+  {
+    this->Internal->ReportedResourceError = this->Internal->ResourceError;
+    vtkErrorMacro(<< this->Internal->ResourceError << "; rendering without caustics");
+  }
+  return false;
 }
 
 bool vtkCausticsRenderPass::RenderDirectIrradiance()

@@ -71,6 +71,7 @@ class vtkCausticsSceneGeometry;
 class vtkCausticsTimings;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
+class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 
@@ -144,6 +145,30 @@ public:
 
   /** True if the last frame ran the caustic stages. */
   bool GetLastFrameHadCaustics() const;
+
+  ///@{
+  /**
+   * GPU memory (bytes) the technique may use, checked by CheckResources(). 0
+   * (default): what the driver reports, or half the physical memory for a software
+   * OpenGL such as llvmpipe (its buffers live there), or no limit if neither is known.
+   */
+  vtkSetClampMacro(MaximumGPUMemory, double, 0.0, 1.0e18);
+  vtkGetMacro(MaximumGPUMemory, double);
+  ///@}
+
+  /**
+   * Whether `window`'s OpenGL context (made current) can hold this technique at the
+   * current LightBufferResolution, before anything is allocated: the photon grid's
+   * rows against the largest texture, the technique's largest shader storage buffer
+   * against the largest storage block the shaders can see, and its estimated memory
+   * against MaximumGPUMemory. On failure GetResourceError() is one line naming the
+   * limit and the largest LightBufferResolution that fits. Render() checks the same
+   * every frame and renders without caustics (reporting the error once) when it
+   * fails; a program can call it first and refuse to start.
+   */
+  bool CheckResources(vtkRenderWindow* window);
+  /** Why the last CheckResources() failed; empty when it passed. */
+  const char* GetResourceError() const;
 
   /**
    * Reads an intermediate buffer of the last frame into `output` (point-data array
@@ -219,6 +244,21 @@ protected:
   ///@}
 
   /**
+   * What the technique stores beyond the shared stages (light buffers, emission),
+   * per photon slot of one light's grid (N x 2N slots, N = LightBufferResolution),
+   * and what it allocates independently of the grid, for CheckResources().
+   */
+  struct PhotonStorage
+  {
+    double BytesPerPhoton = 0.0;         ///< every buffer and texture that grows with the grid
+    double LargestBufferPerPhoton = 0.0; ///< its largest single shader storage buffer
+    double FixedBytes = 0.0;             ///< what does not grow with the grid (layers, maps)
+    bool PerLight = false;               ///< one set per light (else reused light after light)
+  };
+  /** Hook: the technique's storage (the base class: none). */
+  virtual PhotonStorage GetPhotonStorage();
+
+  /**
    * Hook, the technique: add caustic irradiance (W/m^2 per channel, before albedo)
    * of the visible opaque surface at each camera pixel into CausticFramebuffer
    * (bound, cleared to zero, additive blending off: subclasses choose). Returns
@@ -279,6 +319,8 @@ private:
   bool RenderCameraGBuffers();
   bool RenderLightBuffers();
   bool RenderCaustics();
+  bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
+  bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   bool RenderDirectIrradiance();
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);
@@ -292,6 +334,7 @@ private:
 
   int LightBufferResolution = 256;
   int ShadowMapResolution = 1024;
+  double MaximumGPUMemory = 0.0;
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;
 

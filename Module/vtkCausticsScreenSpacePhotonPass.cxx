@@ -190,6 +190,23 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsScreenSpacePhotonPass::GetCaustic
   return needs;
 }
 
+vtkCausticsRenderPass::PhotonStorage vtkCausticsScreenSpacePhotonPass::GetPhotonStorage()
+{
+  // Per photon slot: two transfer maps of rays and payloads, the tracer's line and
+  // hit, the landed photon record and its radius. Beside the grid: the scene's and
+  // the refractors' layered depth images (28 B per pixel and layer) and the line
+  // target (8 B per texel).
+  const FrameInputs& f = this->GetFrameInputs();
+  const double pixels = static_cast<double>(f.Width) * f.Height;
+  const double layers = this->Settings.MaximumNumberOfLayers;
+  PhotonStorage storage;
+  storage.BytesPerPhoton = 2.0 * (RayBytes + PayloadBytes) + 48.0 + HitBytes + 52.0;
+  storage.LargestBufferPerPhoton = 48.0; // the tracer's lines
+  storage.FixedBytes =
+    2.0 * 28.0 * pixels * layers + 8.0 * this->Settings.RowsPerBatch * std::max(f.Width, f.Height);
+  return storage;
+}
+
 bool vtkCausticsScreenSpacePhotonPass::RenderLayers(vtkOpenGLRenderWindow* renWin)
 {
   const FrameInputs& f = this->GetFrameInputs();

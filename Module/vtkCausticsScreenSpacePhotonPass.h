@@ -187,6 +187,7 @@ protected:
    * be inside the camera's view; the base pass tests both (before the snapshot too).
    */
   CausticNeeds GetCausticNeeds() override;
+  PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
   bool RenderTechniqueColor(const FrameInputs& in, vtkTextureObject* target) override;

@@ -36,6 +36,11 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsStraightPhotonPass::GetCausticNee
   return { true, false, true }; // a light must reach a specular actor; early skip allowed
 }
 
+vtkCausticsRenderPass::PhotonStorage vtkCausticsStraightPhotonPass::GetPhotonStorage()
+{
+  return { 52.0 + 14.0, 0.0, 0.0, false }; // landed records and radii; receivers (28 B/texel)
+}
+
 bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
 {
   auto& s = *this->Internal;

@@ -26,6 +26,7 @@ protected:
   ~vtkCausticsStraightPhotonPass() override;
 
   CausticNeeds GetCausticNeeds() override;
+  PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 

@@ -1,9 +1,13 @@
 # Runs the CLI with ARGS; passes if it exits non-zero (but not by a signal) with
 # exactly one line on stderr, starting with PREFIX (default "caustics-render: error: ")
-# and containing EXPECTED.
+# and containing EXPECTED. With UNWRITTEN (a list of paths), none of them may exist
+# afterwards: bad input writes no outputs.
 if (NOT DEFINED PREFIX)
   set(PREFIX "caustics-render: error: ")
 endif ()
+foreach (path IN LISTS UNWRITTEN)
+  file(REMOVE "${path}")
+endforeach ()
 execute_process(COMMAND ${CLI} ${ARGS}
   RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if (result EQUAL 0)
@@ -22,3 +26,8 @@ string(FIND "${err}" "${EXPECTED}" found)
 if (NOT prefix EQUAL 0 OR found EQUAL -1)
   message(FATAL_ERROR "expected '${PREFIX}...${EXPECTED}...', got: ${err}")
 endif ()
+foreach (path IN LISTS UNWRITTEN)
+  if (EXISTS "${path}")
+    message(FATAL_ERROR "the failed run still wrote ${path}")
+  endif ()
+endforeach ()

@@ -5,11 +5,13 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
+#include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -24,10 +26,12 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <iostream>
 #include <limits>
 #include <vector>
@@ -422,4 +426,55 @@ TEST(ScreenSpaceStress, TinyAndHugeScenes)
     // Reached: 2e-5 and 5e-5 (float rounding). 1e-3 leaves room for other GPUs.
     EXPECT_LT(relative, 1e-3) << "scale " << scale;
   }
+}
+
+// A photon grid larger than the context can hold used to hang for minutes (4096:
+// 11 GB on llvmpipe) or render an all-zero caustic (8192: storage buffers beyond what
+// the shaders can address). It is refused before anything is allocated, once, with
+// one line naming the limit and the largest resolution that fits; the frame renders
+// without caustics (plain VTK), and a resolution that fits renders caustics again.
+TEST(ScreenSpaceStress, RefusesAPhotonGridTheContextCannotHold)
+{
+  Frame f("ball-lens");
+  f.Window->Render(); // a context
+  EXPECT_TRUE(f.Pass->CheckResources(f.Window)) << f.Pass->GetResourceError();
+  EXPECT_STREQ(f.Pass->GetResourceError(), "");
+  f.Pass->SetLightBufferResolution(8192);
+  ASSERT_FALSE(f.Pass->CheckResources(f.Window));
+  const std::string error = f.Pass->GetResourceError();
+  std::cout << error << "\n";
+  EXPECT_NE(error.find("LightBufferResolution 8192 needs"), std::string::npos) << error;
+  EXPECT_NE(error.find("at most "), std::string::npos) << error;
+  const int fits = std::stoi(error.substr(error.rfind("at most ") + 8));
+  EXPECT_GE(fits, 256);
+  EXPECT_LT(fits, 8192);
+
+  vtkNew<vtkTest::ErrorObserver> errors;
+  f.Pass->AddObserver(vtkCommand::ErrorEvent, errors);
+  f.RenderFinite();
+  EXPECT_FALSE(f.Pass->GetLastFrameHadCaustics());
+  EXPECT_TRUE(errors->GetError());
+  errors->Clear();
+  f.RenderFinite(); // reported once, not every frame
+  EXPECT_FALSE(errors->GetError());
+
+  f.Pass->SetLightBufferResolution(fits);
+  EXPECT_TRUE(f.Pass->CheckResources(f.Window)) << f.Pass->GetResourceError();
+  f.Pass->SetLightBufferResolution(128);
+  f.RenderFinite();
+  EXPECT_TRUE(f.Pass->GetLastFrameHadCaustics());
+
+  // The caustic maps' own storage, and a memory budget the user sets.
+  vtkNew<vtkCausticsHierarchicalCausticMapPass> maps;
+  f.Renderer->SetPass(maps);
+  maps->SetLightBufferResolution(8192);
+  EXPECT_FALSE(maps->CheckResources(f.Window));
+  maps->SetLightBufferResolution(256);
+  EXPECT_TRUE(maps->CheckResources(f.Window)) << maps->GetResourceError();
+  maps->SetMaximumGPUMemory(1.0e6);
+  EXPECT_FALSE(maps->CheckResources(f.Window));
+  EXPECT_NE(std::string(maps->GetResourceError()).find("MaximumGPUMemory"), std::string::npos)
+    << maps->GetResourceError();
+  f.Renderer->SetPass(f.Pass);
+  maps->ReleaseGraphicsResources(f.Window);
 }
