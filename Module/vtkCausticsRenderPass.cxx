@@ -221,6 +221,9 @@ struct vtkCausticsRenderPass::Internals
   caustics::gl::FullScreenTriangle Triangle;
   // Per-mesh bounds for the view test, refreshed when a mesh's version changes.
   std::vector<std::pair<unsigned long, Box>> MeshBounds;
+  caustics::gl::DeviceLimits Limits; // of LimitsWindow's context, for LimitsBudget
+  vtkOpenGLRenderWindow* LimitsWindow = nullptr;
+  double LimitsBudget = -1.0;
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
 };
@@ -514,8 +517,16 @@ bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int
 {
   std::string& error = this->Internal->ResourceError;
   error.clear();
-  renWin->MakeCurrent();
-  const caustics::gl::DeviceLimits limits = caustics::gl::QueryDeviceLimits(this->MaximumGPUMemory);
+  // The context's limits do not change: queried once per window and budget.
+  auto& in = *this->Internal;
+  if (in.LimitsWindow != renWin || in.LimitsBudget != this->MaximumGPUMemory)
+  {
+    renWin->MakeCurrent();
+    in.Limits = caustics::gl::QueryDeviceLimits(this->MaximumGPUMemory);
+    in.LimitsWindow = renWin;
+    in.LimitsBudget = this->MaximumGPUMemory;
+  }
+  const caustics::gl::DeviceLimits& limits = in.Limits;
   // The shared stages per photon slot: the emitted photons (3 x RGBA32F) and the
   // light buffers (RGBA32F position and flux, RGBA16F normal, depth: 44 B per
   // texel, two slots per texel), one set per light.
@@ -1080,6 +1091,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   auto& in = *this->Internal;
   this->Superclass::ReleaseGraphicsResources(w);
   this->ReleaseTechniqueResources(w);
+  in.LimitsWindow = nullptr; // a later window may reuse the address
   in.Geometry->ReleaseGraphicsResources(w);
   in.CameraGBuffer->ReleaseGraphicsResources(w);
   in.RefractiveGBuffer->ReleaseGraphicsResources(w);
