@@ -84,6 +84,19 @@ bool vtkCausticsMedium::IsScattering() const
   return false;
 }
 
+bool vtkCausticsMedium::IsAttenuating() const
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    const double extinction = this->ScatteringCoefficient[c] + this->AbsorptionCoefficient[c];
+    if (extinction > 0.0 && std::isfinite(extinction))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void vtkCausticsMedium::AttachTo(vtkRenderer* renderer, vtkCausticsMedium* medium)
 {
   if (!renderer)

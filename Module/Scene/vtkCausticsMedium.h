@@ -10,8 +10,8 @@
 #ifndef vtkCausticsMedium_h
 #define vtkCausticsMedium_h
 
-#include "vtkObject.h"
 #include "vtkCausticsSceneModule.h" // For export macro
+#include "vtkObject.h"
 
 class vtkInformationObjectBaseKey;
 class vtkRenderer;
@@ -54,6 +54,12 @@ public:
 
   /** True when any scattering coefficient is positive. */
   bool IsScattering() const;
+
+  /**
+   * True when any extinction coefficient (scattering + absorption) is positive: the
+   * medium dims light even when it scatters none (an absorption-only medium).
+   */
+  bool IsAttenuating() const;
 
   /** Attaches this medium to a renderer (replacing any other); nullptr detaches. */
   static void AttachTo(vtkRenderer* renderer, vtkCausticsMedium* medium);

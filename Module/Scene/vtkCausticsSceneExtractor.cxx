@@ -404,7 +404,8 @@ caustics::Medium DescribeMedium(vtkRenderer* renderer)
   caustics::Medium participating;
   if (vtkCausticsMedium* medium = vtkCausticsMedium::GetFrom(renderer))
   {
-    participating.enabled = medium->IsScattering();
+    // Absorption alone dims light too (it was ignored until some scattering was set).
+    participating.enabled = medium->IsAttenuating();
     for (int c = 0; c < 3; ++c)
     {
       participating.sigmaS[c] = medium->GetScatteringCoefficient()[c];

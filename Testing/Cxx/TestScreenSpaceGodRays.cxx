@@ -82,3 +82,51 @@ TEST(ScreenSpaceGodRays, MatchReferenceVolumeCaustic)
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
 }
+
+// An absorption-only medium dims the caustic like any other extinction: it was
+// ignored (no attenuation at all) until some scattering was set, when 1e-6/m of
+// scattering suddenly attenuated the caustic 13-fold. Now sigma_a = 1/m alone and
+// sigma_s = 1e-6/m beside it give the same caustic, dimmer than without a medium,
+// and no volume radiance without scattering.
+TEST(ScreenSpaceGodRays, AbsorptionAloneAttenuates)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  ASSERT_TRUE(scene->Populate(renderer));
+  vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  renderer->SetPass(pass);
+  pass->KeepBuffersOn();
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(128, 128);
+  window->AddRenderer(renderer);
+  auto causticFlux = [&](double scattering, double absorption)
+  {
+    vtkNew<vtkCausticsMedium> medium;
+    medium->SetScatteringCoefficient(scattering, scattering, scattering);
+    medium->SetAbsorptionCoefficient(absorption, absorption, absorption);
+    vtkCausticsMedium::AttachTo(renderer, scattering + absorption > 0.0 ? medium.Get() : nullptr);
+    window->Render();
+    EXPECT_TRUE(pass->GetLastFrameHadCaustics());
+    vtkNew<vtkImageData> caustic;
+    EXPECT_TRUE(pass->ReadBuffer("CausticIrradiance", caustic));
+    vtkDataArray* values = caustic->GetPointData()->GetArray(0);
+    double sum = 0.0;
+    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+    {
+      sum += values->GetComponent(i, 0);
+    }
+    return sum;
+  };
+  const double clear = causticFlux(0.0, 0.0);
+  const double absorbing = causticFlux(0.0, 1.0);
+  const double almost = causticFlux(1e-6, 1.0);
+  std::cout << "caustic sum: clear " << clear << ", sigma_a 1/m " << absorbing
+            << ", + sigma_s 1e-6/m " << almost << "\n";
+  ASSERT_GT(clear, 0.0);
+  EXPECT_LT(absorbing, 0.9 * clear);
+  EXPECT_NEAR(absorbing / almost, 1.0, 1e-3);
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+}
