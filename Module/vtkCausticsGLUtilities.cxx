@@ -1,5 +1,8 @@
 #include "vtkCausticsGLUtilities.h"
 
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsShaderProgram.h"
+
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -80,6 +83,19 @@ bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int
     texture->Allocate2D(width, height, info.components, info.vtkType);
   }
   return true;
+}
+
+void SetMediumUniforms(vtkCausticsShaderProgram* program, const caustics::SceneData& scene)
+{
+  const caustics::Medium& medium = scene.Participating;
+  program->SetUniformi("causticsMediumOn", medium.enabled ? 1 : 0);
+  program->SetUniform3f("causticsSigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
+    static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
+    static_cast<float>(medium.sigmaS[2] + medium.sigmaA[2]));
+  program->SetUniform3f("causticsMediumLow", static_cast<float>(scene.Bounds[0]),
+    static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
+  program->SetUniform3f("causticsMediumHigh", static_cast<float>(scene.Bounds[1]),
+    static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
 }
 
 bool PhotonPlanes::Ensure(vtkOpenGLRenderWindow* renWin, int width, int height)

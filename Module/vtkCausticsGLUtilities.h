@@ -19,6 +19,7 @@
 #include <cstddef> // For std::size_t
 #include <string>  // For std::string
 
+class vtkCausticsShaderProgram;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkWindow;
@@ -34,6 +35,14 @@ namespace gl
  */
 VTKRENDERINGCAUSTICS_EXPORT bool EnsureTexture(vtkTextureObject* texture,
   vtkOpenGLRenderWindow* renWin, int width, int height, unsigned int internalFormat);
+
+/**
+ * Sets the participating medium's uniforms of vtkCausticsCommon.glsl
+ * (causticsMediumOn, causticsSigmaT, causticsMediumLow/High: the scene's bounds) on
+ * the bound program, for CausticsMediumTransmittance().
+ */
+VTKRENDERINGCAUSTICS_EXPORT void SetMediumUniforms(
+  vtkCausticsShaderProgram* program, const caustics::SceneData& scene);
 
 /** Row-major double matrix (vtkMatrix4x4 layout) to column-major floats for GL. */
 VTKRENDERINGCAUSTICS_EXPORT void ToColumnMajor(const double rowMajor[16], float columnMajor[16]);

@@ -41,6 +41,7 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
 {
   const caustics::CausticMapSettings* Settings = nullptr;
   const caustics::Light* Source = nullptr;
+  const caustics::SceneData* Scene = nullptr; // its medium and bounds
   const caustics::LightView* PhotonView = nullptr;
   const caustics::LightView* MapView = nullptr;
   const int* MapSize = nullptr;
@@ -76,6 +77,7 @@ void SetTraceUniforms(
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
   program->SetUniformi("maximumInternalEvents", trace.Settings->MaximumInternalEvents);
   program->SetUniformi("marchSteps", trace.Settings->MarchSteps);
+  caustics::gl::SetMediumUniforms(program, *trace.Scene);
   program->SetUniformf("chordLength", static_cast<float>(trace.ChordLength));
   program->SetUniformf("airLength", static_cast<float>(trace.AirLength));
   program->SetUniformf("fluxUnit", static_cast<float>(trace.FluxUnit));
@@ -270,6 +272,7 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
 {
   trace.Settings = &settings;
   trace.Source = &scene.Lights[grid.Light];
+  trace.Scene = &scene;
   trace.PhotonView = &photonView;
   trace.MapView = &mapView;
   trace.MapSize = receivers->GetSize();

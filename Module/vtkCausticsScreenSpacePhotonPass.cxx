@@ -257,7 +257,6 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
     return false;
   }
   const caustics::Light& source = scene.Lights[light];
-  const caustics::Medium& medium = scene.Participating;
   caustics::ssp::TextureUnits units(renWin);
   p->SetUniformi("emitPosition", units.Bind(grid.Emitted.Position));
   p->SetUniformi("emitDirection", units.Bind(grid.Emitted.Direction));
@@ -274,14 +273,7 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   const caustics::Vec3& eye = f.LightBuffers->GetView(light).eye;
   p->SetUniform3f(
     "viewEye", static_cast<float>(eye[0]), static_cast<float>(eye[1]), static_cast<float>(eye[2]));
-  p->SetUniformi("mediumOn", medium.enabled ? 1 : 0);
-  p->SetUniform3f("sigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
-    static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
-    static_cast<float>(medium.sigmaS[2] + medium.sigmaA[2]));
-  p->SetUniform3f("boundsMin", static_cast<float>(scene.Bounds[0]),
-    static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
-  p->SetUniform3f("boundsMax", static_cast<float>(scene.Bounds[1]),
-    static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
+  caustics::gl::SetMediumUniforms(p, scene);
   in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
   in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
   in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
@@ -327,7 +319,6 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   f.Geometry->BindMaterials();
   in.Landed.BindImages(0, GL_WRITE_ONLY);
   in.Landed.BindRadiusImage(3, GL_WRITE_ONLY);
-  const caustics::Medium& medium = scene.Participating;
   p->SetUniformi("capacity", in.Capacity);
   p->SetUniformi("gridWidth", in.Emitter->GetGrid().Width);
   p->SetUniformi("maxEvents", this->Settings.MaximumBounces);
@@ -340,14 +331,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   p->SetUniform4f("viewOrigin", origin);
   p->SetUniformf("splatRadius", static_cast<float>(this->Settings.SplatRadius));
   p->SetUniformf("splatRadiusPixels", static_cast<float>(this->Settings.SplatRadiusPixels));
-  p->SetUniformi("mediumOn", medium.enabled ? 1 : 0);
-  p->SetUniform3f("sigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
-    static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
-    static_cast<float>(medium.sigmaS[2] + medium.sigmaA[2]));
-  p->SetUniform3f("boundsMin", static_cast<float>(scene.Bounds[0]),
-    static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
-  p->SetUniform3f("boundsMax", static_cast<float>(scene.Bounds[1]),
-    static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
+  caustics::gl::SetMediumUniforms(p, scene);
   p->SetUniformu(
     "seed", 0x9e3779b9u * static_cast<unsigned int>(bounce + 1) + static_cast<unsigned int>(light));
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Tracer->GetArgumentBuffer());

@@ -40,6 +40,54 @@ float CausticsSpotFactor(float cosAngle, float cosOuter, float cosInner)
 // kernel radius (m) a reconstruction gives a landed photon is an R32F texture
 // beside them.
 
+// Beer-Lambert: the fraction of the flux left after distance (m) through a
+// medium of attenuation (or extinction) coefficients sigma (1/m).
+vec3 CausticsTransmittance(vec3 sigma, float distance)
+{
+  return exp(-sigma * distance);
+}
+
+// Clips o + t d, t in [t0, t1], to an axis-aligned box; false if it misses.
+bool CausticsClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0, inout float t1)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (abs(d[a]) < 1e-20)
+    {
+      if (o[a] < boxMin[a] || o[a] > boxMax[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    float ta = (boxMin[a] - o[a]) / d[a];
+    float tb = (boxMax[a] - o[a]) / d[a];
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  return t0 < t1;
+}
+
+// The participating medium (caustics::Medium): homogeneous, filling the scene's
+// bounding box but not the refractors, as in the reference renderer. Set from the
+// host by caustics::gl::SetMediumUniforms.
+uniform int causticsMediumOn;
+uniform vec3 causticsSigmaT;     // extinction, 1/m
+uniform vec3 causticsMediumLow;  // the scene's bounds (m)
+uniform vec3 causticsMediumHigh;
+
+// The medium's transmittance along o + t d, t in [t0, t1] (d need not be unit: t
+// then scales with it); 1 without a medium or outside its box.
+vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
+{
+  if (causticsMediumOn == 0 ||
+    !CausticsClipToBox(o, d, causticsMediumLow, causticsMediumHigh, t0, t1))
+  {
+    return vec3(1.0);
+  }
+  return CausticsTransmittance(causticsSigmaT, t1 - t0);
+}
+
 // One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).
 struct CausticsMaterial
 {

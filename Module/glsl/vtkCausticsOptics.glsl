@@ -56,13 +56,6 @@ bool RefractDirection(vec3 d, vec3 n, float eta, out vec3 t)
   return true;
 }
 
-// Beer-Lambert: the fraction of the flux left after distance (m) through a
-// medium of attenuation (or extinction) coefficients sigma (1/m).
-vec3 CausticsTransmittance(vec3 sigma, float distance)
-{
-  return exp(-sigma * distance);
-}
-
 // A dielectric interface met by the unit direction d: facing is the unit normal
 // on d's side, cosI the cosine of incidence, n1 the index d travels in and n2 the
 // index beyond. Gives the exact Fresnel reflectance and both directions; false

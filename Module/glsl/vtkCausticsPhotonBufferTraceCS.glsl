@@ -402,6 +402,21 @@ void AddFlux(int slot, float watts)
   }
 }
 
+// The emitted photon's flux after the medium between the light (or where its ray
+// enters the medium) and the photon's first specular surface; the loss counts as
+// absorbed. The medium fills the scene's bounds in air (CausticsMediumTransmittance).
+vec3 ArrivedFromTheLight(vec3 p, vec3 flux)
+{
+  if (causticsMediumOn == 0)
+  {
+    return flux;
+  }
+  float reach = lightType == 0 ? 3.0e38 : distance(p, lightOrigin);
+  vec3 kept = flux * CausticsMediumTransmittance(p, -ViewAway(photonView, p), 0.0, reach);
+  AddFlux(STAT_FLUX_ABSORBED, Power(flux) - Power(kept));
+  return kept;
+}
+
 #if PHASE == 0
 // Phase 0: every photon the emitter made is counted; photons in air are handed
 // over to phase 2 (position, path length; direction, 1; flux, measure), photons
@@ -434,6 +449,7 @@ void main()
     return;
   }
   vec3 p = photon.xyz;
+  flux = ArrivedFromTheLight(p, flux);
   float path = lightType == 0 ? ViewDepth(photonView, p) : length(p - lightOrigin);
   imageStore(outPosition, texel, vec4(p, path));
   imageStore(outNormal, texel, vec4(normalize(direction.xyz), 1.0));
@@ -452,7 +468,7 @@ void main()
   }
   vec4 photon = texelFetch(photonPosition, texel, 0);
   vec4 direction = texelFetch(photonDirection, texel, 0);
-  vec3 flux = texelFetch(photonFlux, texel, 0).rgb;
+  vec3 flux = ArrivedFromTheLight(photon.xyz, texelFetch(photonFlux, texel, 0).rgb);
   int state = 2;
   vec3 p = photon.xyz;
   vec3 d = normalize(direction.xyz);
@@ -575,6 +591,14 @@ void main()
     imageStore(outNormal, texel, vec4(0.0));
     imageStore(outFlux, texel, vec4(0.0));
     return;
+  }
+  if (causticsMediumOn != 0)
+  {
+    // The medium between the surface it left and the receiver.
+    vec3 kept = flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, t);
+    AddFlux(STAT_FLUX_ABSORBED, power - Power(kept));
+    flux4.rgb = kept;
+    power = Power(kept);
   }
   atomicAdd(statistics[STAT_HITS], 1u);
   AddFlux(STAT_FLUX_HITS, power);

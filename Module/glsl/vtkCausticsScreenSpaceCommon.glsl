@@ -53,27 +53,6 @@ ivec2 SspLinePixel(SspLine line, int column, ivec2 viewport)
   return clamp(ivec2(floor(s)), ivec2(0), viewport - 1);
 }
 
-// Clips o + t d, t in [t0, t1], to an axis-aligned box; false if it misses.
-bool SspClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0, inout float t1)
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    if (abs(d[a]) < 1e-20)
-    {
-      if (o[a] < boxMin[a] || o[a] > boxMax[a])
-      {
-        return false;
-      }
-      continue;
-    }
-    float ta = (boxMin[a] - o[a]) / d[a];
-    float tb = (boxMax[a] - o[a]) / d[a];
-    t0 = max(t0, min(ta, tb));
-    t1 = min(t1, max(ta, tb));
-  }
-  return t0 < t1;
-}
-
 // Clips o + t d to the clip volume of worldToClip (Liang-Barsky on -w <= x, y, z <= w).
 bool SspClipToFrustum(mat4 worldToClip, vec3 o, vec3 d, inout float t0, inout float t1)
 {

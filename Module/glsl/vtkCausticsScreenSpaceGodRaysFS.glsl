@@ -65,13 +65,13 @@ void main()
   // Extinction along the photon's segment inside the medium, and towards the camera.
   float s0 = 0.0;
   float s1 = t;
-  float along = SspClipToBox(o, d, boundsMin, boundsMax, s0, s1) ? s1 - s0 : 0.0;
+  float along = CausticsClipToBox(o, d, boundsMin, boundsMax, s0, s1) ? s1 - s0 : 0.0;
   vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - x : -viewOrigin.xyz * 1.0e6;
   float distanceToCamera = length(toCamera);
   vec3 v = toCamera / distanceToCamera;
   float c0 = 0.0;
   float c1 = distanceToCamera;
-  float towards = SspClipToBox(x, v, boundsMin, boundsMax, c0, c1) ? c1 - c0 : 0.0;
+  float towards = CausticsClipToBox(x, v, boundsMin, boundsMax, c0, c1) ? c1 - c0 : 0.0;
   vec3 transmittance = exp(-sigmaT * (along + towards));
 
   // Footprint of the pixel at x, perpendicular to the view direction.

@@ -51,7 +51,7 @@ void main()
   float t1 = 3.0e38;
   vec3 slack = vec3(tolerance);
   if (ray.origin.w > 0.0 && dot(d, d) > 0.5 &&
-    SspClipToBox(o, d, boundsMin - slack, boundsMax + slack, t0, t1) &&
+    CausticsClipToBox(o, d, boundsMin - slack, boundsMax + slack, t0, t1) &&
     SspClipToFrustum(worldToClip, o, d, t0, t1))
   {
     vec4 c0 = worldToClip * vec4(o + t0 * d, 1.0);

@@ -27,10 +27,6 @@ uniform int lightType;           // 0 directional, 1 point, 2 spot
 uniform vec3 lightOrigin;
 uniform vec3 lightDirection;
 uniform vec3 viewEye; // a point of the light view's eye plane (directional lights)
-uniform int mediumOn;
-uniform vec3 sigmaT; // 1/m
-uniform vec3 boundsMin;
-uniform vec3 boundsMax;
 
 void main()
 {
@@ -46,18 +42,11 @@ void main()
     return;
   }
   vec3 p = position.xyz;
-  if (mediumOn != 0)
-  {
-    // The medium fills the scene's bounds: extinction from where the light ray
-    // enters them (or from a point light inside them) to the first surface.
-    vec3 incoming = lightType == 0 ? lightDirection : normalize(p - lightOrigin);
-    float t0 = 0.0;
-    float t1 = lightType == 0 ? 3.0e38 : distance(p, lightOrigin);
-    if (SspClipToBox(p, -incoming, boundsMin, boundsMax, t0, t1))
-    {
-      flux.rgb *= exp(-sigmaT * (t1 - t0));
-    }
-  }
+  // The medium's extinction from where the light ray enters it (or from a point
+  // light inside it) to the first surface.
+  vec3 incoming = lightType == 0 ? lightDirection : normalize(p - lightOrigin);
+  flux.rgb *= CausticsMediumTransmittance(
+    p, -incoming, 0.0, lightType == 0 ? 3.0e38 : distance(p, lightOrigin));
   float material = texelFetch(lightPosition, ivec2(texel.x, texel.y % resolution), 0).w;
   uint index = atomicAdd(nextCount, 1u);
   nextRays[index].origin = position;

@@ -54,10 +54,6 @@ uniform vec2 viewport;
 uniform vec4 viewOrigin;   // camera position (w = 1) or view direction (w = 0)
 uniform float splatRadius; // m; 0: splatRadiusPixels pixel footprints
 uniform float splatRadiusPixels;
-uniform int mediumOn;
-uniform vec3 sigmaT;
-uniform vec3 boundsMin;
-uniform vec3 boundsMax;
 uniform uint seed;
 
 uint Hash(uint x)
@@ -139,14 +135,9 @@ void main()
     // Inside the refractor the photon last entered or reflected in: its surface.
     flux *= CausticsTransmittance(causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb, t);
   }
-  else if (mediumOn != 0)
+  else
   {
-    float t0 = 0.0;
-    float t1 = t;
-    if (SspClipToBox(ray.origin.xyz, d, boundsMin, boundsMax, t0, t1))
-    {
-      flux *= CausticsTransmittance(sigmaT, t1 - t0);
-    }
+    flux *= CausticsMediumTransmittance(ray.origin.xyz, d, 0.0, t);
   }
   if (!(dot(n, n) > 0.25) || !(dot(flux, vec3(1.0)) > 0.0))
   {

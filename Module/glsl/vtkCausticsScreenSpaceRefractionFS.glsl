@@ -143,7 +143,7 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   result.material = -1;
   float t0 = 0.0;
   float t1 = 3.0e38;
-  if (!SspClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) ||
+  if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) ||
     !SspClipToFrustum(worldToClip, o, d, t0, t1))
   {
     return result;
