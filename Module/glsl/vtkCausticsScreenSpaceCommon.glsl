@@ -34,6 +34,18 @@ struct SspHit
   vec4 normal;
 };
 
+// The stages' shader storage buffers, each layout written once: a shader declares
+// the ones it uses with the access it needs, e.g. `SSP_RAYS(readonly);` (an empty
+// argument: read and write). The host binds them at the CAUSTICS_SSP_* points.
+#define SSP_COUNTER(access) layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) access buffer SspCounter { uint rayCount; }
+#define SSP_RAYS(access) layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) access buffer SspRays { SspRay rays[]; }
+#define SSP_PAYLOADS(access) layout(std430, binding = CAUSTICS_SSP_PAYLOAD_BINDING) access buffer SspPayloads { SspPayload payloads[]; }
+#define SSP_LINES(access) layout(std430, binding = CAUSTICS_SSP_LINE_BINDING) access buffer SspLines { SspLine lines[]; }
+#define SSP_HITS(access) layout(std430, binding = CAUSTICS_SSP_HIT_BINDING) access buffer SspHits { SspHit hits[]; }
+#define SSP_NEXT_RAYS(access) layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) access buffer SspNextRays { SspRay nextRays[]; }
+#define SSP_NEXT_PAYLOADS(access) layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) access buffer SspNextPayloads { SspPayload nextPayloads[]; }
+#define SSP_NEXT_COUNTER(access) layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) access buffer SspNextCounter { uint nextCount; }
+
 // Ray parameter at the screen-linear parameter u in [0, 1] of a projected segment:
 // t is perspective-correct, interpolated with 1/w as the rasterizer would.
 float SspLineT(SspLine line, float u)

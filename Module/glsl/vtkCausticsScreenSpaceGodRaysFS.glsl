@@ -12,14 +12,8 @@ flat in vec4 segment;
 flat in float majorPixels;
 noperspective in float lineParameter;
 
-layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
-{
-  SspRay rays[];
-};
-layout(std430, binding = CAUSTICS_SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
-{
-  SspPayload payloads[];
-};
+SSP_RAYS(readonly);
+SSP_PAYLOADS(readonly);
 
 uniform sampler2D opaqueDepth;     // window depth of receivers and reflectors
 uniform sampler2D refractiveDepth; // window depth of refractors

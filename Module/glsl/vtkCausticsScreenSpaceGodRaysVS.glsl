@@ -1,18 +1,9 @@
 // God-rays (000_54cf099eeccf42d9.txt §3.2): every photon segment in the medium is
 // drawn as a line primitive from where it starts (clipped to the scene's bounds
 // and the view) to where it ends (its first hit, or where it leaves).
-layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
-{
-  SspRay rays[];
-};
-layout(std430, binding = CAUSTICS_SSP_LINE_BINDING) readonly buffer SspLines
-{
-  SspLine lines[];
-};
-layout(std430, binding = CAUSTICS_SSP_HIT_BINDING) readonly buffer SspHits
-{
-  SspHit hits[];
-};
+SSP_RAYS(readonly);
+SSP_LINES(readonly);
+SSP_HITS(readonly);
 
 uniform mat4 worldToClip;
 uniform vec2 viewport;

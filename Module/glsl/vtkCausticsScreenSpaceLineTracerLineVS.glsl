@@ -1,14 +1,8 @@
 // Every ray becomes a horizontal line in its own row of the offscreen target,
 // starting at the left column and covering n_f fragments (§2.1, Fig. 4). The ray
 // ray and its line go to the fragments, which find their screen position from them.
-layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
-{
-  SspRay rays[];
-};
-layout(std430, binding = CAUSTICS_SSP_LINE_BINDING) readonly buffer SspLines
-{
-  SspLine lines[];
-};
+SSP_RAYS(readonly);
+SSP_LINES(readonly);
 
 uniform int batchBase; // first ray of this batch
 uniform vec2 target;   // row width, rows per batch

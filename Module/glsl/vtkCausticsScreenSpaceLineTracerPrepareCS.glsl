@@ -4,10 +4,7 @@
 // (4 words) and the dispatch of its row reduction (3 words; word 7 = its rows).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
-{
-  uint rayCount;
-};
+SSP_COUNTER(readonly);
 layout(std430, binding = CAUSTICS_SSP_ARGUMENT_BINDING) writeonly buffer SspArguments
 {
   uint arguments[];

@@ -5,22 +5,10 @@
 // material from the layered depth image) is the ray's hit.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
-{
-  uint rayCount;
-};
-layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
-{
-  SspRay rays[];
-};
-layout(std430, binding = CAUSTICS_SSP_LINE_BINDING) readonly buffer SspLines
-{
-  SspLine lines[];
-};
-layout(std430, binding = CAUSTICS_SSP_HIT_BINDING) writeonly buffer SspHits
-{
-  SspHit hits[];
-};
+SSP_COUNTER(readonly);
+SSP_RAYS(readonly);
+SSP_LINES(readonly);
+SSP_HITS(writeonly);
 
 uniform usampler2D rowHits;
 uniform sampler2DArray ldiPosition;

@@ -4,18 +4,9 @@
 // almost parallel to the view direction are still sampled finely).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
-{
-  uint rayCount;
-};
-layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
-{
-  SspRay rays[];
-};
-layout(std430, binding = CAUSTICS_SSP_LINE_BINDING) writeonly buffer SspLines
-{
-  SspLine lines[];
-};
+SSP_COUNTER(readonly);
+SSP_RAYS(readonly);
+SSP_LINES(writeonly);
 
 uniform mat4 worldToClip;
 uniform vec2 viewport;

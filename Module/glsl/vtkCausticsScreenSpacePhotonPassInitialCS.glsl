@@ -4,18 +4,9 @@
 // along the way from the light into the scene.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
-{
-  SspRay nextRays[];
-};
-layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
-{
-  SspPayload nextPayloads[];
-};
-layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
-{
-  uint nextCount;
-};
+SSP_NEXT_RAYS(writeonly);
+SSP_NEXT_PAYLOADS(writeonly);
+SSP_NEXT_COUNTER();
 
 uniform sampler2D emitPosition;  // xyz, w = state (0: no photon)
 uniform sampler2D emitDirection; // xyz unit, w = the texel's measure (m^2 or sr)

@@ -3,10 +3,7 @@
 // finds whether anything lies between.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
-{
-  SspRay nextRays[];
-};
+SSP_NEXT_RAYS(writeonly);
 
 uniform sampler2D gPosition; // xyz, w = material (-1: none)
 uniform sampler2D gNormal;   // w = role

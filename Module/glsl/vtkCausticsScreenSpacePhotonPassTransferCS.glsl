@@ -12,34 +12,13 @@
 //    reflection: always reflected). The result goes to the next transfer map.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = CAUSTICS_SSP_COUNTER_BINDING) readonly buffer SspCounter
-{
-  uint rayCount;
-};
-layout(std430, binding = CAUSTICS_SSP_RAY_BINDING) readonly buffer SspRays
-{
-  SspRay rays[];
-};
-layout(std430, binding = CAUSTICS_SSP_PAYLOAD_BINDING) readonly buffer SspPayloads
-{
-  SspPayload payloads[];
-};
-layout(std430, binding = CAUSTICS_SSP_HIT_BINDING) readonly buffer SspHits
-{
-  SspHit hits[];
-};
-layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) writeonly buffer SspNextRays
-{
-  SspRay nextRays[];
-};
-layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) writeonly buffer SspNextPayloads
-{
-  SspPayload nextPayloads[];
-};
-layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) buffer SspNextCounter
-{
-  uint nextCount;
-};
+SSP_COUNTER(readonly);
+SSP_RAYS(readonly);
+SSP_PAYLOADS(readonly);
+SSP_HITS(readonly);
+SSP_NEXT_RAYS(writeonly);
+SSP_NEXT_PAYLOADS(writeonly);
+SSP_NEXT_COUNTER();
 layout(rgba32f, binding = 0) uniform writeonly image2D splatPosition;
 layout(rgba32f, binding = 1) uniform writeonly image2D splatNormal;
 layout(rgba32f, binding = 2) uniform writeonly image2D splatFlux;
