@@ -46,8 +46,14 @@ foreach (expected
     message(FATAL_ERROR "the installed prefix has no ${expected}")
   endif ()
 endforeach ()
-if (PYTHON AND NOT EXISTS "${prefix}/lib/python3/dist-packages/vtkcaustics/__init__.py")
-  message(FATAL_ERROR "the installed Python package has no __init__.py")
+if (PYTHON)
+  foreach (expected
+      lib/python3/dist-packages/vtkcaustics/__init__.py
+      share/vtkcaustics/examples/render_ball_lens.py)
+    if (NOT EXISTS "${prefix}/${expected}")
+      message(FATAL_ERROR "the installed prefix has no ${expected}")
+    endif ()
+  endforeach ()
 endif ()
 
 # 2. No installed file names the source tree, the build tree or the staging prefix,
@@ -110,12 +116,18 @@ caustics_run("run the installed caustics-render" "wrote .*installed-cli-bunny.pn
   COMMAND "${prefix}/bin/caustics-render" bunny --size 32 --photons 16
           --output "${WORK}/installed-cli-bunny")
 
-# 5. The installed Python package, with only the prefix on PYTHONPATH.
+# 5. The installed Python package, with only the prefix on PYTHONPATH, and the
+#    installed example rendering headless (no DISPLAY: EGL).
 if (PYTHON)
   caustics_run("import vtkcaustics from the prefix" "consumer.py: ok"
     COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/lib/python3/dist-packages"
             "${PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/Consumer/consumer.py" "${prefix}")
   message("${caustics_output}")
+  caustics_run("run the installed Python example with no X server" "window egl-.*wrote"
+    COMMAND "${CMAKE_COMMAND}" -E env --unset=DISPLAY
+            "PYTHONPATH=${prefix}/lib/python3/dist-packages" "${PYTHON}"
+            "${prefix}/share/vtkcaustics/examples/render_ball_lens.py" --size 64
+            --output "${WORK}/installed-example")
 endif ()
 
 caustics_step("install: ok")
