@@ -1577,9 +1577,16 @@ vtkSmartPointer<vtkCausticsReferenceRenderer> MakeGroundTruth(const Options& opt
 {
   auto truth = MakeReference(
     renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
-  std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
-            << " photons per light" << std::flush;
-  if (!truth->Update())
+  std::ostringstream label;
+  label << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
+        << " photons per light";
+  bool ok = false;
+  {
+    // Minutes at the default photon count: progress and time left while it runs.
+    caustics_cli::ProgressReport progress(truth, label.str());
+    ok = truth->Update();
+  }
+  if (!ok)
   {
     throw std::runtime_error(
       "the reference failed on scene '" + scene + "': " + truth->GetLastError());
@@ -1587,7 +1594,7 @@ vtkSmartPointer<vtkCausticsReferenceRenderer> MakeGroundTruth(const Options& opt
   messages->TakeError();
   results.Truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
     truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
-  std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
+  std::cout << label.str() << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
             << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
   return truth;
 }
