@@ -7,14 +7,21 @@
 #ifndef CausticsCommandLine_h
 #define CausticsCommandLine_h
 
+#include "vtkCommand.h"
 #include "vtkLogger.h"
 #include "vtkNew.h"
+#include "vtkObject.h"
 #include "vtkOutputWindow.h"
 #include "vtksys/CommandLineArguments.hxx"
 
+#include <unistd.h> // For isatty
+
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <list>
 #include <sstream>
@@ -214,6 +221,117 @@ private:
     return colon == std::string::npos ? message : message.substr(colon + 3);
   }
   std::string FirstError;
+};
+
+/** "12 s", "3 min 05 s": a duration for people. */
+inline std::string FormatSeconds(double seconds)
+{
+  std::ostringstream text;
+  if (seconds < 90.0)
+  {
+    text << std::fixed << std::setprecision(seconds < 10.0 ? 1 : 0) << seconds << " s";
+  }
+  else
+  {
+    const long total = std::lround(seconds);
+    text << total / 60 << " min " << std::setw(2) << std::setfill('0') << total % 60 << " s";
+  }
+  return text.str();
+}
+
+/**
+ * Shows the progress of a long computation while it lives, from the
+ * vtkCommand::ProgressEvent its source fires (call data: a double in [0, 1]):
+ * - on a terminal, one line rewritten in place, "LABEL: 42 %, about 12 s left",
+ *   erased when the work is done (what the program prints next takes its place);
+ * - otherwise (a log, a pipe, ctest), one line per 10 %:
+ *   "LABEL: 40 % after 8.1 s, about 12 s left", and "LABEL: 100 % after 20 s".
+ * Nothing is shown when no event comes (a reference loaded from its cache).
+ */
+class ProgressReport
+{
+public:
+  ProgressReport(vtkObject* source, std::string label, std::ostream& out = std::cout)
+    : Source(source)
+    , Label(std::move(label))
+    , Out(out)
+    , Terminal(&out == &std::cout ? isatty(STDOUT_FILENO) != 0 : isatty(STDERR_FILENO) != 0)
+  {
+    this->Tag = source->AddObserver(vtkCommand::ProgressEvent, this, &ProgressReport::OnProgress);
+  }
+  ~ProgressReport()
+  {
+    this->Source->RemoveObserver(this->Tag);
+    this->Erase();
+  }
+  ProgressReport(const ProgressReport&) = delete;
+  ProgressReport& operator=(const ProgressReport&) = delete;
+
+  /** Whether the output is a terminal (the line is rewritten) or not (one line per 10 %). */
+  void SetTerminal(bool terminal) { this->Terminal = terminal; }
+
+private:
+  using Clock = std::chrono::steady_clock;
+
+  void OnProgress(vtkObject*, unsigned long, void* data)
+  {
+    const double fraction = std::min(1.0, std::max(0.0, *static_cast<double*>(data)));
+    const auto now = Clock::now();
+    if (!this->Started)
+    {
+      this->Started = true;
+      this->Start = now;
+    }
+    const double elapsed = std::chrono::duration<double>(now - this->Start).count();
+    const int percent = static_cast<int>(std::floor(100.0 * fraction + 1e-9));
+    // The rate is known once a little work is done; before that no estimate is given.
+    const std::string left = fraction >= 0.01 && fraction < 1.0 && elapsed > 0.0
+      ? ", about " + FormatSeconds(elapsed * (1.0 - fraction) / fraction) + " left"
+      : "";
+    if (this->Terminal)
+    {
+      const double sinceShown = std::chrono::duration<double>(now - this->Shown).count();
+      if (percent == this->LastPercent && sinceShown < 0.5)
+      {
+        return;
+      }
+      this->Shown = now;
+      std::string line = this->Label + ": " + std::to_string(percent) + " %" + left;
+      const std::size_t width = line.size();
+      line.resize(std::max(width, this->Width), ' '); // over the end of a longer line
+      this->Width = width;
+      this->Out << '\r' << line << std::flush;
+      this->LastPercent = percent;
+      return;
+    }
+    const int step = percent / 10;
+    if (step > this->LastStep && percent > 0)
+    {
+      this->LastStep = step;
+      this->Out << this->Label << ": " << 10 * step << " % after " << FormatSeconds(elapsed)
+                << (step < 10 ? left : "") << std::endl;
+    }
+  }
+
+  void Erase()
+  {
+    if (this->Terminal && this->Width > 0)
+    {
+      this->Out << '\r' << std::string(this->Width, ' ') << '\r' << std::flush;
+      this->Width = 0;
+    }
+  }
+
+  vtkObject* Source;
+  unsigned long Tag = 0;
+  std::string Label;
+  std::ostream& Out;
+  bool Terminal;
+  bool Started = false;
+  Clock::time_point Start, Shown;
+  int LastPercent = -1;
+  int LastStep = 0;
+  std::size_t Width = 0;
 };
 
 /** Whether a VTK error that the program's body did not turn into an exception fails it. */

@@ -286,7 +286,8 @@ Output:
                              $CAUSTICS_PYTHON, else /usr/bin/python3, else python3)
   --update-docs              rewrite the generated section of docs/benchmarks.md and
                              copy the plot to docs/benchmarks.png
-  --docs FILE                the Markdown file --update-docs rewrites
+  --docs FILE                the Markdown file --update-docs rewrites (default:
+                             docs/benchmarks.md in the current folder, the repository root)
 
   --smoke                    tiny run for CI: the first scene at 64 x 64, the first
                              configuration of each technique, 1 warm-up + 2 timed
@@ -560,7 +561,7 @@ Options Parse(int argc, char* argv[])
   options.Python = options.Python.empty() ? DefaultPython() : options.Python;
   if (options.Docs.empty())
   {
-    options.Docs = std::string(CAUSTICS_SOURCE_DIR) + "/docs/benchmarks.md";
+    options.Docs = "docs/benchmarks.md";
   }
   return options;
 }
@@ -1159,7 +1160,11 @@ private:
  */
 std::string Plot(const Options& options, const std::string& csv, std::string& why)
 {
-  const std::string script = std::string(CAUSTICS_SOURCE_DIR) + "/scripts/plot-benchmarks.py";
+  // Beside this program as built and as installed: <bin>/<CAUSTICS_SCRIPTS_FROM_BIN>.
+  const std::string program = vtksys::SystemTools::GetRealPath("/proc/self/exe");
+  const std::string script = vtksys::SystemTools::CollapseFullPath(
+    std::string(CAUSTICS_SCRIPTS_FROM_BIN) + "/plot-benchmarks.py",
+    vtksys::SystemTools::GetFilenamePath(program));
   const std::string png = options.Output + "/benchmarks.png";
   if (!vtksys::SystemTools::FileExists(script))
   {
@@ -1276,8 +1281,11 @@ void WriteDocsHeader(std::ostream& md, const Options& options, const Machine& ma
   const std::vector<TruthRecord>& truths, double runSeconds)
 {
   std::string cwd = vtksys::SystemTools::GetCurrentWorkingDirectory();
+  // The repository root holds docs/benchmarks.md.
+  const std::string root = vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::GetFilenamePath(
+    vtksys::SystemTools::CollapseFullPath(options.Docs)));
   std::string relative = vtksys::SystemTools::RelativePath(
-    vtksys::SystemTools::GetRealPath(CAUSTICS_SOURCE_DIR), vtksys::SystemTools::GetRealPath(cwd));
+    vtksys::SystemTools::GetRealPath(root), vtksys::SystemTools::GetRealPath(cwd));
   md << "Command (from " << (relative.empty() ? "the repository root" : "`" + relative + "`")
      << ", under `xvfb-run -a` where there is no display):\n\n```sh\n"
      << options.CommandLine << "\n```\n\n";
@@ -1569,9 +1577,16 @@ vtkSmartPointer<vtkCausticsReferenceRenderer> MakeGroundTruth(const Options& opt
 {
   auto truth = MakeReference(
     renderer, options.Size, options.ReferencePhotons, options.ReferenceKernel, 1, true);
-  std::cout << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
-            << " photons per light" << std::flush;
-  if (!truth->Update())
+  std::ostringstream label;
+  label << scene << ": ground truth, " << static_cast<long long>(options.ReferencePhotons)
+        << " photons per light";
+  bool ok = false;
+  {
+    // Minutes at the default photon count: progress and time left while it runs.
+    caustics_cli::ProgressReport progress(truth, label.str());
+    ok = truth->Update();
+  }
+  if (!ok)
   {
     throw std::runtime_error(
       "the reference failed on scene '" + scene + "': " + truth->GetLastError());
@@ -1579,7 +1594,7 @@ vtkSmartPointer<vtkCausticsReferenceRenderer> MakeGroundTruth(const Options& opt
   messages->TakeError();
   results.Truths.push_back({ scene, truth->GetNumberOfPhotonsEmitted(), truth->GetLoadedFromCache(),
     truth->GetWallTime(), vtksys::SystemTools::GetFilenameName(truth->GetCacheFile()) });
-  std::cout << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
+  std::cout << label.str() << (truth->GetLoadedFromCache() ? " (cached, " : " (rendered, ")
             << Fixed(truth->GetWallTime(), 1) << " s): " << truth->GetCacheFile() << std::endl;
   return truth;
 }

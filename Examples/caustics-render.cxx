@@ -13,6 +13,7 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
+#include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsTechniques.h"
@@ -94,8 +95,16 @@ Overrides:
 Output:
   --output PREFIX            output file prefix (default: caustics)
   --exposure E               multiplier applied before the PNG's 8-bit clamp (default 1)
-  --timings                  print per-stage GPU and CPU times
+  --timings                  print per-stage GPU and CPU times (ms, a table)
   --help                     this text
+
+Ground truth:
+  --reference                also render the CPU reference (Embree) of the same view
+                             to PREFIX-reference.exr: caustic.*, direct.* (W/m^2),
+                             volume.* (W/(m^2 sr)), mask.Y; shows its progress
+  --reference-photons N      its photons per light, 1..1e10 (default 1e6); implies
+                             --reference
+  --no-reference-cache       render it even when a cached result exists
 )";
 
 struct Options
@@ -112,6 +121,9 @@ struct Options
   int Frames = 1;
   double Exposure = 1.0;
   bool Timings = false;
+  bool Reference = false;
+  double ReferencePhotons = 1e6;
+  bool ReferenceCache = true;
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };
   double LightIntensity = 1.0;
@@ -309,6 +321,18 @@ void DeclareMediumAndOutputOptions(caustics_cli::Arguments& arguments, Options& 
   arguments.Flag("--timings", [&options] { options.Timings = true; });
 }
 
+void DeclareReferenceOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Flag("--reference", [&options] { options.Reference = true; });
+  arguments.Value("--reference-photons",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.ReferencePhotons = caustics_cli::ParseCount(option, value, 1, 1e10);
+      options.Reference = true;
+    });
+  arguments.Flag("--no-reference-cache", [&options] { options.ReferenceCache = false; });
+}
+
 /** "A, B, ..., best (default: X)": the techniques --technique takes. */
 std::string TechniqueNames(bool withDefault)
 {
@@ -333,6 +357,7 @@ Options Parse(int argc, char* argv[], bool& help)
   DeclareQualityOptions(arguments, options);
   DeclareLightAndCameraOptions(arguments, options);
   DeclareMediumAndOutputOptions(arguments, options);
+  DeclareReferenceOptions(arguments, options);
   for (const auto& scene : arguments.Parse(argc, argv))
   {
     if (sceneGiven)
@@ -574,11 +599,14 @@ bool CopyBuffer(vtkCausticsRenderPass* pass, const char* name, const char* as, v
   return true;
 }
 
+/** The median of the known (non-negative) values; NaN when none is known. */
 double Median(std::vector<double> values)
 {
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !(v >= 0.0); }),
+    values.end());
   if (values.empty())
   {
-    return -1.0;
+    return std::nan("");
   }
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
@@ -721,18 +749,73 @@ void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std
   std::cout << "wrote " << options.Output << ".png and " << options.Output << ".exr\n";
 }
 
+/**
+ * The per-stage table: one row per stage that ran, columns wide enough for the
+ * longest name; "-" where a time is not known (a CPU-only stage has no GPU time).
+ */
 void PrintTimings(const Options& options, StageTimes& times)
 {
-  std::cout << std::fixed << std::setprecision(3) << "per-stage time, median of " << options.Frames
-            << " frame(s):\n";
+  const std::string wall = "whole frame (wall clock)";
+  std::size_t width = wall.size();
   for (const auto& name : times.Order)
   {
-    std::cout << "  " << std::left << std::setw(28) << name << "gpu " << std::right << std::setw(9)
-              << Median(times.GPU[name]) << " ms   cpu " << std::setw(9) << Median(times.CPU[name])
-              << " ms\n";
+    width = std::max(width, name.size());
   }
-  std::cout << "  " << std::left << std::setw(28) << "whole frame (wall)"
-            << "    " << std::right << std::setw(9) << Median(times.Frames) << " ms\n";
+  auto row = [width](const std::string& name, const std::string& gpu, const std::string& cpu)
+  {
+    std::cout << "  " << std::left << std::setw(static_cast<int>(width)) << name << std::right
+              << std::setw(12) << gpu << std::setw(12) << cpu << "\n";
+  };
+  auto cell = [](double milliseconds)
+  {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << milliseconds;
+    return std::isnan(milliseconds) ? std::string("-") : text.str();
+  };
+  std::cout << "per-stage time in ms, median of " << options.Frames << " frame(s):\n";
+  row("stage", "gpu", "cpu");
+  for (const auto& name : times.Order)
+  {
+    row(name, cell(Median(times.GPU[name])), cell(Median(times.CPU[name])));
+  }
+  row(wall, "-", cell(Median(times.Frames)));
+}
+
+/**
+ * --reference: the CPU ground truth of the same view (vtkCausticsReferenceRenderer)
+ * to PREFIX-reference.exr, showing its progress while it runs.
+ */
+void RenderReference(const Options& options, vtkRenderer* renderer)
+{
+  vtkNew<vtkCausticsReferenceRenderer> reference;
+  reference->SetInputRenderer(renderer);
+  reference->SetImageSize(options.Width, options.Height);
+  reference->SetPhotonsPerLight(static_cast<vtkIdType>(options.ReferencePhotons));
+  reference->SetUseCache(options.ReferenceCache);
+  std::ostringstream label;
+  label << "caustics-render: reference, " << static_cast<long long>(options.ReferencePhotons)
+        << " photons per light";
+  bool ok = false;
+  {
+    caustics_cli::ProgressReport progress(reference, label.str());
+    ok = reference->Update();
+  }
+  if (!ok)
+  {
+    throw std::runtime_error(std::string("the reference failed: ") + reference->GetLastError());
+  }
+  const std::string exr = options.Output + "-reference.exr";
+  std::string error;
+  if (!vtkCausticsImageIO::WriteEXR(reference->GetOutput(),
+        { { "CausticIrradiance", "caustic" }, { "DirectIrradiance", "direct" },
+          { "VolumeRadiance", "volume" }, { "ReceiverMask", "mask" } },
+        exr, &error))
+  {
+    throw std::runtime_error(error);
+  }
+  std::cout << "wrote " << exr << " (reference, "
+            << (reference->GetLoadedFromCache() ? "from its cache" : "rendered") << " in "
+            << caustics_cli::FormatSeconds(reference->GetWallTime()) << ")\n";
 }
 
 int Run(const Options& options)
@@ -768,6 +851,10 @@ int Run(const Options& options)
   }
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
+  if (options.Reference)
+  {
+    RenderReference(options, renderer);
+  }
   return 0;
 }
 

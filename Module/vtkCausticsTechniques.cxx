@@ -72,6 +72,16 @@ vtkSmartPointer<vtkCausticsRenderPass> vtkCausticsTechniques::Create(const std::
   return nullptr;
 }
 
+vtkCausticsRenderPass* vtkCausticsTechniques::NewPass(const std::string& name)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(name);
+  if (pass)
+  {
+    pass->Register(nullptr); // the reference handed to the caller
+  }
+  return pass;
+}
+
 std::string vtkCausticsTechniques::Describe()
 {
   std::ostringstream text;

@@ -29,16 +29,18 @@ public:
   vtkTypeMacro(vtkCausticsTechniques, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-#ifndef __VTK_WRAP__
   /** Registered names, "best" excluded. */
   static std::vector<std::string> GetNames();
   /** The name "best" stands for. */
   static std::string GetBestName();
+#ifndef __VTK_WRAP__
   /** A new pass for `name` (or "best"); nullptr for an unknown name. */
   static vtkSmartPointer<vtkCausticsRenderPass> Create(const std::string& name);
+#endif
+  /** Create() for wrapped languages (Python): the caller owns the new pass. */
+  VTK_NEWINSTANCE static vtkCausticsRenderPass* NewPass(const std::string& name);
   /** One line per technique: name and what it is. */
   static std::string Describe();
-#endif
 
 protected:
   vtkCausticsTechniques() = default;

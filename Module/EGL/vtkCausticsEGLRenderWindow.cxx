@@ -174,6 +174,17 @@ bool vtkCausticsEGLRenderWindow::InitializeContext()
   return true;
 }
 
+void vtkCausticsEGLRenderWindow::Render()
+{
+  // vtkGenericOpenGLRenderWindow renders nothing until it is ready, and would say
+  // so only at the read-back ("ReadPixels called before window is ready").
+  if (!this->GetReadyForRendering() && !this->InitializeContext())
+  {
+    return;
+  }
+  this->Superclass::Render();
+}
+
 void vtkCausticsEGLRenderWindow::Initialize()
 {
   if (this->InitializeContext())

@@ -13,6 +13,8 @@
  * 3. VTK's GLEW is GLX-flavoured: glewInit() loads every GL entry point, then fails
  *    with GLEW_ERROR_NO_GLX_DISPLAY because there is no X display. OpenGLInitContext
  *    accepts exactly that error when GL >= 3.2 was loaded, and nothing else.
+ * The context is made on the first Render() (or Initialize(), or InitializeContext()),
+ * so the window is used like any other, from C++ or Python.
  * Use IsAvailable() to probe; vtkCausticsWindowFactory picks this window when no
  * display exists. VTK builds with EGL support do not need it.
  */
@@ -42,6 +44,12 @@ public:
   const char* GetLastError() const;
   /** "surfaceless" or "device" once initialized. */
   const char* GetPlatformName() const;
+
+  /**
+   * Creates the EGL context on the first call, then renders. Without a context it
+   * draws nothing and reports why (vtkErrorMacro; GetLastError()).
+   */
+  void Render() override;
 
   void Initialize() override;
   void MakeCurrent() override;

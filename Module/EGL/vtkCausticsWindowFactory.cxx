@@ -11,6 +11,8 @@ vtkStandardNewMacro(vtkCausticsWindowFactory);
 void vtkCausticsWindowFactory::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "LastPath: " << this->LastPath << "\n";
+  os << indent << "LastError: " << this->LastError << "\n";
 #ifdef VTK_OPENGL_HAS_EGL
   os << indent << "VTK has EGL: yes\n";
 #else
@@ -58,4 +60,17 @@ vtkSmartPointer<vtkRenderWindow> vtkCausticsWindowFactory::Create(bool offScreen
     "); run under xvfb-run -a");
   return nullptr;
 #endif
+}
+
+vtkRenderWindow* vtkCausticsWindowFactory::NewWindow(bool offScreen)
+{
+  std::string how;
+  vtkSmartPointer<vtkRenderWindow> window = vtkCausticsWindowFactory::Create(offScreen, &how);
+  this->LastPath = window ? how : std::string();
+  this->LastError = window ? std::string() : how;
+  if (window)
+  {
+    window->Register(nullptr); // the reference handed to the caller
+  }
+  return window;
 }

@@ -9,6 +9,13 @@
  * 3. no display: vtkCausticsEGLRenderWindow (Mesa surfaceless or an EGL device),
  *    unless the environment variable CAUSTICS_DISABLE_EGL is set (to anything but 0);
  * 4. none of these: nullptr and a message saying to run under xvfb-run.
+ *
+ * From C++, call the static Create(). From Python (or any wrapped language), call
+ * NewWindow() on an instance, which keeps the path taken and the reason for a failure:
+ * @code{.py}
+ * factory = vtkCausticsWindowFactory()
+ * window = factory.NewWindow(True)  # None when nothing works: factory.GetLastError()
+ * @endcode
  */
 #ifndef vtkCausticsWindowFactory_h
 #define vtkCausticsWindowFactory_h
@@ -17,7 +24,7 @@
 #include "vtkRenderingCausticsEGLModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For return value
 
-#include <string> // For std::string
+#include <string> // For std::string and members
 
 class vtkRenderWindow;
 
@@ -36,9 +43,24 @@ public:
   static vtkSmartPointer<vtkRenderWindow> Create(bool offScreen, std::string* how = nullptr);
 #endif
 
+  /**
+   * The same choice as Create(), for wrapped languages: a new window the caller owns
+   * (Python does this itself), or nullptr. Sets GetLastPath() or GetLastError().
+   */
+  VTK_NEWINSTANCE vtkRenderWindow* NewWindow(bool offScreen);
+
+  /** The path the last NewWindow() took ("x11", "egl-surfaceless", ...); empty after a failure. */
+  const char* GetLastPath() const { return this->LastPath.c_str(); }
+
+  /** Why the last NewWindow() made no window; empty after a success. */
+  const char* GetLastError() const { return this->LastError.c_str(); }
+
 protected:
   vtkCausticsWindowFactory() = default;
   ~vtkCausticsWindowFactory() override = default;
+
+  std::string LastPath;
+  std::string LastError;
 
 private:
   vtkCausticsWindowFactory(const vtkCausticsWindowFactory&) = delete;

@@ -18,6 +18,7 @@ void vtkCausticsImageIO::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Backend: OpenImageIO " << OIIO_VERSION_STRING << "\n";
+  os << indent << "LastError: " << this->LastError << "\n";
 }
 
 namespace
@@ -259,4 +260,50 @@ bool vtkCausticsImageIO::WritePNG(vtkImageData* image, const std::string& arrayN
     return false;
   }
   return true;
+}
+
+bool vtkCausticsImageIO::WriteEXRFile(vtkImageData* image, const std::vector<std::string>& arrays,
+  const std::vector<std::string>& layers, const std::string& path)
+{
+  this->LastError.clear();
+  if (!image)
+  {
+    this->LastError = "WriteEXRFile: no image to write to " + path;
+    return false;
+  }
+  if (arrays.size() != layers.size())
+  {
+    this->LastError = "WriteEXRFile: " + std::to_string(arrays.size()) + " arrays but " +
+      std::to_string(layers.size()) + " layer names for " + path;
+    return false;
+  }
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (std::size_t i = 0; i < arrays.size(); ++i)
+  {
+    pairs.emplace_back(arrays[i], layers[i]);
+  }
+  return vtkCausticsImageIO::WriteEXR(image, pairs, path, &this->LastError);
+}
+
+vtkImageData* vtkCausticsImageIO::ReadEXRFile(const std::string& path)
+{
+  this->LastError.clear();
+  vtkSmartPointer<vtkImageData> image = vtkCausticsImageIO::ReadEXR(path, &this->LastError);
+  if (image)
+  {
+    image->Register(nullptr); // the reference handed to the caller
+  }
+  return image;
+}
+
+bool vtkCausticsImageIO::WritePNGFile(vtkImageData* image, const std::string& array,
+  const std::string& path, double exposure, bool srgb)
+{
+  this->LastError.clear();
+  if (!image)
+  {
+    this->LastError = "WritePNGFile: no image to write to " + path;
+    return false;
+  }
+  return vtkCausticsImageIO::WritePNG(image, array, path, exposure, srgb, &this->LastError);
 }

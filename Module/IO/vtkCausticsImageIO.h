@@ -9,6 +9,14 @@
  * component); the layer named "" is the default layer (plain `R`, `G`, `B`),
  * which image viewers display. Rows are flipped between VTK's bottom-up and the
  * files' top-down order.
+ *
+ * From C++, call the static functions. From Python (or any wrapped language), call
+ * the *File methods on an instance, which keeps the last failure's message:
+ * @code{.py}
+ * io = vtkCausticsImageIO()
+ * if not io.WriteEXRFile(image, ["FinalColor", "CausticIrradiance"], ["", "caustic"], "a.exr"):
+ *     print(io.GetLastError())
+ * @endcode
  */
 #ifndef vtkCausticsImageIO_h
 #define vtkCausticsImageIO_h
@@ -17,7 +25,7 @@
 #include "vtkIOCausticsModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For return value
 
-#include <string>  // For std::string
+#include <string>  // For std::string and members
 #include <utility> // For std::pair
 #include <vector>  // For std::vector
 
@@ -56,9 +64,28 @@ public:
     double exposure = 1.0, bool srgb = false, std::string* error = nullptr);
 #endif
 
+  ///@{
+  /**
+   * The functions above for wrapped languages (Python). WriteEXRFile writes array
+   * `arrays[i]` as layer `layers[i]` (the lists have the same length); ReadEXRFile
+   * returns a new image the caller owns. On failure they return false or nullptr
+   * and GetLastError() says why.
+   */
+  bool WriteEXRFile(vtkImageData* image, const std::vector<std::string>& arrays,
+    const std::vector<std::string>& layers, const std::string& path);
+  VTK_NEWINSTANCE vtkImageData* ReadEXRFile(const std::string& path);
+  bool WritePNGFile(vtkImageData* image, const std::string& array, const std::string& path,
+    double exposure = 1.0, bool srgb = false);
+  ///@}
+
+  /** Why the last *File method failed; empty after a success. */
+  const char* GetLastError() const { return this->LastError.c_str(); }
+
 protected:
   vtkCausticsImageIO() = default;
   ~vtkCausticsImageIO() override = default;
+
+  std::string LastError;
 
 private:
   vtkCausticsImageIO(const vtkCausticsImageIO&) = delete;

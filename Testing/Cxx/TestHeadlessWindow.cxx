@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -84,6 +85,23 @@ TEST(HeadlessWindow, RendersWithoutADisplay)
     differing += std::abs(int(actual->GetValue(i)) - int(expected->GetValue(i))) > 1 ? 1 : 0;
   }
   EXPECT_EQ(differing, 0);
+}
+
+TEST(HeadlessWindow, MakesItsContextOnTheFirstRender)
+{
+  // Used like any VTK window, without InitializeContext(): before, Render() drew
+  // nothing and the read-back said "ReadPixels called before window is ready".
+  vtkNew<vtkCausticsEGLRenderWindow> window;
+  std::string error;
+  auto pixels = RenderBallLens(window, &error);
+  EXPECT_TRUE(error.empty()) << error;
+  EXPECT_STRNE(window->GetPlatformName(), "");
+  int brightest = 0;
+  for (vtkIdType i = 0; i < pixels->GetNumberOfValues(); ++i)
+  {
+    brightest = std::max(brightest, int(pixels->GetValue(i)));
+  }
+  EXPECT_GT(brightest, 100) << "the picture is black";
 }
 
 TEST(HeadlessWindow, ReportsWhyWhenNothingWorks)

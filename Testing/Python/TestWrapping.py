@@ -1,9 +1,13 @@
 """The Python wrapping: a built-in scene renders through the caustics pass from
-Python, buffers read back, and bad input is refused as in C++."""
+Python, buffers read back, bad input is refused as in C++, and the technique
+registry, the window factory and the image I/O are callable."""
+import os
 import sys
+import tempfile
 
 import vtkmodules.vtkInteractionStyle  # noqa: F401
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkCommonCore import vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkRenderingCore import vtkRenderWindow
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
@@ -70,6 +74,56 @@ def main():
             return "%s: peak caustic irradiance %g W/m^2, expected 0.5..10" % (name, peak)
         renderer.SetPass(None)
         pass_.ReleaseGraphicsResources(window)
+    return check_registry_factory_and_io()
+
+
+def check_registry_factory_and_io():
+    """The technique registry, the window factory and the EXR/PNG I/O from Python
+    (their C++ functions take std::string* or return vtkSmartPointer, which the
+    wrapping cannot: these are the wrappable forms)."""
+    techniques = vtkcaustics.vtkCausticsTechniques
+    if techniques.GetBestName() not in techniques.GetNames():
+        return "the best technique is not a registered one"
+    for name in techniques.GetNames() + ("best",):
+        pass_ = techniques.NewPass(name)
+        if not pass_ or not pass_.IsA("vtkCausticsRenderPass"):
+            return "NewPass(%r) made no pass" % name
+        if pass_.GetReferenceCount() != 1:
+            return "NewPass(%r) leaks a reference" % name
+    if techniques.NewPass("magic") is not None:
+        return "an unknown technique made a pass"
+
+    factory = vtkcaustics.vtkCausticsWindowFactory()
+    window = factory.NewWindow(True)
+    if window is None or factory.GetLastPath() != "x11" or factory.GetLastError():
+        return "the factory under Xvfb: %r, %r" % (factory.GetLastPath(), factory.GetLastError())
+
+    with tempfile.TemporaryDirectory() as folder:
+        return check_image_io(folder)
+
+
+def check_image_io(folder):
+    image = vtkImageData()
+    image.SetDimensions(4, 2, 1)
+    values = vtkFloatArray()
+    values.SetName("Irradiance")
+    values.SetNumberOfComponents(3)
+    for i in range(8):
+        values.InsertNextTuple3(i, 2 * i, 0.5)
+    image.GetPointData().AddArray(values)
+    io = vtkcaustics.vtkCausticsImageIO()
+    exr = os.path.join(folder, "wrapping.exr")
+    if not io.WriteEXRFile(image, ["Irradiance"], ["caustic"], exr):
+        return "WriteEXRFile: " + io.GetLastError()
+    back = io.ReadEXRFile(exr)
+    if back is None or back.GetPointData().GetArray("caustic").GetTuple3(7) != (7.0, 14.0, 0.5):
+        return "ReadEXRFile did not read back what was written: " + io.GetLastError()
+    if not io.WritePNGFile(image, "Irradiance", os.path.join(folder, "wrapping.png"), 0.1, True):
+        return "WritePNGFile: " + io.GetLastError()
+    if io.WriteEXRFile(image, ["Missing"], ["x"], exr) or "Missing" not in io.GetLastError():
+        return "a missing array was not refused with its name"
+    if io.ReadEXRFile(os.path.join(folder, "none.exr")) is not None or not io.GetLastError():
+        return "a missing file was not refused"
     return None
 
 
