@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # The second README command (and what CI runs): builds if needed, then runs the
-# whole test suite under Xvfb (llvmpipe), two tests at a time.
+# whole test suite under Xvfb (llvmpipe), two tests at a time, then the tests that
+# need no GPU stage again on an AddressSanitizer + UndefinedBehaviorSanitizer build
+# (scripts/sanitize.sh; CAUSTICS_SKIP_SANITIZERS=1 skips that part). Arguments go
+# to the first ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
-cd build
-exec xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 300 -j 2 "$@"
+(cd build && xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 300 -j 2 "$@")
+if [ "${CAUSTICS_SKIP_SANITIZERS:-0}" != 1 ]; then
+  scripts/sanitize.sh
+fi
