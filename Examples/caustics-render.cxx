@@ -78,7 +78,9 @@ Technique and quality:
   --technique NAME           )"
   "%TECHNIQUES%"
   R"(
-  --photons N                photon grid side per light (light-buffer texels), 1..8192
+  --photons N                photon grid side per light (light-buffer texels), 1..8192;
+                             refused first if this OpenGL cannot hold it (llvmpipe:
+                             at most 1182 for screen-space, 2048 for caustic-maps)
   --size W[xH]               image size in pixels (default 512x512)
   --frames N                 frames rendered; timings are their median (default 1)
 
