@@ -36,6 +36,7 @@ const double Huge = std::numeric_limits<double>::max();
 const double MaxIOR = vtkCausticsGLTFImporter::MAX_IOR;
 const double MaxLightIntensity = vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY;
 const double MinAttenuationDistance = vtkCausticsGLTFImporter::MIN_ATTENUATION_DISTANCE;
+const int MaxNodeDepth = vtkCausticsGLTFImporter::MAX_NODE_DEPTH;
 
 std::string Quoted(const std::string& text)
 {
@@ -967,7 +968,7 @@ private:
         return false;
       }
     }
-    return this->CheckNodeTree();
+    return this->CheckNodeTree() && this->CheckNodeDepth();
   }
 
   /** A node's references, transform and light link. */
@@ -1056,6 +1057,43 @@ private:
       {
         state[n] = 2;
       }
+    }
+    return true;
+  }
+
+  /**
+   * At most MaxNodeDepth levels (a root is level 1). VTK's loader recurses once per
+   * level, so this is checked without recursion: a node's level is its parent's
+   * plus one, found by walking up to a node whose level is known (each node is
+   * walked over once; the forest has no cycles, CheckNodeTree() saw to it).
+   */
+  bool CheckNodeDepth()
+  {
+    const std::size_t count = this->Parents.size();
+    std::vector<int> level(count, 0);
+    std::vector<int> chain;
+    int deepest = -1;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      chain.clear();
+      int n = static_cast<int>(i);
+      for (; n >= 0 && level[n] == 0; n = this->Parents[n])
+      {
+        chain.push_back(n);
+      }
+      int depth = n >= 0 ? level[n] : 0;
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+      {
+        level[*it] = ++depth;
+      }
+      deepest = deepest < 0 || depth > level[deepest] ? static_cast<int>(i) : deepest;
+    }
+    if (deepest >= 0 && level[deepest] > MaxNodeDepth)
+    {
+      return this->Fail("the node hierarchy is " + std::to_string(level[deepest]) +
+        " levels deep (down to nodes[" + std::to_string(deepest) + "]); at most " +
+        std::to_string(MaxNodeDepth) + " levels are supported (VTK's glTF loader recurses once "
+        "per level)");
     }
     return true;
   }

@@ -925,3 +925,57 @@ TEST_F(GLTFImporterTest, RefusesSparseAccessors)
   EXPECT_TRUE(Contains(error, "accessors[3].sparse: sparse accessors are not supported")) << error;
   EXPECT_FALSE(Contains(error, "bad_array")) << error;
 }
+
+namespace
+{
+/**
+ * SceneDocument() with a chain of `depth` nodes, each the only child of the
+ * previous one, under a new root of scene 0; the last holds the "plain" mesh.
+ */
+Json::Value ChainedDocument(int depth)
+{
+  Json::Value doc = SceneDocument();
+  Json::Value& nodes = doc["nodes"];
+  const int first = static_cast<int>(nodes.size());
+  for (int level = 0; level < depth; ++level)
+  {
+    Json::Value node(Json::objectValue);
+    if (level + 1 < depth)
+    {
+      node["children"].append(first + level + 1);
+    }
+    else
+    {
+      node["mesh"] = 3;
+    }
+    nodes.append(node);
+  }
+  doc["scenes"][0]["nodes"].append(first);
+  return doc;
+}
+}
+
+// Issue 18: a node hierarchy 100000 levels deep overflowed the stack in VTK's
+// loader, which recurses once per level; the limit is refused in one line.
+TEST_F(GLTFImporterTest, RefusesNodeHierarchiesDeeperThanTheLimit)
+{
+  const int limit = vtkCausticsGLTFImporter::MAX_NODE_DEPTH;
+  std::string error = this->ExpectFailure(WriteGLTF("too-deep.gltf", ChainedDocument(limit + 1)));
+  EXPECT_TRUE(Contains(error,
+    "the node hierarchy is 1001 levels deep (down to nodes[1012]); at most 1000 levels are "
+    "supported"))
+    << error;
+
+  // The issue's file, generated here rather than checked in (a few MB of JSON).
+  error = this->ExpectFailure(WriteGLTF("deep.gltf", ChainedDocument(100000)));
+  EXPECT_TRUE(Contains(error, "the node hierarchy is 100000 levels deep (down to nodes[100011])"))
+    << error;
+}
+
+TEST_F(GLTFImporterTest, ImportsNodeHierarchiesAtTheLimit)
+{
+  const std::string path =
+    WriteGLTF("deepest.gltf", ChainedDocument(vtkCausticsGLTFImporter::MAX_NODE_DEPTH));
+  ASSERT_TRUE(this->Import(path)) << this->Importer->GetLastError();
+  EXPECT_EQ(this->Renderer->GetActors()->GetNumberOfItems(), 6);
+}
