@@ -29,13 +29,14 @@ launcher=()
 if command -v ccache > /dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
+mkdir -p build-fuzz
+log=build-fuzz/build.log
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -Wno-dev \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" \
-  -DCAUSTICS_FUZZ=ON -DBUILD_TESTING=OFF > build-fuzz.log 2>&1 ||
-  { tail -n 30 build-fuzz.log >&2; echo "fuzz.sh: configuration failed (build-fuzz.log)" >&2; exit 1; }
+  -DCAUSTICS_FUZZ=ON -DBUILD_TESTING=OFF > "$log" 2>&1 ||
+  { tail -n 30 "$log" >&2; echo "fuzz.sh: configuration failed ($log)" >&2; exit 1; }
 cmake --build build-fuzz --parallel "${CAUSTICS_FUZZ_JOBS:-2}" --target "${targets[@]}" \
-  >> build-fuzz.log 2>&1 ||
-  { tail -n 40 build-fuzz.log >&2; echo "fuzz.sh: build failed (build-fuzz.log)" >&2; exit 1; }
+  >> "$log" 2>&1 || { tail -n 40 "$log" >&2; echo "fuzz.sh: build failed ($log)" >&2; exit 1; }
 
 # LeakSanitizer is on (libFuzzer's default under ASan): memory unreachable after an
 # input is a finding, objects VTK keeps for the life of the process are not.
