@@ -596,21 +596,6 @@ private:
       {
         return this->Fail(path + ".type is missing or not one of SCALAR, VEC2-4, MAT2-4");
       }
-      if (accessor.isMember("bufferView"))
-      {
-        const Json::Value& view = views[accessor["bufferView"].asUInt()];
-        const std::uint64_t element = static_cast<std::uint64_t>(componentSize) * components;
-        const std::uint64_t stride =
-          view.get("byteStride", 0).asUInt64() > 0 ? view["byteStride"].asUInt64() : element;
-        const std::uint64_t end = accessor.get("byteOffset", 0).asUInt64() +
-          stride * (accessor["count"].asUInt64() - 1) + element;
-        if (end > view["byteLength"].asUInt64())
-        {
-          return this->Fail(path + " reads " + std::to_string(end) + " bytes but bufferViews[" +
-            std::to_string(accessor["bufferView"].asUInt()) + "] has " +
-            std::to_string(view["byteLength"].asUInt64()));
-        }
-      }
       if (accessor.isMember("sparse"))
       {
         // VTK 9.1's loader drops an accessor whose sparse byteOffsets are absent (they
@@ -622,6 +607,25 @@ private:
         return this->Fail(path +
           ".sparse: sparse accessors are not supported (store the "
           "accessor's values densely in a bufferView)");
+      }
+      if (!accessor.isMember("bufferView"))
+      {
+        // glTF reads such an accessor as zeros; VTK 9.1's loader dereferences the
+        // missing view instead (SIGSEGV in ExtractPrimitiveAccessorData, found by
+        // fuzzing).
+        return this->Fail(path + " has no bufferView: accessors of zeros are not supported");
+      }
+      const Json::Value& view = views[accessor["bufferView"].asUInt()];
+      const std::uint64_t element = static_cast<std::uint64_t>(componentSize) * components;
+      const std::uint64_t stride =
+        view.get("byteStride", 0).asUInt64() > 0 ? view["byteStride"].asUInt64() : element;
+      const std::uint64_t end = accessor.get("byteOffset", 0).asUInt64() +
+        stride * (accessor["count"].asUInt64() - 1) + element;
+      if (end > view["byteLength"].asUInt64())
+      {
+        return this->Fail(path + " reads " + std::to_string(end) + " bytes but bufferViews[" +
+          std::to_string(accessor["bufferView"].asUInt()) + "] has " +
+          std::to_string(view["byteLength"].asUInt64()));
       }
     }
     return true;

@@ -979,3 +979,15 @@ TEST_F(GLTFImporterTest, ImportsNodeHierarchiesAtTheLimit)
   ASSERT_TRUE(this->Import(path)) << this->Importer->GetLastError();
   EXPECT_EQ(this->Renderer->GetActors()->GetNumberOfItems(), 6);
 }
+
+// Issue 18, found by fuzzing: an accessor without a bufferView (glTF's accessor
+// of zeros) used as indices crashed VTK 9.1's loader (SIGSEGV).
+TEST_F(GLTFImporterTest, RefusesAccessorsWithoutBufferView)
+{
+  Json::Value doc = SceneDocument();
+  doc["accessors"][1].removeMember("bufferView");
+  const std::string error = this->ExpectFailure(WriteGLTF("zeros.gltf", doc));
+  EXPECT_TRUE(Contains(
+    error, "accessors[1] has no bufferView: accessors of zeros are not supported"))
+    << error;
+}
