@@ -1,5 +1,6 @@
 #include "vtkCausticsGLTFDocumentChecker.h"
 
+#include "vtkCausticsFileText.h"
 #include "vtkCausticsGLTFImporter.h"
 
 #include "vtkMath.h"
@@ -38,9 +39,29 @@ const double MaxLightIntensity = vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY;
 const double MinAttenuationDistance = vtkCausticsGLTFImporter::MIN_ATTENUATION_DISTANCE;
 const int MaxNodeDepth = vtkCausticsGLTFImporter::MAX_NODE_DEPTH;
 
+using caustics::text::Printable;
+using caustics::text::ReasonLength;
+
+/** Text from the file in quotes, short and printable (vtkCausticsFileText.h). */
 std::string Quoted(const std::string& text)
 {
-  return "'" + text + "'";
+  return caustics::text::Quote(text);
+}
+
+/**
+ * The JSON path of member `name` of `path`: "path.name", or "path['...']" (quoted,
+ * short, printable) when the name is not a plain identifier.
+ */
+std::string MemberPath(const std::string& path, const std::string& name)
+{
+  const bool plain = !name.empty() && name.size() <= caustics::text::QuoteLength &&
+    std::all_of(name.begin(), name.end(),
+      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (!plain)
+  {
+    return path + "[" + Quoted(name) + "]";
+  }
+  return path.empty() ? name : path + "." + name;
 }
 
 std::string Plural(std::size_t count, const char* noun)
@@ -184,7 +205,7 @@ std::string OneLine(const std::string& jsoncppErrors)
     const std::size_t last = text.find_last_not_of(" \t\r");
     return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
   };
-  return vtksys::SystemTools::LowerCase(trim(where)) + ": " + trim(what);
+  return Printable(vtksys::SystemTools::LowerCase(trim(where)) + ": " + trim(what), ReasonLength);
 }
 
 /** The first number that is NaN or infinite, as a JSON path; false when there is none. */
@@ -209,7 +230,7 @@ bool FindNonFinite(const Json::Value& value, const std::string& path, std::strin
   {
     for (const std::string& name : value.getMemberNames())
     {
-      if (FindNonFinite(value[name], path.empty() ? name : path + "." + name, where))
+      if (FindNonFinite(value[name], MemberPath(path, name), where))
       {
         return true;
       }
@@ -427,7 +448,9 @@ private:
     std::string where;
     if (FindNonFinite(this->Root, "", where))
     {
-      return this->Fail(where + " is not a finite number (NaN or infinity)");
+      // The path of a number nested 1000 levels deep would be 3000 bytes long.
+      return this->Fail(
+        Printable(where, ReasonLength) + " is not a finite number (NaN or infinity)");
     }
     return this->IsObjectOrAbsent(this->Root, "extensions", "");
   }
@@ -532,7 +555,8 @@ private:
       const std::string file = vtksys::SystemTools::CollapseFullPath(uri, this->Folder);
       if (!vtksys::SystemTools::FileExists(file, true))
       {
-        return this->Fail(path + " " + Quoted(uri) + " not found (looked for " + file + ")");
+        return this->Fail(path + " " + Quoted(uri) + " not found (looked for " +
+          Printable(file, ReasonLength) + ")");
       }
       available = vtksys::SystemTools::FileLength(file);
     }
@@ -810,7 +834,7 @@ private:
     const Json::Value& attributes = primitive["attributes"];
     for (const std::string& name : attributes.getMemberNames())
     {
-      if (!this->IndexValue(attributes[name], path + ".attributes." + name, "accessors"))
+      if (!this->IndexValue(attributes[name], MemberPath(path + ".attributes", name), "accessors"))
       {
         return false;
       }
@@ -826,7 +850,7 @@ private:
     {
       if (accessors[attributes[name].asUInt()]["count"].asUInt64() != vertices)
       {
-        return this->Fail(path + ".attributes." + name + " has " +
+        return this->Fail(MemberPath(path + ".attributes", name) + " has " +
           std::to_string(accessors[attributes[name].asUInt()]["count"].asUInt64()) +
           " elements but POSITION has " + std::to_string(vertices));
       }
@@ -852,8 +876,8 @@ private:
     {
       for (const std::string& name : targets[t].getMemberNames())
       {
-        if (!this->IndexValue(
-              targets[t][name], path + ".targets[" + std::to_string(t) + "]." + name, "accessors"))
+        if (!this->IndexValue(targets[t][name],
+              MemberPath(path + ".targets[" + std::to_string(t) + "]", name), "accessors"))
         {
           return false;
         }
@@ -1096,8 +1120,8 @@ private:
     {
       return this->Fail("the node hierarchy is " + std::to_string(level[deepest]) +
         " levels deep (down to nodes[" + std::to_string(deepest) + "]); at most " +
-        std::to_string(MaxNodeDepth) + " levels are supported (VTK's glTF loader recurses once "
-        "per level)");
+        std::to_string(MaxNodeDepth) + " levels are supported (VTK's glTF loader recurses " +
+        "once per level)");
     }
     return true;
   }

@@ -1,5 +1,6 @@
 #include "vtkCausticsGLTFImporter.h"
 
+#include "vtkCausticsFileText.h"
 #include "vtkCausticsGLTFDocumentChecker.h"
 
 #include "vtkActor.h"
@@ -511,7 +512,9 @@ int vtkCausticsGLTFImporter::RunLoader(const std::string& path, bool binary)
   auto loaderFailed = [&](const char* step)
   {
     return this->Fail(std::string("VTK's glTF loader failed to ") + step +
-      (messages.empty() ? std::string() : ": " + messages.back()));
+      (messages.empty()
+          ? std::string()
+          : ": " + caustics::text::Printable(messages.back(), caustics::text::ReasonLength)));
   };
   // VTK 9.1's loader accepts only the exact extensions ".gltf" and ".glb"; a
   // "scene.GLTF" is read through a lower-case alias. Relative buffer URIs still
@@ -549,7 +552,8 @@ int vtkCausticsGLTFImporter::RunLoader(const std::string& path, bool binary)
     // VTK warns about the extensions only this class reads.
     if (!caustics::gltf::MentionsOwnExtension(message))
     {
-      vtkWarningMacro(<< path << ": VTK's glTF loader: " << message);
+      vtkWarningMacro(<< path << ": VTK's glTF loader: "
+                      << caustics::text::Printable(message, caustics::text::ReasonLength));
     }
   }
   return 1;

@@ -1,5 +1,7 @@
 #include "vtkCausticsMeshReader.h"
 
+#include "vtkCausticsFileText.h"
+
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCausticsMaterial.h"
@@ -43,10 +45,6 @@ vtkStandardNewMacro(vtkCausticsMeshReader);
 
 namespace
 {
-/** Characters of the file that a message quotes: enough to recognise the place. */
-constexpr std::size_t QuoteLength = 60;
-/** Characters of a VTK reader's message passed on (it may quote the file itself). */
-constexpr std::size_t ReasonLength = 120;
 /**
  * vtkOBJReader (9.1) reads lines with fgets into a 256 KiB buffer and fails on a
  * longer one, quoting all of it; its content (without '\n') is at most this long.
@@ -69,47 +67,9 @@ std::string LowerExtension(const std::string& fileName)
   return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(fileName));
 }
 
-/**
- * `text` fit for a one-line message: at most `limit` characters, bytes outside
- * printable ASCII written as \xNN, "..." where it was cut. A 5 MB line or binary
- * junk from a bad file thus never floods the terminal.
- */
-std::string Printable(std::string_view text, std::size_t limit)
-{
-  static const char* const hex = "0123456789abcdef";
-  std::string out;
-  std::size_t i = 0;
-  for (; i < text.size(); ++i)
-  {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    const bool printable = c >= 0x20 && c < 0x7f;
-    if (out.size() + (printable ? 1 : 4) > limit)
-    {
-      break;
-    }
-    if (printable)
-    {
-      out.push_back(static_cast<char>(c));
-    }
-    else
-    {
-      out += "\\x";
-      out.push_back(hex[c >> 4]);
-      out.push_back(hex[c & 15]);
-    }
-  }
-  if (i < text.size())
-  {
-    out += "...";
-  }
-  return out;
-}
-
-/** A piece of the file, quoted for a message. */
-std::string Quote(std::string_view text)
-{
-  return "'" + Printable(text, QuoteLength) + "'";
-}
+using caustics::text::Printable;
+using caustics::text::Quote;
+using caustics::text::ReasonLength;
 
 /**
  * Why `path` cannot be a mesh file, judged by stat() alone, or "". Opening a FIFO
@@ -396,8 +356,7 @@ private:
     {
       if (this->Ascii)
       {
-        const std::string problem =
-          this->NextAsciiLine(element, i, last && i + 1 == element.count);
+        const std::string problem = this->NextAsciiLine(element, i, last && i + 1 == element.count);
         if (!problem.empty())
         {
           return problem;
@@ -470,8 +429,8 @@ private:
     if (!this->Lines->Next(this->Line))
     {
       return this->Lines->TooLong()
-        ? "line " + std::to_string(this->Lines->GetNumber()) + " (" + where +
-          ") is longer than " + std::to_string(PLYLineLimit) + " bytes: " + Quote(this->Line)
+        ? "line " + std::to_string(this->Lines->GetNumber()) + " (" + where + ") is longer than " +
+          std::to_string(PLYLineLimit) + " bytes: " + Quote(this->Line)
         : "the file ends before " + where + " of " + std::to_string(element.count) +
           " (truncated?)";
     }
@@ -482,8 +441,9 @@ private:
     }
     if (!this->Lines->Ended())
     {
-      return last ? at + " does not end with a line break (vtkPLYReader takes it for the end "
-                         "of the file)"
+      return last ? at +
+          " does not end with a line break (vtkPLYReader takes it for the end "
+          "of the file)"
                   : "the file ends inside " + where + " of " + std::to_string(element.count) +
           " (truncated?)";
     }

@@ -987,7 +987,46 @@ TEST_F(GLTFImporterTest, RefusesAccessorsWithoutBufferView)
   Json::Value doc = SceneDocument();
   doc["accessors"][1].removeMember("bufferView");
   const std::string error = this->ExpectFailure(WriteGLTF("zeros.gltf", doc));
-  EXPECT_TRUE(Contains(
-    error, "accessors[1] has no bufferView: accessors of zeros are not supported"))
+  EXPECT_TRUE(
+    Contains(error, "accessors[1] has no bufferView: accessors of zeros are not supported"))
     << error;
+}
+
+// Issue 18, found by fuzzing: a version string with binary bytes was quoted as
+// is, breaking the one-line message (and a long one flooded it). Text from the
+// file is quoted at most 60 characters long, bytes outside ASCII as \xNN.
+TEST_F(GLTFImporterTest, QuotesOnlyShortPrintableExcerpts)
+{
+  auto expectShortAndPrintable = [](const std::string& error)
+  {
+    EXPECT_LT(error.size(), 400u) << error.substr(0, 400);
+    for (char c : error)
+    {
+      ASSERT_TRUE(static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7f)
+        << error.substr(0, 400);
+    }
+  };
+  // Raw bytes in the JSON string (jsoncpp's writer would escape them).
+  Json::Value doc = SceneDocument();
+  doc["asset"]["version"] = "VERSION";
+  std::string text = JSONText(doc);
+  text.replace(text.find("VERSION"), 7, std::string("2\xd4") + "0\x7f" + std::string(5000, 'x'));
+  std::string error = this->ExpectFailure(WriteText("binary-version.gltf", text));
+  EXPECT_TRUE(Contains(error, "asset.version is '2\\xd40\\x7fxxxx")) << error;
+  EXPECT_TRUE(Contains(error, "...'; only glTF 2.x is supported")) << error;
+  expectShortAndPrintable(error);
+
+  // A member name from the file in a JSON path.
+  doc = SceneDocument();
+  doc["meshes"][0]["primitives"][0]["attributes"]["\x01" + std::string(300, 'N')] = 99;
+  error = this->ExpectFailure(WriteGLTF("attribute-name.gltf", doc));
+  EXPECT_TRUE(Contains(error, "meshes[0].primitives[0].attributes['\\x01NNN")) << error;
+  EXPECT_TRUE(Contains(error, "...'] = 99 is out of range")) << error;
+  expectShortAndPrintable(error);
+
+  doc = SceneDocument();
+  doc["buffers"][0]["uri"] = std::string(3000, 'b') + ".bin";
+  error = this->ExpectFailure(WriteGLTF("long-uri.gltf", doc));
+  EXPECT_TRUE(Contains(error, "buffers[0].uri 'bbbb")) << error;
+  expectShortAndPrintable(error);
 }

@@ -597,22 +597,22 @@ TEST_F(MeshReaderTest, RefusesFilesThatAreNotRegular)
 // without a line break, made it read through a null pointer (SIGSEGV).
 TEST_F(MeshReaderTest, RefusesPlyLinesThatVTKWouldReadPast)
 {
-  std::string error =
-    this->ExpectFailure(WriteFile("short-line.ply", PlyHeader(3, 1) + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n"));
+  std::string error = this->ExpectFailure(
+    WriteFile("short-line.ply", PlyHeader(3, 1) + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n"));
   EXPECT_TRUE(Contains(error,
     "short-line.ply: line 11 (element 'vertex' 1) has 2 values, fewer than its properties need"))
     << error;
   // "\v" separates words for the C library, not for vtkPLY: "0\v0" is one word.
-  error = this->ExpectFailure(
-    WriteFile("vtab.ply", PlyHeader(3, 1) + "0\v0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  error =
+    this->ExpectFailure(WriteFile("vtab.ply", PlyHeader(3, 1) + "0\v0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
   EXPECT_TRUE(Contains(error, "vtab.ply: element 'vertex' 0: '0\\x0b0' is not a number")) << error;
   error = this->ExpectFailure(
     WriteFile("blank-line.ply", PlyHeader(3, 1) + "0 0 0\n\n1 0 0\n0 1 0\n3 0 1 2\n"));
   EXPECT_TRUE(Contains(error, "line 11 (element 'vertex' 1) has 0 values")) << error;
   error = this->ExpectFailure(
     WriteFile("no-final-newline.ply", PlyHeader(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2"));
-  EXPECT_TRUE(Contains(error,
-    "no-final-newline.ply: line 13 (element 'face' 0) does not end with a line break"))
+  EXPECT_TRUE(Contains(
+    error, "no-final-newline.ply: line 13 (element 'face' 0) does not end with a line break"))
     << error;
   // Tabs and extra words are fine, as for vtkPLY.
   const std::string path =

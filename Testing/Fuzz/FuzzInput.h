@@ -15,8 +15,9 @@
  *    characters of the file), and is not the importer's last-resort
  *    "unexpected glTF structure" text, which names no place in the file.
  * VTK's output window is replaced by one that drops the text, and vtkLogger's
- * output to stderr is switched off, so that the fuzzer's log stays readable; the readers' error events still fire. With the
- * environment variable CAUSTICS_FUZZ_VERBOSE set, VTK's messages are shown.
+ * output to stderr is switched off, so that the fuzzer's log stays readable; the
+ * readers' error events still fire. With the environment variable
+ * CAUSTICS_FUZZ_VERBOSE set, VTK's messages are shown.
  */
 #ifndef FuzzInput_h
 #define FuzzInput_h
@@ -74,7 +75,8 @@ inline const std::string& InputFolder()
       vtkOutputWindow::SetInstance(quiet);
       vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // it logs errors itself
     }
-    std::string pattern = (std::filesystem::temp_directory_path() / "caustics-fuzz-XXXXXX").string();
+    std::string pattern =
+      (std::filesystem::temp_directory_path() / "caustics-fuzz-XXXXXX").string();
     if (!mkdtemp(&pattern[0]))
     {
       std::perror("caustics fuzz: mkdtemp");
