@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -263,6 +264,63 @@ int ComponentCount(const std::string& type)
     { "VEC4", 4 }, { "MAT2", 4 }, { "MAT3", 9 }, { "MAT4", 16 } };
   const auto it = counts.find(type);
   return it == counts.end() ? 0 : it->second;
+}
+
+/** Whether `name` is `prefix` followed by a set index ("TEXCOORD_0"). */
+bool IsIndexed(const std::string& name, const char* prefix)
+{
+  const std::size_t length = std::strlen(prefix);
+  return name.size() > length && name.compare(0, length, prefix) == 0 &&
+    std::all_of(name.begin() + length, name.end(),
+      [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
+}
+
+/**
+ * The accessor types glTF 2.0 allows for vertex attribute `name` (3.7.2.1), in
+ * words, or "" when `accessor` has one of them or the name is not one glTF
+ * defines (application-specific "_NAME"s). VTK 9.1's loader leaves an attribute
+ * of another type empty, and the scene extractor read past an empty NORMAL array
+ * (found by fuzzing). Morph targets (`target`) hold VEC3 FLOAT displacements.
+ */
+std::string AttributeTypeProblem(const std::string& name, const Json::Value& accessor, bool target)
+{
+  const std::string type = accessor["type"].asString();
+  const int component = accessor["componentType"].asInt();
+  const bool normalized = accessor.get("normalized", false).asBool();
+  const bool floats = component == 5126;
+  const bool unorm = normalized && (component == 5121 || component == 5123);
+  const bool unsignedInt = !normalized && (component == 5121 || component == 5123);
+  if (name == "POSITION" || name == "NORMAL" || (target && name == "TANGENT"))
+  {
+    return type == "VEC3" && floats ? "" : "a VEC3 FLOAT accessor";
+  }
+  if (name == "TANGENT")
+  {
+    return type == "VEC4" && floats ? "" : "a VEC4 FLOAT accessor";
+  }
+  if (IsIndexed(name, "TEXCOORD_"))
+  {
+    return type == "VEC2" && (floats || unorm)
+      ? ""
+      : "a VEC2 accessor of FLOAT or normalized UNSIGNED_BYTE/SHORT";
+  }
+  if (IsIndexed(name, "COLOR_"))
+  {
+    return (type == "VEC3" || type == "VEC4") && (floats || unorm)
+      ? ""
+      : "a VEC3 or VEC4 accessor of FLOAT or normalized UNSIGNED_BYTE/SHORT";
+  }
+  if (IsIndexed(name, "JOINTS_"))
+  {
+    return type == "VEC4" && unsignedInt ? "" : "a VEC4 UNSIGNED_BYTE/SHORT accessor";
+  }
+  if (IsIndexed(name, "WEIGHTS_"))
+  {
+    return type == "VEC4" && (floats || unorm)
+      ? ""
+      : "a VEC4 accessor of FLOAT or normalized UNSIGNED_BYTE/SHORT";
+  }
+  return std::string();
 }
 
 /**
@@ -616,6 +674,10 @@ private:
       {
         return this->Fail(path + ".componentType is missing or not a glTF component type");
       }
+      if (accessor.isMember("normalized") && !accessor["normalized"].isBool())
+      {
+        return this->Fail(path + ".normalized must be true or false");
+      }
       if (components == 0)
       {
         return this->Fail(path + ".type is missing or not one of SCALAR, VEC2-4, MAT2-4");
@@ -839,21 +901,10 @@ private:
         return false;
       }
     }
-    const Json::Value& position = accessors[attributes["POSITION"].asUInt()];
-    if (position.get("type", "").asString() != "VEC3" ||
-      position.get("componentType", 0).asInt() != 5126)
+    const std::uint64_t vertices = accessors[attributes["POSITION"].asUInt()]["count"].asUInt64();
+    if (!this->CheckAttributes(attributes, path + ".attributes", vertices, false))
     {
-      return this->Fail(path + ".attributes.POSITION must be a VEC3 FLOAT accessor");
-    }
-    const std::uint64_t vertices = position["count"].asUInt64();
-    for (const std::string& name : attributes.getMemberNames())
-    {
-      if (accessors[attributes[name].asUInt()]["count"].asUInt64() != vertices)
-      {
-        return this->Fail(MemberPath(path + ".attributes", name) + " has " +
-          std::to_string(accessors[attributes[name].asUInt()]["count"].asUInt64()) +
-          " elements but POSITION has " + std::to_string(vertices));
-      }
+      return false;
     }
     if (!this->Index(primitive, "indices", path, "accessors") ||
       !this->Index(primitive, "material", path, "materials") ||
@@ -872,15 +923,56 @@ private:
       }
     }
     const Json::Value& targets = primitive["targets"];
+    if (primitive.isMember("targets") && !targets.isArray())
+    {
+      return this->Fail(path + ".targets must be an array");
+    }
     for (Json::ArrayIndex t = 0; targets.isArray() && t < targets.size(); ++t)
     {
+      const std::string targetPath = path + ".targets[" + std::to_string(t) + "]";
+      if (!targets[t].isObject())
+      {
+        return this->Fail(targetPath + " must be a JSON object");
+      }
       for (const std::string& name : targets[t].getMemberNames())
       {
-        if (!this->IndexValue(targets[t][name],
-              MemberPath(path + ".targets[" + std::to_string(t) + "]", name), "accessors"))
+        if (!this->IndexValue(targets[t][name], MemberPath(targetPath, name), "accessors"))
         {
           return false;
         }
+      }
+      if (!this->CheckAttributes(targets[t], targetPath, vertices, true))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  /**
+   * The accessors of a primitive's attributes (or of a morph target's, `target`),
+   * already known to be valid indices: of a type glTF allows for the attribute,
+   * with one element per vertex.
+   */
+  bool CheckAttributes(
+    const Json::Value& attributes, const std::string& path, std::uint64_t vertices, bool target)
+  {
+    const Json::Value& accessors = this->Root["accessors"];
+    for (const std::string& name : attributes.getMemberNames())
+    {
+      const Json::Value& accessor = accessors[attributes[name].asUInt()];
+      const std::string expected = AttributeTypeProblem(name, accessor, target);
+      if (!expected.empty())
+      {
+        return this->Fail(MemberPath(path, name) + " must be " + expected + " (accessors[" +
+          std::to_string(attributes[name].asUInt()) + "] is " + accessor["type"].asString() +
+          " of component type " + std::to_string(accessor["componentType"].asInt()) + ")");
+      }
+      if (accessor["count"].asUInt64() != vertices)
+      {
+        return this->Fail(MemberPath(path, name) + " has " +
+          std::to_string(accessor["count"].asUInt64()) + " elements but POSITION has " +
+          std::to_string(vertices));
       }
     }
     return true;

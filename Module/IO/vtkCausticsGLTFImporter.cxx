@@ -18,6 +18,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -204,6 +205,30 @@ std::string VertexIndexProblem(vtkPolyData* geometry)
             std::to_string(numPoints) + " vertices";
         }
       }
+    }
+  }
+  return std::string();
+}
+
+/**
+ * The first per-vertex array VTK's loader decoded with fewer or more values than
+ * POSITION has vertices, as a problem; "" if none. The checker already refuses
+ * attributes of a type glTF does not allow (VTK leaves those empty, and the scene
+ * extractor read past an empty normal array); this catches what VTK still drops.
+ */
+std::string AttributeArrayProblem(vtkPolyData* geometry)
+{
+  const vtkIdType numPoints = geometry->GetNumberOfPoints();
+  vtkPointData* pointData = geometry->GetPointData();
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = pointData->GetAbstractArray(a);
+    if (array && array->GetNumberOfTuples() != numPoints)
+    {
+      return "VTK's loader decoded " + std::to_string(array->GetNumberOfTuples()) +
+        " values of vertex attribute " +
+        caustics::text::Quote(array->GetName() ? array->GetName() : "(unnamed)") + " for " +
+        std::to_string(numPoints) + " vertices";
     }
   }
   return std::string();
@@ -573,7 +598,8 @@ int vtkCausticsGLTFImporter::CheckVertexIndices()
       {
         return this->Fail(where + ": VTK's loader built no geometry");
       }
-      const std::string problem = VertexIndexProblem(geometry);
+      std::string problem = VertexIndexProblem(geometry);
+      problem = problem.empty() ? AttributeArrayProblem(geometry) : problem;
       if (!problem.empty())
       {
         return this->Fail(where + ": " + problem);

@@ -1030,3 +1030,34 @@ TEST_F(GLTFImporterTest, QuotesOnlyShortPrintableExcerpts)
   EXPECT_TRUE(Contains(error, "buffers[0].uri 'bbbb")) << error;
   expectShortAndPrintable(error);
 }
+
+// Issue 18, found by fuzzing: a NORMAL accessor of unsigned integers was left empty
+// by VTK's loader, and the scene snapshot read past the empty array (SIGSEGV).
+TEST_F(GLTFImporterTest, RefusesAttributesOfTypesGLTFDoesNotAllow)
+{
+  Json::Value doc = SceneDocument();
+  doc["accessors"][3] = Accessor(0, 5125, 4, "VEC3"); // the quad's bytes as integers
+  doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 3;
+  std::string error = this->ExpectFailure(WriteGLTF("int-normals.gltf", doc));
+  EXPECT_TRUE(Contains(error,
+    "meshes[0].primitives[0].attributes.NORMAL must be a VEC3 FLOAT accessor (accessors[3] is "
+    "VEC3 of component type 5125)"))
+    << error;
+
+  doc["accessors"][3] = Accessor(0, 5126, 4, "VEC3");
+  doc["accessors"][3]["normalized"] = "yes";
+  error = this->ExpectFailure(WriteGLTF("normalized.gltf", doc));
+  EXPECT_TRUE(Contains(error, "accessors[3].normalized must be true or false")) << error;
+
+  // Morph targets hold VEC3 FLOAT displacements, one per vertex.
+  doc = SceneDocument();
+  doc["accessors"][3] = Accessor(1, 5123, 6, "SCALAR");
+  doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 3;
+  error = this->ExpectFailure(WriteGLTF("target.gltf", doc));
+  EXPECT_TRUE(
+    Contains(error, "meshes[0].primitives[0].targets[0].POSITION must be a VEC3 FLOAT accessor"))
+    << error;
+  doc["meshes"][0]["primitives"][0]["targets"][0] = 3;
+  error = this->ExpectFailure(WriteGLTF("target-number.gltf", doc));
+  EXPECT_TRUE(Contains(error, "meshes[0].primitives[0].targets[0] must be a JSON object")) << error;
+}
