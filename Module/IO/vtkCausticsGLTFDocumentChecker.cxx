@@ -121,8 +121,13 @@ std::uint32_t LittleEndian32(const std::string& bytes, std::size_t offset)
 
 /**
  * The JSON and BIN chunks of a binary glTF (.glb): a 12-byte header (magic
- * "glTF", version, length) followed by length-prefixed chunks. Returns the
- * problem or "".
+ * "glTF", version, length) followed by length-prefixed chunks, the first one
+ * JSON. Returns the problem or "". The whole chain of chunks is walked as VTK
+ * 9.1's loader walks it (chunk by chunk by their lengths, taking the first BIN
+ * chunk), so it must be exact: the header's length is the file's, every chunk
+ * header is whole, and every chunk lies inside the file and is a multiple of 4
+ * bytes long (as glTF requires). VTK's walk looped for ever on a partial chunk
+ * header at the end of the file, growing its list of chunks.
  */
 std::string SplitGLB(const std::string& contents, std::string& json, std::size_t& binSize)
 {
@@ -137,30 +142,48 @@ std::string SplitGLB(const std::string& contents, std::string& json, std::size_t
     return "binary glTF container version " + std::to_string(version) +
       "; only glTF 2.x is supported";
   }
-  if (LittleEndian32(contents, 8) > contents.size())
+  if (LittleEndian32(contents, 8) != contents.size())
   {
     return "binary glTF header declares " + std::to_string(LittleEndian32(contents, 8)) +
-      " bytes but the file has " + std::to_string(contents.size()) + " (truncated?)";
+      " bytes but the file has " + std::to_string(contents.size()) +
+      (LittleEndian32(contents, 8) > contents.size() ? " (truncated?)" : "");
   }
-  const std::uint64_t jsonLength = LittleEndian32(contents, 12);
-  if (LittleEndian32(contents, 16) != 0x4E4F534Au) // "JSON"
+  bool haveBin = false;
+  for (std::uint64_t offset = 12; offset < contents.size();)
   {
-    return "the first chunk of the binary glTF is not JSON";
-  }
-  if (20 + jsonLength > contents.size())
-  {
-    return "the JSON chunk runs past the end of the file (truncated?)";
-  }
-  json = contents.substr(20, jsonLength);
-  const std::uint64_t next = 20 + ((jsonLength + 3) / 4) * 4;
-  if (next + 8 <= contents.size() && LittleEndian32(contents, next + 4) == 0x004E4942u) // "BIN"
-  {
-    const std::uint64_t length = LittleEndian32(contents, next);
-    if (next + 8 + length > contents.size())
+    const std::string at = " at byte " + std::to_string(offset);
+    if (offset + 8 > contents.size())
     {
-      return "the BIN chunk runs past the end of the file (truncated?)";
+      return "the binary glTF ends inside a chunk header" + at + " (truncated?)";
     }
-    binSize = static_cast<std::size_t>(length);
+    const std::uint64_t length = LittleEndian32(contents, offset);
+    const std::uint32_t type = LittleEndian32(contents, offset + 4);
+    const bool isJSON = type == 0x4E4F534Au; // "JSON"
+    const bool isBin = type == 0x004E4942u;  // "BIN\0"
+    const std::string name = isJSON ? "JSON chunk" : isBin ? "BIN chunk" : "chunk" + at;
+    if (offset == 12 && !isJSON)
+    {
+      return "the first chunk of the binary glTF is not JSON";
+    }
+    if (offset + 8 + length > contents.size())
+    {
+      return "the " + name + " runs past the end of the file (truncated?)";
+    }
+    if (length % 4 != 0)
+    {
+      return "the " + name + " is " + std::to_string(length) +
+        " bytes long, not a multiple of 4 as glTF requires";
+    }
+    if (offset == 12)
+    {
+      json = contents.substr(20, length);
+    }
+    else if (isBin && !haveBin)
+    {
+      binSize = static_cast<std::size_t>(length);
+      haveBin = true;
+    }
+    offset += 8 + length;
   }
   return std::string();
 }

@@ -1061,3 +1061,44 @@ TEST_F(GLTFImporterTest, RefusesAttributesOfTypesGLTFDoesNotAllow)
   error = this->ExpectFailure(WriteGLTF("target-number.gltf", doc));
   EXPECT_TRUE(Contains(error, "meshes[0].primitives[0].targets[0] must be a JSON object")) << error;
 }
+
+// Issue 18: VTK 9.1's loader walks the chunks of a .glb by their lengths and
+// looped for ever, growing its chunk list until memory ran out, on a partial
+// chunk header at the end of the file.
+TEST_F(GLTFImporterTest, RefusesBinaryGLTFChunksThatDoNotTileTheFile)
+{
+  const std::string path = WriteGLB("tail.glb", SceneDocument());
+  std::string glb;
+  {
+    std::ifstream file(path, std::ios::binary);
+    glb.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  }
+  auto withLength = [](std::string bytes)
+  {
+    const std::uint32_t length = static_cast<std::uint32_t>(bytes.size());
+    for (int i = 0; i < 4; ++i)
+    {
+      bytes[8 + i] = static_cast<char>((length >> (8 * i)) & 0xff);
+    }
+    return bytes;
+  };
+  const std::size_t end = glb.size();
+  std::string error =
+    this->ExpectFailure(WriteText("partial-header.glb", withLength(glb + std::string(4, '\0'))));
+  EXPECT_TRUE(Contains(error,
+    "the binary glTF ends inside a chunk header at byte " + std::to_string(end) + " (truncated?)"))
+    << error;
+
+  // The header's length must be the file's, not more or less.
+  error = this->ExpectFailure(WriteText("long.glb", glb + std::string(8, '\0')));
+  EXPECT_TRUE(Contains(error,
+    "binary glTF header declares " + std::to_string(end) + " bytes but the file has " +
+      std::to_string(end + 8)))
+    << error;
+
+  // Chunks are multiples of 4 bytes long, as glTF requires and VTK's walk assumes.
+  std::string odd = glb;
+  odd[12] = static_cast<char>(odd[12] - 1); // the JSON chunk's length, one short
+  error = this->ExpectFailure(WriteText("odd.glb", odd));
+  EXPECT_TRUE(Contains(error, "not a multiple of 4 as glTF requires")) << error;
+}
