@@ -701,6 +701,13 @@ private:
       {
         return this->Fail(path + ".normalized must be true or false");
       }
+      // VTK 9.1's loader reads one bound per component (a short max array threw
+      // std::length_error from inside it; found by fuzzing).
+      if (!this->Numbers(accessor, "min", path, components, -Huge, Huge) ||
+        !this->Numbers(accessor, "max", path, components, -Huge, Huge))
+      {
+        return false;
+      }
       if (components == 0)
       {
         return this->Fail(path + ".type is missing or not one of SCALAR, VEC2-4, MAT2-4");

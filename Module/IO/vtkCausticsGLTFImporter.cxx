@@ -486,6 +486,7 @@ int vtkCausticsGLTFImporter::ParseJSON(const std::string& json)
   builder["strictRoot"] = true;
   builder["rejectDupKeys"] = true;
   builder["failIfExtra"] = true;
+  builder["allowTrailingCommas"] = false; // JSON has none; jsoncpp allows them by default
   // NaN/Infinity (as Python's json module writes them) are parsed so that the
   // error can name the member, instead of a bare syntax error.
   builder["allowSpecialFloats"] = true;

@@ -1062,6 +1062,23 @@ TEST_F(GLTFImporterTest, RefusesAttributesOfTypesGLTFDoesNotAllow)
   EXPECT_TRUE(Contains(error, "meshes[0].primitives[0].targets[0] must be a JSON object")) << error;
 }
 
+// Issue 18, found by fuzzing: an accessor's max with two numbers for a VEC3 (and a
+// trailing comma, which jsoncpp accepts by default) threw std::length_error inside
+// VTK's loader, reported only as the importer's last-resort message.
+TEST_F(GLTFImporterTest, RefusesBoundsOfTheWrongSize)
+{
+  Json::Value doc = SceneDocument();
+  doc["accessors"][2]["max"] = Numbers({ 1, 1 });
+  std::string error = this->ExpectFailure(WriteGLTF("short-max.gltf", doc));
+  EXPECT_TRUE(Contains(error, "accessors[2].max must be 3 numbers, finite")) << error;
+
+  std::string text = JSONText(SceneDocument());
+  const std::size_t bound = text.find("\"max\"");
+  text.insert(text.find(']', bound), ",");
+  error = this->ExpectFailure(WriteText("trailing-comma.gltf", text));
+  EXPECT_TRUE(Contains(error, "malformed JSON at line")) << error;
+}
+
 // Issue 18: VTK 9.1's loader walks the chunks of a .glb by their lengths and
 // looped for ever, growing its chunk list until memory ran out, on a partial
 // chunk header at the end of the file.
