@@ -47,6 +47,8 @@ namespace
 {
 const double Pi = vtkMath::Pi();
 const double NaN = std::numeric_limits<double>::quiet_NaN();
+/** Deepest nesting of JSON arrays and objects read (jsoncpp's default limit). */
+const int MaxJSONDepth = 1000;
 
 void CollectMessages(vtkObject*, unsigned long, void* clientData, void* callData)
 {
@@ -490,13 +492,23 @@ int vtkCausticsGLTFImporter::ParseJSON(const std::string& json)
   // NaN/Infinity (as Python's json module writes them) are parsed so that the
   // error can name the member, instead of a bare syntax error.
   builder["allowSpecialFloats"] = true;
+  // jsoncpp's default nesting limit, and VTK's loader's: it throws beyond it.
+  builder["stackLimit"] = MaxJSONDepth;
   std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
   std::string errors;
   Json::Value& document = this->Internal->Document;
   document = Json::Value();
-  if (!reader->parse(json.data(), json.data() + json.size(), &document, &errors))
+  try
   {
-    return this->Fail("malformed JSON at " + caustics::gltf::OneLineErrors(errors));
+    if (!reader->parse(json.data(), json.data() + json.size(), &document, &errors))
+    {
+      return this->Fail("malformed JSON at " + caustics::gltf::OneLineErrors(errors));
+    }
+  }
+  catch (const std::exception&)
+  {
+    return this->Fail("malformed JSON: arrays and objects nested more than " +
+      std::to_string(MaxJSONDepth) + " levels deep");
   }
   return 1;
 }

@@ -1079,6 +1079,17 @@ TEST_F(GLTFImporterTest, RefusesBoundsOfTheWrongSize)
   EXPECT_TRUE(Contains(error, "malformed JSON at line")) << error;
 }
 
+// Issue 18: JSON nested deeper than jsoncpp's limit made it throw, reported only
+// as the importer's last-resort message.
+TEST_F(GLTFImporterTest, RefusesJSONNestedTooDeep)
+{
+  const std::string error =
+    this->ExpectFailure(WriteText("nested.gltf", std::string(1200, '[') + std::string(1200, ']')));
+  EXPECT_TRUE(
+    Contains(error, "malformed JSON: arrays and objects nested more than 1000 levels deep"))
+    << error;
+}
+
 // Issue 18: VTK 9.1's loader walks the chunks of a .glb by their lengths and
 // looped for ever, growing its chunk list until memory ran out, on a partial
 // chunk header at the end of the file.
