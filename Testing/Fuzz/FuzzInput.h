@@ -117,7 +117,7 @@ inline void CheckError(const std::string& path, const std::string& error)
   {
     problem = "is longer than MaxErrorLength";
   }
-  else if (error.find("unexpected glTF structure") != std::string::npos)
+  else if (error.compare(path.size() + 2, 26, "unexpected glTF structure ") == 0)
   {
     problem = "is the importer's last-resort message, which names no place in the file";
   }
