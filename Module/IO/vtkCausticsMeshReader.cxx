@@ -583,29 +583,68 @@ private:
     return std::string();
   }
 
+  /**
+   * The elements vtkPLYReader reads, as it needs them. It takes the file's word for
+   * whether a property is a list, but stores what it reads where it expects its own
+   * kind: a face without a vertex_indices list left the index pointer unset (free()
+   * of an invalid pointer, SIGSEGV; found by fuzzing), a list where it expects a
+   * scalar (vertex "alpha", face "intensity") wrote a pointer over its one-byte field.
+   * So in "vertex" and "face" every property is a scalar but the face's
+   * vertex_indices and texcoord lists, each element is declared once, and a vertex
+   * element with scalar x, y and z is required.
+   */
   std::string CheckVertexElement()
   {
+    const PlyElement* vertices = nullptr;
+    const PlyElement* faces = nullptr;
     for (const PlyElement& element : this->Elements)
     {
-      if (element.name != "vertex")
+      const bool isVertex = element.name == "vertex";
+      if (isVertex || element.name == "face")
       {
-        continue;
+        const PlyElement*& seen = isVertex ? vertices : faces;
+        if (seen)
+        {
+          return "the header declares element '" + element.name + "' twice";
+        }
+        seen = &element;
       }
-      int xyz = 0;
-      for (const PlyProperty& property : element.properties)
-      {
-        const bool coordinate =
-          property.name == "x" || property.name == "y" || property.name == "z";
-        xyz += coordinate && property.countType.empty() ? 1 : 0;
-      }
-      if (xyz != 3)
-      {
-        return "the 'vertex' element lacks scalar x, y and z properties";
-      }
-      this->VertexCount = element.count;
-      return std::string();
     }
-    return "the header declares no 'vertex' element";
+    if (!vertices)
+    {
+      return "the header declares no 'vertex' element";
+    }
+    auto has = [](const PlyElement* element, const char* name)
+    {
+      return element &&
+        std::any_of(element->properties.begin(), element->properties.end(),
+          [name](const PlyProperty& property) { return property.name == name; });
+    };
+    if (!has(vertices, "x") || !has(vertices, "y") || !has(vertices, "z"))
+    {
+      return "the 'vertex' element lacks scalar x, y and z properties";
+    }
+    if (faces && faces->count > 0 && !has(faces, "vertex_indices"))
+    {
+      return "the 'face' element has no vertex_indices list";
+    }
+    for (const PlyElement* element : { vertices, faces })
+    {
+      for (std::size_t p = 0; element && p < element->properties.size(); ++p)
+      {
+        const PlyProperty& property = element->properties[p];
+        const bool list =
+          element == faces && (property.name == "vertex_indices" || property.name == "texcoord");
+        if (list == property.countType.empty())
+        {
+          return "property '" + Printable(property.name, caustics::text::QuoteLength) +
+            "' of element '" + element->name + "' must be " + (list ? "a list" : "a scalar") +
+            ", as vtkPLYReader reads it";
+        }
+      }
+    }
+    this->VertexCount = vertices->count;
+    return std::string();
   }
 
   std::string ReadProblem(Read read, const PlyElement& element, std::uint64_t index) const

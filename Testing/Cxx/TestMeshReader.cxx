@@ -635,3 +635,35 @@ TEST_F(MeshReaderTest, RefusesPlyLinesThatVTKWouldReadPast)
   EXPECT_TRUE(Contains(error, "element 'edge' declares 999999999999 instances but no properties"))
     << error;
 }
+
+// Issue 18, found by fuzzing: vtkPLYReader takes the file's word for whether a
+// property is a list but stores it where it expects its own kind; a face without
+// a vertex_indices list crashed it (invalid free), a list where it reads a scalar
+// wrote a pointer over a one-byte field.
+TEST_F(MeshReaderTest, RefusesPlyPropertiesVTKWouldMisread)
+{
+  const std::string vertex =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\n";
+  const std::string points = "0 0 0\n1 0 0\n0 1 0\n";
+  std::string error = this->ExpectFailure(WriteFile("no-indices.ply",
+    vertex + "element face 1\nproperty list uchar int vertex_indi1es\nend_header\n" + points +
+      "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "no-indices.ply: the 'face' element has no vertex_indices list"))
+    << error;
+  error = this->ExpectFailure(WriteFile("list-intensity.ply",
+    vertex +
+      "element face 1\nproperty list uchar int vertex_indices\n"
+      "property list uchar uchar intensity\nend_header\n" +
+      points + "3 0 1 2 1 7\n"));
+  EXPECT_TRUE(Contains(
+    error, "property 'intensity' of element 'face' must be a scalar, as vtkPLYReader reads it"))
+    << error;
+  error = this->ExpectFailure(WriteFile("scalar-indices.ply",
+    vertex + "element face 1\nproperty int vertex_indices\nend_header\n" + points + "2\n"));
+  EXPECT_TRUE(Contains(error, "property 'vertex_indices' of element 'face' must be a list"))
+    << error;
+  error = this->ExpectFailure(WriteFile("two-vertex-elements.ply",
+    vertex + vertex.substr(vertex.find("element")) + "end_header\n" + points + points));
+  EXPECT_TRUE(Contains(error, "the header declares element 'vertex' twice")) << error;
+}
