@@ -348,7 +348,7 @@ private:
     if (element.properties.empty() && element.count > 0)
     {
       // Nothing to read per instance, so nothing bounds the count by the file's size.
-      return "element '" + element.name + "' declares " + std::to_string(element.count) +
+      return "element " + Quote(element.name) + " declares " + std::to_string(element.count) +
         " instances but no properties";
     }
     const bool isFace = element.name == "face";
@@ -375,7 +375,7 @@ private:
         }
         if (!(count >= 0.0) || count != std::floor(count))
         {
-          return "element '" + element.name + "' " + std::to_string(i) + ": list length " +
+          return "element " + Quote(element.name) + " " + std::to_string(i) + ": list length " +
             this->NumberText(count) + " is not a non-negative integer";
         }
         const bool isIndex = isFace && !property.countType.empty() &&
@@ -425,7 +425,7 @@ private:
    */
   std::string NextAsciiLine(const PlyElement& element, std::uint64_t index, bool last)
   {
-    const std::string where = "element '" + element.name + "' " + std::to_string(index);
+    const std::string where = "element " + Quote(element.name) + " " + std::to_string(index);
     if (!this->Lines->Next(this->Line))
     {
       return this->Lines->TooLong()
@@ -605,7 +605,7 @@ private:
         const PlyElement*& seen = isVertex ? vertices : faces;
         if (seen)
         {
-          return "the header declares element '" + element.name + "' twice";
+          return "the header declares element " + Quote(element.name) + " twice";
         }
         seen = &element;
       }
@@ -637,9 +637,8 @@ private:
           element == faces && (property.name == "vertex_indices" || property.name == "texcoord");
         if (list == property.countType.empty())
         {
-          return "property '" + Printable(property.name, caustics::text::QuoteLength) +
-            "' of element '" + element->name + "' must be " + (list ? "a list" : "a scalar") +
-            ", as vtkPLYReader reads it";
+          return "property " + Quote(property.name) + " of element " + Quote(element->name) +
+            " must be " + (list ? "a list" : "a scalar") + ", as vtkPLYReader reads it";
         }
       }
     }
@@ -649,7 +648,7 @@ private:
 
   std::string ReadProblem(Read read, const PlyElement& element, std::uint64_t index) const
   {
-    const std::string where = "element '" + element.name + "' " + std::to_string(index);
+    const std::string where = "element " + Quote(element.name) + " " + std::to_string(index);
     if (read == Read::NotNumber)
     {
       return where + ": " + Quote(this->Token) + " is not a number";

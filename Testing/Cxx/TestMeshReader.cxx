@@ -666,4 +666,12 @@ TEST_F(MeshReaderTest, RefusesPlyPropertiesVTKWouldMisread)
   error = this->ExpectFailure(WriteFile("two-vertex-elements.ply",
     vertex + vertex.substr(vertex.find("element")) + "end_header\n" + points + points));
   EXPECT_TRUE(Contains(error, "the header declares element 'vertex' twice")) << error;
+
+  // Names from the header are quoted like any text of the file (found by fuzzing).
+  error = this->ExpectFailure(WriteFile("odd-name.ply",
+    vertex + "element fac\x97 3\nproperty list uchar int vertex_indices\nend_header\n" + points +
+      "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "the file ends before element 'fac\\x97' 1 of 3 (truncated?)"))
+    << error;
+  ExpectShortAndPrintable(error);
 }
