@@ -491,7 +491,9 @@ private:
       std::string problem;
       if (keyword == "format")
       {
-        problem = this->ParseFormat(quoted);
+        // A second one would let this check read the body in a format VTK does not
+        // (found by fuzzing: an ASCII body read as binary here, then VTK crashed).
+        problem = haveFormat ? number + " is a second 'format' line" : this->ParseFormat(quoted);
         haveFormat = true;
       }
       else if (keyword == "element")

@@ -667,6 +667,14 @@ TEST_F(MeshReaderTest, RefusesPlyPropertiesVTKWouldMisread)
     vertex + vertex.substr(vertex.find("element")) + "end_header\n" + points + points));
   EXPECT_TRUE(Contains(error, "the header declares element 'vertex' twice")) << error;
 
+  // One format only: a second one made this check and VTK read the body differently.
+  error = this->ExpectFailure(WriteFile("two-formats.ply",
+    vertex +
+      "element face 1\nformat binary_little_endian 1.0\n"
+      "property list uchar int vertex_indices\nend_header\n" +
+      points + "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "two-formats.ply: header line 8 is a second 'format' line")) << error;
+
   // Names from the header are quoted like any text of the file (found by fuzzing).
   error = this->ExpectFailure(WriteFile("odd-name.ply",
     vertex + "element fac\x97 3\nproperty list uchar int vertex_indices\nend_header\n" + points +
