@@ -504,7 +504,13 @@ private:
       {
         problem = this->ParseProperty(quoted);
       }
-      else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
+      else if (keyword.empty())
+      {
+        // vtkPLY reads the first word of every header line, even of an empty one
+        // (found by fuzzing: it then misread the body and crashed).
+        problem = number + " is empty";
+      }
+      else if (keyword != "comment" && keyword != "obj_info")
       {
         problem = "unknown " + number + " " + quoted;
       }

@@ -675,6 +675,12 @@ TEST_F(MeshReaderTest, RefusesPlyPropertiesVTKWouldMisread)
       points + "3 0 1 2\n"));
   EXPECT_TRUE(Contains(error, "two-formats.ply: header line 8 is a second 'format' line")) << error;
 
+  // vtkPLY reads the first word of every header line, even of an empty one.
+  error = this->ExpectFailure(WriteFile("blank-header-line.ply",
+    vertex + "element face 1\nproperty list uchar int vertex_indices\n\nend_header\n" + points +
+      "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "blank-header-line.ply: header line 9 is empty")) << error;
+
   // Names from the header are quoted like any text of the file (found by fuzzing).
   error = this->ExpectFailure(WriteFile("odd-name.ply",
     vertex + "element fac\x97 3\nproperty list uchar int vertex_indices\nend_header\n" + points +
