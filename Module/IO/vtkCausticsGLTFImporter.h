@@ -15,8 +15,9 @@
  *    JSON syntax, asset version 2.x, required extensions, every index (scene,
  *    node, mesh, material, accessor, buffer view, buffer, camera, light, texture,
  *    image, sampler, skin), finite numbers everywhere, buffer and accessor sizes,
- *    a node graph without cycles or shared children and at most MAX_NODE_DEPTH
- *    levels deep, and physical ranges (IOR in
+ *    accessor bounds, the accessor types glTF allows for vertex attributes, the
+ *    chunks of a .glb, a node graph without cycles or shared children and at most
+ *    MAX_NODE_DEPTH levels deep, and physical ranges (IOR in
  *    [1, MAX_IOR], factors in [0, 1], intensities within float range, cone
  *    angles, camera frusta, selected camera index); sparse accessors are refused;
  * 2. it then runs VTK's vtkGLTFDocumentLoader (through a lower-case alias for a
