@@ -1,5 +1,6 @@
 #include "vtkCausticsGLTFDocumentChecker.h"
 
+#include "vtkCausticsFileText.h"
 #include "vtkCausticsGLTFImporter.h"
 
 #include "vtkMath.h"
@@ -9,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -36,10 +38,31 @@ const double Huge = std::numeric_limits<double>::max();
 const double MaxIOR = vtkCausticsGLTFImporter::MAX_IOR;
 const double MaxLightIntensity = vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY;
 const double MinAttenuationDistance = vtkCausticsGLTFImporter::MIN_ATTENUATION_DISTANCE;
+const int MaxNodeDepth = vtkCausticsGLTFImporter::MAX_NODE_DEPTH;
 
+using caustics::text::Printable;
+using caustics::text::ReasonLength;
+
+/** Text from the file in quotes, short and printable (vtkCausticsFileText.h). */
 std::string Quoted(const std::string& text)
 {
-  return "'" + text + "'";
+  return caustics::text::Quote(text);
+}
+
+/**
+ * The JSON path of member `name` of `path`: "path.name", or "path['...']" (quoted,
+ * short, printable) when the name is not a plain identifier.
+ */
+std::string MemberPath(const std::string& path, const std::string& name)
+{
+  const bool plain = !name.empty() && name.size() <= caustics::text::QuoteLength &&
+    std::all_of(name.begin(), name.end(),
+      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (!plain)
+  {
+    return path + "[" + Quoted(name) + "]";
+  }
+  return path.empty() ? name : path + "." + name;
 }
 
 std::string Plural(std::size_t count, const char* noun)
@@ -98,8 +121,13 @@ std::uint32_t LittleEndian32(const std::string& bytes, std::size_t offset)
 
 /**
  * The JSON and BIN chunks of a binary glTF (.glb): a 12-byte header (magic
- * "glTF", version, length) followed by length-prefixed chunks. Returns the
- * problem or "".
+ * "glTF", version, length) followed by length-prefixed chunks, the first one
+ * JSON. Returns the problem or "". The whole chain of chunks is walked as VTK
+ * 9.1's loader walks it (chunk by chunk by their lengths, taking the first BIN
+ * chunk), so it must be exact: the header's length is the file's, every chunk
+ * header is whole, and every chunk lies inside the file and is a multiple of 4
+ * bytes long (as glTF requires). VTK's walk looped for ever on a partial chunk
+ * header at the end of the file, growing its list of chunks.
  */
 std::string SplitGLB(const std::string& contents, std::string& json, std::size_t& binSize)
 {
@@ -114,30 +142,48 @@ std::string SplitGLB(const std::string& contents, std::string& json, std::size_t
     return "binary glTF container version " + std::to_string(version) +
       "; only glTF 2.x is supported";
   }
-  if (LittleEndian32(contents, 8) > contents.size())
+  if (LittleEndian32(contents, 8) != contents.size())
   {
     return "binary glTF header declares " + std::to_string(LittleEndian32(contents, 8)) +
-      " bytes but the file has " + std::to_string(contents.size()) + " (truncated?)";
+      " bytes but the file has " + std::to_string(contents.size()) +
+      (LittleEndian32(contents, 8) > contents.size() ? " (truncated?)" : "");
   }
-  const std::uint64_t jsonLength = LittleEndian32(contents, 12);
-  if (LittleEndian32(contents, 16) != 0x4E4F534Au) // "JSON"
+  bool haveBin = false;
+  for (std::uint64_t offset = 12; offset < contents.size();)
   {
-    return "the first chunk of the binary glTF is not JSON";
-  }
-  if (20 + jsonLength > contents.size())
-  {
-    return "the JSON chunk runs past the end of the file (truncated?)";
-  }
-  json = contents.substr(20, jsonLength);
-  const std::uint64_t next = 20 + ((jsonLength + 3) / 4) * 4;
-  if (next + 8 <= contents.size() && LittleEndian32(contents, next + 4) == 0x004E4942u) // "BIN"
-  {
-    const std::uint64_t length = LittleEndian32(contents, next);
-    if (next + 8 + length > contents.size())
+    const std::string at = " at byte " + std::to_string(offset);
+    if (offset + 8 > contents.size())
     {
-      return "the BIN chunk runs past the end of the file (truncated?)";
+      return "the binary glTF ends inside a chunk header" + at + " (truncated?)";
     }
-    binSize = static_cast<std::size_t>(length);
+    const std::uint64_t length = LittleEndian32(contents, offset);
+    const std::uint32_t type = LittleEndian32(contents, offset + 4);
+    const bool isJSON = type == 0x4E4F534Au; // "JSON"
+    const bool isBin = type == 0x004E4942u;  // "BIN\0"
+    const std::string name = isJSON ? "JSON chunk" : isBin ? "BIN chunk" : "chunk" + at;
+    if (offset == 12 && !isJSON)
+    {
+      return "the first chunk of the binary glTF is not JSON";
+    }
+    if (offset + 8 + length > contents.size())
+    {
+      return "the " + name + " runs past the end of the file (truncated?)";
+    }
+    if (length % 4 != 0)
+    {
+      return "the " + name + " is " + std::to_string(length) +
+        " bytes long, not a multiple of 4 as glTF requires";
+    }
+    if (offset == 12)
+    {
+      json = contents.substr(20, length);
+    }
+    else if (isBin && !haveBin)
+    {
+      binSize = static_cast<std::size_t>(length);
+      haveBin = true;
+    }
+    offset += 8 + length;
   }
   return std::string();
 }
@@ -183,7 +229,7 @@ std::string OneLine(const std::string& jsoncppErrors)
     const std::size_t last = text.find_last_not_of(" \t\r");
     return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
   };
-  return vtksys::SystemTools::LowerCase(trim(where)) + ": " + trim(what);
+  return Printable(vtksys::SystemTools::LowerCase(trim(where)) + ": " + trim(what), ReasonLength);
 }
 
 /** The first number that is NaN or infinite, as a JSON path; false when there is none. */
@@ -208,7 +254,7 @@ bool FindNonFinite(const Json::Value& value, const std::string& path, std::strin
   {
     for (const std::string& name : value.getMemberNames())
     {
-      if (FindNonFinite(value[name], path.empty() ? name : path + "." + name, where))
+      if (FindNonFinite(value[name], MemberPath(path, name), where))
       {
         return true;
       }
@@ -241,6 +287,63 @@ int ComponentCount(const std::string& type)
     { "VEC4", 4 }, { "MAT2", 4 }, { "MAT3", 9 }, { "MAT4", 16 } };
   const auto it = counts.find(type);
   return it == counts.end() ? 0 : it->second;
+}
+
+/** Whether `name` is `prefix` followed by a set index ("TEXCOORD_0"). */
+bool IsIndexed(const std::string& name, const char* prefix)
+{
+  const std::size_t length = std::strlen(prefix);
+  return name.size() > length && name.compare(0, length, prefix) == 0 &&
+    std::all_of(name.begin() + length, name.end(),
+      [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
+}
+
+/**
+ * The accessor types glTF 2.0 allows for vertex attribute `name` (3.7.2.1), in
+ * words, or "" when `accessor` has one of them or the name is not one glTF
+ * defines (application-specific "_NAME"s). VTK 9.1's loader leaves an attribute
+ * of another type empty, and the scene extractor read past an empty NORMAL array
+ * (found by fuzzing). Morph targets (`target`) hold VEC3 FLOAT displacements.
+ */
+std::string AttributeTypeProblem(const std::string& name, const Json::Value& accessor, bool target)
+{
+  const std::string type = accessor["type"].asString();
+  const int component = accessor["componentType"].asInt();
+  const bool normalized = accessor.get("normalized", false).asBool();
+  const bool floats = component == 5126;
+  const bool unorm = normalized && (component == 5121 || component == 5123);
+  const bool unsignedInt = !normalized && (component == 5121 || component == 5123);
+  if (name == "POSITION" || name == "NORMAL" || (target && name == "TANGENT"))
+  {
+    return type == "VEC3" && floats ? "" : "a VEC3 FLOAT accessor";
+  }
+  if (name == "TANGENT")
+  {
+    return type == "VEC4" && floats ? "" : "a VEC4 FLOAT accessor";
+  }
+  if (IsIndexed(name, "TEXCOORD_"))
+  {
+    return type == "VEC2" && (floats || unorm)
+      ? ""
+      : "a VEC2 accessor of FLOAT or normalized UNSIGNED_BYTE/SHORT";
+  }
+  if (IsIndexed(name, "COLOR_"))
+  {
+    return (type == "VEC3" || type == "VEC4") && (floats || unorm)
+      ? ""
+      : "a VEC3 or VEC4 accessor of FLOAT or normalized UNSIGNED_BYTE/SHORT";
+  }
+  if (IsIndexed(name, "JOINTS_"))
+  {
+    return type == "VEC4" && unsignedInt ? "" : "a VEC4 UNSIGNED_BYTE/SHORT accessor";
+  }
+  if (IsIndexed(name, "WEIGHTS_"))
+  {
+    return type == "VEC4" && (floats || unorm)
+      ? ""
+      : "a VEC4 accessor of FLOAT or normalized UNSIGNED_BYTE/SHORT";
+  }
+  return std::string();
 }
 
 /**
@@ -426,7 +529,9 @@ private:
     std::string where;
     if (FindNonFinite(this->Root, "", where))
     {
-      return this->Fail(where + " is not a finite number (NaN or infinity)");
+      // The path of a number nested 1000 levels deep would be 3000 bytes long.
+      return this->Fail(
+        Printable(where, ReasonLength) + " is not a finite number (NaN or infinity)");
     }
     return this->IsObjectOrAbsent(this->Root, "extensions", "");
   }
@@ -531,7 +636,8 @@ private:
       const std::string file = vtksys::SystemTools::CollapseFullPath(uri, this->Folder);
       if (!vtksys::SystemTools::FileExists(file, true))
       {
-        return this->Fail(path + " " + Quoted(uri) + " not found (looked for " + file + ")");
+        return this->Fail(path + " " + Quoted(uri) + " not found (looked for " +
+          Printable(file, ReasonLength) + ")");
       }
       available = vtksys::SystemTools::FileLength(file);
     }
@@ -591,24 +697,20 @@ private:
       {
         return this->Fail(path + ".componentType is missing or not a glTF component type");
       }
+      if (accessor.isMember("normalized") && !accessor["normalized"].isBool())
+      {
+        return this->Fail(path + ".normalized must be true or false");
+      }
+      // VTK 9.1's loader reads one bound per component (a short max array threw
+      // std::length_error from inside it; found by fuzzing).
+      if (!this->Numbers(accessor, "min", path, components, -Huge, Huge) ||
+        !this->Numbers(accessor, "max", path, components, -Huge, Huge))
+      {
+        return false;
+      }
       if (components == 0)
       {
         return this->Fail(path + ".type is missing or not one of SCALAR, VEC2-4, MAT2-4");
-      }
-      if (accessor.isMember("bufferView"))
-      {
-        const Json::Value& view = views[accessor["bufferView"].asUInt()];
-        const std::uint64_t element = static_cast<std::uint64_t>(componentSize) * components;
-        const std::uint64_t stride =
-          view.get("byteStride", 0).asUInt64() > 0 ? view["byteStride"].asUInt64() : element;
-        const std::uint64_t end = accessor.get("byteOffset", 0).asUInt64() +
-          stride * (accessor["count"].asUInt64() - 1) + element;
-        if (end > view["byteLength"].asUInt64())
-        {
-          return this->Fail(path + " reads " + std::to_string(end) + " bytes but bufferViews[" +
-            std::to_string(accessor["bufferView"].asUInt()) + "] has " +
-            std::to_string(view["byteLength"].asUInt64()));
-        }
       }
       if (accessor.isMember("sparse"))
       {
@@ -621,6 +723,25 @@ private:
         return this->Fail(path +
           ".sparse: sparse accessors are not supported (store the "
           "accessor's values densely in a bufferView)");
+      }
+      if (!accessor.isMember("bufferView"))
+      {
+        // glTF reads such an accessor as zeros; VTK 9.1's loader dereferences the
+        // missing view instead (SIGSEGV in ExtractPrimitiveAccessorData, found by
+        // fuzzing).
+        return this->Fail(path + " has no bufferView: accessors of zeros are not supported");
+      }
+      const Json::Value& view = views[accessor["bufferView"].asUInt()];
+      const std::uint64_t element = static_cast<std::uint64_t>(componentSize) * components;
+      const std::uint64_t stride =
+        view.get("byteStride", 0).asUInt64() > 0 ? view["byteStride"].asUInt64() : element;
+      const std::uint64_t end = accessor.get("byteOffset", 0).asUInt64() +
+        stride * (accessor["count"].asUInt64() - 1) + element;
+      if (end > view["byteLength"].asUInt64())
+      {
+        return this->Fail(path + " reads " + std::to_string(end) + " bytes but bufferViews[" +
+          std::to_string(accessor["bufferView"].asUInt()) + "] has " +
+          std::to_string(view["byteLength"].asUInt64()));
       }
     }
     return true;
@@ -805,26 +926,15 @@ private:
     const Json::Value& attributes = primitive["attributes"];
     for (const std::string& name : attributes.getMemberNames())
     {
-      if (!this->IndexValue(attributes[name], path + ".attributes." + name, "accessors"))
+      if (!this->IndexValue(attributes[name], MemberPath(path + ".attributes", name), "accessors"))
       {
         return false;
       }
     }
-    const Json::Value& position = accessors[attributes["POSITION"].asUInt()];
-    if (position.get("type", "").asString() != "VEC3" ||
-      position.get("componentType", 0).asInt() != 5126)
+    const std::uint64_t vertices = accessors[attributes["POSITION"].asUInt()]["count"].asUInt64();
+    if (!this->CheckAttributes(attributes, path + ".attributes", vertices, false))
     {
-      return this->Fail(path + ".attributes.POSITION must be a VEC3 FLOAT accessor");
-    }
-    const std::uint64_t vertices = position["count"].asUInt64();
-    for (const std::string& name : attributes.getMemberNames())
-    {
-      if (accessors[attributes[name].asUInt()]["count"].asUInt64() != vertices)
-      {
-        return this->Fail(path + ".attributes." + name + " has " +
-          std::to_string(accessors[attributes[name].asUInt()]["count"].asUInt64()) +
-          " elements but POSITION has " + std::to_string(vertices));
-      }
+      return false;
     }
     if (!this->Index(primitive, "indices", path, "accessors") ||
       !this->Index(primitive, "material", path, "materials") ||
@@ -843,15 +953,56 @@ private:
       }
     }
     const Json::Value& targets = primitive["targets"];
+    if (primitive.isMember("targets") && !targets.isArray())
+    {
+      return this->Fail(path + ".targets must be an array");
+    }
     for (Json::ArrayIndex t = 0; targets.isArray() && t < targets.size(); ++t)
     {
+      const std::string targetPath = path + ".targets[" + std::to_string(t) + "]";
+      if (!targets[t].isObject())
+      {
+        return this->Fail(targetPath + " must be a JSON object");
+      }
       for (const std::string& name : targets[t].getMemberNames())
       {
-        if (!this->IndexValue(
-              targets[t][name], path + ".targets[" + std::to_string(t) + "]." + name, "accessors"))
+        if (!this->IndexValue(targets[t][name], MemberPath(targetPath, name), "accessors"))
         {
           return false;
         }
+      }
+      if (!this->CheckAttributes(targets[t], targetPath, vertices, true))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  /**
+   * The accessors of a primitive's attributes (or of a morph target's, `target`),
+   * already known to be valid indices: of a type glTF allows for the attribute,
+   * with one element per vertex.
+   */
+  bool CheckAttributes(
+    const Json::Value& attributes, const std::string& path, std::uint64_t vertices, bool target)
+  {
+    const Json::Value& accessors = this->Root["accessors"];
+    for (const std::string& name : attributes.getMemberNames())
+    {
+      const Json::Value& accessor = accessors[attributes[name].asUInt()];
+      const std::string expected = AttributeTypeProblem(name, accessor, target);
+      if (!expected.empty())
+      {
+        return this->Fail(MemberPath(path, name) + " must be " + expected + " (accessors[" +
+          std::to_string(attributes[name].asUInt()) + "] is " + accessor["type"].asString() +
+          " of component type " + std::to_string(accessor["componentType"].asInt()) + ")");
+      }
+      if (accessor["count"].asUInt64() != vertices)
+      {
+        return this->Fail(MemberPath(path, name) + " has " +
+          std::to_string(accessor["count"].asUInt64()) + " elements but POSITION has " +
+          std::to_string(vertices));
       }
     }
     return true;
@@ -967,7 +1118,7 @@ private:
         return false;
       }
     }
-    return this->CheckNodeTree();
+    return this->CheckNodeTree() && this->CheckNodeDepth();
   }
 
   /** A node's references, transform and light link. */
@@ -1056,6 +1207,43 @@ private:
       {
         state[n] = 2;
       }
+    }
+    return true;
+  }
+
+  /**
+   * At most MaxNodeDepth levels (a root is level 1). VTK's loader recurses once per
+   * level, so this is checked without recursion: a node's level is its parent's
+   * plus one, found by walking up to a node whose level is known (each node is
+   * walked over once; the forest has no cycles, CheckNodeTree() saw to it).
+   */
+  bool CheckNodeDepth()
+  {
+    const std::size_t count = this->Parents.size();
+    std::vector<int> level(count, 0);
+    std::vector<int> chain;
+    int deepest = -1;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      chain.clear();
+      int n = static_cast<int>(i);
+      for (; n >= 0 && level[n] == 0; n = this->Parents[n])
+      {
+        chain.push_back(n);
+      }
+      int depth = n >= 0 ? level[n] : 0;
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+      {
+        level[*it] = ++depth;
+      }
+      deepest = deepest < 0 || depth > level[deepest] ? static_cast<int>(i) : deepest;
+    }
+    if (deepest >= 0 && level[deepest] > MaxNodeDepth)
+    {
+      return this->Fail("the node hierarchy is " + std::to_string(level[deepest]) +
+        " levels deep (down to nodes[" + std::to_string(deepest) + "]); at most " +
+        std::to_string(MaxNodeDepth) + " levels are supported (VTK's glTF loader recurses " +
+        "once per level)");
     }
     return true;
   }

@@ -1,5 +1,6 @@
 #include "vtkCausticsGLTFImporter.h"
 
+#include "vtkCausticsFileText.h"
 #include "vtkCausticsGLTFDocumentChecker.h"
 
 #include "vtkActor.h"
@@ -17,6 +18,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -45,6 +47,8 @@ namespace
 {
 const double Pi = vtkMath::Pi();
 const double NaN = std::numeric_limits<double>::quiet_NaN();
+/** Deepest nesting of JSON arrays and objects read (jsoncpp's default limit). */
+const int MaxJSONDepth = 1000;
 
 void CollectMessages(vtkObject*, unsigned long, void* clientData, void* callData)
 {
@@ -203,6 +207,30 @@ std::string VertexIndexProblem(vtkPolyData* geometry)
             std::to_string(numPoints) + " vertices";
         }
       }
+    }
+  }
+  return std::string();
+}
+
+/**
+ * The first per-vertex array VTK's loader decoded with fewer or more values than
+ * POSITION has vertices, as a problem; "" if none. The checker already refuses
+ * attributes of a type glTF does not allow (VTK leaves those empty, and the scene
+ * extractor read past an empty normal array); this catches what VTK still drops.
+ */
+std::string AttributeArrayProblem(vtkPolyData* geometry)
+{
+  const vtkIdType numPoints = geometry->GetNumberOfPoints();
+  vtkPointData* pointData = geometry->GetPointData();
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = pointData->GetAbstractArray(a);
+    if (array && array->GetNumberOfTuples() != numPoints)
+    {
+      return "VTK's loader decoded " + std::to_string(array->GetNumberOfTuples()) +
+        " values of vertex attribute " +
+        caustics::text::Quote(array->GetName() ? array->GetName() : "(unnamed)") + " for " +
+        std::to_string(numPoints) + " vertices";
     }
   }
   return std::string();
@@ -460,16 +488,27 @@ int vtkCausticsGLTFImporter::ParseJSON(const std::string& json)
   builder["strictRoot"] = true;
   builder["rejectDupKeys"] = true;
   builder["failIfExtra"] = true;
+  builder["allowTrailingCommas"] = false; // JSON has none; jsoncpp allows them by default
   // NaN/Infinity (as Python's json module writes them) are parsed so that the
   // error can name the member, instead of a bare syntax error.
   builder["allowSpecialFloats"] = true;
+  // jsoncpp's default nesting limit, and VTK's loader's: it throws beyond it.
+  builder["stackLimit"] = MaxJSONDepth;
   std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
   std::string errors;
   Json::Value& document = this->Internal->Document;
   document = Json::Value();
-  if (!reader->parse(json.data(), json.data() + json.size(), &document, &errors))
+  try
   {
-    return this->Fail("malformed JSON at " + caustics::gltf::OneLineErrors(errors));
+    if (!reader->parse(json.data(), json.data() + json.size(), &document, &errors))
+    {
+      return this->Fail("malformed JSON at " + caustics::gltf::OneLineErrors(errors));
+    }
+  }
+  catch (const std::exception&)
+  {
+    return this->Fail("malformed JSON: arrays and objects nested more than " +
+      std::to_string(MaxJSONDepth) + " levels deep");
   }
   return 1;
 }
@@ -511,7 +550,9 @@ int vtkCausticsGLTFImporter::RunLoader(const std::string& path, bool binary)
   auto loaderFailed = [&](const char* step)
   {
     return this->Fail(std::string("VTK's glTF loader failed to ") + step +
-      (messages.empty() ? std::string() : ": " + messages.back()));
+      (messages.empty()
+          ? std::string()
+          : ": " + caustics::text::Printable(messages.back(), caustics::text::ReasonLength)));
   };
   // VTK 9.1's loader accepts only the exact extensions ".gltf" and ".glb"; a
   // "scene.GLTF" is read through a lower-case alias. Relative buffer URIs still
@@ -549,7 +590,8 @@ int vtkCausticsGLTFImporter::RunLoader(const std::string& path, bool binary)
     // VTK warns about the extensions only this class reads.
     if (!caustics::gltf::MentionsOwnExtension(message))
     {
-      vtkWarningMacro(<< path << ": VTK's glTF loader: " << message);
+      vtkWarningMacro(<< path << ": VTK's glTF loader: "
+                      << caustics::text::Printable(message, caustics::text::ReasonLength));
     }
   }
   return 1;
@@ -569,7 +611,8 @@ int vtkCausticsGLTFImporter::CheckVertexIndices()
       {
         return this->Fail(where + ": VTK's loader built no geometry");
       }
-      const std::string problem = VertexIndexProblem(geometry);
+      std::string problem = VertexIndexProblem(geometry);
+      problem = problem.empty() ? AttributeArrayProblem(geometry) : problem;
       if (!problem.empty())
       {
         return this->Fail(where + ": " + problem);

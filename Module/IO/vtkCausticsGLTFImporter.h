@@ -15,7 +15,9 @@
  *    JSON syntax, asset version 2.x, required extensions, every index (scene,
  *    node, mesh, material, accessor, buffer view, buffer, camera, light, texture,
  *    image, sampler, skin), finite numbers everywhere, buffer and accessor sizes,
- *    a node graph without cycles or shared children, and physical ranges (IOR in
+ *    accessor bounds, the accessor types glTF allows for vertex attributes, the
+ *    chunks of a .glb, a node graph without cycles or shared children and at most
+ *    MAX_NODE_DEPTH levels deep, and physical ranges (IOR in
  *    [1, MAX_IOR], factors in [0, 1], intensities within float range, cone
  *    angles, camera frusta, selected camera index); sparse accessors are refused;
  * 2. it then runs VTK's vtkGLTFDocumentLoader (through a lower-case alias for a
@@ -96,6 +98,15 @@ public:
   static constexpr double MAX_MEDIUM_COEFFICIENT = 1e9;
   static constexpr double MIN_ATTENUATION_DISTANCE = 1e-9;
   ///@}
+
+  /**
+   * Deepest node hierarchy imported, in levels (a root node is level 1). VTK 9.1's
+   * glTF loader computes world transforms recursively, one stack frame per level
+   * (vtkGLTFDocumentLoader::BuildGlobalTransforms), so a chain of 100000 nodes, each
+   * the only child of the previous one, overflowed the stack; deeper documents are
+   * refused before VTK reads them. The importer's own walks are iterative.
+   */
+  static constexpr int MAX_NODE_DEPTH = 1000;
 
   /** One line naming the file and the problem of the last import; empty after a success. */
   const char* GetLastError() const { return this->LastError.c_str(); }

@@ -1,5 +1,7 @@
 #include "vtkCausticsMeshReader.h"
 
+#include "vtkCausticsFileText.h"
+
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCausticsMaterial.h"
@@ -43,10 +45,6 @@ vtkStandardNewMacro(vtkCausticsMeshReader);
 
 namespace
 {
-/** Characters of the file that a message quotes: enough to recognise the place. */
-constexpr std::size_t QuoteLength = 60;
-/** Characters of a VTK reader's message passed on (it may quote the file itself). */
-constexpr std::size_t ReasonLength = 120;
 /**
  * vtkOBJReader (9.1) reads lines with fgets into a 256 KiB buffer and fails on a
  * longer one, quoting all of it; its content (without '\n') is at most this long.
@@ -56,53 +54,22 @@ constexpr std::size_t OBJLineLimit = 256 * 1024 - 2;
 constexpr std::size_t OBJNameLimit = 99;
 /** Longest PLY header line accepted; real ones are a few dozen bytes. */
 constexpr std::size_t PLYHeaderLineLimit = 4096;
+/**
+ * Longest line of an ASCII PLY body (one element) accepted, and of a header line
+ * naming "vertex_index": vtkPLY (9.1) reads lines into a 4096-byte buffer (4095
+ * bytes and a NUL) and rewrites "vertex_index" there as "vertex_indices", two
+ * bytes longer.
+ */
+constexpr std::size_t PLYLineLimit = 4093;
 
 std::string LowerExtension(const std::string& fileName)
 {
   return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(fileName));
 }
 
-/**
- * `text` fit for a one-line message: at most `limit` characters, bytes outside
- * printable ASCII written as \xNN, "..." where it was cut. A 5 MB line or binary
- * junk from a bad file thus never floods the terminal.
- */
-std::string Printable(std::string_view text, std::size_t limit)
-{
-  static const char* const hex = "0123456789abcdef";
-  std::string out;
-  std::size_t i = 0;
-  for (; i < text.size(); ++i)
-  {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    const bool printable = c >= 0x20 && c < 0x7f;
-    if (out.size() + (printable ? 1 : 4) > limit)
-    {
-      break;
-    }
-    if (printable)
-    {
-      out.push_back(static_cast<char>(c));
-    }
-    else
-    {
-      out += "\\x";
-      out.push_back(hex[c >> 4]);
-      out.push_back(hex[c & 15]);
-    }
-  }
-  if (i < text.size())
-  {
-    out += "...";
-  }
-  return out;
-}
-
-/** A piece of the file, quoted for a message. */
-std::string Quote(std::string_view text)
-{
-  return "'" + Printable(text, QuoteLength) + "'";
-}
+using caustics::text::Printable;
+using caustics::text::Quote;
+using caustics::text::ReasonLength;
 
 /**
  * Why `path` cannot be a mesh file, judged by stat() alone, or "". Opening a FIFO
@@ -170,6 +137,7 @@ public:
       }
       line.push_back(static_cast<char>(c));
     }
+    this->Terminated = c == '\n';
     if (!line.empty() && line.back() == '\r')
     {
       line.pop_back();
@@ -178,14 +146,18 @@ public:
   }
 
   bool TooLong() const { return this->Long; }
+  /** Whether the line Next() read ended with '\n' (else with the end of the stream). */
+  bool Ended() const { return this->Terminated; }
   long long GetNumber() const { return this->Number; }
   std::size_t GetLimit() const { return this->Limit; }
+  void SetLimit(std::size_t limit) { this->Limit = limit; }
 
 private:
   std::streambuf* Buffer;
   std::size_t Limit;
   long long Number = 0;
   bool Long = false;
+  bool Terminated = false;
 };
 
 /**
@@ -302,42 +274,94 @@ struct PlyElement
   std::vector<PlyProperty> properties;
 };
 
-/** Walks a PLY file's header and body; Check() returns the first problem or "". */
+/**
+ * The words of a PLY line as vtkPLY (9.1) splits it: "vertex_index" and everything
+ * after it rewritten as "vertex_indices", then words separated by spaces, tabs and
+ * carriage returns only (so "1\v2" is one word).
+ */
+void PlyWords(std::string& line, std::vector<std::string_view>& words)
+{
+  const std::size_t alias = line.find("vertex_index");
+  if (alias != std::string::npos)
+  {
+    line.replace(alias, std::string::npos, "vertex_indices");
+  }
+  words.clear();
+  std::size_t i = 0;
+  auto separator = [&line](std::size_t k)
+  { return line[k] == ' ' || line[k] == '\t' || line[k] == '\r'; };
+  while (i < line.size())
+  {
+    while (i < line.size() && separator(i))
+    {
+      ++i;
+    }
+    const std::size_t begin = i;
+    while (i < line.size() && !separator(i))
+    {
+      ++i;
+    }
+    if (i > begin)
+    {
+      words.push_back(std::string_view(line).substr(begin, i - begin));
+    }
+  }
+}
+
+/**
+ * Walks a PLY file's header and body; Check() returns the first problem or "".
+ * vtkPLY (9.1) reads the header and an ASCII body one line per element and takes
+ * the words it needs without counting them: a line with too few words, a last line
+ * without a line break (read as the end of the file) or a NUL byte (which ends its
+ * C string) made it read through a null pointer (SIGSEGV, found by fuzzing). So the
+ * lines are read here as it reads them.
+ */
 class PlyChecker
 {
 public:
   std::string Check(std::istream& in)
   {
     this->Buffer = in.rdbuf();
-    std::string problem = this->ParseHeader(in);
-    if (!problem.empty())
+    LineReader lines(in, PLYHeaderLineLimit);
+    this->Lines = &lines;
+    std::string problem = this->ParseHeader();
+    lines.SetLimit(PLYLineLimit);
+    for (std::size_t e = 0; problem.empty() && e < this->Elements.size(); ++e)
     {
-      return problem;
+      problem = this->CheckElement(this->Elements[e], e + 1 == this->Elements.size());
     }
-    for (const PlyElement& element : this->Elements)
-    {
-      problem = this->CheckElement(element);
-      if (!problem.empty())
-      {
-        return problem;
-      }
-    }
-    return std::string();
+    return problem;
   }
 
 private:
   enum class Read
   {
     Ok,
-    End,      ///< the data ended
-    NotNumber ///< an ASCII token that is not a number
+    End,       ///< the data ended
+    NotNumber, ///< an ASCII word that is not a number
+    LineShort  ///< an ASCII line without the word asked for
   };
 
-  std::string CheckElement(const PlyElement& element)
+  /** The instances of an element; `last`: the last element of the header. */
+  std::string CheckElement(const PlyElement& element, bool last)
   {
+    if (element.properties.empty() && element.count > 0)
+    {
+      // Nothing to read per instance, so nothing bounds the count by the file's size.
+      return "element " + Quote(element.name) + " declares " + std::to_string(element.count) +
+        " instances but no properties";
+    }
     const bool isFace = element.name == "face";
     for (std::uint64_t i = 0; i < element.count; ++i)
     {
+      if (this->Ascii)
+      {
+        const std::string problem = this->NextAsciiLine(element, i, last && i + 1 == element.count);
+        if (!problem.empty())
+        {
+          return problem;
+        }
+      }
       for (const PlyProperty& property : element.properties)
       {
         double count = 1.0;
@@ -351,8 +375,8 @@ private:
         }
         if (!(count >= 0.0) || count != std::floor(count))
         {
-          return "element '" + element.name + "' " + std::to_string(i) + ": list length " +
-            std::to_string(count) + " is not a non-negative integer";
+          return "element " + Quote(element.name) + " " + std::to_string(i) + ": list length " +
+            this->NumberText(count) + " is not a non-negative integer";
         }
         const bool isIndex = isFace && !property.countType.empty() &&
           (property.name == "vertex_indices" || property.name == "vertex_index");
@@ -366,9 +390,8 @@ private:
           }
           if (isIndex && !(value >= 0.0 && value < static_cast<double>(this->VertexCount)))
           {
-            return "face " + std::to_string(i) + " refers to vertex " +
-              std::to_string(static_cast<long long>(value)) + ", but the file has " +
-              std::to_string(this->VertexCount) + " vertices";
+            return "face " + std::to_string(i) + " refers to vertex " + this->NumberText(value) +
+              ", but the file has " + std::to_string(this->VertexCount) + " vertices";
           }
         }
       }
@@ -376,20 +399,87 @@ private:
     return std::string();
   }
 
-  std::string ParseHeader(std::istream& in)
+  /**
+   * A value read from the file, for a message: an integer as such, else the word
+   * of an ASCII file (quoted) or the binary value. (Converting a NaN or a value
+   * beyond long long to an integer, as this once did, is undefined behaviour.)
+   */
+  std::string NumberText(double value) const
   {
-    LineReader lines(in, PLYHeaderLineLimit);
+    if (std::isfinite(value) && std::fabs(value) < 1e18 && value == std::floor(value))
+    {
+      return std::to_string(static_cast<long long>(value));
+    }
+    if (this->Ascii)
+    {
+      return Quote(this->Token);
+    }
+    std::ostringstream text;
+    text << value;
+    return text.str();
+  }
+
+  /**
+   * The line of an ASCII element: present, ended by a line break (the last line of
+   * the file too: `last`), without NUL bytes.
+   */
+  std::string NextAsciiLine(const PlyElement& element, std::uint64_t index, bool last)
+  {
+    const std::string where = "element " + Quote(element.name) + " " + std::to_string(index);
+    if (!this->Lines->Next(this->Line))
+    {
+      return this->Lines->TooLong()
+        ? "line " + std::to_string(this->Lines->GetNumber()) + " (" + where + ") is longer than " +
+          std::to_string(PLYLineLimit) + " bytes: " + Quote(this->Line)
+        : "the file ends before " + where + " of " + std::to_string(element.count) +
+          " (truncated?)";
+    }
+    const std::string at = "line " + std::to_string(this->Lines->GetNumber()) + " (" + where + ")";
+    if (this->Line.find('\0') != std::string::npos)
+    {
+      return at + " holds a NUL byte: " + Quote(this->Line);
+    }
+    if (!this->Lines->Ended())
+    {
+      return last ? at +
+          " does not end with a line break (vtkPLYReader takes it for the end "
+          "of the file)"
+                  : "the file ends inside " + where + " of " + std::to_string(element.count) +
+          " (truncated?)";
+    }
+    PlyWords(this->Line, this->Words);
+    this->Word = 0;
+    return std::string();
+  }
+
+  std::string ParseHeader()
+  {
     std::string line;
-    if (!lines.Next(line) || line.compare(0, 3, "ply") != 0)
+    if (!this->Lines->Next(line) || line.compare(0, 3, "ply") != 0)
     {
       return "not a PLY file (it does not start with 'ply')";
     }
     bool haveFormat = false;
-    while (lines.Next(line))
+    while (this->Lines->Next(line))
     {
-      std::istringstream words(line);
-      std::string keyword;
-      words >> keyword;
+      const std::string number = "header line " + std::to_string(this->Lines->GetNumber());
+      if (line.find('\0') != std::string::npos)
+      {
+        return number + " holds a NUL byte: " + Quote(line);
+      }
+      if (!this->Lines->Ended())
+      {
+        return number + " does not end with a line break: " + Quote(line);
+      }
+      if (line.size() > PLYLineLimit && line.find("vertex_index") != std::string::npos)
+      {
+        return number + " is longer than " + std::to_string(PLYLineLimit) +
+          " bytes and names vertex_index, which vtkPLYReader lengthens past its buffer: " +
+          Quote(line);
+      }
+      const std::string quoted = Quote(line);
+      PlyWords(line, this->Words);
+      const std::string keyword = this->Words.empty() ? "" : std::string(this->Words[0]);
       if (keyword == "end_header")
       {
         if (!haveFormat)
@@ -401,39 +491,46 @@ private:
       std::string problem;
       if (keyword == "format")
       {
-        problem = this->ParseFormat(words);
+        // A second one would let this check read the body in a format VTK does not
+        // (found by fuzzing: an ASCII body read as binary here, then VTK crashed).
+        problem = haveFormat ? number + " is a second 'format' line" : this->ParseFormat(quoted);
         haveFormat = true;
       }
       else if (keyword == "element")
       {
-        problem = this->ParseElement(words, line);
+        problem = this->ParseElement(quoted);
       }
       else if (keyword == "property")
       {
-        problem = this->ParseProperty(words, line);
+        problem = this->ParseProperty(quoted);
       }
-      else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
+      else if (keyword.empty())
       {
-        problem = "unknown header line " + Quote(line);
+        // vtkPLY reads the first word of every header line, even of an empty one
+        // (found by fuzzing: it then misread the body and crashed).
+        problem = number + " is empty";
+      }
+      else if (keyword != "comment" && keyword != "obj_info")
+      {
+        problem = "unknown " + number + " " + quoted;
       }
       if (!problem.empty())
       {
         return problem;
       }
     }
-    if (lines.TooLong())
+    if (this->Lines->TooLong())
     {
-      return "header line " + std::to_string(lines.GetNumber()) + " is longer than " +
-        std::to_string(lines.GetLimit()) + " bytes: " + Quote(line);
+      return "header line " + std::to_string(this->Lines->GetNumber()) + " is longer than " +
+        std::to_string(PLYHeaderLineLimit) + " bytes: " + Quote(line);
     }
     return "the header has no 'end_header' line";
   }
 
   /** "format ascii|binary_little_endian|binary_big_endian 1.0" */
-  std::string ParseFormat(std::istringstream& words)
+  std::string ParseFormat(const std::string& quoted)
   {
-    std::string format;
-    words >> format;
+    const std::string format = this->Words.size() >= 2 ? std::string(this->Words[1]) : "";
     if (format == "ascii")
     {
       this->Ascii = true;
@@ -444,83 +541,131 @@ private:
     }
     else
     {
-      return "unknown PLY format " + Quote(format);
+      return "unknown PLY format in header line " + quoted;
     }
     return std::string();
   }
 
-  /** "element <name> <count>" */
-  std::string ParseElement(std::istringstream& words, const std::string& line)
+  /** "element <name> <count>", the count in decimal digits. */
+  std::string ParseElement(const std::string& quoted)
   {
-    PlyElement element;
-    long long count = -1;
-    words >> element.name >> count;
-    if (!words || count < 0)
+    const std::string_view count = this->Words.size() == 3 ? this->Words[2] : std::string_view();
+    if (count.empty() || count.size() > 18 ||
+      !std::all_of(count.begin(), count.end(),
+        [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
     {
-      return "malformed header line " + Quote(line);
+      return "malformed header line " + quoted + " (expected 'element <name> <count>')";
     }
-    element.count = static_cast<std::uint64_t>(count);
+    PlyElement element;
+    element.name = std::string(this->Words[1]);
+    element.count = std::stoull(std::string(count));
     this->Elements.push_back(element);
     return std::string();
   }
 
   /** "property <type> <name>" or "property list <count type> <type> <name>" */
-  std::string ParseProperty(std::istringstream& words, const std::string& line)
+  std::string ParseProperty(const std::string& quoted)
   {
     if (this->Elements.empty())
     {
-      return "header line " + Quote(line) + " comes before any element";
+      return "header line " + quoted + " comes before any element";
+    }
+    const bool list = this->Words.size() >= 2 && this->Words[1] == "list";
+    if (this->Words.size() != (list ? 5u : 3u))
+    {
+      return "malformed header line " + quoted;
     }
     PlyProperty property;
-    words >> property.type;
-    if (property.type == "list")
+    property.countType = list ? std::string(this->Words[2]) : std::string();
+    property.type = std::string(this->Words[list ? 3 : 1]);
+    property.name = std::string(this->Words[list ? 4 : 2]);
+    if (list && (PlyTypeSize(property.countType) == 0 || PlyTypeIsFloat(property.countType)))
     {
-      words >> property.countType >> property.type;
-      if (PlyTypeSize(property.countType) == 0 || PlyTypeIsFloat(property.countType))
-      {
-        return "header line " + Quote(line) + ": bad list length type";
-      }
+      return "header line " + quoted + ": bad list length type";
     }
-    words >> property.name;
-    if (!words || PlyTypeSize(property.type) == 0)
+    if (PlyTypeSize(property.type) == 0)
     {
-      return "malformed header line " + Quote(line);
+      return "malformed header line " + quoted + ": unknown type";
     }
     this->Elements.back().properties.push_back(property);
     return std::string();
   }
 
+  /**
+   * The elements vtkPLYReader reads, as it needs them. It takes the file's word for
+   * whether a property is a list, but stores what it reads where it expects its own
+   * kind: a face without a vertex_indices list left the index pointer unset (free()
+   * of an invalid pointer, SIGSEGV; found by fuzzing), a list where it expects a
+   * scalar (vertex "alpha", face "intensity") wrote a pointer over its one-byte field.
+   * So in "vertex" and "face" every property is a scalar but the face's
+   * vertex_indices and texcoord lists, each element is declared once, and a vertex
+   * element with scalar x, y and z is required.
+   */
   std::string CheckVertexElement()
   {
+    const PlyElement* vertices = nullptr;
+    const PlyElement* faces = nullptr;
     for (const PlyElement& element : this->Elements)
     {
-      if (element.name != "vertex")
+      const bool isVertex = element.name == "vertex";
+      if (isVertex || element.name == "face")
       {
-        continue;
+        const PlyElement*& seen = isVertex ? vertices : faces;
+        if (seen)
+        {
+          return "the header declares element " + Quote(element.name) + " twice";
+        }
+        seen = &element;
       }
-      int xyz = 0;
-      for (const PlyProperty& property : element.properties)
-      {
-        const bool coordinate =
-          property.name == "x" || property.name == "y" || property.name == "z";
-        xyz += coordinate && property.countType.empty() ? 1 : 0;
-      }
-      if (xyz != 3)
-      {
-        return "the 'vertex' element lacks scalar x, y and z properties";
-      }
-      this->VertexCount = element.count;
-      return std::string();
     }
-    return "the header declares no 'vertex' element";
+    if (!vertices)
+    {
+      return "the header declares no 'vertex' element";
+    }
+    auto has = [](const PlyElement* element, const char* name)
+    {
+      return element &&
+        std::any_of(element->properties.begin(), element->properties.end(),
+          [name](const PlyProperty& property) { return property.name == name; });
+    };
+    if (!has(vertices, "x") || !has(vertices, "y") || !has(vertices, "z"))
+    {
+      return "the 'vertex' element lacks scalar x, y and z properties";
+    }
+    if (faces && faces->count > 0 && !has(faces, "vertex_indices"))
+    {
+      return "the 'face' element has no vertex_indices list";
+    }
+    for (const PlyElement* element : { vertices, faces })
+    {
+      for (std::size_t p = 0; element && p < element->properties.size(); ++p)
+      {
+        const PlyProperty& property = element->properties[p];
+        const bool list =
+          element == faces && (property.name == "vertex_indices" || property.name == "texcoord");
+        if (list == property.countType.empty())
+        {
+          return "property " + Quote(property.name) + " of element " + Quote(element->name) +
+            " must be " + (list ? "a list" : "a scalar") + ", as vtkPLYReader reads it";
+        }
+      }
+    }
+    this->VertexCount = vertices->count;
+    return std::string();
   }
 
   std::string ReadProblem(Read read, const PlyElement& element, std::uint64_t index) const
   {
-    const std::string where = "element '" + element.name + "' " + std::to_string(index);
+    const std::string where = "element " + Quote(element.name) + " " + std::to_string(index);
     if (read == Read::NotNumber)
     {
       return where + ": " + Quote(this->Token) + " is not a number";
+    }
+    if (read == Read::LineShort)
+    {
+      return "line " + std::to_string(this->Lines->GetNumber()) + " (" + where + ") has " +
+        std::to_string(this->Words.size()) +
+        " values, fewer than its properties need (vtkPLYReader reads one element per line)";
     }
     return "the file ends inside " + where + " of " + std::to_string(element.count) +
       " (truncated?)";
@@ -532,32 +677,22 @@ private:
     return this->Ascii ? this->AsciiValue(value) : this->BinaryValue(type, value);
   }
 
-  /** The next whitespace-separated token as a number; a token is kept to 64 bytes. */
+  /** The next word of the current line as a number. */
   Read AsciiValue(double& value)
   {
-    using Traits = std::char_traits<char>;
-    int c = this->Buffer->sgetc();
-    while (c != Traits::eof() && std::isspace(c))
+    if (this->Word >= this->Words.size())
     {
-      c = this->Buffer->snextc();
+      return Read::LineShort;
     }
-    this->Token.clear();
-    bool tooLong = false;
-    for (; c != Traits::eof() && !std::isspace(c); c = this->Buffer->snextc())
+    const std::string_view word = this->Words[this->Word++];
+    this->Token = std::string(word.substr(0, 65));
+    if (word.size() > 64)
     {
-      tooLong = tooLong || this->Token.size() == 64;
-      if (!tooLong)
-      {
-        this->Token.push_back(static_cast<char>(c));
-      }
-    }
-    if (this->Token.empty())
-    {
-      return Read::End;
+      return Read::NotNumber;
     }
     char* end = nullptr;
     value = std::strtod(this->Token.c_str(), &end);
-    return !tooLong && end && *end == '\0' ? Read::Ok : Read::NotNumber;
+    return end && *end == '\0' ? Read::Ok : Read::NotNumber;
   }
 
   Read BinaryValue(const std::string& type, double& value)
@@ -607,7 +742,11 @@ private:
 
   std::vector<PlyElement> Elements;
   std::streambuf* Buffer = nullptr;
-  std::string Token; ///< the last ASCII token read
+  LineReader* Lines = nullptr;
+  std::string Line;                    ///< the current line of an ASCII body
+  std::vector<std::string_view> Words; ///< its words (views into Line)
+  std::size_t Word = 0;                ///< the next word to read
+  std::string Token;                   ///< the last ASCII word read, for messages
   std::uint64_t VertexCount = 0;
   bool Ascii = false;
   bool BigEndian = false;

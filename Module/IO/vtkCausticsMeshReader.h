@@ -16,7 +16,9 @@
  * 2. streams the file once (nothing is kept but counts) to check the container
  *    before VTK reads it:
  *    - PLY: the header, and that the body holds every element the header declares,
- *      with face indices in range;
+ *      with face indices in range; the header and an ASCII body line by line and
+ *      word by word as vtkPLY reads them, and vertex and face properties of the
+ *      kinds vtkPLYReader stores (docs/reliability.md lists why);
  *    - OBJ: lines of at most 262142 bytes (vtkOBJReader's buffer) without NUL
  *      bytes; "v" lines of three decimal numbers that fit a 32-bit float; every
  *      vertex, texture coordinate and normal index of the "f", "l" and "p" lines,

@@ -60,15 +60,29 @@ unsigned long NextVersion()
 /**
  * The polygons of `input` as triangles with point normals: its own, or smooth
  * normals with sharp edges (> 30 degrees) split, as VTK's own vtkPolyDataNormals
- * defaults; a box gets flat faces, a sphere smooth ones.
+ * defaults; a box gets flat faces, a sphere smooth ones. Only the points, polygons,
+ * strips and normals are used: other point arrays, and normals that do not cover
+ * every point, are left out, as the filters would read past an array shorter than
+ * the points (a glTF with an empty normal array did; found by fuzzing).
  */
 vtkSmartPointer<vtkPolyData> TriangulatedSurface(vtkPolyData* input)
 {
+  vtkNew<vtkPolyData> geometry;
+  geometry->SetPoints(input->GetPoints());
+  geometry->SetPolys(input->GetPolys());
+  geometry->SetStrips(input->GetStrips());
+  vtkDataArray* given = input->GetPointData()->GetNormals();
+  const bool haveNormals = given && given->GetNumberOfComponents() == 3 &&
+    given->GetNumberOfTuples() >= input->GetNumberOfPoints();
+  if (haveNormals)
+  {
+    geometry->GetPointData()->SetNormals(given);
+  }
   vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputData(input);
+  triangles->SetInputData(geometry);
   triangles->PassVertsOff();
   triangles->PassLinesOff();
-  if (input->GetPointData()->GetNormals())
+  if (haveNormals)
   {
     triangles->Update();
     return triangles->GetOutput();

@@ -925,3 +925,208 @@ TEST_F(GLTFImporterTest, RefusesSparseAccessors)
   EXPECT_TRUE(Contains(error, "accessors[3].sparse: sparse accessors are not supported")) << error;
   EXPECT_FALSE(Contains(error, "bad_array")) << error;
 }
+
+namespace
+{
+/**
+ * SceneDocument() with a chain of `depth` nodes, each the only child of the
+ * previous one, under a new root of scene 0; the last holds the "plain" mesh.
+ */
+Json::Value ChainedDocument(int depth)
+{
+  Json::Value doc = SceneDocument();
+  Json::Value& nodes = doc["nodes"];
+  const int first = static_cast<int>(nodes.size());
+  for (int level = 0; level < depth; ++level)
+  {
+    Json::Value node(Json::objectValue);
+    if (level + 1 < depth)
+    {
+      node["children"].append(first + level + 1);
+    }
+    else
+    {
+      node["mesh"] = 3;
+    }
+    nodes.append(node);
+  }
+  doc["scenes"][0]["nodes"].append(first);
+  return doc;
+}
+}
+
+// Issue 18: a node hierarchy 100000 levels deep overflowed the stack in VTK's
+// loader, which recurses once per level; the limit is refused in one line.
+TEST_F(GLTFImporterTest, RefusesNodeHierarchiesDeeperThanTheLimit)
+{
+  const int limit = vtkCausticsGLTFImporter::MAX_NODE_DEPTH;
+  std::string error = this->ExpectFailure(WriteGLTF("too-deep.gltf", ChainedDocument(limit + 1)));
+  EXPECT_TRUE(Contains(error,
+    "the node hierarchy is 1001 levels deep (down to nodes[1012]); at most 1000 levels are "
+    "supported"))
+    << error;
+
+  // The issue's file, generated here rather than checked in (a few MB of JSON).
+  error = this->ExpectFailure(WriteGLTF("deep.gltf", ChainedDocument(100000)));
+  EXPECT_TRUE(Contains(error, "the node hierarchy is 100000 levels deep (down to nodes[100011])"))
+    << error;
+}
+
+TEST_F(GLTFImporterTest, ImportsNodeHierarchiesAtTheLimit)
+{
+  const std::string path =
+    WriteGLTF("deepest.gltf", ChainedDocument(vtkCausticsGLTFImporter::MAX_NODE_DEPTH));
+  ASSERT_TRUE(this->Import(path)) << this->Importer->GetLastError();
+  EXPECT_EQ(this->Renderer->GetActors()->GetNumberOfItems(), 6);
+}
+
+// Issue 18, found by fuzzing: an accessor without a bufferView (glTF's accessor
+// of zeros) used as indices crashed VTK 9.1's loader (SIGSEGV).
+TEST_F(GLTFImporterTest, RefusesAccessorsWithoutBufferView)
+{
+  Json::Value doc = SceneDocument();
+  doc["accessors"][1].removeMember("bufferView");
+  const std::string error = this->ExpectFailure(WriteGLTF("zeros.gltf", doc));
+  EXPECT_TRUE(
+    Contains(error, "accessors[1] has no bufferView: accessors of zeros are not supported"))
+    << error;
+}
+
+// Issue 18, found by fuzzing: a version string with binary bytes was quoted as
+// is, breaking the one-line message (and a long one flooded it). Text from the
+// file is quoted at most 60 characters long, bytes outside ASCII as \xNN.
+TEST_F(GLTFImporterTest, QuotesOnlyShortPrintableExcerpts)
+{
+  auto expectShortAndPrintable = [](const std::string& error)
+  {
+    EXPECT_LT(error.size(), 400u) << error.substr(0, 400);
+    for (char c : error)
+    {
+      ASSERT_TRUE(static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7f)
+        << error.substr(0, 400);
+    }
+  };
+  // Raw bytes in the JSON string (jsoncpp's writer would escape them).
+  Json::Value doc = SceneDocument();
+  doc["asset"]["version"] = "VERSION";
+  std::string text = JSONText(doc);
+  text.replace(text.find("VERSION"), 7, std::string("2\xd4") + "0\x7f" + std::string(5000, 'x'));
+  std::string error = this->ExpectFailure(WriteText("binary-version.gltf", text));
+  EXPECT_TRUE(Contains(error, "asset.version is '2\\xd40\\x7fxxxx")) << error;
+  EXPECT_TRUE(Contains(error, "...'; only glTF 2.x is supported")) << error;
+  expectShortAndPrintable(error);
+
+  // A member name from the file in a JSON path.
+  doc = SceneDocument();
+  doc["meshes"][0]["primitives"][0]["attributes"]["\x01" + std::string(300, 'N')] = 99;
+  error = this->ExpectFailure(WriteGLTF("attribute-name.gltf", doc));
+  EXPECT_TRUE(Contains(error, "meshes[0].primitives[0].attributes['\\x01NNN")) << error;
+  EXPECT_TRUE(Contains(error, "...'] = 99 is out of range")) << error;
+  expectShortAndPrintable(error);
+
+  doc = SceneDocument();
+  doc["buffers"][0]["uri"] = std::string(3000, 'b') + ".bin";
+  error = this->ExpectFailure(WriteGLTF("long-uri.gltf", doc));
+  EXPECT_TRUE(Contains(error, "buffers[0].uri 'bbbb")) << error;
+  expectShortAndPrintable(error);
+}
+
+// Issue 18, found by fuzzing: a NORMAL accessor of unsigned integers was left empty
+// by VTK's loader, and the scene snapshot read past the empty array (SIGSEGV).
+TEST_F(GLTFImporterTest, RefusesAttributesOfTypesGLTFDoesNotAllow)
+{
+  Json::Value doc = SceneDocument();
+  doc["accessors"][3] = Accessor(0, 5125, 4, "VEC3"); // the quad's bytes as integers
+  doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 3;
+  std::string error = this->ExpectFailure(WriteGLTF("int-normals.gltf", doc));
+  EXPECT_TRUE(Contains(error,
+    "meshes[0].primitives[0].attributes.NORMAL must be a VEC3 FLOAT accessor (accessors[3] is "
+    "VEC3 of component type 5125)"))
+    << error;
+
+  doc["accessors"][3] = Accessor(0, 5126, 4, "VEC3");
+  doc["accessors"][3]["normalized"] = "yes";
+  error = this->ExpectFailure(WriteGLTF("normalized.gltf", doc));
+  EXPECT_TRUE(Contains(error, "accessors[3].normalized must be true or false")) << error;
+
+  // Morph targets hold VEC3 FLOAT displacements, one per vertex.
+  doc = SceneDocument();
+  doc["accessors"][3] = Accessor(1, 5123, 6, "SCALAR");
+  doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 3;
+  error = this->ExpectFailure(WriteGLTF("target.gltf", doc));
+  EXPECT_TRUE(
+    Contains(error, "meshes[0].primitives[0].targets[0].POSITION must be a VEC3 FLOAT accessor"))
+    << error;
+  doc["meshes"][0]["primitives"][0]["targets"][0] = 3;
+  error = this->ExpectFailure(WriteGLTF("target-number.gltf", doc));
+  EXPECT_TRUE(Contains(error, "meshes[0].primitives[0].targets[0] must be a JSON object")) << error;
+}
+
+// Issue 18, found by fuzzing: an accessor's max with two numbers for a VEC3 (and a
+// trailing comma, which jsoncpp accepts by default) threw std::length_error inside
+// VTK's loader, reported only as the importer's last-resort message.
+TEST_F(GLTFImporterTest, RefusesBoundsOfTheWrongSize)
+{
+  Json::Value doc = SceneDocument();
+  doc["accessors"][2]["max"] = Numbers({ 1, 1 });
+  std::string error = this->ExpectFailure(WriteGLTF("short-max.gltf", doc));
+  EXPECT_TRUE(Contains(error, "accessors[2].max must be 3 numbers, finite")) << error;
+
+  std::string text = JSONText(SceneDocument());
+  const std::size_t bound = text.find("\"max\"");
+  text.insert(text.find(']', bound), ",");
+  error = this->ExpectFailure(WriteText("trailing-comma.gltf", text));
+  EXPECT_TRUE(Contains(error, "malformed JSON at line")) << error;
+}
+
+// Issue 18: JSON nested deeper than jsoncpp's limit made it throw, reported only
+// as the importer's last-resort message.
+TEST_F(GLTFImporterTest, RefusesJSONNestedTooDeep)
+{
+  const std::string error =
+    this->ExpectFailure(WriteText("nested.gltf", std::string(1200, '[') + std::string(1200, ']')));
+  EXPECT_TRUE(
+    Contains(error, "malformed JSON: arrays and objects nested more than 1000 levels deep"))
+    << error;
+}
+
+// Issue 18: VTK 9.1's loader walks the chunks of a .glb by their lengths and
+// looped for ever, growing its chunk list until memory ran out, on a partial
+// chunk header at the end of the file.
+TEST_F(GLTFImporterTest, RefusesBinaryGLTFChunksThatDoNotTileTheFile)
+{
+  const std::string path = WriteGLB("tail.glb", SceneDocument());
+  std::string glb;
+  {
+    std::ifstream file(path, std::ios::binary);
+    glb.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  }
+  auto withLength = [](std::string bytes)
+  {
+    const std::uint32_t length = static_cast<std::uint32_t>(bytes.size());
+    for (int i = 0; i < 4; ++i)
+    {
+      bytes[8 + i] = static_cast<char>((length >> (8 * i)) & 0xff);
+    }
+    return bytes;
+  };
+  const std::size_t end = glb.size();
+  std::string error =
+    this->ExpectFailure(WriteText("partial-header.glb", withLength(glb + std::string(4, '\0'))));
+  EXPECT_TRUE(Contains(error,
+    "the binary glTF ends inside a chunk header at byte " + std::to_string(end) + " (truncated?)"))
+    << error;
+
+  // The header's length must be the file's, not more or less.
+  error = this->ExpectFailure(WriteText("long.glb", glb + std::string(8, '\0')));
+  EXPECT_TRUE(Contains(error,
+    "binary glTF header declares " + std::to_string(end) + " bytes but the file has " +
+      std::to_string(end + 8)))
+    << error;
+
+  // Chunks are multiples of 4 bytes long, as glTF requires and VTK's walk assumes.
+  std::string odd = glb;
+  odd[12] = static_cast<char>(odd[12] - 1); // the JSON chunk's length, one short
+  error = this->ExpectFailure(WriteText("odd.glb", odd));
+  EXPECT_TRUE(Contains(error, "not a multiple of 4 as glTF requires")) << error;
+}

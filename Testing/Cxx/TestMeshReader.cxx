@@ -590,3 +590,102 @@ TEST_F(MeshReaderTest, RefusesFilesThatAreNotRegular)
   error = this->ExpectFailure(OutputDir);
   EXPECT_TRUE(Contains(error, ": is a folder, not a mesh file")) << error;
 }
+
+// Issue 18, found by fuzzing: vtkPLYReader reads an ASCII body one element per
+// line, words split at spaces, tabs and carriage returns only, and takes the words
+// it needs without counting them; a line with too few words, or a last line
+// without a line break, made it read through a null pointer (SIGSEGV).
+TEST_F(MeshReaderTest, RefusesPlyLinesThatVTKWouldReadPast)
+{
+  std::string error = this->ExpectFailure(
+    WriteFile("short-line.ply", PlyHeader(3, 1) + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error,
+    "short-line.ply: line 11 (element 'vertex' 1) has 2 values, fewer than its properties need"))
+    << error;
+  // "\v" separates words for the C library, not for vtkPLY: "0\v0" is one word.
+  error =
+    this->ExpectFailure(WriteFile("vtab.ply", PlyHeader(3, 1) + "0\v0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "vtab.ply: element 'vertex' 0: '0\\x0b0' is not a number")) << error;
+  error = this->ExpectFailure(
+    WriteFile("blank-line.ply", PlyHeader(3, 1) + "0 0 0\n\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "line 11 (element 'vertex' 1) has 0 values")) << error;
+  error = this->ExpectFailure(
+    WriteFile("no-final-newline.ply", PlyHeader(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2"));
+  EXPECT_TRUE(Contains(
+    error, "no-final-newline.ply: line 13 (element 'face' 0) does not end with a line break"))
+    << error;
+  // Tabs and extra words are fine, as for vtkPLY.
+  const std::string path =
+    WriteFile("tabs.ply", PlyHeader(3, 1) + "0\t0\t0\n1 0 0 7 8\n0 1 0\n3 0 1 2\n");
+  vtkNew<vtkCausticsMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_STREQ(reader->GetLastError(), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPolys(), 1);
+
+  // A NaN index is named as written (converting it to an integer is undefined).
+  error = this->ExpectFailure(
+    WriteFile("nan-index.ply", PlyHeader(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 nan\n"));
+  EXPECT_TRUE(Contains(error, "face 0 refers to vertex 'nan', but the file has 3 vertices"))
+    << error;
+  // Nothing to read per instance: nothing bounds the count.
+  error = this->ExpectFailure(WriteFile("empty-element.ply",
+    "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+    "property float y\nproperty float z\nelement edge 999999999999\nend_header\n"));
+  EXPECT_TRUE(Contains(error, "element 'edge' declares 999999999999 instances but no properties"))
+    << error;
+}
+
+// Issue 18, found by fuzzing: vtkPLYReader takes the file's word for whether a
+// property is a list but stores it where it expects its own kind; a face without
+// a vertex_indices list crashed it (invalid free), a list where it reads a scalar
+// wrote a pointer over a one-byte field.
+TEST_F(MeshReaderTest, RefusesPlyPropertiesVTKWouldMisread)
+{
+  const std::string vertex =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\n";
+  const std::string points = "0 0 0\n1 0 0\n0 1 0\n";
+  std::string error = this->ExpectFailure(WriteFile("no-indices.ply",
+    vertex + "element face 1\nproperty list uchar int vertex_indi1es\nend_header\n" + points +
+      "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "no-indices.ply: the 'face' element has no vertex_indices list"))
+    << error;
+  error = this->ExpectFailure(WriteFile("list-intensity.ply",
+    vertex +
+      "element face 1\nproperty list uchar int vertex_indices\n"
+      "property list uchar uchar intensity\nend_header\n" +
+      points + "3 0 1 2 1 7\n"));
+  EXPECT_TRUE(Contains(
+    error, "property 'intensity' of element 'face' must be a scalar, as vtkPLYReader reads it"))
+    << error;
+  error = this->ExpectFailure(WriteFile("scalar-indices.ply",
+    vertex + "element face 1\nproperty int vertex_indices\nend_header\n" + points + "2\n"));
+  EXPECT_TRUE(Contains(error, "property 'vertex_indices' of element 'face' must be a list"))
+    << error;
+  error = this->ExpectFailure(WriteFile("two-vertex-elements.ply",
+    vertex + vertex.substr(vertex.find("element")) + "end_header\n" + points + points));
+  EXPECT_TRUE(Contains(error, "the header declares element 'vertex' twice")) << error;
+
+  // One format only: a second one made this check and VTK read the body differently.
+  error = this->ExpectFailure(WriteFile("two-formats.ply",
+    vertex +
+      "element face 1\nformat binary_little_endian 1.0\n"
+      "property list uchar int vertex_indices\nend_header\n" +
+      points + "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "two-formats.ply: header line 8 is a second 'format' line")) << error;
+
+  // vtkPLY reads the first word of every header line, even of an empty one.
+  error = this->ExpectFailure(WriteFile("blank-header-line.ply",
+    vertex + "element face 1\nproperty list uchar int vertex_indices\n\nend_header\n" + points +
+      "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "blank-header-line.ply: header line 9 is empty")) << error;
+
+  // Names from the header are quoted like any text of the file (found by fuzzing).
+  error = this->ExpectFailure(WriteFile("odd-name.ply",
+    vertex + "element fac\x97 3\nproperty list uchar int vertex_indices\nend_header\n" + points +
+      "3 0 1 2\n"));
+  EXPECT_TRUE(Contains(error, "the file ends before element 'fac\\x97' 1 of 3 (truncated?)"))
+    << error;
+  ExpectShortAndPrintable(error);
+}

@@ -8,10 +8,12 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -225,6 +227,44 @@ TEST(Extractor, DropsAndRepairsBadGeometry)
   {
     EXPECT_FLOAT_EQ(mesh.positions[3 * index + 2], 5.0f);
     EXPECT_NEAR(std::abs(mesh.normals[3 * index + 2]), 1.0f, 1e-6f);
+  }
+}
+
+// Issue 18, found by fuzzing the glTF importer: point arrays shorter than the
+// points (VTK's glTF loader left a NORMAL of the wrong type empty) were read past.
+TEST(Extractor, IgnoresPointArraysShorterThanThePoints)
+{
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType triangle[3] = { 0, 1, 2 };
+  polys->InsertNextCell(3, triangle);
+  vtkNew<vtkPolyData> polyData;
+  polyData->SetPoints(points);
+  polyData->SetPolys(polys);
+  vtkNew<vtkFloatArray> normals; // empty, as VTK's loader left it
+  normals->SetNumberOfComponents(3);
+  normals->SetName("Normals");
+  polyData->GetPointData()->SetNormals(normals);
+  vtkNew<vtkFloatArray> coordinates; // one of three
+  coordinates->SetNumberOfComponents(2);
+  coordinates->InsertNextTuple2(0, 0);
+  polyData->GetPointData()->SetTCoords(coordinates);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(polyData);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 32, 32));
+  ASSERT_EQ(extractor->GetNumberOfTriangles(), 1);
+  const auto& mesh = extractor->GetScene().Meshes[0];
+  for (std::uint32_t index : mesh.indices)
+  {
+    EXPECT_NEAR(std::abs(mesh.normals[3 * index + 2]), 1.0f, 1e-6f); // recomputed
   }
 }
 
