@@ -16,9 +16,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -Wno-dev \
 # The non-GPU subset: the libraries, the CLI and the test executables it runs.
 targets=(TestScene TestImageIO TestMeshReader TestGLTFImporter TestErrorMetrics TestReference
   caustics-render)
-if [ -f Testing/Fuzz/CMakeLists.txt ]; then
-  targets+=(FuzzCorpusReplay)
-fi
+targets+=(FuzzGLTFReplay FuzzGLBReplay FuzzOBJReplay FuzzSTLReplay FuzzPLYReplay)
 if [ "$all" = 1 ]; then
   cmake --build build-asan --parallel "$(nproc)" >> build-asan.log 2>&1
 else
