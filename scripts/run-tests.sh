@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
-(cd build && xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 300 -j 2 "$@")
+(cd build && xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --timeout 300 -j 2 "$@")
 if [ "${CAUSTICS_SKIP_SANITIZERS:-0}" != 1 ]; then
   scripts/sanitize.sh
 fi

@@ -26,7 +26,7 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:detect_odr_violation=0"
 export LSAN_OPTIONS="suppressions=$PWD/Testing/Sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-asan
-run() { xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 600 -j 2 "$@"; }
+run() { xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --timeout 600 -j 2 "$@"; }
 if [ "$all" = 1 ]; then
   run
   exit
