@@ -515,10 +515,9 @@ bool vtkCausticsRenderPass::CheckResources(vtkRenderWindow* window)
 
 bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights)
 {
-  std::string& error = this->Internal->ResourceError;
-  error.clear();
-  // The context's limits do not change: queried once per window and budget.
   auto& in = *this->Internal;
+  in.ResourceError.clear();
+  // The context's limits do not change: queried once per window and budget.
   if (in.LimitsWindow != renWin || in.LimitsBudget != this->MaximumGPUMemory)
   {
     renWin->MakeCurrent();
@@ -535,18 +534,25 @@ bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int
   const int n = this->LightBufferResolution;
   const double slots = 2.0 * n * n;
   const double perLight = technique.PerLight ? lights : 1.0;
-  const double total =
-    slots * (SharedBytesPerPhoton * lights + technique.BytesPerPhoton * perLight) +
-    technique.FixedBytes * perLight;
+  const double perSlot = SharedBytesPerPhoton * lights + technique.BytesPerPhoton * perLight;
+  const double total = slots * perSlot + technique.FixedBytes * perLight;
   const double largest = slots * technique.LargestBufferPerPhoton;
+  const bool tooTall = 2 * n > limits.MaximumTextureSize;
+  const bool tooLarge =
+    limits.MaximumStorageBlockBytes > 0.0 && largest > limits.MaximumStorageBlockBytes;
+  const bool tooMuch = limits.MemoryBudgetBytes > 0.0 && total > limits.MemoryBudgetBytes;
+  if (!tooTall && !tooLarge && !tooMuch)
+  {
+    return true; // every frame that fits ends here, without building a message
+  }
   std::ostringstream why;
   why << this->GetClassName() << ": LightBufferResolution " << n;
-  if (2 * n > limits.MaximumTextureSize)
+  if (tooTall)
   {
     why << " needs textures " << 2 * n << " texels high; this OpenGL allows "
         << limits.MaximumTextureSize << ": at most " << limits.MaximumTextureSize / 2;
   }
-  else if (largest > limits.MaximumStorageBlockBytes && limits.MaximumStorageBlockBytes > 0.0)
+  else if (tooLarge)
   {
     const int fits = static_cast<int>(
       std::sqrt(limits.MaximumStorageBlockBytes / (2.0 * technique.LargestBufferPerPhoton)));
@@ -554,20 +560,15 @@ bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int
         << " storage buffer; this OpenGL's shaders see at most "
         << caustics::gl::FormatBytes(limits.MaximumStorageBlockBytes) << ": at most " << fits;
   }
-  else if (limits.MemoryBudgetBytes > 0.0 && total > limits.MemoryBudgetBytes)
+  else
   {
-    const double perSlot = SharedBytesPerPhoton * lights + technique.BytesPerPhoton * perLight;
     const double room = limits.MemoryBudgetBytes - technique.FixedBytes * perLight;
     const int fits = room > 0.0 ? static_cast<int>(std::sqrt(room / (2.0 * perSlot))) : 0;
     why << " needs about " << caustics::gl::FormatBytes(total) << " of GPU memory for " << lights
         << " light(s); the budget is " << caustics::gl::FormatBytes(limits.MemoryBudgetBytes)
         << " (" << limits.MemorySource << "): at most " << fits;
   }
-  else
-  {
-    return true;
-  }
-  error = why.str();
+  in.ResourceError = why.str();
   return false;
 }
 
