@@ -190,6 +190,9 @@ void vtkCausticsEGLRenderWindow::Initialize()
   if (this->InitializeContext())
   {
     this->Superclass::Initialize();
+    // Load the GL entry points now, not at the first Render(): a caller may query
+    // the context before it renders (vtkCausticsRenderPass::CheckResources does).
+    this->OpenGLInit();
   }
 }
 
