@@ -16,6 +16,7 @@
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
+#include "vtkCausticsTraceView.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -103,9 +104,12 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   // Splat records of the photons that ended on receivers this bounce.
   caustics::gl::PhotonPlanes Landed; // with their kernel radii
 
-  // Camera of the frame, for the stages.
+  // The frame's camera (splats, refraction, god-rays) and the view photons are
+  // traced in (the camera's or a fitted one, vtkCausticsTraceView.h).
   float ClipToWorld[16];
-  vtkCausticsScreenSpaceLineTracer::View View;
+  double CameraOrigin[4] = { 0, 0, 0, 1 }; // eye (w = 1) or view direction (w = 0)
+  caustics::TraceView Traced;
+  vtkCausticsScreenSpaceLineTracer::View View; // the tracer's: the traced view
   bool HasLayers = false;
   bool HasRefractorLayers = false;
   bool GodRaysOn = false; // this frame draws god-rays
@@ -216,7 +220,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderLayers(vtkOpenGLRenderWindow* renWi
   in.SceneLayers->SetPerObject(this->Settings.PerObjectLayers);
   in.SceneLayers->SetTimings(this->GetTimings(), "ssp layers ");
   in.HasLayers =
-    in.SceneLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
+    in.SceneLayers->Render(renWin, f.Geometry, scene, in.Traced.WorldToClip, f.Width, f.Height);
   in.HasRefractorLayers = false;
   if (in.HasLayers && this->Settings.RefractionTracing &&
     f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) > 0)
@@ -325,9 +329,9 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   p->SetUniformMatrix4("worldToClip", f.WorldToClip);
   p->SetUniformMatrix4("clipToWorld", in.ClipToWorld);
   p->SetUniform2f("viewport", static_cast<float>(f.Width), static_cast<float>(f.Height));
-  const float origin[4] = { static_cast<float>(in.View.ViewOrigin[0]),
-    static_cast<float>(in.View.ViewOrigin[1]), static_cast<float>(in.View.ViewOrigin[2]),
-    static_cast<float>(in.View.ViewOrigin[3]) };
+  const float origin[4] = { static_cast<float>(in.CameraOrigin[0]),
+    static_cast<float>(in.CameraOrigin[1]), static_cast<float>(in.CameraOrigin[2]),
+    static_cast<float>(in.CameraOrigin[3]) };
   p->SetUniform4f("viewOrigin", origin);
   p->SetUniformf("splatRadius", static_cast<float>(this->Settings.SplatRadius));
   p->SetUniformf("splatRadiusPixels", static_cast<float>(this->Settings.SplatRadiusPixels));
@@ -388,7 +392,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   view.ClipToWorld = in.ClipToWorld;
   view.Width = f.Width;
   view.Height = f.Height;
-  std::copy(in.View.ViewOrigin, in.View.ViewOrigin + 4, view.ViewOrigin);
+  std::copy(in.CameraOrigin, in.CameraOrigin + 4, view.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, view.Bounds);
   view.Medium = &scene.Participating;
   view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
@@ -402,31 +406,18 @@ void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
 {
   auto& in = *this->Internal;
   const caustics::SceneData& scene = *f.Scene;
-  const caustics::Camera& camera = scene.View;
-  caustics::gl::ToColumnMajor(camera.clipToWorld, in.ClipToWorld);
+  const caustics::TraceView camera =
+    caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
+  std::copy(camera.ClipToWorld, camera.ClipToWorld + 16, in.ClipToWorld);
+  std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, in.CameraOrigin);
+  // Photons are traced where every specular actor is (see vtkCausticsTraceView.h).
+  in.Traced = caustics::ChooseTraceView(
+    scene, static_cast<caustics::TraceViewMode>(this->Settings.TraceView), f.Width, f.Height);
+  this->LastTraceViewFitted = in.Traced.Fitted;
   in.View.Layers = in.SceneLayers;
-  in.View.WorldToClip = f.WorldToClip;
+  in.View.WorldToClip = in.Traced.WorldToClip;
   std::copy(scene.Bounds, scene.Bounds + 6, in.View.Bounds);
-  if (camera.parallel)
-  {
-    double axis[3], length = 0.0;
-    for (int k = 0; k < 3; ++k)
-    {
-      axis[k] = camera.focalPoint[k] - camera.position[k];
-      length += axis[k] * axis[k];
-    }
-    length = std::sqrt(length);
-    for (int k = 0; k < 3; ++k)
-    {
-      in.View.ViewOrigin[k] = length > 0.0 ? axis[k] / length : 0.0;
-    }
-    in.View.ViewOrigin[3] = 0.0;
-  }
-  else
-  {
-    std::copy(camera.position.begin(), camera.position.end(), in.View.ViewOrigin);
-    in.View.ViewOrigin[3] = 1.0;
-  }
+  std::copy(in.Traced.ViewOrigin, in.Traced.ViewOrigin + 4, in.View.ViewOrigin);
   this->LastTolerance = this->Settings.Tolerance(scene.Scale());
   in.View.Tolerance = this->LastTolerance;
   in.Tracer->SetTimings(this->GetTimings());
@@ -533,7 +524,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(
   inputs.WorldToClip = f.WorldToClip;
   inputs.Width = f.Width;
   inputs.Height = f.Height;
-  std::copy(in.View.ViewOrigin, in.View.ViewOrigin + 4, inputs.ViewOrigin);
+  std::copy(in.CameraOrigin, in.CameraOrigin + 4, inputs.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
   inputs.Tolerance = this->LastTolerance;
@@ -641,6 +632,8 @@ void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RelativeIntersectionTolerance: " << this->Settings.RelativeIntersectionTolerance
      << " of the scene's diagonal\n";
   os << indent << "LastTolerance: " << this->LastTolerance << " m\n";
+  os << indent << "TraceView: " << this->Settings.TraceView
+     << " (last frame: " << (this->LastTraceViewFitted ? "fitted" : "camera") << ")\n";
   os << indent << "MinimumLineLength: " << this->Settings.MinimumLineLength << " fragments\n";
   os << indent << "RowsPerBatch: " << this->Settings.RowsPerBatch << "\n";
   os << indent << "SplatRadius: " << this->Settings.SplatRadius << " m (0: in pixel footprints)\n";

@@ -147,10 +147,36 @@ public:
 
   ///@{
   /**
+   * The view photons are traced in (vtkCausticsTraceView.h):
+   * - TRACE_VIEW_AUTOMATIC (0, default): the camera's own view when its frustum
+   *   holds every specular actor, otherwise a fitted view;
+   * - TRACE_VIEW_CAMERA (1): always the camera's, as the paper does. A refractor
+   *   or mirror outside the frame then does not bend the photons that pass it;
+   * - TRACE_VIEW_FITTED (2): always an orthographic view along the camera's
+   *   direction around the specular actors and the part of the scene in view.
+   * The fitted view makes the caustic independent of the framing, at the
+   * resolution of the fitted region. GetLastTraceViewFitted() tells which ran.
+   */
+  enum
+  {
+    TRACE_VIEW_AUTOMATIC = 0,
+    TRACE_VIEW_CAMERA = 1,
+    TRACE_VIEW_FITTED = 2
+  };
+  vtkCausticsSettingClampMacro(Settings, TraceView, int, 0, 2);
+  void SetTraceViewToAutomatic() { this->SetTraceView(TRACE_VIEW_AUTOMATIC); }
+  void SetTraceViewToCamera() { this->SetTraceView(TRACE_VIEW_CAMERA); }
+  void SetTraceViewToFitted() { this->SetTraceView(TRACE_VIEW_FITTED); }
+  /** True when the last frame traced its photons in the fitted view, not the camera's. */
+  vtkGetMacro(LastTraceViewFitted, bool);
+  ///@}
+
+  ///@{
+  /**
    * Skip the caustic stages when no specular actor is inside the camera's view
-   * frustum (their screen-space traces would find none of them in the layered
-   * depth image). Off, specular actors outside the view still send their first
-   * bounce from the light buffers. Default on.
+   * frustum. A specular actor outside the view can still focus light onto a
+   * receiver in view (the traced view then is the fitted one), so this trades the
+   * correct image for speed. Default off.
    */
   vtkCausticsSettingMacro(Settings, SkipOffscreenSpecular, bool);
   vtkBooleanMacro(SkipOffscreenSpecular, bool);
@@ -205,6 +231,7 @@ protected:
 
   caustics::ScreenSpaceSettings Settings;
   double LastTolerance = 0.0;
+  bool LastTraceViewFitted = false;
 
 private:
   vtkCausticsScreenSpacePhotonPass(const vtkCausticsScreenSpacePhotonPass&) = delete;

@@ -31,7 +31,8 @@ struct ScreenSpaceSettings
   bool GodRays = true;                         ///< volume caustics in a medium (§3.2)
   double GodRayBlurPixels = 1.5;               ///< Gaussian standard deviation, pixels, [0, 16]
   bool RefractionTracing = true;               ///< screen-space refraction of the view (§4)
-  bool SkipOffscreenSpecular = true;           ///< plain VTK when no specular actor is in view
+  bool SkipOffscreenSpecular = false;          ///< plain VTK when no specular actor is in view
+  int TraceView = 0; ///< caustics::TraceViewMode: 0 automatic, 1 camera, 2 fitted
 
   /** The hit tolerance (m) in a scene of the given size (m). */
   double Tolerance(double sceneScale) const
