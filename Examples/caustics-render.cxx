@@ -6,6 +6,7 @@
 // Every error is one line on stderr naming the problem, and a non-zero exit:
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
 #include "CausticsCommandLine.h"
+#include "CausticsSceneOptions.h"
 
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsGLTFImporter.h"
@@ -55,45 +56,16 @@
 
 namespace
 {
-const char* Usage =
+const char* UsageHead =
   R"(usage: caustics-render [options] [SCENE | FILE.gltf | FILE.glb | MESH.ply|obj|stl]
 
 Renders caustics with a VTK render pass and writes PREFIX.png (display colour)
 and PREFIX.exr (linear HDR layers: R,G,B final colour; direct.*, caustic.*:
 irradiance in W/m^2 at each pixel's visible surface before albedo; volume.*:
 in-scattered radiance in W/(m^2 sr); mask.Y: 1 where a receiver is visible).
+)";
 
-Scene (default: ball-lens):
-  SCENE                      built-in: ball-lens, pool, ring, bunny
-  FILE.gltf | FILE.glb       glTF 2.0 with KHR_materials_ior/transmission and
-                             KHR_lights_punctual (directional intensity = W/m^2,
-                             point/spot intensity = W/sr)
-  MESH.ply|obj|stl           a mesh placed on a floor under a sun, camera fit
-  --role ROLE                mesh role: refractor (default), reflector, receiver
-  --ior N                    index of refraction of the scene's refractors, 1..100
-  --time SECONDS             animation time (pool waves; glTF animations)
-  --camera-index I           glTF camera to use (default 0; -1 = fit the view)
-
-Technique and quality:
-  --technique NAME           )"
-  "%TECHNIQUES%"
-  R"(
-  --photons N                photon grid side per light (light-buffer texels), 1..8192;
-                             refused first if this OpenGL cannot hold it (llvmpipe:
-                             at most 1182 for screen-space, 2048 for caustic-maps)
-  --size W[xH]               image size in pixels (default 512x512)
-  --frames N                 frames rendered; timings are their median (default 1)
-
-Overrides:
-  --light-direction X,Y,Z    direction the first light travels (made directional)
-  --light-intensity V        first light: W/m^2 (directional) or W/sr (point/spot),
-                             0..1e30
-  --camera-position X,Y,Z    --camera-focal X,Y,Z    --camera-up X,Y,Z
-                             (the up vector must not be parallel to the view)
-  --view-angle DEGREES       vertical field of view, (0, 180)
-  --medium SS,SA,G           homogeneous medium: scattering and absorption
-                             coefficients in 1/m (0..1e9), Henyey-Greenstein g
-
+const char* UsageTail = R"(
 Output:
   --output PREFIX            output file prefix (default: caustics)
   --exposure E               multiplier applied before the PNG's 8-bit clamp (default 1)
@@ -109,31 +81,16 @@ Ground truth:
   --no-reference-cache       render it even when a cached result exists
 )";
 
-struct Options
+/** What caustics-render does with the scene: its frames, outputs and ground truth. */
+struct Options : caustics_cli::SceneOptions
 {
-  std::string Scene = "ball-lens";
-  std::string Role = "refractor";
-  std::string Technique = "best";
   std::string Output = "caustics";
-  double Time = 0.0;
-  double IOR = 0.0;
-  int CameraIndex = 0;
-  int Photons = 0;
-  int Width = 512, Height = 512;
   int Frames = 1;
   double Exposure = 1.0;
   bool Timings = false;
   bool Reference = false;
   double ReferencePhotons = 1e6;
   bool ReferenceCache = true;
-  bool HasLightDirection = false, HasLightIntensity = false;
-  std::array<double, 3> LightDirection{ { 0, -1, 0 } };
-  double LightIntensity = 1.0;
-  bool HasCameraPosition = false, HasCameraFocal = false, HasCameraUp = false;
-  std::array<double, 3> CameraPosition{}, CameraFocal{}, CameraUp{};
-  double ViewAngle = 0.0;
-  bool HasMedium = false;
-  std::array<double, 3> Medium{};
 };
 
 using caustics_cli::NoWindowError;
@@ -141,176 +98,12 @@ using caustics_cli::ParseInteger;
 using caustics_cli::ParseNumber;
 using caustics_cli::UsageError;
 
-std::array<double, 3> ParseVector(const std::string& option, const std::string& text)
+void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
 {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, ','))
-  {
-    parts.push_back(part);
-  }
-  if (parts.size() != 3)
-  {
-    throw UsageError(option + " expects three comma-separated numbers, got '" + text + "'");
-  }
-  return { { ParseNumber(option, parts[0]), ParseNumber(option, parts[1]),
-    ParseNumber(option, parts[2]) } };
-}
-
-/** ParseVector, rejecting the zero vector (a direction). */
-std::array<double, 3> ParseDirection(const std::string& option, const std::string& text)
-{
-  const std::array<double, 3> direction = ParseVector(option, text);
-  if (vtkMath::Norm(direction.data()) == 0.0)
-  {
-    throw UsageError(option + " must not be the zero vector");
-  }
-  return direction;
-}
-
-/** A limit for messages: "100", "1e+30". */
-std::string Number(double value)
-{
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-std::string Lower(std::string text)
-{
-  std::transform(text.begin(), text.end(), text.begin(), ::tolower);
-  return text;
-}
-
-/** The handler of an option that sets a string. */
-caustics_cli::Arguments::ValueHandler Text(std::string& field)
-{
-  return [&field](const std::string&, const std::string& value) { field = value; };
-}
-
-void DeclareSceneOptions(caustics_cli::Arguments& arguments, Options& options, bool& sceneGiven)
-{
-  arguments.Value("--scene",
-    [&options, &sceneGiven](const std::string&, const std::string& value)
-    {
-      options.Scene = value;
-      sceneGiven = true;
-    });
-  arguments.Value("--role", Text(options.Role));
-  arguments.Value("--ior",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.IOR = ParseNumber(option, value);
-      if (options.IOR < 1.0)
-      {
-        throw UsageError("--ior must be >= 1 (vacuum), got " + value);
-      }
-      if (options.IOR > vtkCausticsGLTFImporter::MAX_IOR)
-      {
-        throw UsageError("--ior must be <= " + Number(vtkCausticsGLTFImporter::MAX_IOR) +
-          " (the largest index of refraction supported), got " + value);
-      }
-    });
-  arguments.Value("--time",
-    [&options](const std::string& option, const std::string& value)
-    { options.Time = ParseNumber(option, value); });
-  arguments.Value("--camera-index",
-    [&options](const std::string& option, const std::string& value)
-    { options.CameraIndex = ParseInteger(option, value, -1, 1 << 20); });
-}
-
-void DeclareQualityOptions(caustics_cli::Arguments& arguments, Options& options)
-{
-  arguments.Value("--technique", Text(options.Technique));
-  arguments.Value("--photons",
-    [&options](const std::string& option, const std::string& value)
-    { options.Photons = ParseInteger(option, value, 1, 8192); });
-  arguments.Value("--size",
-    [&options](const std::string& option, const std::string& value)
-    {
-      const auto x = value.find('x');
-      options.Width = ParseInteger(option, value.substr(0, x), 1, 16384);
-      options.Height = x == std::string::npos ? options.Width
-                                              : ParseInteger(option, value.substr(x + 1), 1, 16384);
-    });
   arguments.Value("--frames",
     [&options](const std::string& option, const std::string& value)
     { options.Frames = ParseInteger(option, value, 1, 10000); });
-}
-
-void DeclareLightAndCameraOptions(caustics_cli::Arguments& arguments, Options& options)
-{
-  arguments.Value("--light-direction",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.LightDirection = ParseDirection(option, value);
-      options.HasLightDirection = true;
-    });
-  arguments.Value("--light-intensity",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.LightIntensity = ParseNumber(option, value);
-      if (options.LightIntensity < 0.0)
-      {
-        throw UsageError("--light-intensity must be >= 0");
-      }
-      if (options.LightIntensity > vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY)
-      {
-        throw UsageError(
-          "--light-intensity must be <= " + Number(vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY) +
-          " (the largest the GPU passes represent in float), got " + value);
-      }
-      options.HasLightIntensity = true;
-    });
-  arguments.Value("--camera-position",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.CameraPosition = ParseVector(option, value);
-      options.HasCameraPosition = true;
-    });
-  arguments.Value("--camera-focal",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.CameraFocal = ParseVector(option, value);
-      options.HasCameraFocal = true;
-    });
-  arguments.Value("--camera-up",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.CameraUp = ParseDirection(option, value);
-      options.HasCameraUp = true;
-    });
-  arguments.Value("--view-angle",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.ViewAngle = ParseNumber(option, value);
-      if (!(options.ViewAngle > 0.0 && options.ViewAngle < 180.0))
-      {
-        throw UsageError("--view-angle must lie in (0, 180) degrees");
-      }
-    });
-}
-
-void DeclareMediumAndOutputOptions(caustics_cli::Arguments& arguments, Options& options)
-{
-  arguments.Value("--medium",
-    [&options](const std::string& option, const std::string& value)
-    {
-      options.Medium = ParseVector(option, value);
-      if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
-      {
-        throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
-      }
-      const double most = vtkCausticsGLTFImporter::MAX_MEDIUM_COEFFICIENT;
-      if (options.Medium[0] > most || options.Medium[1] > most)
-      {
-        throw UsageError("--medium coefficients must be <= " + Number(most) +
-          " per metre (opaque within a nanometre; larger ones overflow float), got " + value);
-      }
-      options.HasMedium = true;
-    });
-  arguments.Value("--output", Text(options.Output));
+  arguments.Value("--output", caustics_cli::Text(options.Output));
   arguments.Value("--exposure",
     [&options](const std::string& option, const std::string& value)
     {
@@ -335,18 +128,6 @@ void DeclareReferenceOptions(caustics_cli::Arguments& arguments, Options& option
   arguments.Flag("--no-reference-cache", [&options] { options.ReferenceCache = false; });
 }
 
-/** "A, B, ..., best (default: X)": the techniques --technique takes. */
-std::string TechniqueNames(bool withDefault)
-{
-  std::string names;
-  for (const auto& name : vtkCausticsTechniques::GetNames())
-  {
-    names += name + ", ";
-  }
-  return names + "best" +
-    (withDefault ? std::string(" (default: ") + vtkCausticsTechniques::GetBestName() + ")" : "");
-}
-
 Options Parse(int argc, char* argv[], bool& help)
 {
   Options options;
@@ -355,233 +136,11 @@ Options Parse(int argc, char* argv[], bool& help)
   caustics_cli::Arguments arguments;
   arguments.Flag("--help", [&help] { help = true; });
   arguments.Flag("-h", [&help] { help = true; });
-  DeclareSceneOptions(arguments, options, sceneGiven);
-  DeclareQualityOptions(arguments, options);
-  DeclareLightAndCameraOptions(arguments, options);
-  DeclareMediumAndOutputOptions(arguments, options);
+  caustics_cli::DeclareSceneOptions(arguments, options, sceneGiven);
+  DeclareOutputOptions(arguments, options);
   DeclareReferenceOptions(arguments, options);
-  for (const auto& scene : arguments.Parse(argc, argv))
-  {
-    if (sceneGiven)
-    {
-      throw UsageError("more than one scene given ('" + options.Scene + "' and '" + scene + "')");
-    }
-    options.Scene = scene;
-    sceneGiven = true;
-  }
-  if (!vtkCausticsTechniques::Create(options.Technique))
-  {
-    throw UsageError(
-      "unknown technique '" + options.Technique + "' (known: " + TechniqueNames(false) + ")");
-  }
+  caustics_cli::FinishSceneOptions(arguments.Parse(argc, argv), options, sceneGiven);
   return options;
-}
-
-/** Places a loaded mesh on a floor under a sun, with a camera that frames both. */
-void StageMesh(vtkRenderer* renderer, vtkActor* mesh)
-{
-  renderer->AddActor(mesh);
-  double bounds[6];
-  mesh->GetBounds(bounds);
-  const double size =
-    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
-  const double cx = 0.5 * (bounds[0] + bounds[1]), cz = 0.5 * (bounds[4] + bounds[5]);
-  // The floor sits one object-size below the mesh, so a lens focuses onto it.
-  const double floorY = bounds[2] - size;
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(cx - 4 * size, floorY, cz + 4 * size);
-  plane->SetPoint1(cx + 4 * size, floorY, cz + 4 * size);
-  plane->SetPoint2(cx - 4 * size, floorY, cz - 4 * size);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkActor> floor;
-  floor->SetMapper(mapper);
-  floor->GetProperty()->SetColor(0.8, 0.8, 0.8);
-  floor->GetProperty()->SetSpecular(0.0);
-  vtkCausticsMaterial::SetName(floor, "floor");
-  renderer->AddActor(floor);
-  vtkNew<vtkLight> sun;
-  sun->SetLightTypeToSceneLight();
-  sun->SetPositional(false);
-  sun->SetPosition(cx, bounds[3] + size, cz);
-  sun->SetFocalPoint(cx, floorY, cz);
-  sun->SetIntensity(1.0);
-  renderer->AddLight(sun);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetFocalPoint(cx, 0.5 * (floorY + bounds[3]), cz);
-  camera->SetPosition(cx, bounds[3] + 1.5 * size, cz + 4.5 * size);
-  camera->SetViewUp(0, 1, 0);
-  camera->SetViewAngle(30.0);
-  renderer->ResetCameraClippingRange();
-}
-
-/** --ior on every refractor: glTF ones too (built-ins and meshes take it when loaded). */
-void ApplyRefractiveIndex(vtkRenderer* renderer, double ior)
-{
-  vtkActorCollection* actors = renderer->GetActors();
-  vtkCollectionSimpleIterator it;
-  actors->InitTraversal(it);
-  while (vtkActor* actor = actors->GetNextActor(it))
-  {
-    if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
-    {
-      actor->GetProperty()->SetBaseIOR(ior);
-    }
-  }
-}
-
-void LoadScene(const Options& options, vtkRenderWindow* window, vtkRenderer* renderer,
-  vtkCausticsBuiltinScene* builtin)
-{
-  const std::string extension = Lower(vtksys::SystemTools::GetFilenameLastExtension(options.Scene));
-  if (vtkCausticsBuiltinScene::IsSceneName(options.Scene))
-  {
-    builtin->SetSceneName(options.Scene.c_str());
-    builtin->SetTime(options.Time);
-    builtin->SetRefractiveIndex(options.IOR);
-    if (!builtin->Populate(renderer))
-    {
-      throw std::runtime_error(builtin->GetLastError());
-    }
-  }
-  else if (extension == ".gltf" || extension == ".glb")
-  {
-    vtkNew<vtkCausticsGLTFImporter> importer;
-    importer->SetFileName(options.Scene.c_str());
-    importer->SetRenderWindow(window); // imports into the window's first renderer
-    importer->SetCamera(options.CameraIndex);
-    if (!importer->Read())
-    {
-      throw std::runtime_error(importer->GetLastError());
-    }
-    if (options.Time != 0.0)
-    {
-      importer->UpdateTimeStep(options.Time);
-    }
-    if (options.CameraIndex < 0 || importer->GetNumberOfCameras() == 0)
-    {
-      renderer->ResetCamera();
-    }
-  }
-  else if (vtkCausticsMeshReader::IsSupportedExtension(options.Scene))
-  {
-    vtkNew<vtkCausticsMeshReader> reader;
-    reader->SetFileName(options.Scene.c_str());
-    if (!reader->SetRoleFromName(options.Role.c_str()))
-    {
-      throw UsageError("unknown --role '" + options.Role + "' (refractor, reflector, receiver)");
-    }
-    if (options.IOR > 0.0)
-    {
-      reader->SetRefractiveIndex(options.IOR);
-    }
-    auto actor = reader->CreateActor();
-    if (!actor)
-    {
-      throw std::runtime_error(reader->GetLastError());
-    }
-    renderer->AutomaticLightCreationOff();
-    StageMesh(renderer, actor);
-  }
-  else if (extension.empty())
-  {
-    throw UsageError("unknown scene '" + options.Scene +
-      "' (built-in: ball-lens, pool, ring, bunny; or a .gltf/.glb/.ply/.obj/.stl file)");
-  }
-  else
-  {
-    throw UsageError("cannot read '" + options.Scene + "': unsupported file type '" + extension +
-      "' (use .gltf, .glb, .ply, .obj or .stl)");
-  }
-  if (options.IOR > 0.0)
-  {
-    ApplyRefractiveIndex(renderer, options.IOR);
-  }
-}
-
-/**
- * An up vector parallel to the line of sight leaves OrthogonalizeViewUp nothing
- * to work with and gives a blank image: refused, naming the options that set it.
- */
-void CheckViewUp(const Options& options, vtkCamera* camera)
-{
-  double position[3], focal[3], up[3], view[3], side[3];
-  camera->GetPosition(position);
-  camera->GetFocalPoint(focal);
-  camera->GetViewUp(up);
-  vtkMath::Subtract(focal, position, view);
-  vtkMath::Cross(view, up, side);
-  // sin(angle) > 1e-6, as the glTF importer asks of its cameras.
-  if (vtkMath::Norm(side) > 1e-6 * vtkMath::Norm(view) * vtkMath::Norm(up))
-  {
-    return;
-  }
-  std::ostringstream message;
-  message << "the camera's up vector (" << up[0] << "," << up[1] << "," << up[2]
-          << (options.HasCameraUp ? ", from --camera-up" : ", from the scene")
-          << ") is parallel to its view direction ("
-          << (options.HasCameraPosition || options.HasCameraFocal
-                 ? "from --camera-position to --camera-focal"
-                 : "the scene's camera")
-          << "); give a --camera-up off the line of sight";
-  throw UsageError(message.str());
-}
-
-void ApplyOverrides(const Options& options, vtkRenderer* renderer)
-{
-  vtkLight* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
-  if ((options.HasLightDirection || options.HasLightIntensity) && !light)
-  {
-    throw UsageError("the scene has no light to override");
-  }
-  if (options.HasLightDirection)
-  {
-    const auto& d = options.LightDirection;
-    double focal[3];
-    light->GetFocalPoint(focal);
-    light->SetPositional(false);
-    light->SetTransformMatrix(nullptr);
-    light->SetPosition(focal[0] - d[0], focal[1] - d[1], focal[2] - d[2]);
-  }
-  if (options.HasLightIntensity)
-  {
-    light->SetIntensity(options.LightIntensity);
-  }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  if (options.HasCameraPosition)
-  {
-    camera->SetPosition(options.CameraPosition.data());
-  }
-  if (options.HasCameraFocal)
-  {
-    camera->SetFocalPoint(options.CameraFocal.data());
-  }
-  if (options.HasCameraUp)
-  {
-    camera->SetViewUp(options.CameraUp.data());
-  }
-  if (options.ViewAngle > 0.0)
-  {
-    camera->SetViewAngle(options.ViewAngle);
-  }
-  double position[3], focal[3];
-  camera->GetPosition(position);
-  camera->GetFocalPoint(focal);
-  if (vtkMath::Distance2BetweenPoints(position, focal) == 0.0)
-  {
-    throw UsageError("the camera position and focal point coincide");
-  }
-  CheckViewUp(options, camera);
-  camera->OrthogonalizeViewUp();
-  renderer->ResetCameraClippingRange();
-  if (options.HasMedium)
-  {
-    vtkNew<vtkCausticsMedium> medium;
-    medium->SetScatteringCoefficient(options.Medium[0], options.Medium[0], options.Medium[0]);
-    medium->SetAbsorptionCoefficient(options.Medium[1], options.Medium[1], options.Medium[1]);
-    medium->SetAnisotropy(options.Medium[2]);
-    vtkCausticsMedium::AttachTo(renderer, medium);
-  }
 }
 
 /** Copies buffer `name` of the pass into `output` as array `as`, if the frame made it. */
@@ -661,14 +220,10 @@ vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options, std::string&
 /** The technique's pass, keeping its buffers for read-back, with synchronous timings. */
 vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Options& options)
 {
-  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(options.Technique);
+  vtkSmartPointer<vtkCausticsRenderPass> pass = caustics_cli::MakePass(options);
   pass->KeepBuffersOn();
   pass->ComputeDirectIrradianceOn();
   pass->GetTimings()->SynchronousOn();
-  if (options.Photons > 0)
-  {
-    pass->SetLightBufferResolution(options.Photons);
-  }
   return pass;
 }
 
@@ -827,8 +382,8 @@ int Run(const Options& options)
   vtkNew<vtkOpenGLRenderer> renderer;
   window->AddRenderer(renderer);
   vtkNew<vtkCausticsBuiltinScene> builtin;
-  LoadScene(options, window, renderer, builtin);
-  ApplyOverrides(options, renderer);
+  caustics_cli::LoadScene(options, window, renderer, builtin);
+  caustics_cli::ApplyOverrides(options, renderer);
   vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(options);
   renderer->SetPass(pass);
   // Refuse a photon grid this OpenGL cannot hold before anything is allocated (the
@@ -863,9 +418,10 @@ int Run(const Options& options)
 /** The usage text with the registered techniques filled in. */
 std::string UsageText()
 {
-  std::string text = Usage;
-  text.replace(text.find("%TECHNIQUES%"), 12, "technique: " + TechniqueNames(true));
-  return text;
+  return std::string(UsageHead) + "\n" + caustics_cli::SceneUsage + "\nTechnique and quality:\n" +
+    caustics_cli::QualityUsage() +
+    "  --frames N                 frames rendered; timings are their median (default 1)\n\n" +
+    caustics_cli::OverridesUsage + UsageTail;
 }
 }
 

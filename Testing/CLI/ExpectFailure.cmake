@@ -1,7 +1,7 @@
 # Runs the CLI with ARGS; passes if it exits non-zero (but not by a signal) with
 # exactly one line on stderr, starting with PREFIX (default "caustics-render: error: ")
 # and containing EXPECTED. With UNWRITTEN (a list of paths), none of them may exist
-# afterwards: bad input writes no outputs.
+# afterwards: bad input writes no outputs. With EXIT_CODE, the exit code must be that.
 if (NOT DEFINED PREFIX)
   set(PREFIX "caustics-render: error: ")
 endif ()
@@ -15,6 +15,9 @@ if (result EQUAL 0)
 endif ()
 if (NOT result MATCHES "^[0-9]+$")
   message(FATAL_ERROR "the CLI crashed: ${result}; stderr: ${err}")
+endif ()
+if (DEFINED EXIT_CODE AND NOT result EQUAL EXIT_CODE)
+  message(FATAL_ERROR "expected exit code ${EXIT_CODE}, got ${result}; stderr: ${err}")
 endif ()
 string(STRIP "${err}" err)
 string(FIND "${err}" "\n" newline)

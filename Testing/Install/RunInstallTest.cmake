@@ -41,7 +41,7 @@ foreach (expected
     lib/cmake/vtkcaustics/VTKCausticsConfigVersion.cmake
     share/vtkcaustics/data/bunny.ply
     share/vtkcaustics/scripts/plot-benchmarks.py
-    bin/caustics-render bin/caustics-bench bin/caustics-ceilings)
+    bin/caustics-render bin/caustics-view bin/caustics-bench bin/caustics-ceilings)
   if (NOT EXISTS "${prefix}/${expected}")
     message(FATAL_ERROR "the installed prefix has no ${expected}")
   endif ()

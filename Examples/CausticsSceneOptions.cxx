@@ -1,0 +1,492 @@
+// The options, scene loading and overrides that caustics-render and caustics-view
+// share (CausticsSceneOptions.h).
+#include "CausticsSceneOptions.h"
+
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsGLTFImporter.h"
+#include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
+#include "vtkCausticsMeshReader.h"
+#include "vtkCausticsRenderPass.h"
+#include "vtkCausticsTechniques.h"
+
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace caustics_cli
+{
+const char* const SceneUsage = R"(Scene (default: ball-lens):
+  SCENE                      built-in: ball-lens, pool, ring, bunny
+  FILE.gltf | FILE.glb       glTF 2.0 with KHR_materials_ior/transmission and
+                             KHR_lights_punctual (directional intensity = W/m^2,
+                             point/spot intensity = W/sr)
+  MESH.ply|obj|stl           a mesh placed on a floor under a sun, camera fit
+  --role ROLE                mesh role: refractor (default), reflector, receiver
+  --ior N                    index of refraction of the scene's refractors, 1..100
+  --time SECONDS             animation time (pool waves; glTF animations)
+  --camera-index I           glTF camera to use (default 0; -1 = fit the view)
+)";
+
+const char* const OverridesUsage = R"(Overrides:
+  --light-direction X,Y,Z    direction the first light travels (made directional)
+  --light-intensity V        first light: W/m^2 (directional) or W/sr (point/spot),
+                             0..1e30
+  --camera-position X,Y,Z    --camera-focal X,Y,Z    --camera-up X,Y,Z
+                             (the up vector must not be parallel to the view)
+  --view-angle DEGREES       vertical field of view, (0, 180)
+  --medium SS,SA,G           homogeneous medium: scattering and absorption
+                             coefficients in 1/m (0..1e9), Henyey-Greenstein g
+)";
+
+std::string QualityUsage()
+{
+  return "  --technique NAME           technique: " + TechniqueNames(true) + R"(
+  --photons N                photon grid side per light (light-buffer texels), 1..8192;
+                             refused first if this OpenGL cannot hold it (llvmpipe:
+                             at most 1182 for screen-space, 2048 for caustic-maps)
+  --size W[xH]               image size in pixels (default 512x512)
+)";
+}
+
+Arguments::ValueHandler Text(std::string& field)
+{
+  return [&field](const std::string&, const std::string& value) { field = value; };
+}
+
+namespace
+{
+std::array<double, 3> ParseVector(const std::string& option, const std::string& text)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ','))
+  {
+    parts.push_back(part);
+  }
+  if (parts.size() != 3)
+  {
+    throw UsageError(option + " expects three comma-separated numbers, got '" + text + "'");
+  }
+  return { { ParseNumber(option, parts[0]), ParseNumber(option, parts[1]),
+    ParseNumber(option, parts[2]) } };
+}
+
+/** ParseVector, rejecting the zero vector (a direction). */
+std::array<double, 3> ParseDirection(const std::string& option, const std::string& text)
+{
+  const std::array<double, 3> direction = ParseVector(option, text);
+  if (vtkMath::Norm(direction.data()) == 0.0)
+  {
+    throw UsageError(option + " must not be the zero vector");
+  }
+  return direction;
+}
+
+/** A limit for messages: "100", "1e+30". */
+std::string Number(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+std::string Lower(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(), ::tolower);
+  return text;
+}
+
+/** Places a loaded mesh on a floor under a sun, with a camera that frames both. */
+void StageMesh(vtkRenderer* renderer, vtkActor* mesh)
+{
+  renderer->AddActor(mesh);
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  const double size =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double cx = 0.5 * (bounds[0] + bounds[1]), cz = 0.5 * (bounds[4] + bounds[5]);
+  // The floor sits one object-size below the mesh, so a lens focuses onto it.
+  const double floorY = bounds[2] - size;
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(cx - 4 * size, floorY, cz + 4 * size);
+  plane->SetPoint1(cx + 4 * size, floorY, cz + 4 * size);
+  plane->SetPoint2(cx - 4 * size, floorY, cz - 4 * size);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> floor;
+  floor->SetMapper(mapper);
+  floor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  floor->GetProperty()->SetSpecular(0.0);
+  vtkCausticsMaterial::SetName(floor, "floor");
+  renderer->AddActor(floor);
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(cx, bounds[3] + size, cz);
+  sun->SetFocalPoint(cx, floorY, cz);
+  sun->SetIntensity(1.0);
+  renderer->AddLight(sun);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(cx, 0.5 * (floorY + bounds[3]), cz);
+  camera->SetPosition(cx, bounds[3] + 1.5 * size, cz + 4.5 * size);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(30.0);
+  renderer->ResetCameraClippingRange();
+}
+
+/** --ior on every refractor: glTF ones too (built-ins and meshes take it when loaded). */
+void ApplyRefractiveIndex(vtkRenderer* renderer, double ior)
+{
+  vtkActorCollection* actors = renderer->GetActors();
+  vtkCollectionSimpleIterator it;
+  actors->InitTraversal(it);
+  while (vtkActor* actor = actors->GetNextActor(it))
+  {
+    if (vtkCausticsMaterial::Classify(actor) == vtkCausticsMaterial::ROLE_REFRACTOR)
+    {
+      actor->GetProperty()->SetBaseIOR(ior);
+    }
+  }
+}
+
+/**
+ * An up vector parallel to the line of sight leaves OrthogonalizeViewUp nothing
+ * to work with and gives a blank image: refused, naming the options that set it.
+ */
+void CheckViewUp(const SceneOptions& options, vtkCamera* camera)
+{
+  double position[3], focal[3], up[3], view[3], side[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  camera->GetViewUp(up);
+  vtkMath::Subtract(focal, position, view);
+  vtkMath::Cross(view, up, side);
+  // sin(angle) > 1e-6, as the glTF importer asks of its cameras.
+  if (vtkMath::Norm(side) > 1e-6 * vtkMath::Norm(view) * vtkMath::Norm(up))
+  {
+    return;
+  }
+  std::ostringstream message;
+  message << "the camera's up vector (" << up[0] << "," << up[1] << "," << up[2]
+          << (options.HasCameraUp ? ", from --camera-up" : ", from the scene")
+          << ") is parallel to its view direction ("
+          << (options.HasCameraPosition || options.HasCameraFocal
+                 ? "from --camera-position to --camera-focal"
+                 : "the scene's camera")
+          << "); give a --camera-up off the line of sight";
+  throw UsageError(message.str());
+}
+
+void DeclareSourceOptions(Arguments& arguments, SceneOptions& options, bool& sceneGiven)
+{
+  arguments.Value("--scene",
+    [&options, &sceneGiven](const std::string&, const std::string& value)
+    {
+      options.Scene = value;
+      sceneGiven = true;
+    });
+  arguments.Value("--role", Text(options.Role));
+  arguments.Value("--ior",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.IOR = ParseNumber(option, value);
+      if (options.IOR < 1.0)
+      {
+        throw UsageError("--ior must be >= 1 (vacuum), got " + value);
+      }
+      if (options.IOR > vtkCausticsGLTFImporter::MAX_IOR)
+      {
+        throw UsageError("--ior must be <= " + Number(vtkCausticsGLTFImporter::MAX_IOR) +
+          " (the largest index of refraction supported), got " + value);
+      }
+    });
+  arguments.Value("--time",
+    [&options](const std::string& option, const std::string& value)
+    { options.Time = ParseNumber(option, value); });
+  arguments.Value("--camera-index",
+    [&options](const std::string& option, const std::string& value)
+    { options.CameraIndex = ParseInteger(option, value, -1, 1 << 20); });
+}
+
+void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
+{
+  arguments.Value("--technique", Text(options.Technique));
+  arguments.Value("--photons",
+    [&options](const std::string& option, const std::string& value)
+    { options.Photons = ParseInteger(option, value, 1, 8192); });
+  arguments.Value("--size",
+    [&options](const std::string& option, const std::string& value)
+    {
+      const auto x = value.find('x');
+      options.Width = ParseInteger(option, value.substr(0, x), 1, 16384);
+      options.Height = x == std::string::npos ? options.Width
+                                              : ParseInteger(option, value.substr(x + 1), 1, 16384);
+    });
+}
+
+void DeclareLightAndCameraOptions(Arguments& arguments, SceneOptions& options)
+{
+  arguments.Value("--light-direction",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.LightDirection = ParseDirection(option, value);
+      options.HasLightDirection = true;
+    });
+  arguments.Value("--light-intensity",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.LightIntensity = ParseNumber(option, value);
+      if (options.LightIntensity < 0.0)
+      {
+        throw UsageError("--light-intensity must be >= 0");
+      }
+      if (options.LightIntensity > vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY)
+      {
+        throw UsageError(
+          "--light-intensity must be <= " + Number(vtkCausticsGLTFImporter::MAX_LIGHT_INTENSITY) +
+          " (the largest the GPU passes represent in float), got " + value);
+      }
+      options.HasLightIntensity = true;
+    });
+  arguments.Value("--camera-position",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.CameraPosition = ParseVector(option, value);
+      options.HasCameraPosition = true;
+    });
+  arguments.Value("--camera-focal",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.CameraFocal = ParseVector(option, value);
+      options.HasCameraFocal = true;
+    });
+  arguments.Value("--camera-up",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.CameraUp = ParseDirection(option, value);
+      options.HasCameraUp = true;
+    });
+  arguments.Value("--view-angle",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.ViewAngle = ParseNumber(option, value);
+      if (!(options.ViewAngle > 0.0 && options.ViewAngle < 180.0))
+      {
+        throw UsageError("--view-angle must lie in (0, 180) degrees");
+      }
+    });
+}
+
+void DeclareMediumOption(Arguments& arguments, SceneOptions& options)
+{
+  arguments.Value("--medium",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.Medium = ParseVector(option, value);
+      if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
+      {
+        throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
+      }
+      const double most = vtkCausticsGLTFImporter::MAX_MEDIUM_COEFFICIENT;
+      if (options.Medium[0] > most || options.Medium[1] > most)
+      {
+        throw UsageError("--medium coefficients must be <= " + Number(most) +
+          " per metre (opaque within a nanometre; larger ones overflow float), got " + value);
+      }
+      options.HasMedium = true;
+    });
+}
+}
+
+void DeclareSceneOptions(Arguments& arguments, SceneOptions& options, bool& sceneGiven)
+{
+  DeclareSourceOptions(arguments, options, sceneGiven);
+  DeclareQualityOptions(arguments, options);
+  DeclareLightAndCameraOptions(arguments, options);
+  DeclareMediumOption(arguments, options);
+}
+
+void FinishSceneOptions(
+  const std::vector<std::string>& positionals, SceneOptions& options, bool sceneGiven)
+{
+  for (const auto& scene : positionals)
+  {
+    if (sceneGiven)
+    {
+      throw UsageError("more than one scene given ('" + options.Scene + "' and '" + scene + "')");
+    }
+    options.Scene = scene;
+    sceneGiven = true;
+  }
+  if (!vtkCausticsTechniques::Create(options.Technique))
+  {
+    throw UsageError(
+      "unknown technique '" + options.Technique + "' (known: " + TechniqueNames(false) + ")");
+  }
+}
+
+/** "A, B, ..., best (default: X)": the techniques --technique takes. */
+std::string TechniqueNames(bool withDefault)
+{
+  std::string names;
+  for (const auto& name : vtkCausticsTechniques::GetNames())
+  {
+    names += name + ", ";
+  }
+  return names + "best" +
+    (withDefault ? std::string(" (default: ") + vtkCausticsTechniques::GetBestName() + ")" : "");
+}
+
+void LoadScene(const SceneOptions& options, vtkRenderWindow* window, vtkRenderer* renderer,
+  vtkCausticsBuiltinScene* builtin)
+{
+  const std::string extension = Lower(vtksys::SystemTools::GetFilenameLastExtension(options.Scene));
+  if (vtkCausticsBuiltinScene::IsSceneName(options.Scene))
+  {
+    builtin->SetSceneName(options.Scene.c_str());
+    builtin->SetTime(options.Time);
+    builtin->SetRefractiveIndex(options.IOR);
+    if (!builtin->Populate(renderer))
+    {
+      throw std::runtime_error(builtin->GetLastError());
+    }
+  }
+  else if (extension == ".gltf" || extension == ".glb")
+  {
+    vtkNew<vtkCausticsGLTFImporter> importer;
+    importer->SetFileName(options.Scene.c_str());
+    importer->SetRenderWindow(window); // imports into the window's first renderer
+    importer->SetCamera(options.CameraIndex);
+    if (!importer->Read())
+    {
+      throw std::runtime_error(importer->GetLastError());
+    }
+    if (options.Time != 0.0)
+    {
+      importer->UpdateTimeStep(options.Time);
+    }
+    if (options.CameraIndex < 0 || importer->GetNumberOfCameras() == 0)
+    {
+      renderer->ResetCamera();
+    }
+  }
+  else if (vtkCausticsMeshReader::IsSupportedExtension(options.Scene))
+  {
+    vtkNew<vtkCausticsMeshReader> reader;
+    reader->SetFileName(options.Scene.c_str());
+    if (!reader->SetRoleFromName(options.Role.c_str()))
+    {
+      throw UsageError("unknown --role '" + options.Role + "' (refractor, reflector, receiver)");
+    }
+    if (options.IOR > 0.0)
+    {
+      reader->SetRefractiveIndex(options.IOR);
+    }
+    auto actor = reader->CreateActor();
+    if (!actor)
+    {
+      throw std::runtime_error(reader->GetLastError());
+    }
+    renderer->AutomaticLightCreationOff();
+    StageMesh(renderer, actor);
+  }
+  else if (extension.empty())
+  {
+    throw UsageError("unknown scene '" + options.Scene +
+      "' (built-in: ball-lens, pool, ring, bunny; or a .gltf/.glb/.ply/.obj/.stl file)");
+  }
+  else
+  {
+    throw UsageError("cannot read '" + options.Scene + "': unsupported file type '" + extension +
+      "' (use .gltf, .glb, .ply, .obj or .stl)");
+  }
+  if (options.IOR > 0.0)
+  {
+    ApplyRefractiveIndex(renderer, options.IOR);
+  }
+}
+
+void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer)
+{
+  vtkLight* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  if ((options.HasLightDirection || options.HasLightIntensity) && !light)
+  {
+    throw UsageError("the scene has no light to override");
+  }
+  if (options.HasLightDirection)
+  {
+    const auto& d = options.LightDirection;
+    double focal[3];
+    light->GetFocalPoint(focal);
+    light->SetPositional(false);
+    light->SetTransformMatrix(nullptr);
+    light->SetPosition(focal[0] - d[0], focal[1] - d[1], focal[2] - d[2]);
+  }
+  if (options.HasLightIntensity)
+  {
+    light->SetIntensity(options.LightIntensity);
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (options.HasCameraPosition)
+  {
+    camera->SetPosition(options.CameraPosition.data());
+  }
+  if (options.HasCameraFocal)
+  {
+    camera->SetFocalPoint(options.CameraFocal.data());
+  }
+  if (options.HasCameraUp)
+  {
+    camera->SetViewUp(options.CameraUp.data());
+  }
+  if (options.ViewAngle > 0.0)
+  {
+    camera->SetViewAngle(options.ViewAngle);
+  }
+  double position[3], focal[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  if (vtkMath::Distance2BetweenPoints(position, focal) == 0.0)
+  {
+    throw UsageError("the camera position and focal point coincide");
+  }
+  CheckViewUp(options, camera);
+  camera->OrthogonalizeViewUp();
+  renderer->ResetCameraClippingRange();
+  if (options.HasMedium)
+  {
+    vtkNew<vtkCausticsMedium> medium;
+    medium->SetScatteringCoefficient(options.Medium[0], options.Medium[0], options.Medium[0]);
+    medium->SetAbsorptionCoefficient(options.Medium[1], options.Medium[1], options.Medium[1]);
+    medium->SetAnisotropy(options.Medium[2]);
+    vtkCausticsMedium::AttachTo(renderer, medium);
+  }
+}
+
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(options.Technique);
+  if (options.Photons > 0)
+  {
+    pass->SetLightBufferResolution(options.Photons);
+  }
+  return pass;
+}
+}

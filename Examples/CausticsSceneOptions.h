@@ -1,0 +1,92 @@
+// What the caustics programs that show a scene share (caustics-render, caustics-view):
+// the scene, technique, quality, light, camera and medium options, their help text,
+// loading the scene they name (a built-in scene, a glTF 2.0 file or a mesh), the
+// overrides applied to it, and the technique's pass. Written once so that both
+// programs take the same options, load scenes the same way and give the same errors.
+#ifndef CausticsSceneOptions_h
+#define CausticsSceneOptions_h
+
+#include "CausticsCommandLine.h"
+
+#include "vtkSmartPointer.h" // For MakePass
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkCausticsBuiltinScene;
+class vtkCausticsRenderPass;
+class vtkRenderWindow;
+class vtkRenderer;
+
+namespace caustics_cli
+{
+/** The options that say what is shown and how: parsed by DeclareSceneOptions(). */
+struct SceneOptions
+{
+  std::string Scene = "ball-lens";
+  std::string Role = "refractor";
+  std::string Technique = "best";
+  double Time = 0.0;
+  double IOR = 0.0;
+  int CameraIndex = 0;
+  int Photons = 0; ///< light-buffer side; 0: the technique's default
+  int Width = 512, Height = 512;
+  bool HasLightDirection = false, HasLightIntensity = false;
+  std::array<double, 3> LightDirection{ { 0, -1, 0 } };
+  double LightIntensity = 1.0;
+  bool HasCameraPosition = false, HasCameraFocal = false, HasCameraUp = false;
+  std::array<double, 3> CameraPosition{}, CameraFocal{}, CameraUp{};
+  double ViewAngle = 0.0;
+  bool HasMedium = false;
+  std::array<double, 3> Medium{};
+};
+
+/** Help text, in the order the programs print it; each section ends with a newline. */
+///@{
+/** "Scene (default: ball-lens):" and its options. */
+extern const char* const SceneUsage;
+/** --technique (with the registered techniques), --photons, --size: no heading. */
+std::string QualityUsage();
+/** "Overrides:": light, camera and medium. */
+extern const char* const OverridesUsage;
+///@}
+
+/** The handler of an option that sets a string. */
+Arguments::ValueHandler Text(std::string& field);
+
+/**
+ * Declares --scene, --role, --ior, --time, --camera-index, --technique, --photons,
+ * --size, the light and camera overrides and --medium on `arguments`.
+ * `sceneGiven` becomes true once --scene was given.
+ */
+void DeclareSceneOptions(Arguments& arguments, SceneOptions& options, bool& sceneGiven);
+
+/**
+ * After Arguments::Parse(): the positional argument names the scene (at most one
+ * scene in all), and the technique must be registered. Throws UsageError.
+ */
+void FinishSceneOptions(
+  const std::vector<std::string>& positionals, SceneOptions& options, bool sceneGiven);
+
+/** "A, B, ..., best (default: X)": the techniques --technique takes. */
+std::string TechniqueNames(bool withDefault);
+
+/**
+ * Loads the scene into `renderer` (a glTF file imports into `window`'s first
+ * renderer): a built-in scene (kept alive by `builtin`), a glTF file, or a mesh
+ * placed on a floor under a sun. Throws UsageError for an unknown scene or file
+ * type, std::runtime_error when a file cannot be read.
+ */
+void LoadScene(const SceneOptions& options, vtkRenderWindow* window, vtkRenderer* renderer,
+  vtkCausticsBuiltinScene* builtin);
+
+/** The light, camera and medium options applied to the loaded scene; UsageError if they cannot be.
+ */
+void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer);
+
+/** The technique's pass (--technique), with --photons as its LightBufferResolution. */
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options);
+}
+
+#endif

@@ -1,0 +1,80 @@
+// caustics-view's viewer driven by a recorded interaction (issue 17): a left-button
+// drag that rotates the camera, then the 't' key, which switches the technique from
+// screen-space to caustic-maps. The image after the playback, without the overlay
+// (its times change from run to run), is compared with the baseline
+// TestCausticsViewerPlayback.png (vtkRegressionTestImage: -V BASELINE -T OUTPUT_DIR).
+// The overlay's text must name the new technique and carry no -1 time.
+#include "CausticsViewer.h"
+
+#include "vtkCamera.h"
+#include "vtkMath.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+namespace
+{
+// vtkInteractorEventRecorder's format: event, x, y, modifiers, key code, repeat, key sym.
+// The window is 160 x 160; the drag goes 40 pixels right (the camera turns left
+// around the focal point), then 't' switches the technique.
+const char* EventLog = "# StreamVersion 1.1\n"
+                       "MouseMoveEvent 60 80 0 0 0 0\n"
+                       "LeftButtonPressEvent 60 80 0 0 0 0\n"
+                       "MouseMoveEvent 70 80 0 0 0 0\n"
+                       "MouseMoveEvent 80 81 0 0 0 0\n"
+                       "MouseMoveEvent 90 82 0 0 0 0\n"
+                       "MouseMoveEvent 100 82 0 0 0 0\n"
+                       "LeftButtonReleaseEvent 100 82 0 0 0 0\n"
+                       "KeyPressEvent 100 82 0 116 1 t\n"
+                       "CharEvent 100 82 0 116 1 t\n"
+                       "KeyReleaseEvent 100 82 0 116 1 t\n";
+
+bool Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "TestCausticsViewer: " << what << "\n";
+  }
+  return ok;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  caustics_cli::SceneOptions options;
+  options.Scene = "ball-lens";
+  options.Technique = "screen-space";
+  options.Photons = 48;
+  options.Width = options.Height = 160;
+  caustics_cli::CausticsViewer viewer(options);
+  vtkCamera* camera =
+    viewer.GetRenderWindow()->GetRenderers()->GetFirstRenderer()->GetActiveCamera();
+  double before[3], after[3];
+  camera->GetPosition(before);
+
+  viewer.Play(EventLog);
+
+  camera->GetPosition(after);
+  bool ok = Check(std::sqrt(vtkMath::Distance2BetweenPoints(before, after)) > 1e-3,
+    "the drag did not move the camera");
+  ok &= Check(viewer.GetTechnique() == "caustic-maps",
+    "'t' switched to '" + viewer.GetTechnique() + "', not caustic-maps");
+  const std::string overlay = viewer.GetOverlayText();
+  ok &= Check(overlay.find("technique: caustic-maps") != std::string::npos &&
+      overlay.find("photons: 48 x 48") != std::string::npos &&
+      overlay.find("-1") == std::string::npos,
+    "unexpected overlay:\n" + overlay);
+  viewer.SetOverlayVisible(false); // renders: the compared image has no text
+  const int result = vtkRegressionTestImage(viewer.GetRenderWindow());
+  ok &= Check(result == vtkTesting::PASSED, "the image differs from the baseline");
+  if (ok)
+  {
+    std::cout << "TestCausticsViewer: ok\n";
+  }
+  return ok ? 0 : 1;
+}
