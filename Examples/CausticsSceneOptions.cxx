@@ -8,6 +8,7 @@
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
 #include "vtkCausticsRenderPass.h"
+#include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTechniques.h"
 
 #include "vtkActor.h"
@@ -60,6 +61,9 @@ std::string QualityUsage()
   --photons N                photon grid side per light (light-buffer texels), 1..8192;
                              refused first if this OpenGL cannot hold it (llvmpipe:
                              at most 1182 for screen-space, 2048 for caustic-maps)
+  --trace-view MODE          screen-space: view photons are traced in: automatic
+                             (default: the camera's unless a reflector or refractor
+                             is outside it), camera, fitted
   --size W[xH]               image size in pixels (default 512x512)
 )";
 }
@@ -228,6 +232,17 @@ void DeclareSourceOptions(Arguments& arguments, SceneOptions& options, bool& sce
 void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
 {
   arguments.Value("--technique", Text(options.Technique));
+  arguments.Value("--trace-view",
+    [&options](const std::string& option, const std::string& value)
+    {
+      const std::vector<std::string> modes = { "automatic", "camera", "fitted" };
+      const auto found = std::find(modes.begin(), modes.end(), value);
+      if (found == modes.end())
+      {
+        throw UsageError(option + " expects automatic, camera or fitted, got '" + value + "'");
+      }
+      options.TraceView = static_cast<int>(found - modes.begin());
+    });
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
@@ -486,6 +501,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options)
   if (options.Photons > 0)
   {
     pass->SetLightBufferResolution(options.Photons);
+  }
+  if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))
+  {
+    screenSpace->SetTraceView(options.TraceView);
   }
   return pass;
 }

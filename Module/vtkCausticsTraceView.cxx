@@ -77,13 +77,38 @@ TraceView FromMatrices(const glm::dmat4& worldToClip)
   return traced;
 }
 
-/** Orthographic, along the camera's direction, holding the box, square pixels. */
+/** The direction the first light travels to the specular actors (0 without lights). */
+glm::dvec3 LightDirection(const SceneData& scene)
+{
+  if (scene.Lights.empty())
+  {
+    return glm::dvec3(0.0);
+  }
+  const Light& light = scene.Lights[0];
+  glm::dvec3 d(light.direction[0], light.direction[1], light.direction[2]);
+  if (light.type != Light::Type::Directional)
+  {
+    const double* b = scene.SpecularBounds;
+    d = glm::dvec3(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])) -
+      glm::dvec3(light.position[0], light.position[1], light.position[2]);
+  }
+  return glm::length(d) > 0.0 ? glm::normalize(d) : glm::dvec3(0.0);
+}
+
+/** Orthographic, holding the box, square pixels (direction: see the header). */
 TraceView FitOrthographic(const SceneData& scene, const double box[6], int width, int height)
 {
   const Camera& camera = scene.View;
   glm::dvec3 forward(camera.focalPoint[0] - camera.position[0],
     camera.focalPoint[1] - camera.position[1], camera.focalPoint[2] - camera.position[2]);
   forward = glm::length(forward) > 0.0 ? glm::normalize(forward) : glm::dvec3(0, 0, -1);
+  // Half-way to the light's direction: receivers are seen from their lit side,
+  // not at the camera's grazing angle.
+  const glm::dvec3 light = LightDirection(scene);
+  if (glm::length(forward + light) > 0.5)
+  {
+    forward = glm::normalize(forward + light);
+  }
   glm::dvec3 up(camera.viewUp[0], camera.viewUp[1], camera.viewUp[2]);
   up -= glm::dot(up, forward) * forward;
   if (!(glm::length(up) > 1e-9))
@@ -92,6 +117,11 @@ TraceView FitOrthographic(const SceneData& scene, const double box[6], int width
     up -= glm::dot(up, forward) * forward;
   }
   up = glm::normalize(up);
+  // Turned 15 degrees about up: an orthographic view along an axis sees the walls
+  // parallel to it edge-on, and a surface seen edge-on is missing from the
+  // layered depth image.
+  const double yaw = 15.0 * 3.14159265358979323846 / 180.0;
+  forward = glm::normalize(std::cos(yaw) * forward + std::sin(yaw) * glm::cross(forward, up));
   const glm::dvec3 right = glm::cross(forward, up);
 
   glm::dvec3 low(std::numeric_limits<double>::max()), high(-std::numeric_limits<double>::max());
@@ -161,11 +191,39 @@ bool FrustumHoldsBox(const double worldToClip[16], const double bounds[6])
   return true;
 }
 
+bool FrustumHoldsSpecular(const SceneData& scene)
+{
+  // The box first (8 corners); a box that pokes out can still hold a round mesh
+  // (the ball's box corners leave a view the ball stays in): then every vertex.
+  if (FrustumHoldsBox(scene.View.worldToClip, scene.SpecularBounds))
+  {
+    return true;
+  }
+  const double* m = scene.View.worldToClip;
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    const Role role = scene.Materials[mesh.material].role;
+    if (role != Role::Reflector && role != Role::Refractor)
+    {
+      continue;
+    }
+    for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
+    {
+      const glm::dvec4 c = Transform(
+        m, glm::dvec4(mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2], 1.0));
+      if (!(c.w > 0.0) || std::abs(c.x) > c.w || std::abs(c.y) > c.w || std::abs(c.z) > c.w)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 TraceView ChooseTraceView(const SceneData& scene, TraceViewMode mode, int width, int height)
 {
   const bool fitted = mode == TraceViewMode::Fitted ||
-    (mode == TraceViewMode::Automatic &&
-      !FrustumHoldsBox(scene.View.worldToClip, scene.SpecularBounds));
+    (mode == TraceViewMode::Automatic && !FrustumHoldsSpecular(scene));
   if (!fitted || width < 1 || height < 1)
   {
     return CameraView(scene.View);

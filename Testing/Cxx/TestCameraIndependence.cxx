@@ -223,17 +223,17 @@ private:
 
 // Reached at 128^2 pixels, default settings, the reference at 1 M photons (this
 // machine, llvmpipe), worst over the 25 views:
-// - screen-space: relative L2 0.112 (elevation 10: the fitted trace view sees the
-//   floor at a grazing angle; 0.092 zooming in with the ball off-screen, where the
-//   camera's own view gave 2.65), flux within 2.4 %;
+// - screen-space: relative L2 0.092 (zoomed to 8 degrees with the ball off-screen:
+//   the fitted trace view spreads its pixels over ball and caustic; the camera's
+//   own view gave 2.65 there), flux within 2.2 %; every other view at most 0.067;
 // - caustic maps (traced from the light, framing-independent already): relative
 //   L2 0.022, flux within 0.6 %.
-// Bounds: the worst figure plus about 15 % of it for the reference's noise and
+// Bounds: the worst figure plus about 20 % of it for the reference's noise and
 // rasterization differences between GPUs.
 TEST(CameraIndependence, EverySurfaceTechniqueInEveryView)
 {
   std::vector<Technique> techniques = {
-    Technique{ "screen-space", 0.13, 0.03 },
+    Technique{ "screen-space", 0.11, 0.03 },
     Technique{ "caustic-maps", 0.03, 0.01 },
   };
   for (const View& v : Sweep())

@@ -42,10 +42,12 @@ struct Comparison
   vtkNew<vtkCausticsReferenceRenderer> Reference;
   vtkNew<vtkCausticsErrorMetrics> Metrics;
 
-  Comparison(const char* scene, vtkIdType photons, bool throughRefractors)
+  Comparison(const char* scene, vtkIdType photons, bool throughRefractors,
+    int traceView = vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC)
   {
     this->Scene->SetSceneName(scene);
     EXPECT_TRUE(this->Scene->Populate(this->Renderer)) << this->Scene->GetLastError();
+    this->Pass->SetTraceView(traceView);
     this->Renderer->SetPass(this->Pass);
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
@@ -111,18 +113,27 @@ TEST(ScreenSpaceAccuracy, PoolFloorMatchesReference)
 // give it unshadowed.
 TEST(ScreenSpaceAccuracy, ShadowRaysMatchReferenceShadows)
 {
-  // Reached: ball lens 0.11%, ring 0.75%, bunny 0.40% (errors sit on the shadows'
-  // edges, one pixel wide). Bounds: about 1.5x the figure reached, at least 0.3%.
+  // Reached in the camera's view (the paper's): ball lens 0.11%, ring 0.75%,
+  // bunny 0.40% (errors sit on the shadows' edges, one pixel wide). Bounds: about
+  // 1.5x the figure reached, at least 0.3%.
+  // The default view of the ball lens cuts the top of the ball, so by default the
+  // frame traces in the fitted view (vtkCausticsTraceView.h), which looks half-way
+  // to the light: shadow rays, which run along the light, are then shorter on
+  // screen. Reached there: 1.13% (ring and bunny: their views hold every specular
+  // actor, so the camera's). Bound 1.5%.
   struct Case
   {
     const char* Scene;
+    int TraceView;
     double Bound;
   };
-  for (const Case& test :
-    { Case{ "ball-lens", 0.003 }, Case{ "ring", 0.012 }, Case{ "bunny", 0.006 } })
+  const int camera = vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_CAMERA;
+  const int automatic = vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC;
+  for (const Case& test : { Case{ "ball-lens", camera, 0.003 }, Case{ "ring", camera, 0.012 },
+         Case{ "bunny", camera, 0.006 }, Case{ "ball-lens", automatic, 0.015 } })
   {
     const char* scene = test.Scene;
-    Comparison c(scene, 10000, false);
+    Comparison c(scene, 10000, false, test.TraceView);
     vtkNew<vtkImageData> shadow;
     ASSERT_TRUE(c.Pass->TraceShadowRays(0, shadow));
     vtkDataArray* traced = shadow->GetPointData()->GetArray("Shadow");
@@ -181,7 +192,8 @@ TEST(ScreenSpaceAccuracy, ShadowRaysMatchReferenceShadows)
       wrong += referenceShadowed != (traced->GetComponent(i, 0) > 0.5) ? 1 : 0;
     }
     const double fraction = static_cast<double>(wrong) / std::max(judged, 1);
-    std::cout << scene << ": shadow rays misclassify " << wrong << " of " << judged
+    std::cout << scene << (c.Pass->GetLastTraceViewFitted() ? " (fitted view)" : "")
+              << ": shadow rays misclassify " << wrong << " of " << judged
               << " receiver pixels (" << 100.0 * fraction << " %), " << shadowed
               << " in the reference's shadow\n";
     ASSERT_GT(judged, 10000);
