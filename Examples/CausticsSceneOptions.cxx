@@ -495,9 +495,16 @@ void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer)
   }
 }
 
-vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options)
+std::string TechniqueFor(const SceneOptions& options, vtkRenderer* renderer)
 {
-  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(options.Technique);
+  return options.Technique == "best" ? vtkCausticsTechniques::GetBestNameFor(renderer)
+                                     : options.Technique;
+}
+
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtkRenderer* renderer)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass =
+    vtkCausticsTechniques::Create(TechniqueFor(options, renderer));
   if (options.Photons > 0)
   {
     pass->SetLightBufferResolution(options.Photons);

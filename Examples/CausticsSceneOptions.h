@@ -87,7 +87,9 @@ void LoadScene(const SceneOptions& options, vtkRenderWindow* window, vtkRenderer
 void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer);
 
 /** The technique's pass (--technique), with --photons as its LightBufferResolution. */
-vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options);
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtkRenderer* renderer);
+/** --technique, with "best" resolved for the renderer's scene (vtkCausticsTechniques). */
+std::string TechniqueFor(const SceneOptions& options, vtkRenderer* renderer);
 }
 
 #endif

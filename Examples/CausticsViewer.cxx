@@ -104,10 +104,9 @@ CausticsViewer::CausticsViewer(const SceneOptions& options, OneLineOutputWindow*
   LoadScene(options, this->Window, this->Renderer, this->Builtin);
   ApplyOverrides(options, this->Renderer);
   this->MakeOverlay();
-  this->Technique =
-    options.Technique == "best" ? vtkCausticsTechniques::GetBestName() : options.Technique;
+  this->Technique = TechniqueFor(options, this->Renderer);
   // Refuse a photon grid this OpenGL cannot hold before anything is allocated.
-  if (!this->InstallPass(MakePass(options)))
+  if (!this->InstallPass(MakePass(options, this->Renderer)))
   {
     throw std::runtime_error(this->StatusText);
   }

@@ -218,9 +218,9 @@ vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options, std::string&
 }
 
 /** The technique's pass, keeping its buffers for read-back, with synchronous timings. */
-vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Options& options)
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(const Options& options, vtkRenderer* renderer)
 {
-  vtkSmartPointer<vtkCausticsRenderPass> pass = caustics_cli::MakePass(options);
+  vtkSmartPointer<vtkCausticsRenderPass> pass = caustics_cli::MakePass(options, renderer);
   pass->KeepBuffersOn();
   pass->ComputeDirectIrradianceOn();
   pass->GetTimings()->SynchronousOn();
@@ -294,12 +294,12 @@ void WriteImages(const Options& options, vtkImageData* image,
   }
 }
 
-void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std::string& how)
+void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std::string& how,
+  const std::string& technique)
 {
   const auto& scene = pass->GetSceneExtractor()->GetScene();
   std::cout << "caustics-render: " << options.Scene << ", technique "
-            << (options.Technique == "best" ? vtkCausticsTechniques::GetBestName()
-                                            : options.Technique)
+            << technique
             << ", " << options.Width << "x" << options.Height << ", window " << how << ", "
             << scene.Meshes.size() << " meshes, " << scene.Lights.size() << " light(s)"
             << (pass->GetLastFrameHadCaustics() ? "" : " (no caustic stage needed)") << "\n";
@@ -384,7 +384,7 @@ int Run(const Options& options)
   vtkNew<vtkCausticsBuiltinScene> builtin;
   caustics_cli::LoadScene(options, window, renderer, builtin);
   caustics_cli::ApplyOverrides(options, renderer);
-  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(options);
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(options, renderer);
   renderer->SetPass(pass);
   // Refuse a photon grid this OpenGL cannot hold before anything is allocated (the
   // frame checks again with the scene's lights: no outputs then either).
@@ -401,7 +401,7 @@ int Run(const Options& options)
   std::vector<std::pair<std::string, std::string>> layers;
   vtkSmartPointer<vtkImageData> image = ReadLayers(options, pass, layers);
   WriteImages(options, image, layers);
-  PrintSummary(options, pass, how);
+  PrintSummary(options, pass, how, caustics_cli::TechniqueFor(options, renderer));
   if (options.Timings)
   {
     PrintTimings(options, times);

@@ -7,12 +7,15 @@
 #include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
+#include "vtkCausticsTraceView.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -204,6 +207,9 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkCausticsGBuffer> RefractiveGBuffer;  // refractors
   vtkNew<vtkCausticsLightBuffers> LightBuffers;  // photon buffers, aimed at specular actors
   vtkNew<vtkCausticsLightBuffers> ShadowBuffers; // shadow maps, aimed at the scene
+  // The camera's view of glass and water (RenderTechniqueColor()).
+  vtkNew<vtkCausticsLayeredDepth> RefractorLayers;
+  vtkNew<vtkCausticsScreenSpaceRefraction> Refraction;
   vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
@@ -353,9 +359,62 @@ bool vtkCausticsRenderPass::RenderVolumeRadiance(const FrameInputs&, vtkTextureO
   return false; // no technique: no volume light
 }
 
-bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs&, vtkTextureObject*)
+vtkCausticsLayeredDepth* vtkCausticsRenderPass::GetRefractorLayeredDepth()
 {
-  return false; // no technique: VTK's colour everywhere
+  return this->Internal->RefractorLayers;
+}
+
+double vtkCausticsRenderPass::GetViewTolerance(double sceneScale)
+{
+  return 1e-3 * sceneScale;
+}
+
+bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextureObject* target)
+{
+  auto& in = *this->Internal;
+  const caustics::SceneData& scene = *f.Scene;
+  if (!this->RefractionTracing ||
+    f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) == 0)
+  {
+    return false;
+  }
+  // 1. The refractors' layered depth image in the camera's view (front and back
+  //    faces, every layer a viewing ray may cross).
+  this->StartStage("refractor layers");
+  in.RefractorLayers->SetRoleMask(vtkCausticsSceneGeometry::RoleBit(3));
+  in.RefractorLayers->SetMaximumNumberOfLayers(std::min(16, 2 * this->RefractionEvents));
+  in.RefractorLayers->SetTimings(this->GetTimings(), "refractor layers ");
+  const bool layers =
+    in.RefractorLayers->Render(f.Window, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
+  this->StopStage("refractor layers");
+  if (!layers)
+  {
+    return false;
+  }
+  // 2. Surfaces seen only through a refractor are shaded from their irradiance.
+  const bool direct = this->EnsureDirectIrradiance("direct irradiance for refraction");
+  this->StartStage("refraction tracing");
+  vtkCausticsScreenSpaceRefraction::Inputs inputs;
+  inputs.RefractorLayers = in.RefractorLayers;
+  inputs.Opaque = f.CameraGBuffer;
+  inputs.Geometry = f.Geometry;
+  inputs.DelegateColor = f.DelegateColor;
+  inputs.DelegateDepth = f.DelegateDepth;
+  inputs.CausticIrradiance = f.CausticIrradiance;
+  inputs.DirectIrradiance = direct ? f.DirectIrradiance : nullptr;
+  inputs.WorldToClip = f.WorldToClip;
+  inputs.Width = f.Width;
+  inputs.Height = f.Height;
+  const caustics::TraceView camera =
+    caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
+  std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, inputs.ViewOrigin);
+  std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
+  std::copy(f.Background, f.Background + 3, inputs.Background);
+  inputs.Tolerance = this->GetViewTolerance(scene.Scale());
+  in.Refraction->SetMaximumEvents(this->RefractionEvents);
+  const bool ok = in.Refraction->Render(f.Window, inputs, target);
+  this->StopStage("refraction tracing");
+  return ok;
 }
 
 void vtkCausticsRenderPass::ReleaseTechniqueResources(vtkWindow*) {}
@@ -1098,6 +1157,8 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.RefractiveGBuffer->ReleaseGraphicsResources(w);
   in.LightBuffers->ReleaseGraphicsResources(w);
   in.ShadowBuffers->ReleaseGraphicsResources(w);
+  in.RefractorLayers->ReleaseGraphicsResources(w);
+  in.Refraction->ReleaseGraphicsResources(w);
   vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture, in.VolumeTexture,
     in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
@@ -1127,6 +1188,8 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeDirectIrradiance: " << this->ComputeDirectIrradiance << "\n";
   os << indent << "KeepBuffers: " << this->KeepBuffers << "\n";
   os << indent << "RoughnessCutoff: " << this->GetRoughnessCutoff() << "\n";
+  os << indent << "RefractionTracing: " << this->RefractionTracing << "\n";
+  os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";
   os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
   os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
   os << indent << "Scene:\n";

@@ -65,6 +65,7 @@
 #include <string> // For std::string
 
 class vtkCausticsGBuffer;
+class vtkCausticsLayeredDepth;
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneExtractor;
 class vtkCausticsSceneGeometry;
@@ -145,6 +146,25 @@ public:
 
   /** True if the last frame ran the caustic stages. */
   bool GetLastFrameHadCaustics() const;
+
+  ///@{
+  /**
+   * The camera's view of glass and water, shared by every technique: viewing
+   * rays refracted and reflected through the refractors in screen space
+   * (000_54cf099eeccf42d9.txt §4, vtkCausticsScreenSpaceRefraction) against a
+   * layered depth image of the refractors, so they show what lies behind them,
+   * caustics included. Off, refractors are drawn by VTK as opaque surfaces.
+   * Default on. RefractionEvents: interfaces a viewing ray may cross, [2, 16],
+   * default 4. A technique may replace the stage (RenderTechniqueColor()).
+   */
+  vtkSetMacro(RefractionTracing, bool);
+  vtkGetMacro(RefractionTracing, bool);
+  vtkBooleanMacro(RefractionTracing, bool);
+  vtkSetClampMacro(RefractionEvents, int, 2, 16);
+  vtkGetMacro(RefractionEvents, int);
+  /** The refractors' layered depth image of the last frame that traced refraction. */
+  vtkCausticsLayeredDepth* GetRefractorLayeredDepth();
+  ///@}
 
   ///@{
   /**
@@ -277,10 +297,16 @@ protected:
    * Hook, optional, after the caustic and direct irradiance of a frame with
    * caustics: write display colours (VTK's units, linear) into `target` (RGBA32F,
    * Width x Height); the composite shows them instead of VTK's colour where alpha
-   * is 1. Returns true if it wrote the texture this frame. The base class writes
-   * nothing.
+   * is 1. Returns true if it wrote the texture this frame. The base class traces
+   * the camera's view through the refractors (RefractionTracing).
    */
   virtual bool RenderTechniqueColor(const FrameInputs& in, vtkTextureObject* target);
+
+  /**
+   * World-space hit tolerance (m) of the camera-view stage in a scene of the
+   * given size: 1e-3 of it. Techniques with their own tolerance knob return it.
+   */
+  virtual double GetViewTolerance(double sceneScale);
 
   /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
@@ -335,6 +361,8 @@ private:
   int LightBufferResolution = 256;
   int ShadowMapResolution = 1024;
   double MaximumGPUMemory = 0.0;
+  bool RefractionTracing = true;
+  int RefractionEvents = 4;
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;
 

@@ -12,7 +12,6 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceGodRays.h"
 #include "vtkCausticsScreenSpaceLineTracer.h"
-#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
@@ -84,12 +83,10 @@ void WriteShadow(const std::vector<float>& rays, const std::vector<float>& hits,
 struct vtkCausticsScreenSpacePhotonPass::Internals
 {
   vtkNew<vtkCausticsLayeredDepth> SceneLayers;
-  vtkNew<vtkCausticsLayeredDepth> RefractorLayers;
   vtkNew<vtkCausticsScreenSpaceLineTracer> Tracer;
   vtkNew<vtkCausticsPhotonEmitter> Emitter;
   vtkNew<vtkCausticsPhotonSplatter> Splatter;
   vtkNew<vtkCausticsScreenSpaceGodRays> GodRays;
-  vtkNew<vtkCausticsScreenSpaceRefraction> Refraction;
   vtkNew<vtkCausticsShaderProgram> InitialProgram;
   vtkNew<vtkCausticsShaderProgram> TransferProgram;
   vtkNew<vtkCausticsShaderProgram> ShadowProgram;
@@ -111,7 +108,6 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   caustics::TraceView Traced;
   vtkCausticsScreenSpaceLineTracer::View View; // the tracer's: the traced view
   bool HasLayers = false;
-  bool HasRefractorLayers = false;
   bool GodRaysOn = false; // this frame draws god-rays
 
   std::string Prefix(int light, int lights, int bounce) const
@@ -149,7 +145,6 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   in.ShadowProgram->SetName("ssp shadow rays");
   in.ShadowProgram->SetComputeSource((common + vtkCausticsScreenSpacePhotonPassShadowCS).c_str());
   in.ShadowProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
-  in.RefractorLayers->SetRoleMask(vtkCausticsSceneGeometry::RoleBit(3));
   for (float& v : in.ClipToWorld)
   {
     v = 0.0f;
@@ -167,10 +162,6 @@ vtkCausticsScreenSpacePhotonPass::~vtkCausticsScreenSpacePhotonPass()
 vtkCausticsLayeredDepth* vtkCausticsScreenSpacePhotonPass::GetLayeredDepth()
 {
   return this->Internal->SceneLayers;
-}
-vtkCausticsLayeredDepth* vtkCausticsScreenSpacePhotonPass::GetRefractorLayeredDepth()
-{
-  return this->Internal->RefractorLayers;
 }
 vtkCausticsScreenSpaceLineTracer* vtkCausticsScreenSpacePhotonPass::GetLineTracer()
 {
@@ -198,8 +189,8 @@ vtkCausticsRenderPass::PhotonStorage vtkCausticsScreenSpacePhotonPass::GetPhoton
 {
   // Per photon slot: two transfer maps of rays and payloads, the tracer's line and
   // hit, the landed photon record and its radius. Beside the grid: the scene's and
-  // the refractors' layered depth images (28 B per pixel and layer) and the line
-  // target (8 B per texel).
+  // the refractors' layered depth images (28 B per pixel and layer; the second is
+  // the base pass's camera-view stage) and the line target (8 B per texel).
   const FrameInputs& f = this->GetFrameInputs();
   const double pixels = static_cast<double>(f.Width) * f.Height;
   const double layers = this->Settings.MaximumNumberOfLayers;
@@ -221,15 +212,6 @@ bool vtkCausticsScreenSpacePhotonPass::RenderLayers(vtkOpenGLRenderWindow* renWi
   in.SceneLayers->SetTimings(this->GetTimings(), "ssp layers ");
   in.HasLayers =
     in.SceneLayers->Render(renWin, f.Geometry, scene, in.Traced.WorldToClip, f.Width, f.Height);
-  in.HasRefractorLayers = false;
-  if (in.HasLayers && this->Settings.RefractionTracing &&
-    f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) > 0)
-  {
-    in.RefractorLayers->SetMaximumNumberOfLayers(this->Settings.MaximumNumberOfLayers);
-    in.RefractorLayers->SetTimings(this->GetTimings(), "ssp refractor layers ");
-    in.HasRefractorLayers =
-      in.RefractorLayers->Render(renWin, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
-  }
   return in.HasLayers;
 }
 
@@ -501,37 +483,9 @@ bool vtkCausticsScreenSpacePhotonPass::RenderVolumeRadiance(
   return ok;
 }
 
-bool vtkCausticsScreenSpacePhotonPass::RenderTechniqueColor(
-  const FrameInputs& f, vtkTextureObject* target)
+double vtkCausticsScreenSpacePhotonPass::GetViewTolerance(double sceneScale)
 {
-  auto& in = *this->Internal;
-  if (!this->Settings.RefractionTracing || !in.HasRefractorLayers)
-  {
-    return false;
-  }
-  // Surfaces seen only through a refractor are shaded from their irradiance.
-  const bool direct = this->EnsureDirectIrradiance("ssp direct irradiance for refraction");
-  this->StartStage("ssp refraction tracing");
-  const caustics::SceneData& scene = *f.Scene;
-  vtkCausticsScreenSpaceRefraction::Inputs inputs;
-  inputs.RefractorLayers = in.RefractorLayers;
-  inputs.Opaque = f.CameraGBuffer;
-  inputs.Geometry = f.Geometry;
-  inputs.DelegateColor = f.DelegateColor;
-  inputs.DelegateDepth = f.DelegateDepth;
-  inputs.CausticIrradiance = f.CausticIrradiance;
-  inputs.DirectIrradiance = direct ? f.DirectIrradiance : nullptr;
-  inputs.WorldToClip = f.WorldToClip;
-  inputs.Width = f.Width;
-  inputs.Height = f.Height;
-  std::copy(in.CameraOrigin, in.CameraOrigin + 4, inputs.ViewOrigin);
-  std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
-  std::copy(f.Background, f.Background + 3, inputs.Background);
-  inputs.Tolerance = this->LastTolerance;
-  in.Refraction->SetMaximumEvents(std::max(2, this->Settings.MaximumBounces + 1));
-  const bool ok = in.Refraction->Render(f.Window, inputs, target);
-  this->StopStage("ssp refraction tracing");
-  return ok;
+  return this->Settings.Tolerance(sceneScale);
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TraceShadowRays(int light, vtkImageData* output)
@@ -600,12 +554,10 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
 {
   auto& in = *this->Internal;
   in.SceneLayers->ReleaseGraphicsResources(w);
-  in.RefractorLayers->ReleaseGraphicsResources(w);
   in.Tracer->ReleaseGraphicsResources(w);
   in.Emitter->ReleaseGraphicsResources(w);
   in.Splatter->ReleaseGraphicsResources(w);
   in.GodRays->ReleaseGraphicsResources(w);
-  in.Refraction->ReleaseGraphicsResources(w);
   in.InitialProgram->ReleaseGraphicsResources(w);
   in.TransferProgram->ReleaseGraphicsResources(w);
   in.ShadowProgram->ReleaseGraphicsResources(w);
@@ -618,7 +570,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   }
   in.Landed.Release(w);
   in.Capacity = 0;
-  in.HasLayers = in.HasRefractorLayers = false;
+  in.HasLayers = false;
 }
 
 void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
@@ -641,7 +593,6 @@ void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SplatRadiusSpacings: " << this->Settings.SplatRadiusSpacings << "\n";
   os << indent << "GodRays: " << this->Settings.GodRays << "\n";
   os << indent << "GodRayBlurPixels: " << this->Settings.GodRayBlurPixels << "\n";
-  os << indent << "RefractionTracing: " << this->Settings.RefractionTracing << "\n";
   os << indent << "SkipOffscreenSpecular: " << this->Settings.SkipOffscreenSpecular << "\n";
   os << indent << "Photon capacity (last frame): " << this->Internal->Capacity << "\n";
 }

@@ -28,13 +28,14 @@
  * 7. screen-space refraction (§4, after the direct irradiance): pixels that see a
  *    refractor are traced through its own layers, refracted at the exit and looked
  *    up in the scene (vtkCausticsScreenSpaceRefraction); the composite shows that
- *    colour instead of VTK's.
+ *    colour instead of VTK's. This is the base pass's camera-view stage, shared
+ *    with every technique (vtkCausticsRenderPass::SetRefractionTracing).
  * Nothing runs (plain VTK cost) when no light reaches a specular actor or, with
  * SkipOffscreenSpecular, when none is inside the camera's view: the needs this
  * pass declares to the base pass (GetCausticNeeds()), which tests them. Every step
  * is a timed stage ("ssp ..."); nothing is read back during a frame.
  *
- * Limits (the paper's, §1.2): surfaces outside the view frustum, seen edge-on or
+ * Limits (the paper's, §1.2): surfaces outside the traced view (TraceView), seen edge-on or
  * smaller than a pixel are not hit; refraction tracing sees only what the opaque
  * G-buffer shows (§4).
  */
@@ -52,7 +53,6 @@ class vtkCausticsPhotonEmitter;
 class vtkCausticsPhotonSplatter;
 class vtkCausticsScreenSpaceGodRays;
 class vtkCausticsScreenSpaceLineTracer;
-class vtkCausticsScreenSpaceRefraction;
 class vtkImageData;
 class vtkTextureObject;
 
@@ -139,11 +139,6 @@ public:
   vtkCausticsSettingClampMacro(Settings, GodRayBlurPixels, double, 0.0, 16.0);
   ///@}
 
-  ///@{
-  /** Trace the refraction of viewing rays through refractors (§4). Default on. */
-  vtkCausticsSettingMacro(Settings, RefractionTracing, bool);
-  vtkBooleanMacro(RefractionTracing, bool);
-  ///@}
 
   ///@{
   /**
@@ -185,7 +180,6 @@ public:
   ///@{
   /** The stages, for tests and the benchmark (configured by this pass each frame). */
   vtkCausticsLayeredDepth* GetLayeredDepth();
-  vtkCausticsLayeredDepth* GetRefractorLayeredDepth();
   vtkCausticsScreenSpaceLineTracer* GetLineTracer();
   vtkCausticsPhotonEmitter* GetEmitter();
   vtkCausticsPhotonSplatter* GetSplatter();
@@ -216,7 +210,7 @@ protected:
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
-  bool RenderTechniqueColor(const FrameInputs& in, vtkTextureObject* target) override;
+  double GetViewTolerance(double sceneScale) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   // Steps (see the class description).

@@ -30,7 +30,6 @@ struct ScreenSpaceSettings
   double SplatRadiusSpacings = 2.0;            ///< photon spacings, [0, 16]; 0: pixel rule only
   bool GodRays = true;                         ///< volume caustics in a medium (§3.2)
   double GodRayBlurPixels = 1.5;               ///< Gaussian standard deviation, pixels, [0, 16]
-  bool RefractionTracing = true;               ///< screen-space refraction of the view (§4)
   bool SkipOffscreenSpecular = false;          ///< plain VTK when no specular actor is in view
   int TraceView = 0; ///< caustics::TraceViewMode: 0 automatic, 1 camera, 2 fitted
 

@@ -2,10 +2,17 @@
 
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsRenderPass.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <functional>
+#include <map>
 #include <sstream>
 
 vtkStandardNewMacro(vtkCausticsTechniques);
@@ -35,6 +42,56 @@ const std::vector<Entry>& Entries()
   };
   return entries;
 }
+
+/**
+ * Whether the mesh is closed: every edge is shared by exactly two triangles.
+ * Vertices are welded by position first (glTF and smoothed meshes split them at
+ * seams), at a millionth of the mesh's size.
+ */
+bool IsClosed(const caustics::Mesh& mesh)
+{
+  const std::size_t vertices = mesh.positions.size() / 3;
+  if (mesh.indices.empty() || vertices == 0)
+  {
+    return false;
+  }
+  float low[3] = { mesh.positions[0], mesh.positions[1], mesh.positions[2] };
+  float high[3] = { low[0], low[1], low[2] };
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      low[k] = std::min(low[k], mesh.positions[3 * v + k]);
+      high[k] = std::max(high[k], mesh.positions[3 * v + k]);
+    }
+  }
+  const double cell =
+    1e-6 * std::max({ high[0] - low[0], high[1] - low[1], high[2] - low[2], 1e-30f });
+  std::map<std::array<long long, 3>, std::uint32_t> welded;
+  std::vector<std::uint32_t> id(vertices);
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    std::array<long long, 3> key;
+    for (int k = 0; k < 3; ++k)
+    {
+      key[k] = std::llround((mesh.positions[3 * v + k] - low[k]) / cell);
+    }
+    id[v] = welded.emplace(key, static_cast<std::uint32_t>(welded.size())).first->second;
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::uint32_t a = id[mesh.indices[t + e]], b = id[mesh.indices[t + (e + 1) % 3]];
+      if (a != b)
+      {
+        ++edges[{ std::min(a, b), std::max(a, b) }];
+      }
+    }
+  }
+  return std::all_of(edges.begin(), edges.end(), [](const auto& edge) { return edge.second == 2; });
+}
 }
 
 std::vector<std::string> vtkCausticsTechniques::GetNames()
@@ -49,14 +106,40 @@ std::vector<std::string> vtkCausticsTechniques::GetNames()
 
 std::string vtkCausticsTechniques::GetBestName()
 {
-  // Chosen from docs/benchmarks.md (caustics-bench, default settings, 256^2 photons
-  // and image): screen-space has the lower error against the ground truth on the
-  // pool and the ring (9 % and 20 %, against 20 % and 41 %), caustic-maps on the ball
-  // lens and the bunny (1.9 % and 11 %, against 5.1 % and 29 %), faster there too.
-  // The tie goes to screen-space because only it shows the refractors refracting
-  // the scene (screen-space refraction), which the final picture of every built-in
-  // scene needs.
+  // Without a scene (GetBestNameFor() chooses per scene): screen-space, the one
+  // that handles every feature (mirrors, open water, media; docs/benchmarks.md).
   return "screen-space";
+}
+
+std::string vtkCausticsTechniques::GetBestNameFor(vtkRenderer* renderer)
+{
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  if (!renderer || !extractor->Update(renderer, 64, 64))
+  {
+    return GetBestName();
+  }
+  const caustics::SceneData& scene = extractor->GetScene();
+  const caustics::Medium& medium = scene.Participating;
+  // Volume caustics (god-rays) are drawn by screen-space only.
+  if (medium.enabled && medium.sigmaS[0] + medium.sigmaS[1] + medium.sigmaS[2] > 0.0)
+  {
+    return "screen-space";
+  }
+  bool refractor = false;
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    const caustics::Role role = scene.Materials[mesh.material].role;
+    // Mirrors (the ring: 20 % against 41 %) and open refractors such as a water
+    // surface over a walled pool (9 % against 20 %): screen-space.
+    if (role == caustics::Role::Reflector || (role == caustics::Role::Refractor && !IsClosed(mesh)))
+    {
+      return "screen-space";
+    }
+    refractor = refractor || role == caustics::Role::Refractor;
+  }
+  // Closed refractors alone (the ball lens: 1.9 % against 5.1 %, 8x faster; the
+  // bunny: 11 % against 29 %): caustic maps.
+  return refractor ? "caustic-maps" : GetBestName();
 }
 
 vtkSmartPointer<vtkCausticsRenderPass> vtkCausticsTechniques::Create(const std::string& name)

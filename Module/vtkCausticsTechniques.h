@@ -21,6 +21,7 @@
 #include <vector> // For std::vector
 
 class vtkCausticsRenderPass;
+class vtkRenderer;
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsTechniques : public vtkObject
 {
@@ -31,8 +32,15 @@ public:
 
   /** Registered names, "best" excluded. */
   static std::vector<std::string> GetNames();
-  /** The name "best" stands for. */
+  /** The name "best" stands for when nothing is known about the scene. */
   static std::string GetBestName();
+  /**
+   * The name "best" stands for in `renderer`'s scene, from the features it has
+   * (docs/benchmarks.md, "Which technique is best"): a scattering medium,
+   * reflectors or open refractors (a water surface) take screen-space, closed
+   * refractors alone take caustic maps. GetBestName() without a scene.
+   */
+  static std::string GetBestNameFor(vtkRenderer* renderer);
 #ifndef __VTK_WRAP__
   /** A new pass for `name` (or "best"); nullptr for an unknown name. */
   static vtkSmartPointer<vtkCausticsRenderPass> Create(const std::string& name);

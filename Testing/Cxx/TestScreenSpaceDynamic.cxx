@@ -192,9 +192,9 @@ TEST(ScreenSpaceDynamic, EveryStageIsTimed)
   f.Caustic();
   vtkCausticsTimings* timings = f.Pass->GetTimings();
   const char* expected[] = { "ssp layers depth complexity", "ssp layers depth peeling",
-    "ssp refractor layers depth peeling", "ssp emission", "ssp bounce 1 line setup",
+    "refractor layers depth peeling", "ssp emission", "ssp bounce 1 line setup",
     "ssp bounce 1 line tracing", "ssp bounce 1 specular transfer", "ssp bounce 1 splatting",
-    "ssp bounce 3 line tracing", "ssp refraction tracing" };
+    "ssp bounce 3 line tracing", "refraction tracing" };
   for (const char* stage : expected)
   {
     EXPECT_GE(timings->GetGPUMilliseconds(stage), 0.0) << stage << " has no GPU time";

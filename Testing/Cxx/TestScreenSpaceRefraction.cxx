@@ -1,5 +1,5 @@
-// Screen-space refraction tracing (vtkCausticsScreenSpacePhotonPass, §4 of
-// 000_54cf099eeccf42d9.txt) against Snell's law: a checkerboard floor under a
+// Screen-space refraction tracing (the base pass's camera-view stage, §4 of
+// 000_54cf099eeccf42d9.txt, shared by every technique) against Snell's law: a checkerboard floor under a
 // flat water surface (IOR 1.33, 1 m above it) seen obliquely. Every pixel that
 // sees the water must show the tile that the analytically refracted viewing ray
 // reaches; pixels whose ray lands near a tile edge are not judged.
@@ -8,7 +8,8 @@
 #include "vtkCamera.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsSceneExtractor.h"
-#include "vtkCausticsScreenSpacePhotonPass.h"
+#include "vtkCausticsRenderPass.h"
+#include "vtkCausticsTechniques.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -20,10 +21,12 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <iostream>
 
 namespace
@@ -82,7 +85,18 @@ bool LightTile(double x, double z, double margin, bool& edge)
 }
 }
 
-TEST(ScreenSpaceRefraction, FlatWaterObeysSnell)
+// Glass and water look the same in every technique: the stage belongs to the
+// base pass, so each registered surface technique must pass.
+class ScreenSpaceRefraction : public testing::TestWithParam<std::string>
+{
+};
+
+INSTANTIATE_TEST_SUITE_P(EveryTechnique, ScreenSpaceRefraction,
+  testing::Values("screen-space", "caustic-maps"),
+  [](const testing::TestParamInfo<std::string>& info)
+  { return info.param == "screen-space" ? std::string("ScreenSpace") : std::string("CausticMaps"); });
+
+TEST_P(ScreenSpaceRefraction, FlatWaterObeysSnell)
 {
   vtkNew<vtkOpenGLRenderer> renderer;
   renderer->AutomaticLightCreationOff();
@@ -128,7 +142,7 @@ TEST(ScreenSpaceRefraction, FlatWaterObeysSnell)
   camera->SetFocalPoint(0.0, 0.0, 0.0);
   camera->SetViewAngle(40.0);
   renderer->ResetCameraClippingRange();
-  vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(GetParam());
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -191,7 +205,7 @@ TEST(ScreenSpaceRefraction, FlatWaterObeysSnell)
       wrongIfStraight += straight != expected ? 1 : 0;
     }
   }
-  std::cout << "refraction: " << replaced << " pixels replaced, " << judged << " judged, " << wrong
+  std::cout << GetParam() << ", refraction: " << replaced << " pixels replaced, " << judged << " judged, " << wrong
             << " show the wrong tile (" << 100.0 * wrong / std::max(judged, 1)
             << " %); without refraction " << wrongIfStraight << "\n";
   ASSERT_GT(judged, 10000);
