@@ -4,6 +4,7 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsTechniques.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -25,6 +26,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -318,4 +322,44 @@ TEST(Medium, RejectsAbsurdCoefficients)
   ASSERT_TRUE(extractor->Update(renderer, 8, 8));
   EXPECT_TRUE(extractor->GetScene().Participating.enabled);
   EXPECT_DOUBLE_EQ(extractor->GetScene().Participating.sigmaS[2], 0.3);
+}
+
+// "best" per scene (docs/benchmarks.md, "Which technique is best"): closed glass
+// alone takes caustic maps; a mirror, an open water surface or a scattering
+// medium takes screen-space; a ball made open (a cap cut off) does too.
+TEST(Techniques, BestFollowsTheScenesFeatures)
+{
+  for (const auto& [name, best] : std::vector<std::pair<std::string, std::string>>{
+         { "ball-lens", "caustic-maps" }, { "bunny", "caustic-maps" }, { "pool", "screen-space" },
+         { "ring", "screen-space" } })
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkCausticsBuiltinScene> scene;
+    scene->SetSceneName(name.c_str());
+    ASSERT_TRUE(scene->Populate(renderer));
+    EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), best) << name;
+    if (name == "ball-lens")
+    {
+      vtkNew<vtkCausticsMedium> fog;
+      fog->SetScatteringCoefficient(0.1, 0.1, 0.1);
+      vtkCausticsMedium::AttachTo(renderer, fog);
+      EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), "screen-space") << "fog";
+    }
+  }
+  // A hemisphere of glass (open): screen-space.
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  scene->SetSceneName("ball-lens");
+  ASSERT_TRUE(scene->Populate(renderer));
+  vtkNew<vtkSphereSource> cap;
+  cap->SetEndTheta(180.0);
+  cap->Update();
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(cap->GetOutput());
+  vtkNew<vtkActor> glass;
+  glass->SetMapper(mapper);
+  vtkCausticsMaterial::MakeGlass(glass->GetProperty(), 1.5);
+  renderer->AddActor(glass);
+  EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), "screen-space");
+  EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(nullptr), vtkCausticsTechniques::GetBestName());
 }
