@@ -74,8 +74,9 @@ Output:
 
 Ground truth:
   --reference                also render the CPU reference (Embree) of the same view
-                             to PREFIX-reference.exr: caustic.*, direct.* (W/m^2),
-                             volume.* (W/(m^2 sr)), mask.Y; shows its progress
+                             to PREFIX-reference.exr: caustic.*, direct.* (W/m^2,
+                             at the same surfaces as PREFIX.exr's: under water and
+                             glass), volume.* (W/(m^2 sr)), mask.Y; shows its progress
   --reference-photons N      its photons per light, 1..1e10 (default 1e6); implies
                              --reference
   --no-reference-cache       render it even when a cached result exists
@@ -349,6 +350,10 @@ void RenderReference(const Options& options, vtkRenderer* renderer)
   reference->SetImageSize(options.Width, options.Height);
   reference->SetPhotonsPerLight(static_cast<vtkIdType>(options.ReferencePhotons));
   reference->SetUseCache(options.ReferenceCache);
+  // The technique's layers hold the irradiance at each pixel's nearest opaque
+  // surface (the pool's floor under the water): the reference's must be at the
+  // same points, or PREFIX.exr and PREFIX-reference.exr cannot be compared.
+  reference->CameraSeesRefractorsOff();
   std::ostringstream label;
   label << "caustics-render: reference, " << static_cast<long long>(options.ReferencePhotons)
         << " photons per light";
