@@ -180,9 +180,11 @@ bool Judge(const std::string& technique, const std::vector<Sample>& samples, int
             << "\n  GPU peak of the last half: " << Describe(late.Gpu)
             << "\n  RSS MiB: first frame " << samples.front().Rss * mib << ", peak of the first "
             << "quarter " << warm.Rss * mib << ", peak of the last half " << late.Rss * mib
-            << ", last frame " << samples.back().Rss * mib
-            << "\n  after release: " << released.Objects() << " objects, " << released.Bytes()
-            << " bytes" << std::endl;
+            << ", last frame " << samples.back().Rss * mib << "\n  heap in use MiB: first frame "
+            << samples.front().Heap * mib << ", peak of the first quarter " << warm.Heap * mib
+            << ", peak of the last half " << late.Heap * mib << ", last frame "
+            << samples.back().Heap * mib << "\n  after release: " << released.Objects()
+            << " objects, " << released.Bytes() << " bytes" << std::endl;
   bool flat = true;
   auto fail = [&](const char* why)
   {
