@@ -110,14 +110,16 @@ std::string CheckFrame(
   const std::vector<std::string>& errors = stress::Messages::Errors();
   if (!errors.empty())
   {
-    const std::string& first = errors.front();
-    if (first.find('\n') != std::string::npos || first.empty())
+    for (const std::string& error : errors)
     {
-      why << "an error of more than one line: " << first;
+      if (error.find('\n') != std::string::npos || error.empty())
+      {
+        why << "an error of more than one line: " << error << "; ";
+      }
     }
-    else if (pass->GetLastFrameHadCaustics())
+    if (pass->GetLastFrameHadCaustics())
     {
-      why << "caustics rendered despite the error: " << first;
+      why << "caustics rendered despite the error: " << errors.front();
     }
     return why.str(); // a clear refusal passes: nothing more to check
   }
