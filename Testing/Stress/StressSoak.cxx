@@ -252,7 +252,8 @@ bool RunSoak(int frames, const std::string& technique, bool verbose)
 {
   if (frames < 64)
   {
-    std::cout << "FAIL soak: at least 64 frames (a warm-up of four 16-frame cycles)" << std::endl;
+    std::cout << "FAIL soak: at least 64 frames (a warm-up of a quarter holds a 16-frame cycle)"
+              << std::endl;
     return false;
   }
   const std::vector<std::string> techniques =

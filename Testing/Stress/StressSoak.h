@@ -5,7 +5,7 @@
  * box, a mirror), a cycle of 16 frames. GPU objects and bytes (the passes'
  * bookkeeping, vtkCausticsRenderPass::GetGraphicsMemory()) and the process's
  * resident memory (/proc/self/statm) are sampled after every frame; after a warm-up
- * of a quarter of the frames (at least 4 cycles) they must stay flat:
+ * of a quarter of the frames (at least one cycle) they must stay flat:
  * - no frame of the last half holds more GPU objects or bytes than the peak of the
  *   first quarter;
  * - the peak RSS of the last half exceeds the peak of the first quarter by less
