@@ -158,6 +158,10 @@ std::string RenderWith(const std::string& technique, vtkRenderWindow* window,
               << (pass->GetLastFrameHadCaustics() ? "caustics" : "none") << ", flux/bound " << ratio
               << ", " << stress::Messages::Errors().size() << " errors, "
               << stress::Messages::Warnings() << " warnings" << std::endl;
+    for (const std::string& error : stress::Messages::Errors())
+    {
+      std::cout << "    error: " << error << std::endl;
+    }
   }
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);

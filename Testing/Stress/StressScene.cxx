@@ -397,6 +397,13 @@ SceneSummary MakeScene(std::uint64_t seed, vtkRenderer* renderer)
     text << " medium";
   }
   SetCamera(random, renderer, s, text);
+  if (random.Chance(0.03))
+  {
+    // More photons than llvmpipe's storage blocks hold for the screen-space and
+    // caustic-map techniques: they must refuse the frame in one line.
+    summary.Photons = 8192;
+    text << " abuse:8192^2-photons";
+  }
   summary.Text = text.str();
   return summary;
 }

@@ -15,6 +15,8 @@
  * - sometimes a participating medium;
  * - in one scene of 12, one input a user should not give (a light of NaN or 1e30
  *   W/sr or at Inf, a glass of IOR NaN or 1e6, an actor scaled by 0 or at NaN);
+ * - in one scene of 33, a light buffer of 8192^2 photons, more than a technique
+ *   may hold on llvmpipe (a refusal in one line, no caustics);
  * all at one scale between 1e-3 and 1e4 m. About one scene in 25 is empty.
  */
 #ifndef StressScene_h
