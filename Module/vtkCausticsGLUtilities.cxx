@@ -10,8 +10,12 @@
 #include "vtkPointData.h"
 #include "vtkSetGet.h"
 #include "vtkTextureObject.h"
+#include "vtkWeakPointer.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+#include <atomic>
+#include <mutex>
 #include <vector>
 
 namespace caustics
@@ -54,6 +58,99 @@ FormatInfo Describe(unsigned int internalFormat)
 }
 }
 
+namespace
+{
+/**
+ * The bookkeeping of CountGraphicsMemory(): counters for the wrappers that own raw
+ * GL names, weak pointers to the vtkTextureObjects EnsureTexture() allocated. Made
+ * once and never destroyed, so objects released during static destruction still
+ * find it.
+ */
+struct Ledger
+{
+  std::atomic<long long> Objects[3] = { { 0 }, { 0 }, { 0 } };
+  std::atomic<long long> Bytes[3] = { { 0 }, { 0 }, { 0 } };
+  std::mutex TexturesLock;
+  std::vector<vtkWeakPointer<vtkTextureObject>> Textures;
+};
+
+Ledger& TheLedger()
+{
+  static Ledger* ledger = new Ledger;
+  return *ledger;
+}
+}
+
+std::size_t BytesPerTexel(unsigned int internalFormat)
+{
+  switch (internalFormat)
+  {
+    case GL_R32F:
+    case GL_R32UI:
+    case GL_R32I:
+    case GL_RGBA8:
+    case GL_DEPTH_COMPONENT32F:
+    case GL_DEPTH_COMPONENT24:
+    case GL_DEPTH_COMPONENT32:
+    case GL_DEPTH24_STENCIL8:
+      return 4;
+    case GL_DEPTH_COMPONENT16:
+    case GL_R16F:
+      return 2;
+    case GL_RG32F:
+    case GL_RGBA16F:
+    case GL_RG32UI:
+      return 8;
+    default:
+      return 16; // GL_RGBA32F, GL_RGBA32UI and anything unknown (the largest)
+  }
+}
+
+void CountObject(Counted kind, long long objects, long long bytes)
+{
+  const int k = static_cast<int>(kind);
+  TheLedger().Objects[k] += objects;
+  TheLedger().Bytes[k] += bytes;
+}
+
+void TrackTexture(vtkTextureObject* texture)
+{
+  Ledger& ledger = TheLedger();
+  std::lock_guard<std::mutex> lock(ledger.TexturesLock);
+  auto& textures = ledger.Textures;
+  textures.erase(std::remove_if(textures.begin(), textures.end(),
+                   [](const vtkWeakPointer<vtkTextureObject>& t) { return t == nullptr; }),
+    textures.end());
+  if (std::find(textures.begin(), textures.end(), texture) == textures.end())
+  {
+    textures.emplace_back(texture);
+  }
+}
+
+GraphicsCounts CountGraphicsMemory()
+{
+  Ledger& ledger = TheLedger();
+  GraphicsCounts counts;
+  counts.Textures = ledger.Objects[static_cast<int>(Counted::Texture)];
+  counts.TextureBytes = ledger.Bytes[static_cast<int>(Counted::Texture)];
+  counts.Buffers = ledger.Objects[static_cast<int>(Counted::Buffer)];
+  counts.BufferBytes = ledger.Bytes[static_cast<int>(Counted::Buffer)];
+  counts.Framebuffers = ledger.Objects[static_cast<int>(Counted::Framebuffer)];
+  std::lock_guard<std::mutex> lock(ledger.TexturesLock);
+  for (vtkTextureObject* texture : ledger.Textures)
+  {
+    if (texture && texture->GetHandle() != 0)
+    {
+      const long long texels = static_cast<long long>(texture->GetWidth()) * texture->GetHeight() *
+        std::max(1u, texture->GetDepth());
+      counts.Textures += 1;
+      counts.TextureBytes += texels *
+        static_cast<long long>(BytesPerTexel(texture->GetInternalFormat(VTK_FLOAT, 4, false)));
+    }
+  }
+  return counts;
+}
+
 bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int width, int height,
   unsigned int internalFormat)
 {
@@ -82,6 +179,7 @@ bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int
     texture->SetDataType(info.type);
     texture->Allocate2D(width, height, info.components, info.vtkType);
   }
+  TrackTexture(texture);
   return true;
 }
 
@@ -258,6 +356,7 @@ bool StorageBuffer::Allocate(std::size_t bytes, Usage usage)
   {
     glCreateBuffers(1, &this->Name);
     this->Size = 0;
+    CountObject(Counted::Buffer, 1, 0);
   }
   else if (this->Size >= bytes && this->Use == usage)
   {
@@ -266,6 +365,8 @@ bool StorageBuffer::Allocate(std::size_t bytes, Usage usage)
   bytes = bytes > this->Size ? bytes : this->Size; // a new usage keeps the size
   glNamedBufferData(this->Name, static_cast<GLsizeiptr>(bytes), nullptr,
     usage == Usage::Copy ? GL_DYNAMIC_COPY : GL_DYNAMIC_DRAW);
+  CountObject(
+    Counted::Buffer, 0, static_cast<long long>(bytes) - static_cast<long long>(this->Size));
   this->Size = bytes;
   this->Use = usage;
   return true;
@@ -304,6 +405,7 @@ void StorageBuffer::Release()
   if (this->Name)
   {
     glDeleteBuffers(1, &this->Name);
+    CountObject(Counted::Buffer, -1, -static_cast<long long>(this->Size));
   }
   this->Name = 0;
   this->Size = 0;

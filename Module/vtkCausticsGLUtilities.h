@@ -28,6 +28,43 @@ namespace caustics
 {
 namespace gl
 {
+/** GL objects and their storage held by the caustics stages of this process. */
+struct GraphicsCounts
+{
+  long long Textures = 0;     ///< live textures (2D, 2D array, depth)
+  long long TextureBytes = 0; ///< their level-0 storage
+  long long Buffers = 0;      ///< live buffer objects (StorageBuffer)
+  long long BufferBytes = 0;  ///< their storage
+  long long Framebuffers = 0; ///< live raw framebuffer objects (screen-space stages)
+};
+
+/** Kinds of GL object counted by CountObject(). */
+enum class Counted
+{
+  Texture,
+  Buffer,
+  Framebuffer
+};
+
+/**
+ * Adds `objects` GL objects of `kind` holding `bytes` bytes to the bookkeeping
+ * (negative to remove them). Called where a wrapper creates, resizes or deletes its
+ * GL name; thread-safe.
+ */
+VTKRENDERINGCAUSTICS_EXPORT void CountObject(Counted kind, long long objects, long long bytes);
+
+/**
+ * Registers a vtkTextureObject whose storage the bookkeeping reads when asked (its
+ * handle, size and format then): VTK's class creates and deletes the GL name itself.
+ */
+VTKRENDERINGCAUSTICS_EXPORT void TrackTexture(vtkTextureObject* texture);
+
+/** What the caustics stages hold now: counted objects plus live tracked textures. */
+VTKRENDERINGCAUSTICS_EXPORT GraphicsCounts CountGraphicsMemory();
+
+/** Bytes per texel of a sized internal format (16 for a format it does not know). */
+VTKRENDERINGCAUSTICS_EXPORT std::size_t BytesPerTexel(unsigned int internalFormat);
+
 /**
  * Makes `texture` a width x height 2D texture of the given sized internal format
  * (GL_RGBA32F, GL_R32UI, GL_DEPTH_COMPONENT32F, ...), nearest filtering, clamped;

@@ -309,6 +309,28 @@ vtkCausticsLightBuffers* vtkCausticsRenderPass::GetLightBuffers()
   return this->Internal->LightBuffers;
 }
 
+vtkCausticsRenderPass::GraphicsMemory vtkCausticsRenderPass::GetGraphicsMemory()
+{
+  const caustics::gl::GraphicsCounts counts = caustics::gl::CountGraphicsMemory();
+  GraphicsMemory memory;
+  memory.Textures = counts.Textures;
+  memory.TextureBytes = counts.TextureBytes;
+  memory.Buffers = counts.Buffers;
+  memory.BufferBytes = counts.BufferBytes;
+  memory.Framebuffers = counts.Framebuffers;
+  return memory;
+}
+
+long long vtkCausticsRenderPass::GetGraphicsObjects()
+{
+  return GetGraphicsMemory().Objects();
+}
+
+long long vtkCausticsRenderPass::GetGraphicsBytes()
+{
+  return GetGraphicsMemory().Bytes();
+}
+
 bool vtkCausticsRenderPass::GetLastFrameHadCaustics() const
 {
   return this->Result.Caustics;

@@ -147,6 +147,34 @@ public:
   /** True if the last frame ran the caustic stages. */
   bool GetLastFrameHadCaustics() const;
 
+#ifndef __VTK_WRAP__
+  /**
+   * GPU objects and memory the caustics stages hold, from their own bookkeeping
+   * (counted where the module makes its GL objects: the textures of
+   * caustics::gl::EnsureTexture and of the screen-space stages, the buffer objects
+   * of caustics::gl::StorageBuffer, the screen-space stages' framebuffers). Figures
+   * are for every caustics pass of the process together; VTK's own objects (the
+   * delegate's, vtkOpenGLFramebufferObject names, shader programs) are not counted.
+   * After ReleaseGraphicsResources() of every pass, all are zero.
+   */
+  struct GraphicsMemory
+  {
+    long long Textures = 0;     ///< live textures
+    long long TextureBytes = 0; ///< their storage (level 0), bytes
+    long long Buffers = 0;      ///< live buffer objects
+    long long BufferBytes = 0;  ///< their storage, bytes
+    long long Framebuffers = 0; ///< live framebuffers the module made itself
+    long long Objects() const { return this->Textures + this->Buffers + this->Framebuffers; }
+    long long Bytes() const { return this->TextureBytes + this->BufferBytes; }
+  };
+  static GraphicsMemory GetGraphicsMemory();
+#endif
+  ///@{
+  /** GetGraphicsMemory() for wrapped languages: objects and bytes in all. */
+  static long long GetGraphicsObjects();
+  static long long GetGraphicsBytes();
+  ///@}
+
   ///@{
   /**
    * The camera's view of glass and water, shared by every technique: viewing

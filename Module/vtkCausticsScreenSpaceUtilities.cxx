@@ -1,5 +1,6 @@
 #include "vtkCausticsScreenSpaceUtilities.h"
 
+#include "vtkCausticsGLUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
@@ -58,7 +59,14 @@ bool Texture::Ensure(int width, int height, int layers, unsigned int internalFor
   this->Height = height;
   this->Layers = layers;
   this->Format = internalFormat;
+  caustics::gl::CountObject(caustics::gl::Counted::Texture, 1, this->Bytes());
   return true;
+}
+
+long long Texture::Bytes() const
+{
+  return static_cast<long long>(this->Width) * this->Height * std::max(1, this->Layers) *
+    static_cast<long long>(caustics::gl::BytesPerTexel(this->Format));
 }
 
 void Texture::Release()
@@ -66,6 +74,7 @@ void Texture::Release()
   if (this->Handle)
   {
     glDeleteTextures(1, &this->Handle);
+    caustics::gl::CountObject(caustics::gl::Counted::Texture, -1, -this->Bytes());
   }
   this->Handle = 0;
   this->Width = this->Height = this->Layers = 0;
@@ -85,6 +94,7 @@ unsigned int Framebuffer::Get()
   if (!this->Handle)
   {
     glCreateFramebuffers(1, &this->Handle);
+    caustics::gl::CountObject(caustics::gl::Counted::Framebuffer, 1, 0);
   }
   return this->Handle;
 }
@@ -94,6 +104,7 @@ void Framebuffer::Release()
   if (this->Handle)
   {
     glDeleteFramebuffers(1, &this->Handle);
+    caustics::gl::CountObject(caustics::gl::Counted::Framebuffer, -1, 0);
   }
   this->Handle = 0;
 }

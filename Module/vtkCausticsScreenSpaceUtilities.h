@@ -44,6 +44,8 @@ public:
    */
   bool Ensure(int width, int height, int layers, unsigned int internalFormat);
   void Release();
+  /** Bytes of storage (level 0, every layer). */
+  long long Bytes() const;
 
   unsigned int Handle = 0;
   int Width = 0, Height = 0, Layers = 0;

@@ -593,12 +593,14 @@ void vtkCausticsSceneExtractor::Internals::AddLights(vtkRenderer* renderer)
   lights->InitTraversal(lightIt);
   while (vtkLight* vtklight = lights->GetNextLight(lightIt))
   {
-    if (!vtklight->GetSwitch() || !(vtklight->GetIntensity() > 0.0))
+    // A NaN intensity fails "> 0" too: test finiteness first, so it is reported.
+    if (!vtklight->GetSwitch() ||
+      (std::isfinite(vtklight->GetIntensity()) && !(vtklight->GetIntensity() > 0.0)))
     {
       continue;
     }
     const caustics::Light light = DescribeLight(vtklight, camera, INNER_CONE_ANGLE());
-    if (!IsFinite(light))
+    if (!IsFinite(light) || !std::isfinite(vtklight->GetIntensity()))
     {
       vtkWarningWithObjectMacro(
         this->Owner, << "a light with a non-finite position or intensity was skipped");

@@ -9,6 +9,7 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
@@ -21,6 +22,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
 
@@ -304,6 +306,40 @@ TEST(Extractor, LightsFollowPhysicalConventions)
   EXPECT_DOUBLE_EQ(lights[0].SpotFactor(1.0), 1.0);
   EXPECT_DOUBLE_EQ(lights[0].SpotFactor(std::cos(vtkMath::RadiansFromDegrees(31.0))), 0.0);
   EXPECT_EQ(lights[1].type, caustics::Light::Type::Point);
+}
+
+// Lights of NaN or Inf intensity, or at Inf, are skipped, each with the warning
+// (a NaN intensity was skipped without one: found by CausticsStress, seed 41).
+TEST(Extractor, SkipsNonFiniteLightsWithAWarning)
+{
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(SphereActor());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  vtkNew<vtkLight> good, nanIntensity, infIntensity, atInf, dark;
+  nanIntensity->SetIntensity(nan);
+  infIntensity->SetIntensity(inf);
+  atInf->SetPosition(inf, 1.0, 0.0);
+  dark->SetIntensity(0.0); // no power: skipped without a warning
+  for (vtkLight* light :
+    { good.Get(), nanIntensity.Get(), infIntensity.Get(), atInf.Get(), dark.Get() })
+  {
+    renderer->AddLight(light);
+  }
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  extractor->GlobalWarningDisplayOn(); // earlier tests turn it off; the observer takes them
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  extractor->AddObserver(vtkCommand::WarningEvent, warnings);
+  ASSERT_TRUE(extractor->Update(renderer, 32, 32));
+  EXPECT_EQ(extractor->GetScene().Lights.size(), 1u);
+  const std::string text = warnings->GetWarningMessage();
+  int count = 0;
+  for (std::size_t at = text.find("non-finite"); at != std::string::npos;
+       at = text.find("non-finite", at + 1))
+  {
+    ++count;
+  }
+  EXPECT_EQ(count, 3) << text;
 }
 
 TEST(Medium, RejectsAbsurdCoefficients)

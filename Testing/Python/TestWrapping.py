@@ -72,8 +72,14 @@ def main():
         peak = max(values.GetComponent(i, 0) for i in range(values.GetNumberOfTuples()))
         if not 0.5 < peak < 10.0:
             return "%s: peak caustic irradiance %g W/m^2, expected 0.5..10" % (name, peak)
+        # The GPU bookkeeping (vtkCausticsRenderPass.GetGraphicsMemory in C++).
+        if vtkcaustics.vtkCausticsRenderPass.GetGraphicsObjects() <= 0 or \
+                vtkcaustics.vtkCausticsRenderPass.GetGraphicsBytes() <= 0:
+            return name + ": the GPU bookkeeping counted nothing after a frame"
         renderer.SetPass(None)
         pass_.ReleaseGraphicsResources(window)
+        if vtkcaustics.vtkCausticsRenderPass.GetGraphicsObjects() != 0:
+            return name + ": GPU objects left after ReleaseGraphicsResources"
     return check_registry_factory_and_io()
 
 
