@@ -3,55 +3,72 @@
 
     error-map.py REFERENCE.exr IMAGE.exr [--blocks 16] [--output error-map.png]
 
-REFERENCE.exr: a vtkCausticsReferenceRenderer image (caustics-bench's cached ground
-truth, `<build>/reference-cache/reference-<hash>.exr`, the hash in the generated table
-of docs/benchmarks.md): CausticIrradiance, ReceiverMask, PixelArea.
+REFERENCE.exr: a vtkCausticsReferenceRenderer image, either caustics-bench's cached
+ground truth (`<build>/reference-cache/reference-<hash>.exr`, the hash in the generated
+table of docs/benchmarks.md: CausticIrradiance, ReceiverMask, PixelArea) or the
+`PREFIX-reference.exr` of `caustics-render --reference` (caustic, mask; no pixel areas,
+so every receiver pixel weighs the same).
 IMAGE.exr: the technique's caustic irradiance, as `caustics-bench --images` writes it
 (layer `caustic`), or a caustics-render EXR (same layer name).
 
 Prints the relative L2 error and flux ratio on the reference's receiver pixels,
-weighted by pixel area (as vtkCausticsErrorMetrics; the benchmark's figures come from
-that class), how much of the squared error is missing light (image below the
-reference) or extra light, and the blocks of the image that hold most of it (x, y in
-pixels from the top-left corner). With --output, a PNG of the reference, the image and
-their signed difference (needs matplotlib).
+weighted by pixel area where the reference has it (as vtkCausticsErrorMetrics; the
+benchmark's figures come from that class), how much of the squared error is missing
+light (image below the reference) or extra light, and the blocks of the image that
+hold most of it (x, y in pixels from the top-left corner). With --output, a PNG of
+the reference, the image and their signed difference (needs matplotlib).
 
-Reads EXR layers with `oiiotool` (Debian: openimageio-tools), which converts each one
-to FITS, a format the standard library and numpy read.
+Reads EXR with OpenImageIO's Python module (Debian: python3-openimageio).
 """
 import argparse
 import os
-import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
 
-def read_channel(path, channel, scratch):
-    """One channel of an EXR as a float64 array, row 0 at the top of the image."""
-    out = os.path.join(scratch, "channel.fits")
-    subprocess.run(["oiiotool", path, "--ch", channel, "-d", "float", "-o", out],
-                   check=True, stdout=subprocess.DEVNULL)
-    raw = open(out, "rb").read()
-    header, offset = {}, 0
-    while True:
-        card = raw[offset:offset + 80].decode("ascii")
-        offset += 80
-        key = card[:8].strip()
-        if card[8:10] == "= ":
-            header[key] = card[10:].split("/")[0].strip()
-        if key == "END":
-            break
-    start = (offset + 2879) // 2880 * 2880
-    width, height = int(header["NAXIS1"]), int(header["NAXIS2"])
-    data = np.frombuffer(raw[start:start + 4 * width * height], dtype=">f4")
-    # FITS stores the bottom row first.
-    return data.reshape(height, width)[::-1].astype(np.float64)
+class Layers:
+    """The channels of one EXR by name, as float64 arrays, row 0 at the top."""
+
+    def __init__(self, path):
+        try:
+            import OpenImageIO as oiio
+        except ImportError:
+            sys.exit("error-map: needs OpenImageIO's Python module (Debian: python3-openimageio)")
+        image = oiio.ImageInput.open(path)
+        if image is None:
+            sys.exit("error-map: cannot read %s: %s" % (path, oiio.geterror()))
+        spec = image.spec()
+        pixels = image.read_image(format=oiio.FLOAT)
+        image.close()
+        if pixels is None:
+            sys.exit("error-map: cannot read the pixels of " + path)
+        pixels = np.asarray(pixels, dtype=np.float64).reshape(spec.height, spec.width,
+                                                              spec.nchannels)
+        self.path = path
+        self.channels = {name: pixels[..., k] for k, name in enumerate(spec.channelnames)}
+
+    def has(self, name):
+        return name in self.channels
+
+    def channel(self, name):
+        if name not in self.channels:
+            sys.exit("error-map: %s has no channel %s (it has %s)" %
+                     (self.path, name, ", ".join(sorted(self.channels))))
+        return self.channels[name]
+
+    def rgb(self, layer):
+        return np.stack([self.channel(layer + "." + c) for c in "RGB"], axis=-1)
 
 
-def rgb(path, layer, scratch):
-    return np.stack([read_channel(path, layer + "." + c, scratch) for c in "RGB"], axis=-1)
+def reference_layers(path):
+    """Caustic irradiance, receiver mask and pixel weights of either reference layout."""
+    layers = Layers(path)
+    if layers.has("CausticIrradiance.R"):
+        return (layers.rgb("CausticIrradiance"), layers.channel("ReceiverMask.Y") > 0.5,
+                layers.channel("PixelArea.Y"))
+    mask = layers.channel("mask.Y") > 0.5
+    return layers.rgb("caustic"), mask, np.ones(mask.shape)
 
 
 def main():
@@ -66,16 +83,8 @@ def main():
         if not os.path.isfile(path):
             sys.exit("error-map: no such file: " + path)
 
-    with tempfile.TemporaryDirectory() as scratch:
-        try:
-            truth = rgb(args.reference, "CausticIrradiance", scratch)
-            mask = read_channel(args.reference, "ReceiverMask.Y", scratch) > 0.5
-            area = read_channel(args.reference, "PixelArea.Y", scratch)
-            test = rgb(args.image, "caustic", scratch)
-        except FileNotFoundError:
-            sys.exit("error-map: needs oiiotool (Debian package openimageio-tools)")
-        except subprocess.CalledProcessError as e:
-            sys.exit("error-map: oiiotool could not read a layer: " + " ".join(e.cmd[1:4]))
+    truth, mask, area = reference_layers(args.reference)
+    test = Layers(args.image).rgb("caustic")
     if truth.shape != test.shape:
         sys.exit("error-map: the images differ in size: %s and %s" %
                  (truth.shape[:2], test.shape[:2]))

@@ -11,7 +11,7 @@ packages=(
   libegl-dev libgl1-mesa-dri                    # headless EGL; Mesa llvmpipe
   xvfb xauth mesa-utils                         # an X server for tests
   libgtest-dev libbenchmark-dev                 # tests and micro-benchmarks
-  python3-matplotlib                            # benchmark plots
+  python3-matplotlib python3-openimageio        # benchmark plots, EXR in scripts
   python3-dev python3-vtk9                      # Python wrapping (vtkcaustics)
 )
 
