@@ -935,6 +935,7 @@ void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
   caustics::gl::ToColumnMajor(lightView.worldToClip, matrix);
   program->SetUniformMatrix4("lightWorldToClip", matrix);
   program->SetUniformi("lightType", static_cast<int>(light.type));
+  caustics::gl::SetMediumUniforms(program, *this->Frame.Scene);
   // Directional lights measure distance along the axis from the view's eye.
   const caustics::Vec3& origin =
     light.type == caustics::Light::Type::Directional ? lightView.eye : light.position;

@@ -2,7 +2,8 @@
 // accumulated over lights with additive blending. Visibility comes from the
 // light's shadow map (world positions seen from the light, aimed at the whole
 // scene): a point is lit when no surface lies between it and the light, tested
-// with 2x2 bilinear percentage-closer filtering and a bias of about two texels.
+// with 2x2 bilinear percentage-closer filtering and a bias of about two texels,
+// attenuated by the participating medium, if any.
 in vec2 texCoord;
 
 uniform sampler2D gPosition; // camera G-buffer: world position, w = material (-1: none)
@@ -101,5 +102,9 @@ void main()
     // Outside the shadow map's frustum (it holds the whole scene): nothing occludes.
     visibility = 1.0;
   }
-  outIrradiance = vec4(radiometric * (cosine * falloff * visibility), 1.0);
+  // A medium attenuates the light on its way to the surface (inside its box; as
+  // the reference's DirectIrradiance): to the light, or out of the box for a sun.
+  vec3 transmitted = lightType == 0 ? CausticsMediumTransmittance(p, toLight, 0.0, 3.0e38)
+                                    : CausticsMediumTransmittance(p, lightPosition - p, 0.0, 1.0);
+  outIrradiance = vec4(radiometric * transmitted * (cosine * falloff * visibility), 1.0);
 }

@@ -10,6 +10,7 @@
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 
 #include "vtkDataArray.h"
@@ -144,4 +145,67 @@ TEST(ScreenSpaceGodRays, AbsorptionAloneAttenuates)
     kept[k++] = absorbing / clear;
   }
   EXPECT_NEAR(kept[1] / kept[0], 1.0, 0.05);
+}
+
+// Issue 18: direct light reaches a surface through the medium, attenuated by it,
+// as the reference's DirectIrradiance has it (inside the medium's box, the scene's
+// bounds). Ball lens, vertical sun, sigma_a = 0.1/m: the floor is 4 m below the
+// box's top, so a lit floor point keeps exp(-0.4) = 0.670 of the clear value.
+TEST(ScreenSpaceGodRays, DirectLightIsAttenuatedByTheMedium)
+{
+  double mean[2] = { 0.0, 0.0 }, reference = 0.0;
+  for (int absorbing = 0; absorbing < 2; ++absorbing)
+  {
+    vtkNew<vtkOpenGLRenderer> renderer;
+    vtkNew<vtkCausticsBuiltinScene> scene;
+    ASSERT_TRUE(scene->Populate(renderer));
+    vtkNew<vtkCausticsMedium> medium;
+    medium->SetAbsorptionCoefficient(0.1, 0.1, 0.1);
+    if (absorbing)
+    {
+      vtkCausticsMedium::AttachTo(renderer, medium);
+    }
+    vtkNew<vtkCausticsRenderPass> pass;
+    pass->KeepBuffersOn();
+    pass->ComputeDirectIrradianceOn();
+    renderer->SetPass(pass);
+    vtkNew<vtkRenderWindow> window;
+    window->SetOffScreenRendering(1);
+    window->SetMultiSamples(0);
+    window->SetSize(128, 128);
+    window->AddRenderer(renderer);
+    window->Render();
+    vtkNew<vtkImageData> direct;
+    ASSERT_TRUE(pass->ReadBuffer("DirectIrradiance", direct));
+    vtkNew<vtkCausticsReferenceRenderer> truth;
+    truth->SetInputRenderer(renderer);
+    truth->SetImageSize(128, 128);
+    truth->SetPhotonsPerLight(10000);
+    ASSERT_TRUE(truth->Update()) << truth->GetLastError();
+    vtkDataArray* gpu = direct->GetPointData()->GetArray(0);
+    vtkDataArray* cpu = truth->GetOutput()->GetPointData()->GetArray("DirectIrradiance");
+    vtkDataArray* mask = truth->GetOutput()->GetPointData()->GetArray("ReceiverMask");
+    // Lit floor pixels (away from the ball's shadow and its edge).
+    double sum = 0.0, sumReference = 0.0;
+    int count = 0;
+    for (vtkIdType i = 0; i < gpu->GetNumberOfTuples(); ++i)
+    {
+      if (mask->GetComponent(i, 0) > 0.5 && cpu->GetComponent(i, 0) > 0.5 &&
+        gpu->GetComponent(i, 0) > 0.5)
+      {
+        sum += gpu->GetComponent(i, 0);
+        sumReference += cpu->GetComponent(i, 0);
+        ++count;
+      }
+    }
+    ASSERT_GT(count, 1000);
+    mean[absorbing] = sum / count;
+    reference = sumReference / count;
+    std::cout << (absorbing ? "sigma_a 0.1/m" : "clear") << ": direct irradiance on lit floor "
+              << mean[absorbing] << " W/m^2, reference " << reference << "\n";
+    EXPECT_NEAR(mean[absorbing] / reference, 1.0, 0.01);
+    renderer->SetPass(nullptr);
+    pass->ReleaseGraphicsResources(window);
+  }
+  EXPECT_NEAR(mean[1] / mean[0], std::exp(-0.4), 0.01);
 }
