@@ -52,8 +52,12 @@ namespace
 constexpr std::size_t OBJLineLimit = 256 * 1024 - 2;
 /** vtkOBJReader copies a material name with sscanf("%s") into a 100-byte buffer. */
 constexpr std::size_t OBJNameLimit = 99;
-/** Longest PLY header line accepted; real ones are a few dozen bytes. */
-constexpr std::size_t PLYHeaderLineLimit = 4096;
+/**
+ * Longest PLY header line accepted (real ones are a few dozen bytes): vtkPLY
+ * (9.1) reads each line with its '\n' into a 4096-byte buffer (4095 bytes and a
+ * NUL), so a longer one is split and VTK then fails with a vague message.
+ */
+constexpr std::size_t PLYHeaderLineLimit = 4094;
 /**
  * Longest line of an ASCII PLY body (one element) accepted, and of a header line
  * naming "vertex_index": vtkPLY (9.1) reads lines into a 4096-byte buffer (4095
