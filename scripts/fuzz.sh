@@ -4,6 +4,7 @@
 # builds the fuzz targets and runs each for the given time, one after the other.
 #
 #   scripts/fuzz.sh [seconds-per-target] [target...]     (default: 60 s, every target)
+#   scripts/fuzz.sh smoke [target...]                    (CI: 3000 inputs each, <= 30 s)
 #
 # Targets: FuzzGLTF FuzzGLB FuzzOBJ FuzzSTL FuzzPLY. Each starts from its seed corpus
 # (Testing/Fuzz/corpus/<target>, read only) and the inputs it found before
@@ -17,6 +18,14 @@ cd "$(dirname "$0")/.."
 
 seconds="${1:-60}"
 shift || true
+# A smoke run (CI): a few thousand inputs from the seed corpus alone, at most 30 s.
+limit=()
+smoke=0
+if [ "$seconds" = smoke ]; then
+  smoke=1
+  seconds=30
+  limit=(-runs=3000 -seed=1) # the same inputs every run: CI is not left to chance
+fi
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(FuzzGLTF FuzzGLB FuzzOBJ FuzzSTL FuzzPLY)
@@ -53,7 +62,12 @@ for target in "${targets[@]}"; do
   mkdir -p "build-fuzz/corpus/$target" "Testing/Fuzz/crashes/$target"
   log="build-fuzz/$target.log"
   echo "fuzz.sh: $target for $seconds s (log: $log)"
-  if ! nice -n 10 "build-fuzz/bin/$target" "build-fuzz/corpus/$target" \
+  found="build-fuzz/corpus/$target"
+  if [ "$smoke" = 1 ]; then
+    found="build-fuzz/smoke-corpus/$target" # this run's new inputs only
+    rm -rf "$found" && mkdir -p "$found"
+  fi
+  if ! nice -n 10 "build-fuzz/bin/$target" "$found" "${limit[@]}" \
     "Testing/Fuzz/corpus/$target" -dict="Testing/Fuzz/$dict" -max_total_time="$seconds" \
     -max_len=8192 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="Testing/Fuzz/crashes/$target/" > "$log" 2>&1; then

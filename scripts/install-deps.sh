@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages the caustics module needs to build, render and
 # test. Idempotent: packages already present are skipped by apt.
+#
+#   scripts/install-deps.sh          the build, the renders and the tests
+#   scripts/install-deps.sh fuzz     also clang and libFuzzer (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -14,6 +17,11 @@ packages=(
   python3-matplotlib python3-openimageio        # benchmark plots, EXR in scripts
   python3-dev python3-vtk9                      # Python wrapping (vtkcaustics)
 )
+case "${1:-}" in
+  "") ;;
+  fuzz) packages+=(clang libclang-rt-14-dev) ;; # libFuzzer with ASan and UBSan
+  *) echo "install-deps: unknown group '$1' (known: fuzz)" >&2; exit 2 ;;
+esac
 
 missing=()
 for package in "${packages[@]}"; do
