@@ -60,6 +60,7 @@ struct vtkCausticsHierarchicalCausticMapPass::Internals
 vtkCausticsHierarchicalCausticMapPass::vtkCausticsHierarchicalCausticMapPass()
   : Internal(new Internals)
 {
+  this->SetRefractionTracing(true); // the base pass's camera view of glass
 }
 
 vtkCausticsHierarchicalCausticMapPass::~vtkCausticsHierarchicalCausticMapPass() = default;

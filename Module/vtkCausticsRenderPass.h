@@ -182,8 +182,11 @@ public:
    * (000_54cf099eeccf42d9.txt §4, vtkCausticsScreenSpaceRefraction) against a
    * layered depth image of the refractors, so they show what lies behind them,
    * caustics included. Off, refractors are drawn by VTK as opaque surfaces.
-   * Default on. RefractionEvents: interfaces a viewing ray may cross, [2, 16],
-   * default 4. A technique may replace the stage (RenderTechniqueColor()).
+   * On in every technique that carries light through glass (screen-space,
+   * caustic maps); off in this plain pass ("none"), which carries none, so the
+   * floor under water would show black. RefractionEvents: interfaces a viewing
+   * ray may cross, [2, 16], default 4. A technique may replace the stage
+   * (RenderTechniqueColor()).
    */
   vtkSetMacro(RefractionTracing, bool);
   vtkGetMacro(RefractionTracing, bool);
@@ -389,7 +392,7 @@ private:
   int LightBufferResolution = 256;
   int ShadowMapResolution = 1024;
   double MaximumGPUMemory = 0.0;
-  bool RefractionTracing = true;
+  bool RefractionTracing = false; // techniques that carry caustic light turn it on
   int RefractionEvents = 4;
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;

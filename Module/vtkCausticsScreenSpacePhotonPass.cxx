@@ -130,6 +130,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
 vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   : Internal(new Internals)
 {
+  this->SetRefractionTracing(true); // the base pass's camera view of glass (§4)
   auto& in = *this->Internal;
   const std::string optics = vtkCausticsOptics;
   const std::string common = vtkCausticsScreenSpaceCommon;
