@@ -145,11 +145,13 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
     light.View = caustics::ComputeLightView(scene, i,
       this->Focus == FOCUS_SCENE ? caustics::LightView::Focus::Scene
                                  : caustics::LightView::Focus::Specular);
-    if (light.View.clamped)
+    // Shadow maps (FOCUS_SCENE) of a lamp inside a room are clamped as a rule; what
+    // they miss counts as lit. Photons that are not traced are worth a warning.
+    if (light.View.clamped && this->Focus == FOCUS_SPECULAR)
     {
       vtkWarningMacro(<< "light " << i
                       << " is inside the bounds it must light; its buffers cover only a "
-                         "150 degree cone around the focus");
+                         "150 degree cone towards the scene's centre");
     }
     float worldToClip[16];
     caustics::gl::ToColumnMajor(light.View.worldToClip, worldToClip);

@@ -168,14 +168,37 @@ void AimPerspective(LightView& view, const Light& light, const Vec3& focusCenter
   // cos^3; beyond ~75 degrees the texels at the rim become useless).
   const double maxHalfAngle = 75.0 * 3.14159265358979323846 / 180.0;
   double halfAngle;
-  if (distance > focusRadius * 1.0001)
+  const bool inside = !(distance > focusRadius * 1.0001);
+  if (!inside)
   {
     view.axis = Normalize(toFocus);
     halfAngle = std::asin(std::min(1.0, focusRadius / distance));
   }
   else
   {
-    view.axis = light.type == Light::Type::Spot ? Normalize(light.direction) : Normalize(toFocus);
+    // Inside the focus (e.g. a lamp in a glass ball) light leaves towards every side
+    // and one frustum cannot hold it all: aim at the centre of the whole scene, where
+    // the receivers are, not at the specular actors' centre (with the light at that
+    // centre, no direction at all).
+    const Vec3 toScene{ { sceneCenter[0] - view.eye[0], sceneCenter[1] - view.eye[1],
+      sceneCenter[2] - view.eye[2] } };
+    const double sceneDistance = std::sqrt(Dot(toScene, toScene));
+    if (light.type == Light::Type::Spot)
+    {
+      view.axis = Normalize(light.direction);
+    }
+    else if (sceneDistance > 1e-3 * sceneRadius)
+    {
+      view.axis = Normalize(toScene);
+    }
+    else if (distance > 1e-3 * focusRadius)
+    {
+      view.axis = Normalize(toFocus);
+    }
+    else
+    {
+      view.axis = Vec3{ { 0.0, -1.0, 0.0 } }; // the scene's down (its y axis points up)
+    }
     halfAngle = maxHalfAngle;
   }
   if (light.type == Light::Type::Spot)
@@ -188,7 +211,7 @@ void AimPerspective(LightView& view, const Light& light, const Vec3& focusCenter
       halfAngle = outer;
     }
   }
-  view.clamped = halfAngle > maxHalfAngle;
+  view.clamped = halfAngle > maxHalfAngle || (inside && light.type != Light::Type::Spot);
   halfAngle = std::min(halfAngle, maxHalfAngle);
   view.halfExtent = std::tan(halfAngle) * 1.0001;
   const Vec3 eyeToScene{ { sceneCenter[0] - view.eye[0], sceneCenter[1] - view.eye[1],
