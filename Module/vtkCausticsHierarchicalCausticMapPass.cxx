@@ -61,6 +61,7 @@ vtkCausticsHierarchicalCausticMapPass::vtkCausticsHierarchicalCausticMapPass()
   : Internal(new Internals)
 {
   this->SetRefractionTracing(true); // the base pass's camera view of glass
+  this->SetSpecularShadows(true);   // its caustic replaces the light glass and mirrors block
 }
 
 vtkCausticsHierarchicalCausticMapPass::~vtkCausticsHierarchicalCausticMapPass() = default;

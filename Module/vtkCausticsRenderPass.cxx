@@ -43,6 +43,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -55,18 +56,32 @@ namespace
 using Box = std::array<double, 6>;
 
 /** Binds a framebuffer with one colour attachment and clears it to zero. */
-void BindAndClear(vtkOpenGLFramebufferObject* framebuffer, vtkTextureObject* texture,
-  vtkOpenGLRenderWindow* renWin, bool attach)
+void BindAndClear(vtkOpenGLFramebufferObject* framebuffer,
+  std::initializer_list<vtkTextureObject*> textures, vtkOpenGLRenderWindow* renWin, bool attach)
 {
   framebuffer->SetContext(renWin);
   framebuffer->Bind();
-  if (attach || framebuffer->GetNumberOfColorAttachments() != 1)
+  const unsigned int count = static_cast<unsigned int>(textures.size());
+  if (attach || framebuffer->GetNumberOfColorAttachments() != count)
   {
-    framebuffer->AddColorAttachment(0, texture);
+    unsigned int index = 0;
+    for (vtkTextureObject* texture : textures)
+    {
+      framebuffer->AddColorAttachment(index++, texture);
+    }
   }
-  framebuffer->ActivateDrawBuffers(1);
+  framebuffer->ActivateDrawBuffers(count);
   const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-  glClearBufferfv(GL_COLOR, 0, zero);
+  for (unsigned int i = 0; i < count; ++i)
+  {
+    glClearBufferfv(GL_COLOR, static_cast<GLint>(i), zero);
+  }
+}
+
+void BindAndClear(vtkOpenGLFramebufferObject* framebuffer, vtkTextureObject* texture,
+  vtkOpenGLRenderWindow* renWin, bool attach)
+{
+  BindAndClear(framebuffer, { texture }, renWin, attach);
 }
 
 bool HasPower(const caustics::Light& light)
@@ -213,6 +228,8 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
+  // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
+  vtkNew<vtkTextureObject> SpecularShadowTexture;
   vtkNew<vtkOpenGLFramebufferObject> DirectFramebuffer;
   vtkNew<vtkTextureObject> VolumeTexture;         // RGBA32F, W/(m^2 sr)
   vtkNew<vtkTextureObject> TechniqueColorTexture; // RGBA32F, display colour, a = 1: replace
@@ -787,7 +804,9 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
     this->StopStage("caustic irradiance");
     this->Result.Caustics = ok;
   }
-  if (this->ComputeDirectIrradiance)
+  // The light that reflectors and refractors pass on is the caustic: VTK's direct
+  // light where they block it comes off in the composite.
+  if (this->ComputeDirectIrradiance || (this->Result.Caustics && this->SpecularShadows))
   {
     this->EnsureDirectIrradiance("direct irradiance");
   }
@@ -864,10 +883,13 @@ bool vtkCausticsRenderPass::RenderDirectIrradiance()
     return false;
   }
   vtkOpenGLState* state = f.Window->GetState();
-  const bool resized =
+  bool resized =
     caustics::gl::EnsureTexture(in.DirectTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
+  resized |= caustics::gl::EnsureTexture(
+    in.SpecularShadowTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
   state->PushFramebufferBindings();
-  BindAndClear(in.DirectFramebuffer, in.DirectTexture, f.Window, resized);
+  BindAndClear(
+    in.DirectFramebuffer, { in.DirectTexture, in.SpecularShadowTexture }, f.Window, resized);
   vtkOpenGLState::ScopedglViewport viewport(state);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
@@ -914,10 +936,14 @@ bool vtkCausticsRenderPass::DrawDirectIrradiance()
   for (int i = 0; i < shadows->GetNumberOfLights(); ++i)
   {
     vtkTextureObject* shadow = shadows->GetGBuffer(i)->GetPositionTexture();
+    vtkTextureObject* shadowNormal = shadows->GetGBuffer(i)->GetNormalTexture();
     shadow->Activate();
+    shadowNormal->Activate();
     program->SetUniformi("shadowPosition", shadow->GetTextureUnit());
+    program->SetUniformi("shadowNormal", shadowNormal->GetTextureUnit());
     this->SetDirectLightUniforms(i);
     this->Internal->Triangle.Draw();
+    shadowNormal->Deactivate();
     shadow->Deactivate();
   }
   position->Deactivate();
@@ -947,6 +973,13 @@ void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
     static_cast<float>(light.radiometric[1]), static_cast<float>(light.radiometric[2]));
   program->SetUniformf("cosOuter", static_cast<float>(light.cosOuter));
   program->SetUniformf("cosInner", static_cast<float>(light.cosInner));
+  program->SetUniform3f("shadingAttenuation", static_cast<float>(light.shadingAttenuation[0]),
+    static_cast<float>(light.shadingAttenuation[1]),
+    static_cast<float>(light.shadingAttenuation[2]));
+  // VTK itself would draw NaN for a NaN exponent; the removal stays finite instead.
+  const double exponent = std::isfinite(light.shadingExponent) ? light.shadingExponent : 1.0;
+  program->SetUniformf("shadingExponent", static_cast<float>(exponent));
+  program->SetUniformf("shadingConeAngle", static_cast<float>(light.shadingConeAngle));
   program->SetUniformf(
     "texelWorldSize", static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
 }
@@ -963,16 +996,17 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   vtkTextureObject* textures[] = { in.DelegateColorTexture, in.DelegateDepthTexture,
     f.CameraGBuffer->GetNormalTexture(), f.CameraGBuffer->GetAlbedoTexture(),
     f.CameraGBuffer->GetDepthTexture(), in.CausticTexture, in.VolumeTexture,
-    in.TechniqueColorTexture };
+    in.TechniqueColorTexture, in.SpecularShadowTexture };
   const char* names[] = { "delegateColor", "delegateDepth", "gNormal", "gAlbedo", "gDepth",
-    "causticIrradiance", "volumeRadiance", "techniqueColor" };
+    "causticIrradiance", "volumeRadiance", "techniqueColor", "specularShadow" };
   const bool hasCaustics = this->Result.Caustics;
   const bool hasVolume = hasCaustics && this->Result.Volume;
   const bool hasTechniqueColor = hasCaustics && this->Result.TechniqueColor;
-  for (int i = 0; i < 8; ++i)
+  const bool hasSpecularShadow = hasCaustics && this->SpecularShadows && this->Result.Direct;
+  for (int i = 0; i < 9; ++i)
   {
-    const bool used =
-      i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6) || (hasTechniqueColor && i == 7);
+    const bool used = i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6) ||
+      (hasTechniqueColor && i == 7) || (hasSpecularShadow && i == 8);
     if (used)
     {
       textures[i]->Activate();
@@ -982,10 +1016,11 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   program->SetUniformi("hasCaustics", hasCaustics ? 1 : 0);
   program->SetUniformi("hasVolume", hasVolume ? 1 : 0);
   program->SetUniformi("hasTechniqueColor", hasTechniqueColor ? 1 : 0);
+  program->SetUniformi("hasSpecularShadow", hasSpecularShadow ? 1 : 0);
   // The two depth buffers come from the same triangles and matrix; allow float noise.
   program->SetUniformf("depthTolerance", 2e-6f);
   this->DrawComposite(toFinalTexture);
-  for (int i = 0; i < 8; ++i)
+  for (int i = 0; i < 9; ++i)
   {
     if (textures[i]->GetHandle() && textures[i]->IsBound())
     {
@@ -1050,6 +1085,9 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
     { "CausticIrradiance", 3, false, [](Pass* p, int) { return p->Internal->CausticTexture.Get(); },
       caustics },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
+      [](Pass* p) { return p->Result.Direct; } },
+    { "SpecularShadow", 3, false,
+      [](Pass* p, int) { return p->Internal->SpecularShadowTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
     { "VolumeRadiance", 3, false, [](Pass* p, int) { return p->Internal->VolumeTexture.Get(); },
       [](Pass* p) { return p->Result.Caustics && p->Result.Volume; } },
@@ -1182,8 +1220,8 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.ShadowBuffers->ReleaseGraphicsResources(w);
   in.RefractorLayers->ReleaseGraphicsResources(w);
   in.Refraction->ReleaseGraphicsResources(w);
-  vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture, in.VolumeTexture,
-    in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
+  vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture,
+    in.SpecularShadowTexture, in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
   {
     texture->ReleaseGraphicsResources(w);
@@ -1210,6 +1248,7 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShadowMapResolution: " << this->ShadowMapResolution << "\n";
   os << indent << "ComputeDirectIrradiance: " << this->ComputeDirectIrradiance << "\n";
   os << indent << "KeepBuffers: " << this->KeepBuffers << "\n";
+  os << indent << "SpecularShadows: " << this->SpecularShadows << "\n";
   os << indent << "RoughnessCutoff: " << this->GetRoughnessCutoff() << "\n";
   os << indent << "RefractionTracing: " << this->RefractionTracing << "\n";
   os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";

@@ -28,14 +28,16 @@
  *    RenderCausticIrradiance (transport and reconstruction: W/m^2 at each
  *    pixel's visible opaque surface point before albedo) and
  *    RenderVolumeRadiance (optional, W/(m^2 sr) into VolumeTexture).
- * 7. RenderDirectIrradiance (ComputeDirectIrradiance, or a technique asking with
- *    EnsureDirectIrradiance): direct irradiance, W/m^2, with shadow maps aimed at
- *    the whole scene.
+ * 7. RenderDirectIrradiance (ComputeDirectIrradiance, SpecularShadows in a frame
+ *    with caustics, or a technique asking with EnsureDirectIrradiance): direct
+ *    irradiance, W/m^2, with shadow maps aimed at the whole scene, and the part of
+ *    VTK's shading that reflectors and refractors block.
  * 8. RenderTechniqueColor hook (after a frame with caustics): an optional display
  *    colour per pixel; where its alpha is 1 it replaces VTK's colour (e.g.
  *    refraction traced through glass).
- * 9. Composite: VTK's colour (or the technique's) + albedo x caustic irradiance on
- *    receivers, in VTK's display convention (VTK shades a Lambertian surface as
+ * 9. Composite: VTK's colour (or the technique's) - albedo x the blocked shading
+ *    (SpecularShadows) + albedo x caustic irradiance on receivers, in VTK's display
+ *    convention (VTK shades a Lambertian surface as
  *    albedo x light intensity x cos, i.e. pi x radiance for irradiance in W/m^2),
  *    + pi x the volume radiance the technique wrote, with VTK's depth, into the
  *    framebuffer the pass was called with.
@@ -111,6 +113,22 @@ public:
   vtkSetMacro(ComputeDirectIrradiance, bool);
   vtkGetMacro(ComputeDirectIrradiance, bool);
   vtkBooleanMacro(ComputeDirectIrradiance, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Reflectors and refractors cast shadows on VTK's colour. VTK shades receivers as
+   * if direct light went through glass and mirrors; the light they pass on arrives
+   * as the caustic, so with caustics the composite takes off the part of VTK's
+   * diffuse shading they block (ReadBuffer("SpecularShadow"), with VTK's own light
+   * falloff, from the direct irradiance's shadow maps). Off: VTK's colour plus the
+   * caustic, which counts the light through glass twice. On in the techniques that
+   * carry light through reflectors and refractors (they set it in their
+   * constructors); off in this base pass ("none"), whose caustic is zero.
+   */
+  vtkSetMacro(SpecularShadows, bool);
+  vtkGetMacro(SpecularShadows, bool);
+  vtkBooleanMacro(SpecularShadows, bool);
   ///@}
 
   ///@{
@@ -396,6 +414,7 @@ private:
   int RefractionEvents = 4;
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;
+  bool SpecularShadows = false; // techniques that carry caustic light turn it on
 
   FrameInputs Frame;
   FrameResult Result;

@@ -131,6 +131,7 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   : Internal(new Internals)
 {
   this->SetRefractionTracing(true); // the base pass's camera view of glass (§4)
+  this->SetSpecularShadows(true);   // its caustic replaces the light glass and mirrors block
   auto& in = *this->Internal;
   const std::string optics = vtkCausticsOptics;
   const std::string common = vtkCausticsScreenSpaceCommon;

@@ -27,6 +27,7 @@ vtkCausticsStraightPhotonPass::vtkCausticsStraightPhotonPass()
 {
   this->Internal->Program->SetName("straight photon transport");
   this->Internal->Program->SetComputeSource(vtkCausticsStraightPhotonPassCS);
+  this->SetSpecularShadows(true); // its photons replace the light the specular actors block
 }
 
 vtkCausticsStraightPhotonPass::~vtkCausticsStraightPhotonPass() = default;

@@ -73,6 +73,15 @@ struct Light
   Vec3 radiometric{ { 1, 1, 1 } }; ///< W/m^2 (directional) or W/sr (point/spot), per channel
   double cosOuter = -1.0;          ///< spot: cos of the outer cone half-angle
   double cosInner = 1.0;           ///< spot: cos of the inner cone half-angle (full intensity)
+  /**
+   * How VTK's own shading falls off for this light (vtkLight's attenuation values,
+   * spot exponent and cone angle in degrees; a cone of 90 or more is no spot). The
+   * composite removes that shading where reflectors and refractors block the light,
+   * whatever falloff the user gave VTK; the caustics use the physical one above.
+   */
+  Vec3 shadingAttenuation{ { 1, 0, 0 } };
+  double shadingExponent = 1.0;
+  double shadingConeAngle = 180.0;
 
   /** Spot falloff of glTF KHR_lights_punctual (1 inside the inner cone, 0 outside the outer). */
   double SpotFactor(double cosAngle) const;

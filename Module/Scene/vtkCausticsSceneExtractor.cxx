@@ -384,6 +384,10 @@ caustics::Light DescribeLight(
     light.radiometric[c] = std::max(0.0, vtklight->GetIntensity() * color[c]);
   }
   SetLightType(vtklight, innerConeKey, light);
+  const double* attenuation = vtklight->GetAttenuationValues();
+  light.shadingAttenuation = { { attenuation[0], attenuation[1], attenuation[2] } };
+  light.shadingExponent = vtklight->GetExponent();
+  light.shadingConeAngle = vtklight->GetConeAngle();
   return light;
 }
 

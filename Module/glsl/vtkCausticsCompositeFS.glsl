@@ -5,6 +5,9 @@
 // (same depth), so props drawn by VTK alone are never painted over. A technique
 // may replace VTK's colour where its own colour has alpha 1 (e.g. refractors
 // seen through traced refraction), and add volume radiance (pi x, like surfaces).
+// VTK shades receivers without shadows: where reflectors and refractors block the
+// light (which they pass on as the caustic), that part of VTK's diffuse shading is
+// taken off first (specularShadow, per unit albedo).
 in vec2 texCoord;
 
 uniform sampler2D delegateColor;
@@ -15,6 +18,8 @@ uniform sampler2D gDepth;
 uniform sampler2D causticIrradiance;
 uniform sampler2D volumeRadiance;
 uniform sampler2D techniqueColor;
+uniform sampler2D specularShadow;
+uniform int hasSpecularShadow;
 uniform int hasCaustics;
 uniform int hasVolume;
 uniform int hasTechniqueColor;
@@ -40,8 +45,13 @@ void main()
     float surfaceDepth = texture(gDepth, texCoord).r;
     if (role == ROLE_RECEIVER && abs(surfaceDepth - depth) <= depthTolerance)
     {
+      vec3 albedo = texture(gAlbedo, texCoord).rgb;
+      if (hasSpecularShadow != 0)
+      {
+        color.rgb = max(color.rgb - albedo * texture(specularShadow, texCoord).rgb, vec3(0.0));
+      }
       vec3 irradiance = texture(causticIrradiance, texCoord).rgb;
-      color.rgb += texture(gAlbedo, texCoord).rgb * max(irradiance, vec3(0.0));
+      color.rgb += albedo * max(irradiance, vec3(0.0));
     }
   }
   if (hasVolume != 0)

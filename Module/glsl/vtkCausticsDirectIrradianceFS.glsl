@@ -4,11 +4,16 @@
 // scene): a point is lit when no surface lies between it and the light, tested
 // with 2x2 bilinear percentage-closer filtering and a bias of about two texels,
 // attenuated by the participating medium, if any.
+//
+// Its second output is the part of VTK's own diffuse shading (vtkLight's falloff,
+// no medium) that reflectors and refractors block: the light they pass on is the
+// caustic, so the composite takes this much of VTK's unshadowed colour away.
 in vec2 texCoord;
 
 uniform sampler2D gPosition; // camera G-buffer: world position, w = material (-1: none)
 uniform sampler2D gNormal;   // world normal, w = role
 uniform sampler2D shadowPosition; // light view: world position, w = material (-1: none)
+uniform sampler2D shadowNormal;   // light view: world normal, w = role
 uniform mat4 lightWorldToClip;
 uniform vec3 cameraPosition;
 uniform int cameraParallel;
@@ -21,8 +26,13 @@ uniform vec3 radiometric;
 uniform float cosOuter;
 uniform float cosInner;
 uniform float texelWorldSize; // size of a shadow texel at unit distance (persp) or absolute (ortho)
+// VTK's falloff of this light (Light.shadingAttenuation etc. in vtkCausticsSceneData.h).
+uniform vec3 shadingAttenuation;
+uniform float shadingExponent;
+uniform float shadingConeAngle; // degrees
 
 layout(location = 0) out vec4 outIrradiance;
+layout(location = 1) out vec4 outSpecularShadow;
 
 float SpotFactor(vec3 direction)
 {
@@ -35,13 +45,42 @@ float LightDistance(vec3 p)
   return lightType == 0 ? dot(p - lightPosition, lightDirection) : length(p - lightPosition);
 }
 
+// VTK's Phong falloff (vtkOpenGLPolyDataMapper): 1 / (a0 + a1 d + a2 d^2) for
+// positional lights, times cos^exponent inside a spot cone under 90 degrees.
+float ShadingFalloff(vec3 p)
+{
+  if (lightType == 0)
+  {
+    return 1.0;
+  }
+  vec3 fromLight = p - lightPosition;
+  float distance = length(fromLight);
+  float denominator = dot(shadingAttenuation, vec3(1.0, distance, distance * distance));
+  float falloff = denominator > 0.0 && denominator < 3.0e38 ? 1.0 / denominator : 0.0;
+  if (shadingConeAngle < 90.0)
+  {
+    float coneDot = dot(fromLight / max(distance, 1e-30), lightDirection);
+    falloff = coneDot >= cos(radians(shadingConeAngle))
+      ? falloff * pow(max(coneDot, 0.0), shadingExponent)
+      : 0.0;
+  }
+  return falloff;
+}
+
+bool IsSpecular(ivec2 texelIndex)
+{
+  int role = int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
+  return role == ROLE_REFLECTOR || role == ROLE_REFRACTOR;
+}
+
 void main()
 {
+  outIrradiance = vec4(0.0);
+  outSpecularShadow = vec4(0.0);
   vec4 position = texture(gPosition, texCoord);
   vec4 normalRole = texture(gNormal, texCoord);
   if (position.w < 0.0 || int(normalRole.w + 0.5) != ROLE_RECEIVER)
   {
-    outIrradiance = vec4(0.0);
     return;
   }
   vec3 p = position.xyz;
@@ -66,15 +105,16 @@ void main()
     falloff = SpotFactor(-toLight) / distance2;
   }
   float cosine = dot(n, toLight);
-  if (cosine <= 0.0 || falloff <= 0.0)
+  float shading = ShadingFalloff(p);
+  if (cosine <= 0.0 || (falloff <= 0.0 && shading <= 0.0))
   {
-    outIrradiance = vec4(0.0);
     return;
   }
 
   vec4 clip = lightWorldToClip * vec4(p, 1.0);
   vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
   float visibility = 0.0;
+  float specularShadow = 0.0; // the part of the light that a reflector or refractor blocks
   if (clip.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))
   {
     float distance = LightDistance(p);
@@ -92,8 +132,15 @@ void main()
       {
         ivec2 texelIndex = clamp(ivec2(base) + ivec2(i, j), ivec2(0), ivec2(size) - 1);
         vec4 occluder = texelFetch(shadowPosition, texelIndex, 0);
-        float lit = (occluder.w < 0.0 || LightDistance(occluder.xyz) >= distance - bias) ? 1.0 : 0.0;
-        visibility += lit * (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+        float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+        if (occluder.w < 0.0 || LightDistance(occluder.xyz) >= distance - bias)
+        {
+          visibility += weight;
+        }
+        else if (IsSpecular(texelIndex))
+        {
+          specularShadow += weight;
+        }
       }
     }
   }
@@ -106,5 +153,6 @@ void main()
   // the reference's DirectIrradiance): to the light, or out of the box for a sun.
   vec3 transmitted = lightType == 0 ? CausticsMediumTransmittance(p, toLight, 0.0, 3.0e38)
                                     : CausticsMediumTransmittance(p, lightPosition - p, 0.0, 1.0);
-  outIrradiance = vec4(radiometric * transmitted * (cosine * falloff * visibility), 1.0);
+  outIrradiance = vec4(radiometric * transmitted * (cosine * max(falloff, 0.0) * visibility), 1.0);
+  outSpecularShadow = vec4(radiometric * (cosine * shading * specularShadow), 1.0);
 }
