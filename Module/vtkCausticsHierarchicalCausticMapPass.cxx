@@ -24,6 +24,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkCausticsHierarchicalCausticMapPass);
@@ -39,6 +41,10 @@ struct PerLight
   vtkNew<vtkCausticsCausticMap> Map;
   caustics::LightView MapView;
   bool Traced = false;
+  // Angle at which the light meets the receivers beyond the specular actors, and
+  // what it was computed for (the light and the meshes' versions).
+  double ReceiverIncidence = 90.0;
+  std::string IncidenceKey;
 
   void Release(vtkWindow* w)
   {
@@ -141,6 +147,59 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsHierarchicalCausticMapPass::GetCa
   return needs;
 }
 
+namespace
+{
+const double GrazingIncidence = vtkCausticsHierarchicalCausticMapPass::GRAZING_INCIDENCE;
+
+/** What ReceiverIncidenceAngle() depends on: the light and every mesh's version. */
+std::string IncidenceKey(const caustics::SceneData& scene, int index)
+{
+  const caustics::Light& light = scene.Lights[index];
+  std::ostringstream key;
+  key.precision(17);
+  key << static_cast<int>(light.type) << ' ' << light.position[0] << ' ' << light.position[1]
+      << ' ' << light.position[2] << ' ' << light.direction[0] << ' ' << light.direction[1] << ' '
+      << light.direction[2];
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    key << ' ' << mesh.version;
+  }
+  return key.str();
+}
+
+/**
+ * Warns, once per light and scene state, when a light meets the receivers beyond
+ * the specular actors at under GrazingIncidence degrees. A caustic map lives in the
+ * light's view: a receiver it sees edge-on has no texels to land on. On the ball
+ * lens, what it keeps of screen-space's caustic: 92 % at 8 degrees, 69 % at 5,
+ * 37 % at 2.9, 13 % at 0.6, nothing at 0.
+ */
+void CheckReceiverIncidence(
+  vtkObject* owner, const caustics::SceneData& scene, int index, PerLight& light)
+{
+  std::string key = IncidenceKey(scene, index);
+  if (key == light.IncidenceKey)
+  {
+    return;
+  }
+  light.IncidenceKey = std::move(key);
+  light.ReceiverIncidence = caustics::ReceiverIncidenceAngle(scene, index);
+  if (light.ReceiverIncidence >= 0.0 && light.ReceiverIncidence < GrazingIncidence)
+  {
+    std::ostringstream angle;
+    angle.precision(2);
+    angle << std::fixed << light.ReceiverIncidence;
+    vtkWarningWithObjectMacro(owner, << "light " << index
+                    << " meets the receivers beyond the reflectors and refractors at "
+                    << angle.str() << " degrees"
+                    << ": a caustic map cannot hold surfaces the light sees edge-on and loses "
+                       "most of this caustic (under "
+                    << GrazingIncidence << " degrees); the screen-space technique keeps it");
+  }
+}
+}
+
+
 void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow* renWin)
 {
   const caustics::SceneData& scene = *this->GetFrameInputs().Scene;
@@ -164,7 +223,18 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
       this->GetLightBuffers()->GetView(index).valid && light.MapView.valid && scene.HasSpecular &&
       caustics::LightReachesSpecular(scene.Lights[i], scene.SpecularBounds);
+    if (light.Traced)
+    {
+      CheckReceiverIncidence(this, scene, index, light);
+    }
   }
+}
+
+double vtkCausticsHierarchicalCausticMapPass::GetReceiverIncidence(int i) const
+{
+  const auto& lights = this->Internal->Lights;
+  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? lights[i]->ReceiverIncidence
+                                                                      : 90.0;
 }
 
 bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin)

@@ -215,6 +215,17 @@ public:
    */
   bool GetLightTraced(int i) const;
 
+  /**
+   * The angle in degrees at which light i meets the receivers beyond the reflectors
+   * and refractors (caustics::ReceiverIncidenceAngle: 90 head-on, 0 grazing). Under 8 degrees the caustic map cannot hold them and loses most of the
+   * caustic; the frame warns once (docs/technique-caustic-maps.md, Limits).
+   */
+  double GetReceiverIncidence(int i) const;
+#ifndef __VTK_WRAP__
+  /** Degrees under which GetReceiverIncidence() warns (and "best" avoids the technique). */
+  static constexpr double GRAZING_INCIDENCE = 8.0;
+#endif
+
 #ifndef __VTK_WRAP__
   /** Per-frame GPU counters of one light: the photon buffer's and the gather's. */
   struct Counters

@@ -137,6 +137,17 @@ std::string vtkCausticsTechniques::GetBestNameFor(vtkRenderer* renderer)
     }
     refractor = refractor || role == caustics::Role::Refractor;
   }
+  // A light that meets the receivers beyond the refractors nearly edge-on: the
+  // caustic map has no texels there (ball lens: 69 % of the caustic kept at 5
+  // degrees, none at 0).
+  for (int i = 0; refractor && i < static_cast<int>(scene.Lights.size()); ++i)
+  {
+    if (caustics::ReceiverIncidenceAngle(scene, i) <
+      vtkCausticsHierarchicalCausticMapPass::GRAZING_INCIDENCE)
+    {
+      return "screen-space";
+    }
+  }
   // Closed refractors alone (the ball lens: 1.9 % against 5.1 %, 8x faster; the
   // bunny: 11 % against 29 %): caustic maps.
   return refractor ? "caustic-maps" : GetBestName();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace caustics
 {
@@ -352,6 +353,139 @@ bool LightReachesSpecular(const Light& light, const double specularBounds[6])
   const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
   const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
   return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+}
+
+namespace
+{
+/** Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5). */
+double TriangleDistance2(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  auto sub = [](const Vec3& u, const Vec3& v) { return Vec3{ { u[0] - v[0], u[1] - v[1], u[2] - v[2] } }; };
+  auto along = [](const Vec3& o, const Vec3& d, double t) {
+    return Vec3{ { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] } };
+  };
+  auto distance2 = [&sub](const Vec3& u, const Vec3& v) { const Vec3 d = sub(u, v); return Dot(d, d); };
+  const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0)
+  {
+    return distance2(p, a);
+  }
+  const Vec3 bp = sub(p, b);
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3)
+  {
+    return distance2(p, b);
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+  {
+    return distance2(p, along(a, ab, d1 / (d1 - d3)));
+  }
+  const Vec3 cp = sub(p, c);
+  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6)
+  {
+    return distance2(p, c);
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+  {
+    return distance2(p, along(a, ac, d2 / (d2 - d6)));
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+  {
+    return distance2(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  const Vec3 q = along(along(a, ab, vb * denominator), ac, vc * denominator);
+  return distance2(p, q);
+}
+}
+
+double ReceiverIncidenceAngle(const SceneData& scene, int index)
+{
+  if (!scene.HasSpecular || index < 0 || index >= static_cast<int>(scene.Lights.size()))
+  {
+    return 90.0;
+  }
+  const Light& light = scene.Lights[index];
+  const double* sb = scene.SpecularBounds;
+  const Vec3 origin{ { 0.5 * (sb[0] + sb[1]), 0.5 * (sb[2] + sb[3]), 0.5 * (sb[4] + sb[5]) } };
+  Vec3 direction = light.direction;
+  if (light.type != Light::Type::Directional)
+  {
+    const Vec3 away{ { origin[0] - light.position[0], origin[1] - light.position[1],
+      origin[2] - light.position[2] } };
+    const double length = std::sqrt(Dot(away, away));
+    if (!(length > 1e-9 * std::max(1.0, scene.Scale())))
+    {
+      return 90.0; // at the centre: light leaves towards every side
+    }
+    direction = Vec3{ { away[0] / length, away[1] / length, away[2] / length } };
+  }
+  // The receiver the light's central ray meets first past the specular centre, or
+  // failing that (the ray runs past every receiver: a grazing sun beyond the floor's
+  // edge) the receiver nearest to that centre.
+  double nearestHit = std::numeric_limits<double>::infinity();
+  double nearestDistance2 = std::numeric_limits<double>::infinity();
+  double hitSine = -1.0, nearestSine = -1.0;
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    if (scene.Materials[mesh.material].role != Role::Receiver)
+    {
+      continue;
+    }
+    const std::vector<float>& p = mesh.positions;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+    {
+      const std::size_t i0 = 3 * std::size_t{ mesh.indices[t] };
+      const std::size_t i1 = 3 * std::size_t{ mesh.indices[t + 1] };
+      const std::size_t i2 = 3 * std::size_t{ mesh.indices[t + 2] };
+      if (std::max(i0, std::max(i1, i2)) + 2 >= p.size())
+      {
+        continue;
+      }
+      const Vec3 a{ { p[i0], p[i0 + 1], p[i0 + 2] } };
+      const Vec3 b{ { p[i1], p[i1 + 1], p[i1 + 2] } };
+      const Vec3 c{ { p[i2], p[i2 + 1], p[i2 + 2] } };
+      const Vec3 e1{ { b[0] - a[0], b[1] - a[1], b[2] - a[2] } };
+      const Vec3 e2{ { c[0] - a[0], c[1] - a[1], c[2] - a[2] } };
+      const Vec3 normal = Cross(e1, e2);
+      const double area2 = std::sqrt(Dot(normal, normal));
+      if (!(area2 > 0.0) || !std::isfinite(area2))
+      {
+        continue; // degenerate or NaN: no surface to meet
+      }
+      const double sine = std::abs(Dot(normal, direction)) / area2;
+      const double distance2 = TriangleDistance2(origin, a, b, c);
+      if (distance2 < nearestDistance2)
+      {
+        nearestDistance2 = distance2;
+        nearestSine = sine;
+      }
+      // Moller-Trumbore; a ray in the triangle's plane misses it.
+      const Vec3 q = Cross(direction, e2);
+      const double det = Dot(e1, q);
+      if (!(std::abs(det) > 1e-12 * area2))
+      {
+        continue;
+      }
+      const Vec3 toOrigin{ { origin[0] - a[0], origin[1] - a[1], origin[2] - a[2] } };
+      const double u = Dot(toOrigin, q) / det;
+      const Vec3 r = Cross(toOrigin, e1);
+      const double v = Dot(direction, r) / det;
+      const double distance = Dot(e2, r) / det;
+      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && distance > 0.0 && distance < nearestHit)
+      {
+        nearestHit = distance;
+        hitSine = sine;
+      }
+    }
+  }
+  const double sine = hitSine >= 0.0 ? hitSine : nearestSine;
+  return sine < 0.0 ? -1.0 : std::asin(std::min(1.0, sine)) * 180.0 / 3.14159265358979323846;
 }
 
 double SceneData::Scale() const

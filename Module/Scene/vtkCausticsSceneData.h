@@ -179,6 +179,19 @@ struct SceneData
  * SceneData::HasSpecular first.
  */
 bool LightReachesSpecular(const Light& light, const double specularBounds[6]);
+
+/**
+ * The angle in degrees at which light `index` meets the receivers beyond its
+ * specular actors: the light's ray through the centre of SceneData::SpecularBounds
+ * is followed past that centre to the first receiver triangle (or, when it meets
+ * none, e.g. a sun parallel to the floor, the receiver triangle nearest to that
+ * centre is taken), and the angle between the ray and that surface is returned
+ * (90: head-on, 0: grazing). -1 when the scene has no receiver, 90 when it has no
+ * specular actor or the light sits at their centre. A CPU scan of
+ * the receivers' triangles; techniques that store caustics in the light's view
+ * (caustic maps) lose what lands on surfaces the light sees edge-on.
+ */
+double ReceiverIncidenceAngle(const SceneData& scene, int index);
 }
 
 #endif

@@ -16,6 +16,8 @@
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkCommand.h"
+#include "vtkTestErrorObserver.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -156,6 +158,32 @@ TEST(Stress, GrazingLight)
   f.Render();
   const auto c = CheckFrame(f, "grazing light");
   EXPECT_GT(c.Photons, 0);
+}
+
+TEST(Stress, GrazingLightIsReported)
+{
+  // A sun exactly parallel to the floor: the photons that the ball bends down
+  // land on a floor the caustic map sees edge-on, and nothing is drawn
+  // (screen-space draws them). The frame stays finite and says so, once.
+  Frame f("ball-lens", 128);
+  ReplaceLight(f.Renderer, Directional(1.0, 0.0, 0.0));
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  f.Pass->GlobalWarningDisplayOn();
+  f.Pass->AddObserver(vtkCommand::WarningEvent, warnings);
+  f.Render();
+  CheckFrame(f, "light parallel to the floor");
+  EXPECT_NEAR(f.Pass->GetReceiverIncidence(0), 0.0, 1e-6);
+  EXPECT_NE(warnings->GetWarningMessage().find("at 0.00 degrees"), std::string::npos)
+    << warnings->GetWarningMessage();
+  warnings->Clear();
+  f.Render(); // the same scene: no second warning
+  EXPECT_FALSE(warnings->GetWarning());
+  // 30 degrees above the floor: no warning.
+  const double e = M_PI / 6.0;
+  ReplaceLight(f.Renderer, Directional(std::cos(e), -std::sin(e), 0.0));
+  f.Render();
+  EXPECT_NEAR(f.Pass->GetReceiverIncidence(0), 30.0, 1e-6);
+  EXPECT_FALSE(warnings->GetWarning()) << warnings->GetWarningMessage();
 }
 
 TEST(Stress, TotalInternalReflectionOnly)

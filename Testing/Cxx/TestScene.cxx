@@ -13,6 +13,7 @@
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -398,4 +399,54 @@ TEST(Techniques, BestFollowsTheScenesFeatures)
   renderer->AddActor(glass);
   EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), "screen-space");
   EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(nullptr), vtkCausticsTechniques::GetBestName());
+}
+
+namespace
+{
+/** The ball lens with its sun travelling along (x, y, z). */
+void AimBallLensSun(vtkRenderer* renderer, double x, double y, double z)
+{
+  vtkLight* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  ASSERT_NE(sun, nullptr);
+  sun->SetFocalPoint(0.0, 0.0, 0.0);
+  sun->SetPosition(-x, -y, -z);
+}
+}
+
+// The angle at which a light meets the receivers beyond the specular actors
+// (caustics::ReceiverIncidenceAngle), and "best" leaving caustic maps when it is
+// grazing: their map, in the light's view, cannot hold a floor seen edge-on.
+TEST(Techniques, GrazingLightLeavesCausticMaps)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  ASSERT_TRUE(scene->Populate(renderer));
+  struct Case
+  {
+    double elevation; // degrees above the floor
+    double expected;  // ReceiverIncidenceAngle
+    const char* best;
+  };
+  for (const Case& c : { Case{ 90.0, 90.0, "caustic-maps" }, Case{ 30.0, 30.0, "caustic-maps" },
+         Case{ 8.5, 8.5, "caustic-maps" }, Case{ 5.0, 5.0, "screen-space" },
+         Case{ 0.0, 0.0, "screen-space" } })
+  {
+    const double e = vtkMath::RadiansFromDegrees(c.elevation);
+    AimBallLensSun(renderer, std::cos(e), -std::sin(e), 0.0);
+    vtkNew<vtkCausticsSceneExtractor> extractor;
+    ASSERT_TRUE(extractor->Update(renderer, 32, 32));
+    EXPECT_NEAR(caustics::ReceiverIncidenceAngle(extractor->GetScene(), 0), c.expected, 1e-6)
+      << c.elevation;
+    EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), c.best) << c.elevation;
+  }
+  // Beyond 8.5 degrees the sun's central ray runs past the floor's edge: the floor
+  // nearest to the ball is taken. A sun pointing up meets the floor from below,
+  // head-on (nothing is drawn there by any technique); a scene without specular
+  // actors: 90.
+  AimBallLensSun(renderer, 0.0, 1.0, 0.0);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 32, 32));
+  EXPECT_NEAR(caustics::ReceiverIncidenceAngle(extractor->GetScene(), 0), 90.0, 1e-6);
+  caustics::SceneData empty;
+  EXPECT_DOUBLE_EQ(caustics::ReceiverIncidenceAngle(empty, 0), 90.0);
 }
