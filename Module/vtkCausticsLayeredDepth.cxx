@@ -350,7 +350,8 @@ bool vtkCausticsLayeredDepth::Internals::CountFragments(vtkOpenGLRenderWindow* r
   glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, this->Height);
   glNamedFramebufferParameteri(countFramebuffer, GL_FRAMEBUFFER_DEFAULT_LAYERS, 0);
   state->vtkglBindFramebuffer(GL_FRAMEBUFFER, countFramebuffer);
-  glNamedFramebufferDrawBuffer(countFramebuffer, GL_NONE);
+  // Through the state cache: VTK 9.2 checks the bound framebuffer's draw buffer.
+  state->vtkglDrawBuffer(GL_NONE);
   state->vtkglDisable(GL_DEPTH_TEST);
   const bool ok = this->CountProgram->Bind(renWin);
   if (ok)

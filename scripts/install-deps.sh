@@ -4,6 +4,14 @@
 #
 #   scripts/install-deps.sh          the build, the renders and the tests
 #   scripts/install-deps.sh fuzz     also clang and libFuzzer (scripts/fuzz.sh)
+#   scripts/install-deps.sh paraview also ParaView 5.11 (paraview-dev, which brings
+#                                    paraview and pvbatch) for the ParaView plugin
+#                                    (scripts/build-paraview-plugin.sh)
+#
+# Never python3-paraview: it Conflicts with python3-vtk9, on which libvtk9-dev (the
+# main build's VTK 9.1) depends, so installing it would remove the main build's VTK.
+# scripts/build-paraview-plugin.sh unpacks it into the build folder instead
+# (docs/paraview.md). apt runs with --no-remove: it stops rather than remove a package.
 set -euo pipefail
 
 packages=(
@@ -20,7 +28,8 @@ packages=(
 case "${1:-}" in
   "") ;;
   fuzz) packages+=(clang libclang-rt-14-dev) ;; # libFuzzer with ASan and UBSan
-  *) echo "install-deps: unknown group '$1' (known: fuzz)" >&2; exit 2 ;;
+  paraview) packages+=(paraview-dev) ;;         # ParaView 5.11 and its bundled VTK 9.2
+  *) echo "install-deps: unknown group '$1' (known: fuzz, paraview)" >&2; exit 2 ;;
 esac
 
 missing=()
@@ -40,4 +49,5 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 echo "install-deps: installing ${missing[*]}"
 $sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends --no-remove \
+  "${missing[@]}"
