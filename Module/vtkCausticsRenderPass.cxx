@@ -229,7 +229,7 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
-  vtkNew<vtkTextureObject> SpecularShadowTexture;
+  vtkNew<vtkTextureObject> LostShadingTexture;
   vtkNew<vtkOpenGLFramebufferObject> DirectFramebuffer;
   vtkNew<vtkTextureObject> VolumeTexture;         // RGBA32F, W/(m^2 sr)
   vtkNew<vtkTextureObject> TechniqueColorTexture; // RGBA32F, display colour, a = 1: replace
@@ -763,6 +763,11 @@ bool vtkCausticsRenderPass::RenderCaustics()
   return ok;
 }
 
+bool vtkCausticsRenderPass::CorrectsVTKShading() const
+{
+  return this->SpecularShadows || this->Frame.Scene->Participating.enabled;
+}
+
 bool vtkCausticsRenderPass::EnsureDirectIrradiance(const char* stage)
 {
   if (!this->Result.Direct)
@@ -806,7 +811,7 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   }
   // The light that reflectors and refractors pass on is the caustic: VTK's direct
   // light where they block it comes off in the composite.
-  if (this->ComputeDirectIrradiance || (this->Result.Caustics && this->SpecularShadows))
+  if (this->ComputeDirectIrradiance || (this->Result.Caustics && this->CorrectsVTKShading()))
   {
     this->EnsureDirectIrradiance("direct irradiance");
   }
@@ -886,10 +891,10 @@ bool vtkCausticsRenderPass::RenderDirectIrradiance()
   bool resized =
     caustics::gl::EnsureTexture(in.DirectTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
   resized |= caustics::gl::EnsureTexture(
-    in.SpecularShadowTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
+    in.LostShadingTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
   state->PushFramebufferBindings();
   BindAndClear(
-    in.DirectFramebuffer, { in.DirectTexture, in.SpecularShadowTexture }, f.Window, resized);
+    in.DirectFramebuffer, { in.DirectTexture, in.LostShadingTexture }, f.Window, resized);
   vtkOpenGLState::ScopedglViewport viewport(state);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
@@ -980,6 +985,7 @@ void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
   const double exponent = std::isfinite(light.shadingExponent) ? light.shadingExponent : 1.0;
   program->SetUniformf("shadingExponent", static_cast<float>(exponent));
   program->SetUniformf("shadingConeAngle", static_cast<float>(light.shadingConeAngle));
+  program->SetUniformi("specularShadows", this->SpecularShadows ? 1 : 0);
   program->SetUniformf(
     "texelWorldSize", static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
 }
@@ -996,17 +1002,18 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   vtkTextureObject* textures[] = { in.DelegateColorTexture, in.DelegateDepthTexture,
     f.CameraGBuffer->GetNormalTexture(), f.CameraGBuffer->GetAlbedoTexture(),
     f.CameraGBuffer->GetDepthTexture(), in.CausticTexture, in.VolumeTexture,
-    in.TechniqueColorTexture, in.SpecularShadowTexture };
+    in.TechniqueColorTexture, in.LostShadingTexture };
   const char* names[] = { "delegateColor", "delegateDepth", "gNormal", "gAlbedo", "gDepth",
-    "causticIrradiance", "volumeRadiance", "techniqueColor", "specularShadow" };
+    "causticIrradiance", "volumeRadiance", "techniqueColor", "lostShading" };
   const bool hasCaustics = this->Result.Caustics;
   const bool hasVolume = hasCaustics && this->Result.Volume;
   const bool hasTechniqueColor = hasCaustics && this->Result.TechniqueColor;
-  const bool hasSpecularShadow = hasCaustics && this->SpecularShadows && this->Result.Direct;
+  const bool hasLostShading = hasCaustics && this->CorrectsVTKShading() && this->Result.Direct;
+  const bool hasMedium = hasCaustics && f.Scene->Participating.enabled;
   for (int i = 0; i < 9; ++i)
   {
     const bool used = i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6) ||
-      (hasTechniqueColor && i == 7) || (hasSpecularShadow && i == 8);
+      (hasTechniqueColor && i == 7) || (hasLostShading && i == 8);
     if (used)
     {
       textures[i]->Activate();
@@ -1016,7 +1023,15 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   program->SetUniformi("hasCaustics", hasCaustics ? 1 : 0);
   program->SetUniformi("hasVolume", hasVolume ? 1 : 0);
   program->SetUniformi("hasTechniqueColor", hasTechniqueColor ? 1 : 0);
-  program->SetUniformi("hasSpecularShadow", hasSpecularShadow ? 1 : 0);
+  program->SetUniformi("hasLostShading", hasLostShading ? 1 : 0);
+  program->SetUniformi("hasMedium", hasMedium ? 1 : 0);
+  if (hasMedium)
+  {
+    float clipToWorld[16];
+    caustics::gl::ToColumnMajor(f.Scene->View.clipToWorld, clipToWorld);
+    program->SetUniformMatrix4("clipToWorld", clipToWorld);
+    caustics::gl::SetMediumUniforms(program, *f.Scene);
+  }
   // The two depth buffers come from the same triangles and matrix; allow float noise.
   program->SetUniformf("depthTolerance", 2e-6f);
   this->DrawComposite(toFinalTexture);
@@ -1086,8 +1101,8 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
       caustics },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
-    { "SpecularShadow", 3, false,
-      [](Pass* p, int) { return p->Internal->SpecularShadowTexture.Get(); },
+    { "LostShading", 3, false,
+      [](Pass* p, int) { return p->Internal->LostShadingTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
     { "VolumeRadiance", 3, false, [](Pass* p, int) { return p->Internal->VolumeTexture.Get(); },
       [](Pass* p) { return p->Result.Caustics && p->Result.Volume; } },
@@ -1221,7 +1236,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.RefractorLayers->ReleaseGraphicsResources(w);
   in.Refraction->ReleaseGraphicsResources(w);
   vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture,
-    in.SpecularShadowTexture, in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
+    in.LostShadingTexture, in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
   {
     texture->ReleaseGraphicsResources(w);

@@ -120,8 +120,10 @@ public:
    * Reflectors and refractors cast shadows on VTK's colour. VTK shades receivers as
    * if direct light went through glass and mirrors; the light they pass on arrives
    * as the caustic, so with caustics the composite takes off the part of VTK's
-   * diffuse shading they block (ReadBuffer("SpecularShadow"), with VTK's own light
-   * falloff, from the direct irradiance's shadow maps). Off: VTK's colour plus the
+   * diffuse shading they block (part of ReadBuffer("LostShading"), with VTK's own
+   * light falloff, from the direct irradiance's shadow maps). With a medium
+   * (vtkCausticsMedium), what it takes between the light and the surface comes off
+   * too, and every surface is dimmed by the medium towards the camera. Off: VTK's colour plus the
    * caustic, which counts the light through glass twice. On in the techniques that
    * carry light through reflectors and refractors (they set it in their
    * constructors); off in this base pass ("none"), whose caustic is zero.
@@ -359,6 +361,9 @@ protected:
 
   /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
+
+  /** Whether the composite takes light off VTK's shading (SpecularShadows or a medium). */
+  bool CorrectsVTKShading() const;
 
   /**
    * For techniques that need the direct irradiance this frame: runs the direct

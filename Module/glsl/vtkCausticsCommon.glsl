@@ -76,8 +76,8 @@ uniform vec3 causticsSigmaT;     // extinction, 1/m
 uniform vec3 causticsMediumLow;  // the scene's bounds (m)
 uniform vec3 causticsMediumHigh;
 
-// The medium's transmittance along o + t d, t in [t0, t1] (d need not be unit: t
-// then scales with it); 1 without a medium or outside its box.
+// The medium's transmittance along o + t d, t in [t0, t1] (d need not be unit: the
+// distance is (t1 - t0) |d|); 1 without a medium or outside its box.
 vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
 {
   if (causticsMediumOn == 0 ||
@@ -85,7 +85,7 @@ vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
   {
     return vec3(1.0);
   }
-  return CausticsTransmittance(causticsSigmaT, t1 - t0);
+  return CausticsTransmittance(causticsSigmaT, (t1 - t0) * length(d));
 }
 
 // One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).

@@ -5,9 +5,11 @@
 // (same depth), so props drawn by VTK alone are never painted over. A technique
 // may replace VTK's colour where its own colour has alpha 1 (e.g. refractors
 // seen through traced refraction), and add volume radiance (pi x, like surfaces).
-// VTK shades receivers without shadows: where reflectors and refractors block the
-// light (which they pass on as the caustic), that part of VTK's diffuse shading is
-// taken off first (specularShadow, per unit albedo).
+// VTK shades receivers without shadows and without the medium: where reflectors and
+// refractors block the light (which they pass on as the caustic) or the medium
+// takes it on its way from the light, that part of VTK's diffuse shading is taken
+// off first (lostShading, per unit albedo). With a medium, every surface is then
+// dimmed by its transmittance towards the camera (the volume radiance already is).
 in vec2 texCoord;
 
 uniform sampler2D delegateColor;
@@ -18,8 +20,10 @@ uniform sampler2D gDepth;
 uniform sampler2D causticIrradiance;
 uniform sampler2D volumeRadiance;
 uniform sampler2D techniqueColor;
-uniform sampler2D specularShadow;
-uniform int hasSpecularShadow;
+uniform sampler2D lostShading;
+uniform int hasLostShading;
+uniform int hasMedium;    // dim surfaces by the medium towards the camera
+uniform mat4 clipToWorld; // the camera's
 uniform int hasCaustics;
 uniform int hasVolume;
 uniform int hasTechniqueColor;
@@ -46,13 +50,21 @@ void main()
     if (role == ROLE_RECEIVER && abs(surfaceDepth - depth) <= depthTolerance)
     {
       vec3 albedo = texture(gAlbedo, texCoord).rgb;
-      if (hasSpecularShadow != 0)
+      if (hasLostShading != 0)
       {
-        color.rgb = max(color.rgb - albedo * texture(specularShadow, texCoord).rgb, vec3(0.0));
+        color.rgb = max(color.rgb - albedo * texture(lostShading, texCoord).rgb, vec3(0.0));
       }
       vec3 irradiance = texture(causticIrradiance, texCoord).rgb;
       color.rgb += albedo * max(irradiance, vec3(0.0));
     }
+  }
+  if (hasMedium != 0 && depth < 1.0)
+  {
+    vec2 ndc = 2.0 * texCoord - 1.0;
+    vec4 near = clipToWorld * vec4(ndc, -1.0, 1.0);
+    vec4 surface = clipToWorld * vec4(ndc, 2.0 * depth - 1.0, 1.0);
+    vec3 from = near.xyz / near.w;
+    color.rgb *= CausticsMediumTransmittance(from, surface.xyz / surface.w - from, 0.0, 1.0);
   }
   if (hasVolume != 0)
   {

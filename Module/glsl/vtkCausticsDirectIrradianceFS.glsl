@@ -5,9 +5,10 @@
 // with 2x2 bilinear percentage-closer filtering and a bias of about two texels,
 // attenuated by the participating medium, if any.
 //
-// Its second output is the part of VTK's own diffuse shading (vtkLight's falloff,
-// no medium) that reflectors and refractors block: the light they pass on is the
-// caustic, so the composite takes this much of VTK's unshadowed colour away.
+// Its second output is the part of VTK's own diffuse shading (vtkLight's falloff)
+// that does not arrive: blocked by reflectors and refractors (specularShadows: the
+// light they pass on is the caustic) or taken by the medium on the way from the
+// light. The composite takes that much of VTK's colour away.
 in vec2 texCoord;
 
 uniform sampler2D gPosition; // camera G-buffer: world position, w = material (-1: none)
@@ -30,9 +31,10 @@ uniform float texelWorldSize; // size of a shadow texel at unit distance (persp)
 uniform vec3 shadingAttenuation;
 uniform float shadingExponent;
 uniform float shadingConeAngle; // degrees
+uniform int specularShadows;    // 1: reflectors and refractors shadow VTK's shading
 
 layout(location = 0) out vec4 outIrradiance;
-layout(location = 1) out vec4 outSpecularShadow;
+layout(location = 1) out vec4 outLostShading;
 
 float SpotFactor(vec3 direction)
 {
@@ -76,7 +78,7 @@ bool IsSpecular(ivec2 texelIndex)
 void main()
 {
   outIrradiance = vec4(0.0);
-  outSpecularShadow = vec4(0.0);
+  outLostShading = vec4(0.0);
   vec4 position = texture(gPosition, texCoord);
   vec4 normalRole = texture(gNormal, texCoord);
   if (position.w < 0.0 || int(normalRole.w + 0.5) != ROLE_RECEIVER)
@@ -154,5 +156,7 @@ void main()
   vec3 transmitted = lightType == 0 ? CausticsMediumTransmittance(p, toLight, 0.0, 3.0e38)
                                     : CausticsMediumTransmittance(p, lightPosition - p, 0.0, 1.0);
   outIrradiance = vec4(radiometric * transmitted * (cosine * max(falloff, 0.0) * visibility), 1.0);
-  outSpecularShadow = vec4(radiometric * (cosine * shading * specularShadow), 1.0);
+  float blocked = specularShadows != 0 ? specularShadow : 0.0;
+  vec3 kept = (1.0 - blocked) * transmitted;
+  outLostShading = vec4(radiometric * (cosine * shading) * (vec3(1.0) - kept), 1.0);
 }
