@@ -249,6 +249,7 @@ struct vtkCausticsRenderPass::Internals
   double LimitsBudget = -1.0;
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
+  std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -851,6 +852,10 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   const bool sceneOk = this->PrepareScene(renderer);
   this->StopStage("scene snapshot");
   const bool caustics = sceneOk && this->NeedsCaustics(this->Frame);
+  if (caustics)
+  {
+    this->CheckSceneScale();
+  }
   const bool buffers = caustics || extraOutputs;
   if (!sceneOk || !buffers || !this->SupportsCaustics(this->Frame.Window, buffers))
   {
@@ -859,6 +864,43 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   }
   this->RenderFrame(s, caustics && this->FitsTheDevice());
   vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+double vtkCausticsRenderPass::GetLastSceneScaleRatio()
+{
+  const caustics::SceneData& scene = *this->Frame.Scene;
+  if (!scene.HasSpecular)
+  {
+    return 0.0;
+  }
+  const double* b = scene.SpecularBounds;
+  const double specular = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  return specular > 0.0 ? scene.Scale() / specular : 0.0;
+}
+
+void vtkCausticsRenderPass::CheckSceneScale()
+{
+  const double limit = this->GetSceneScaleLimit();
+  const double ratio = this->GetLastSceneScaleRatio();
+  if (!(limit > 0.0) || !(ratio > limit))
+  {
+    this->Internal->ReportedScaleWarning.clear();
+    return;
+  }
+  std::ostringstream text;
+  text.precision(3);
+  text << "the scene is " << ratio << " times the size of its reflectors and refractors ("
+       << this->Frame.Scene->Scale() << " m against " << this->Frame.Scene->Scale() / ratio
+       << " m, bounding-box diagonals); this technique's caustics lose detail beyond "
+       << limit << " times (its resolution follows the whole scene: a far-away actor "
+       << "stretches it)";
+  // Once per state, not every frame.
+  if (text.str() != this->Internal->ReportedScaleWarning)
+  {
+    this->Internal->ReportedScaleWarning = text.str();
+    vtkWarningMacro(<< text.str());
+  }
 }
 
 bool vtkCausticsRenderPass::FitsTheDevice()

@@ -150,6 +150,12 @@ public:
   double GetRoughnessCutoff();
   ///@}
 
+  /**
+   * The last snapshot's scene size over its reflectors' and refractors' (bounding
+   * box diagonals; 0 without specular actors). See GetSceneScaleLimit().
+   */
+  double GetLastSceneScaleRatio();
+
   /** Per-stage GPU and CPU times of the last frames. */
   vtkCausticsTimings* GetTimings();
 
@@ -359,6 +365,14 @@ protected:
    */
   virtual double GetViewTolerance(double sceneScale);
 
+  /**
+   * How many times larger than its reflectors and refractors (bounding-box
+   * diagonals) a scene may be before the technique's caustics lose detail, since
+   * its resolution follows the whole scene's size (a far-away actor stretches it).
+   * Beyond it, a frame warns once. 0: no limit (the base pass draws no caustic).
+   */
+  virtual double GetSceneScaleLimit() { return 0.0; }
+
   /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
 
@@ -401,6 +415,7 @@ private:
   bool RenderCaustics();
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
+  void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
   bool RenderDirectIrradiance();
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);
