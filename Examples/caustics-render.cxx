@@ -17,6 +17,7 @@
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTechniques.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsWindowFactory.h"
@@ -304,6 +305,16 @@ void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std
             << ", " << options.Width << "x" << options.Height << ", window " << how << ", "
             << scene.Meshes.size() << " meshes, " << scene.Lights.size() << " light(s)"
             << (pass->GetLastFrameHadCaustics() ? "" : " (no caustic stage needed)") << "\n";
+  auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass);
+  if (screenSpace && pass->GetLastFrameHadCaustics())
+  {
+    std::cout << "caustics-render: photons traced in "
+              << (screenSpace->GetLastTraceViewFitted()
+                     ? "a fitted view around the reflectors and refractors (one is outside "
+                       "the camera's view, or --trace-view fitted)"
+                     : "the camera's view")
+              << "\n";
+  }
   std::cout << "wrote " << options.Output << ".png and " << options.Output << ".exr\n";
 }
 
