@@ -7,6 +7,7 @@
 #ifndef CausticsCommandLine_h
 #define CausticsCommandLine_h
 
+#include "vtkCausticsTimings.h"
 #include "vtkCommand.h"
 #include "vtkLogger.h"
 #include "vtkNew.h"
@@ -331,6 +332,107 @@ private:
   Clock::time_point Start, Shown;
   int LastPercent = -1;
   int LastStep = 0;
+  std::size_t Width = 0;
+};
+
+/**
+ * Progress of GPU frames, from vtkCausticsTimings' ProgressEvent (the source given
+ * here is the pass's timings): nothing while a frame is under ShowAfter seconds;
+ * after that, on a terminal one rewritten line (frame, the stage just done, the
+ * time so far, and once a frame has finished the percentage and the time left),
+ * otherwise one line per stage. Call NextFrame() before each frame.
+ */
+class FrameProgress
+{
+public:
+  FrameProgress(
+    vtkCausticsTimings* timings, std::string label, int frames, std::ostream& out = std::cout)
+    : Source(timings)
+    , Label(std::move(label))
+    , Frames(frames)
+    , Out(out)
+    , Terminal(&out == &std::cout ? isatty(STDOUT_FILENO) != 0 : isatty(STDERR_FILENO) != 0)
+  {
+    this->Tag = timings->AddObserver(vtkCommand::ProgressEvent, this, &FrameProgress::OnProgress);
+  }
+  ~FrameProgress()
+  {
+    this->Source->RemoveObserver(this->Tag);
+    this->Erase();
+  }
+  FrameProgress(const FrameProgress&) = delete;
+  FrameProgress& operator=(const FrameProgress&) = delete;
+
+  void NextFrame()
+  {
+    ++this->Frame;
+    this->Start = Clock::now();
+  }
+  /** Seconds a frame runs before its progress shows (default 2). */
+  void SetShowAfter(double seconds) { this->ShowAfter = seconds; }
+  void SetTerminal(bool terminal) { this->Terminal = terminal; }
+
+private:
+  using Clock = std::chrono::steady_clock;
+
+  void OnProgress(vtkObject*, unsigned long, void* data)
+  {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - this->Start).count();
+    if (elapsed < this->ShowAfter)
+    {
+      return;
+    }
+    const double fraction = *static_cast<double*>(data);
+    std::ostringstream line;
+    line << this->Label << ": frame " << this->Frame << " of " << this->Frames;
+    if (fraction >= 1.0)
+    {
+      line << " done after " << FormatSeconds(elapsed);
+    }
+    else
+    {
+      line << ", " << this->Source->GetProgressStage() << " done after " << FormatSeconds(elapsed);
+      if (fraction > 0.0) // known once a frame has finished
+      {
+        line << ", " << static_cast<int>(100.0 * fraction) << " %, about "
+             << FormatSeconds(elapsed * (1.0 - fraction) / fraction) << " left";
+      }
+    }
+    if (this->Terminal)
+    {
+      std::string text = line.str();
+      const std::size_t width = text.size();
+      text.resize(std::max(width, this->Width), ' ');
+      this->Width = width;
+      this->Out << '\r' << text << std::flush;
+      if (fraction >= 1.0)
+      {
+        this->Out << '\n';
+        this->Width = 0;
+      }
+      return;
+    }
+    this->Out << line.str() << std::endl;
+  }
+
+  void Erase()
+  {
+    if (this->Terminal && this->Width > 0)
+    {
+      this->Out << '\r' << std::string(this->Width, ' ') << '\r' << std::flush;
+      this->Width = 0;
+    }
+  }
+
+  vtkCausticsTimings* Source;
+  unsigned long Tag = 0;
+  std::string Label;
+  int Frames;
+  int Frame = 0;
+  std::ostream& Out;
+  bool Terminal;
+  double ShowAfter = 2.0;
+  Clock::time_point Start = Clock::now();
   std::size_t Width = 0;
 };
 

@@ -233,9 +233,12 @@ StageTimes RenderFrames(
   const Options& options, vtkRenderWindow* window, vtkCausticsRenderPass* pass)
 {
   StageTimes times;
+  // Frames over 2 s say how far they are (issue 17).
+  caustics_cli::FrameProgress progress(pass->GetTimings(), "caustics-render", options.Frames);
   for (int frame = 0; frame < options.Frames; ++frame)
   {
     const auto start = std::chrono::steady_clock::now();
+    progress.NextFrame();
     window->Render();
     times.Frames.push_back(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

@@ -1,5 +1,6 @@
 #include "vtkCausticsTimings.h"
 
+#include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderTimer.h"
 
@@ -59,6 +60,10 @@ struct Segment
 
 struct vtkCausticsTimings::Internals
 {
+  Clock::time_point FrameStart = Clock::now();
+  double LastFrameMilliseconds = -1.0;
+  std::string ProgressStage;
+
   std::vector<Stage> Stages;
   // Work counting: the counted stages open now (outermost first), the pool of
   // segments (reused from frame to frame) and how many this frame used.
@@ -224,6 +229,8 @@ vtkCausticsTimings::~vtkCausticsTimings() = default;
 
 void vtkCausticsTimings::BeginFrame()
 {
+  this->Internal->FrameStart = Clock::now();
+  this->Internal->ProgressStage.clear();
   if (this->Internal->UsedSegments > 0 || this->Internal->SegmentActive)
   {
     this->Internal->CollectWork(); // a frame that did not reach EndFrame()
@@ -285,10 +292,38 @@ void vtkCausticsTimings::StopStage(const char* name)
     stage.Pending[stage.Current] = true;
   }
   stage.CPU = std::chrono::duration<double, std::milli>(Clock::now() - stage.CPUStart).count();
+  if (this->HasObserver(vtkCommand::ProgressEvent))
+  {
+    glFinish(); // the stage's work is done, not only issued
+    this->Internal->ProgressStage = name;
+    const double last = this->Internal->LastFrameMilliseconds;
+    const double elapsed =
+      std::chrono::duration<double, std::milli>(Clock::now() - this->Internal->FrameStart).count();
+    double fraction = last > 0.0 ? std::min(0.99, elapsed / last) : -1.0;
+    this->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+  }
+}
+
+const char* vtkCausticsTimings::GetProgressStage() const
+{
+  return this->Internal->ProgressStage.c_str();
+}
+
+double vtkCausticsTimings::GetLastFrameMilliseconds() const
+{
+  return this->Internal->LastFrameMilliseconds;
 }
 
 void vtkCausticsTimings::EndFrame()
 {
+  this->Internal->LastFrameMilliseconds =
+    std::chrono::duration<double, std::milli>(Clock::now() - this->Internal->FrameStart).count();
+  if (this->HasObserver(vtkCommand::ProgressEvent))
+  {
+    this->Internal->ProgressStage.clear();
+    double done = 1.0;
+    this->InvokeEvent(vtkCommand::ProgressEvent, &done);
+  }
   if (this->Internal->UsedSegments > 0 || this->Internal->SegmentActive)
   {
     this->Internal->CollectWork();

@@ -122,6 +122,17 @@ public:
   /** One line per stage: name, GPU ms, CPU ms (or "skipped"). */
   std::string GetReport() const;
 
+  /**
+   * Progress of the frame, for observers of vtkCommand::ProgressEvent on this
+   * object (call data: a double). Only while someone observes, each StopStage()
+   * waits for the GPU (glFinish) and reports the wall time since BeginFrame() over
+   * the last whole frame's, at most 0.99, or -1 in a first frame (not known yet);
+   * EndFrame() reports 1. GetProgressStage() names the stage just finished.
+   */
+  const char* GetProgressStage() const;
+  /** Wall time in ms of the last frame from BeginFrame() to EndFrame(); -1 before one. */
+  double GetLastFrameMilliseconds() const;
+
   /** Frees the GL queries. */
   void ReleaseGraphicsResources();
 
