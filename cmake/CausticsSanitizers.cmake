@@ -13,4 +13,23 @@ if (CAUSTICS_SANITIZE)
     -fno-omit-frame-pointer)
   add_compile_options(${caustics_sanitize_flags})
   add_link_options(${caustics_sanitize_flags})
+  # Mesa's driver stays mapped until exit, or LeakSanitizer reports what it holds
+  # from an unnamed module (Testing/Sanitizers/KeepGLDriverLoaded.cxx says why).
+  find_file(CAUSTICS_SANITIZE_GL_DRIVER swrast_dri.so
+    PATHS /usr/lib/x86_64-linux-gnu/dri /usr/lib64/dri /usr/lib/dri NO_DEFAULT_PATH
+    DOC "Mesa driver kept loaded until exit in sanitizer builds")
+  if (CAUSTICS_SANITIZE_GL_DRIVER)
+    # Compiled once at configure time and put on every link line, executables and
+    # libraries alike, without becoming a target the modules' export sets would need.
+    set(keep_object "${CMAKE_BINARY_DIR}/CMakeFiles/caustics_keep_gl_driver.o")
+    execute_process(
+      COMMAND "${CMAKE_CXX_COMPILER}" -std=c++17 -fPIC -O1 -c
+        "-DCAUSTICS_SANITIZE_GL_DRIVERS=\"${CAUSTICS_SANITIZE_GL_DRIVER}\""
+        "${CMAKE_CURRENT_LIST_DIR}/../Testing/Sanitizers/KeepGLDriverLoaded.cxx" -o "${keep_object}"
+      RESULT_VARIABLE keep_result ERROR_VARIABLE keep_error)
+    if (NOT keep_result EQUAL 0)
+      message(FATAL_ERROR "CAUSTICS_SANITIZE: cannot compile KeepGLDriverLoaded.cxx: ${keep_error}")
+    endif ()
+    string(APPEND CMAKE_CXX_STANDARD_LIBRARIES " ${keep_object} -ldl")
+  endif ()
 endif ()

@@ -28,8 +28,17 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-asan
 run() { xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --timeout 600 -j 2 "$@"; }
 if [ "$all" = 1 ]; then
-  run
-  exit
+  # Not run: timings (ScreenSpacePerformance compares frame times, which ASan
+  # changes) and Install.Consumer (ASan writes the absolute source paths into the
+  # binaries, which that test rightly refuses in an installed prefix). The CLI
+  # tests run after, without leak detection: LeakSanitizer's own tracer crashes
+  # (signal 11) at the exit of caustics-render after a caustic-maps frame and a
+  # CPU reference render (CLI.error-map); memory errors and undefined behaviour
+  # stay fatal there.
+  status=0
+  run -E "^CLI\\.|^Install\\.Consumer$|ScreenSpacePerformance" || status=1
+  ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" run -R "^CLI\\." || status=1
+  exit $status
 fi
 run -R "^(TestScene|TestImageIO|TestMeshReader|TestGLTFImporter|TestErrorMetrics|TestReference)\.|^FuzzCorpusReplay"
 # The CLI's input checks: memory errors and undefined behaviour are still fatal, but
