@@ -868,15 +868,7 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
 
 double vtkCausticsRenderPass::GetLastSceneScaleRatio()
 {
-  const caustics::SceneData& scene = *this->Frame.Scene;
-  if (!scene.HasSpecular)
-  {
-    return 0.0;
-  }
-  const double* b = scene.SpecularBounds;
-  const double specular = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
-  return specular > 0.0 ? scene.Scale() / specular : 0.0;
+  return this->Frame.Scene->ScaleOverSpecular();
 }
 
 void vtkCausticsRenderPass::CheckSceneScale()

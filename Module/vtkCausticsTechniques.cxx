@@ -150,10 +150,8 @@ std::string vtkCausticsTechniques::GetBestNameFor(vtkRenderer* renderer)
   }
   // A scene much larger than its refractors (a far-away actor): the caustic map,
   // which covers the whole scene, loses the caustic's detail first.
-  if (refractor && scene.Scale() > vtkCausticsHierarchicalCausticMapPass::SCENE_SCALE_LIMIT *
-        std::sqrt(std::pow(scene.SpecularBounds[1] - scene.SpecularBounds[0], 2) +
-          std::pow(scene.SpecularBounds[3] - scene.SpecularBounds[2], 2) +
-          std::pow(scene.SpecularBounds[5] - scene.SpecularBounds[4], 2)))
+  if (refractor &&
+    scene.ScaleOverSpecular() > vtkCausticsHierarchicalCausticMapPass::SCENE_SCALE_LIMIT)
   {
     return "screen-space";
   }

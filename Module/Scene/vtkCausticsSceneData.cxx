@@ -488,11 +488,23 @@ double ReceiverIncidenceAngle(const SceneData& scene, int index)
   return sine < 0.0 ? -1.0 : std::asin(std::min(1.0, sine)) * 180.0 / 3.14159265358979323846;
 }
 
+namespace
+{
+double Diagonal(const double b[6])
+{
+  const double dx = b[1] - b[0], dy = b[3] - b[2], dz = b[5] - b[4];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+}
+
 double SceneData::Scale() const
 {
-  const double dx = this->Bounds[1] - this->Bounds[0];
-  const double dy = this->Bounds[3] - this->Bounds[2];
-  const double dz = this->Bounds[5] - this->Bounds[4];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  return Diagonal(this->Bounds);
+}
+
+double SceneData::ScaleOverSpecular() const
+{
+  const double specular = this->HasSpecular ? Diagonal(this->SpecularBounds) : 0.0;
+  return specular > 0.0 ? this->Scale() / specular : 0.0;
 }
 }

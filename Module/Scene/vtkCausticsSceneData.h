@@ -168,6 +168,8 @@ struct SceneData
 
   /** Length of the bounds' diagonal: the scene's size for relative tolerances. */
   double Scale() const;
+  /** Scale() over the specular actors' bounds diagonal; 0 without specular actors. */
+  double ScaleOverSpecular() const;
 };
 
 /**
