@@ -3,6 +3,8 @@
 // (its length is not known yet), then the fraction of the last frame's wall time,
 // increasing, at most 0.99, and 1 at the end of every frame. Nothing observes it
 // in a plain render, and then the stages do not wait for the GPU.
+#include "TestTechniqueFrame.h"
+
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsTechniques.h"
@@ -37,17 +39,8 @@ void Record(vtkObject* caller, unsigned long, void* clientData, void* callData)
 
 TEST(FrameProgress, ReachesOneEveryFrame)
 {
-  vtkNew<vtkOpenGLRenderer> renderer;
-  vtkNew<vtkCausticsBuiltinScene> scene;
-  ASSERT_TRUE(scene->Populate(renderer));
-  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create("screen-space");
-  pass->SetLightBufferResolution(64);
-  renderer->SetPass(pass);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(64, 64);
-  window->AddRenderer(renderer);
+  TechniqueFrame f("screen-space", 64, 64);
+  vtkCausticsRenderPass* pass = f.Pass;
   std::vector<Event> events;
   vtkNew<vtkCallbackCommand> callback;
   callback->SetCallback(Record);
@@ -57,7 +50,7 @@ TEST(FrameProgress, ReachesOneEveryFrame)
   for (int frame = 0; frame < 2; ++frame)
   {
     events.clear();
-    window->Render();
+    f.Window->Render();
     ASSERT_GT(events.size(), 5u) << "frame " << frame;
     EXPECT_DOUBLE_EQ(events.back().Fraction, 1.0);
     EXPECT_EQ(events.back().Stage, "");
@@ -79,6 +72,4 @@ TEST(FrameProgress, ReachesOneEveryFrame)
     EXPECT_GT(pass->GetTimings()->GetLastFrameMilliseconds(), 0.0);
   }
   EXPECT_EQ(events.front().Stage, "scene snapshot");
-  renderer->SetPass(nullptr);
-  pass->ReleaseGraphicsResources(window);
 }

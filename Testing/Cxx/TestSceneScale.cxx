@@ -2,6 +2,8 @@
 // every technique's caustics lose detail, since their resolution follows the
 // whole scene's size (docs/reliability.md, "Far-away actors"). The frame must say
 // so once, beyond the technique's measured limit, and stay quiet below it.
+#include "TestTechniqueFrame.h"
+
 #include "vtkActor.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsRenderPass.h"
@@ -30,17 +32,10 @@ INSTANTIATE_TEST_SUITE_P(EveryTechnique, SceneScale, testing::Values("screen-spa
 
 TEST_P(SceneScale, FarAwayActorIsReported)
 {
-  vtkNew<vtkOpenGLRenderer> renderer;
-  vtkNew<vtkCausticsBuiltinScene> scene;
-  ASSERT_TRUE(scene->Populate(renderer));
-  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(GetParam());
-  pass->SetLightBufferResolution(64);
-  renderer->SetPass(pass);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(64, 64);
-  window->AddRenderer(renderer);
+  TechniqueFrame f(GetParam(), 64, 64);
+  vtkCausticsRenderPass* pass = f.Pass;
+  vtkRenderWindow* window = f.Window;
+  vtkRenderer* renderer = f.Renderer;
   vtkNew<vtkTest::ErrorObserver> warnings;
   pass->GlobalWarningDisplayOn();
   pass->AddObserver(vtkCommand::WarningEvent, warnings);
@@ -68,6 +63,4 @@ TEST_P(SceneScale, FarAwayActorIsReported)
   window->Render(); // the same scene: said once
   EXPECT_FALSE(warnings->GetWarning()) << warnings->GetWarningMessage();
   EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), "screen-space");
-  renderer->SetPass(nullptr);
-  pass->ReleaseGraphicsResources(window);
 }

@@ -11,6 +11,8 @@
 // - in an absorbing medium VTK's colour loses what the medium takes between the
 //   light and the surface and between the surface and the camera (Beer-Lambert
 //   over the medium's box, the scene's bounds).
+#include "TestTechniqueFrame.h"
+
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCausticsBuiltinScene.h"
@@ -41,30 +43,12 @@
 namespace
 {
 /** The built-in ball lens rendered by one technique, its buffers kept. */
-struct BallLens
+struct BallLens : TechniqueFrame
 {
-  vtkNew<vtkOpenGLRenderer> Renderer;
-  vtkNew<vtkRenderWindow> Window;
-  vtkNew<vtkCausticsBuiltinScene> Scene;
-  vtkSmartPointer<vtkCausticsRenderPass> Pass;
-
   BallLens(const std::string& technique, double ior)
+    : TechniqueFrame(technique, 256, 256, ior)
   {
-    this->Scene->SetRefractiveIndex(ior);
-    EXPECT_TRUE(this->Scene->Populate(this->Renderer));
-    this->Pass = vtkCausticsTechniques::Create(technique);
-    this->Pass->SetLightBufferResolution(256);
     this->Pass->KeepBuffersOn();
-    this->Renderer->SetPass(this->Pass);
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetSize(256, 256);
-    this->Window->AddRenderer(this->Renderer);
-  }
-  ~BallLens()
-  {
-    this->Renderer->SetPass(nullptr);
-    this->Pass->ReleaseGraphicsResources(this->Window);
   }
 
   vtkActor* Ball()
@@ -94,13 +78,6 @@ struct BallLens
     light->SetAttenuationValues(0.0, 0.0, 1.0);
     light->SetIntensity(1.0);
     this->Renderer->AddLight(light);
-  }
-
-  vtkSmartPointer<vtkImageData> Render(const char* buffer)
-  {
-    this->Window->Render();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    return this->Pass->ReadBuffer(buffer, image) ? image : nullptr;
   }
 };
 
