@@ -7,7 +7,8 @@
  * 1. RenderReceivers: for each of NumberOfLevels levels (level j has
  *    CausticMapResolution / 2^j texels per side, both from the technique's
  *    caustics::CausticMapSettings), a vtkCausticsGBuffer of the receivers alone seen from
- *    the light (the view of caustics::ComputeLightView aimed at the whole scene):
+ *    the light (caustics::ComputeReceiverMapView: aimed at what the camera sees,
+ *    turned towards receivers the light grazes):
  *    where splats land, and the depth test of the final render. Specular actors
  *    are left out so that caustics can land where they hide the floor.
  * 2. Splat: for each level, one glDrawArraysIndirect of point sprites over the

@@ -50,6 +50,7 @@ struct CausticMapSettings
   bool DropCoarseSplats = false;          ///< drop splats needing level 4+ (else level 3)
   int MaximumInternalEvents = 8;          ///< interfaces met inside a refractor, [1, 32]
   bool SplitFresnel = true;               ///< emit a refractor's reflected part too
+  double MinimumMapIncidence = 45.0;      ///< degrees, [0, 90]; the map's view turns to it
   int MarchSteps = 64; ///< samples of the photon trace's fallback march, [4, 1024] (no setter)
 
   /** Levels of the caustic map: 4 for the multi-resolution map (§3.3), else 1. */

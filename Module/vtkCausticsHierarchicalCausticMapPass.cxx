@@ -41,9 +41,9 @@ struct PerLight
   vtkNew<vtkCausticsCausticMap> Map;
   caustics::LightView MapView;
   bool Traced = false;
-  // Angle at which the light meets the receivers beyond the specular actors, and
-  // what it was computed for (the light and the meshes' versions).
-  double ReceiverIncidence = 90.0;
+  // Where the light meets the receivers beyond the specular actors, and what it
+  // was found for (the light and the meshes' versions).
+  caustics::ReceiverIncidence Incidence;
   std::string IncidenceKey;
 
   void Release(vtkWindow* w)
@@ -53,6 +53,7 @@ struct PerLight
     this->Hierarchy->ReleaseGraphicsResources(w);
     this->Map->ReleaseGraphicsResources(w);
     this->Traced = false;
+    this->IncidenceKey.clear();
   }
 };
 
@@ -149,9 +150,7 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsHierarchicalCausticMapPass::GetCa
 
 namespace
 {
-const double GrazingIncidence = vtkCausticsHierarchicalCausticMapPass::GRAZING_INCIDENCE;
-
-/** What ReceiverIncidenceAngle() depends on: the light and every mesh's version. */
+/** What FindReceiverIncidence() depends on: the light and every mesh's version. */
 std::string IncidenceKey(const caustics::SceneData& scene, int index)
 {
   const caustics::Light& light = scene.Lights[index];
@@ -166,39 +165,7 @@ std::string IncidenceKey(const caustics::SceneData& scene, int index)
   }
   return key.str();
 }
-
-/**
- * Warns, once per light and scene state, when a light meets the receivers beyond
- * the specular actors at under GrazingIncidence degrees. A caustic map lives in the
- * light's view: a receiver it sees edge-on has no texels to land on. On the ball
- * lens, what it keeps of screen-space's caustic: 92 % at 8 degrees, 69 % at 5,
- * 37 % at 2.9, 13 % at 0.6, nothing at 0.
- */
-void CheckReceiverIncidence(
-  vtkObject* owner, const caustics::SceneData& scene, int index, PerLight& light)
-{
-  std::string key = IncidenceKey(scene, index);
-  if (key == light.IncidenceKey)
-  {
-    return;
-  }
-  light.IncidenceKey = std::move(key);
-  light.ReceiverIncidence = caustics::ReceiverIncidenceAngle(scene, index);
-  if (light.ReceiverIncidence >= 0.0 && light.ReceiverIncidence < GrazingIncidence)
-  {
-    std::ostringstream angle;
-    angle.precision(2);
-    angle << std::fixed << light.ReceiverIncidence;
-    vtkWarningWithObjectMacro(owner, << "light " << index
-                    << " meets the receivers beyond the reflectors and refractors at "
-                    << angle.str() << " degrees"
-                    << ": a caustic map cannot hold surfaces the light sees edge-on and loses "
-                       "most of this caustic (under "
-                    << GrazingIncidence << " degrees); the screen-space technique keeps it");
-  }
 }
-}
-
 
 void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow* renWin)
 {
@@ -219,22 +186,35 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     }
     PerLight& light = *lights[i];
     const int index = static_cast<int>(i);
-    light.MapView = caustics::ComputeLightView(scene, index, caustics::LightView::Focus::Scene);
+    // The map's view: the light's, on what the camera sees, turned towards
+    // receivers the light grazes (found by a CPU scan of the receivers, redone
+    // only when the light or the meshes change).
+    std::string key = IncidenceKey(scene, index);
+    if (key != light.IncidenceKey)
+    {
+      light.IncidenceKey = std::move(key);
+      light.Incidence = caustics::FindReceiverIncidence(scene, index);
+    }
+    light.MapView = caustics::ComputeReceiverMapView(
+      scene, index, light.Incidence, this->Settings.MinimumMapIncidence);
     light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
       this->GetLightBuffers()->GetView(index).valid && light.MapView.valid && scene.HasSpecular &&
       caustics::LightReachesSpecular(scene.Lights[i], scene.SpecularBounds);
-    if (light.Traced)
-    {
-      CheckReceiverIncidence(this, scene, index, light);
-    }
   }
 }
 
 double vtkCausticsHierarchicalCausticMapPass::GetReceiverIncidence(int i) const
 {
   const auto& lights = this->Internal->Lights;
-  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? lights[i]->ReceiverIncidence
+  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? lights[i]->Incidence.angle
                                                                       : 90.0;
+}
+
+const caustics::LightView* vtkCausticsHierarchicalCausticMapPass::GetMapView(int i) const
+{
+  const auto& lights = this->Internal->Lights;
+  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? &lights[i]->MapView
+                                                                      : nullptr;
 }
 
 bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin)
@@ -475,6 +455,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "DropCoarseSplats: " << knobs.DropCoarseSplats << "\n";
   os << indent << "MaximumInternalEvents: " << knobs.MaximumInternalEvents << "\n";
   os << indent << "SplitFresnel: " << knobs.SplitFresnel << "\n";
+  os << indent << "MinimumMapIncidence: " << knobs.MinimumMapIncidence << " degrees\n";
   os << indent << "Lights: " << this->Internal->Lights.size() << "\n";
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {

@@ -47,6 +47,10 @@ class vtkCausticsCausticMap;
 class vtkCausticsPhotonBuffer;
 class vtkCausticsPhotonBufferHierarchy;
 class vtkImageData;
+namespace caustics
+{
+struct LightView;
+}
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsHierarchicalCausticMapPass
   : public vtkCausticsRenderPass
@@ -109,7 +113,8 @@ public:
   ///@{
   /**
    * Texels per side of each light's caustic map (its finest level), in [16, 8192].
-   * The map looks at the whole scene from the light. Default 512.
+   * The map looks from the light at the part of the scene the camera sees
+   * (MinimumMapIncidence). Default 512.
    */
   vtkCausticsSettingClampMacro(Settings, CausticMapResolution, int, 16, 8192);
   ///@}
@@ -200,6 +205,19 @@ public:
   vtkBooleanMacro(SplitFresnel, bool);
   ///@}
 
+  ///@{
+  /**
+   * The least angle, in degrees, at which the caustic map's view sees the receivers
+   * (default 45, [0, 90]). The map lives in the light's view (§2); a light that meets
+   * the receivers beyond the specular actors at a smaller angle
+   * (GetReceiverIncidence()) sees them nearly edge-on, with no texels for the caustic
+   * to land on (a sun parallel to the floor drew nothing). The map's view is then
+   * turned about that receiver point, towards its normal, to this angle; photons
+   * still come from the light. 0 keeps the paper's light view always.
+   */
+  vtkCausticsSettingClampMacro(Settings, MinimumMapIncidence, double, 0.0, 90.0);
+  ///@}
+
 #ifndef __VTK_WRAP__
   /** All the knobs above, as the stages receive them. */
   const caustics::CausticMapSettings& GetSettings() const
@@ -217,13 +235,13 @@ public:
 
   /**
    * The angle in degrees at which light i meets the receivers beyond the reflectors
-   * and refractors (caustics::ReceiverIncidenceAngle: 90 head-on, 0 grazing). Under 8 degrees the caustic map cannot hold them and loses most of the
-   * caustic; the frame warns once (docs/technique-caustic-maps.md, Limits).
+   * and refractors (caustics::ReceiverIncidenceAngle: 90 head-on, 0 grazing). Under
+   * MinimumMapIncidence the caustic map's view is turned to it.
    */
   double GetReceiverIncidence(int i) const;
 #ifndef __VTK_WRAP__
-  /** Degrees under which GetReceiverIncidence() warns (and "best" avoids the technique). */
-  static constexpr double GRAZING_INCIDENCE = 8.0;
+  /** The view light i's caustic map was stored in, in the last frame (null if out of range). */
+  const caustics::LightView* GetMapView(int i) const;
   /** Scene size over its specular actors' beyond which the frame warns (and "best" avoids it). */
   static constexpr double SCENE_SCALE_LIMIT = 20.0;
 #endif
@@ -292,9 +310,9 @@ public:
 
 protected:
   /**
-   * The map covers the light's view of the whole scene: on the ball lens the
-   * caustic's peak is 8 % low at 20 times its size, 14 % at 31, 48 % at 89
-   * (docs/reliability.md).
+   * The map covers the part of the scene the camera sees: the caustic's peak loses
+   * detail once that part is more than SCENE_SCALE_LIMIT times the specular actors'
+   * size (docs/reliability.md, "Far-away actors").
    */
   double GetSceneScaleLimit() override { return SCENE_SCALE_LIMIT; }
   vtkCausticsHierarchicalCausticMapPass();

@@ -450,7 +450,7 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, inputs.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
-  inputs.Tolerance = this->GetViewTolerance(scene.Scale());
+  inputs.Tolerance = this->GetViewTolerance(caustics::VisibleScale(scene));
   in.Refraction->SetMaximumEvents(this->RefractionEvents);
   const bool ok = in.Refraction->Render(f.Window, inputs, target);
   this->StopStage("refraction tracing");
@@ -868,7 +868,7 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
 
 double vtkCausticsRenderPass::GetLastSceneScaleRatio()
 {
-  return this->Frame.Scene->ScaleOverSpecular();
+  return caustics::VisibleOverSpecular(*this->Frame.Scene);
 }
 
 void vtkCausticsRenderPass::CheckSceneScale()
@@ -882,11 +882,12 @@ void vtkCausticsRenderPass::CheckSceneScale()
   }
   std::ostringstream text;
   text.precision(3);
-  text << "the scene is " << ratio << " times the size of its reflectors and refractors ("
-       << this->Frame.Scene->Scale() << " m against " << this->Frame.Scene->Scale() / ratio
-       << " m, bounding-box diagonals); this technique's caustics lose detail beyond "
-       << limit << " times (its resolution follows the whole scene: a far-away actor "
-       << "stretches it)";
+  const double seen = caustics::VisibleScale(*this->Frame.Scene);
+  text << "the part of the scene the camera sees is " << ratio
+       << " times the size of its reflectors and refractors (" << seen << " m against "
+       << seen / ratio << " m, bounding-box diagonals); this technique's caustics lose detail "
+       << "beyond " << limit << " times (its resolution follows what the camera sees: "
+       << "zoom in on the caustic)";
   // Once per state, not every frame.
   if (text.str() != this->Internal->ReportedScaleWarning)
   {

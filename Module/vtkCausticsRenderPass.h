@@ -151,8 +151,10 @@ public:
   ///@}
 
   /**
-   * The last snapshot's scene size over its reflectors' and refractors' (bounding
-   * box diagonals; 0 without specular actors). See GetSceneScaleLimit().
+   * The size of the part of the last snapshot's scene that the camera sees (with its
+   * reflectors and refractors) over its reflectors' and refractors' (bounding-box
+   * diagonals, caustics::VisibleOverSpecular; 0 without specular actors). See
+   * GetSceneScaleLimit().
    */
   double GetLastSceneScaleRatio();
 
@@ -367,9 +369,10 @@ protected:
 
   /**
    * How many times larger than its reflectors and refractors (bounding-box
-   * diagonals) a scene may be before the technique's caustics lose detail, since
-   * its resolution follows the whole scene's size (a far-away actor stretches it).
-   * Beyond it, a frame warns once. 0: no limit (the base pass draws no caustic).
+   * diagonals) the part of the scene the camera sees may be before the technique's
+   * caustics lose detail, since its resolution follows that part's size
+   * (GetLastSceneScaleRatio()). Beyond it, a frame warns once. 0: no limit (the
+   * base pass draws no caustic).
    */
   virtual double GetSceneScaleLimit() { return 0.0; }
 

@@ -402,7 +402,7 @@ void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
   in.View.WorldToClip = in.Traced.WorldToClip;
   std::copy(scene.Bounds, scene.Bounds + 6, in.View.Bounds);
   std::copy(in.Traced.ViewOrigin, in.Traced.ViewOrigin + 4, in.View.ViewOrigin);
-  this->LastTolerance = this->Settings.Tolerance(scene.Scale());
+  this->LastTolerance = this->Settings.Tolerance(caustics::VisibleScale(scene));
   in.View.Tolerance = this->LastTolerance;
   in.Tracer->SetTimings(this->GetTimings());
 }

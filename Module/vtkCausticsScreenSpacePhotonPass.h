@@ -82,13 +82,14 @@ public:
   ///@{
   /**
    * Intersection tolerance in metres (the paper's world-space epsilon, §5); 0 uses
-   * RelativeIntersectionTolerance x the scene's diagonal. Default 0.
+   * RelativeIntersectionTolerance x the diagonal of the part of the scene the camera
+   * sees, with the reflectors and refractors (caustics::VisibleScale). Default 0.
    */
   vtkCausticsSettingClampMacro(Settings, IntersectionTolerance, double, 0.0, 1.0e6);
   ///@}
 
   ///@{
-  /** Intersection tolerance as a fraction of the scene's diagonal. Default 0.001. */
+  /** Intersection tolerance as a fraction of caustics::VisibleScale. Default 0.001. */
   vtkCausticsSettingClampMacro(Settings, RelativeIntersectionTolerance, double, 1.0e-6, 0.1);
   ///@}
 
@@ -200,9 +201,9 @@ public:
 
 protected:
   /**
-   * The hit tolerance is 1e-3 of the scene's size: on the ball lens the caustic's
-   * peak holds to 435 times its size, is 10 % low at 580 and gone at 870
-   * (docs/reliability.md).
+   * The hit tolerance is 1e-3 of the size of what the camera sees: past 500 times
+   * the specular actors' size it reaches the caustic's detail (docs/reliability.md,
+   * "Far-away actors").
    */
   double GetSceneScaleLimit() override { return 500.0; }
   vtkCausticsScreenSpacePhotonPass();

@@ -22,7 +22,7 @@ struct ScreenSpaceSettings
   bool PerObjectLayers = false;                ///< one layered depth image per object (§2.2)
   int MaximumBounces = 3;                      ///< specular events of a photon path, [1, 8]
   double IntersectionTolerance = 0.0;          ///< m, [0, 1e6]; 0: relative to the scene
-  double RelativeIntersectionTolerance = 1e-3; ///< x the scene's size, [1e-6, 0.1]
+  double RelativeIntersectionTolerance = 1e-3; ///< x caustics::VisibleScale, [1e-6, 0.1]
   int MinimumLineLength = 8;                   ///< fragments of the shortest traced line, [1, 256]
   int RowsPerBatch = 8192;                     ///< line rows traced per batch, [16, 16384]
   double SplatRadius = 0.0;                    ///< m, [0, 1e6]; 0: the pixel and spacing rules

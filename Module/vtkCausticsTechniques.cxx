@@ -137,21 +137,10 @@ std::string vtkCausticsTechniques::GetBestNameFor(vtkRenderer* renderer)
     }
     refractor = refractor || role == caustics::Role::Refractor;
   }
-  // A light that meets the receivers beyond the refractors nearly edge-on: the
-  // caustic map has no texels there (ball lens: 69 % of the caustic kept at 5
-  // degrees, none at 0).
-  for (int i = 0; refractor && i < static_cast<int>(scene.Lights.size()); ++i)
-  {
-    if (caustics::ReceiverIncidenceAngle(scene, i) <
-      vtkCausticsHierarchicalCausticMapPass::GRAZING_INCIDENCE)
-    {
-      return "screen-space";
-    }
-  }
-  // A scene much larger than its refractors (a far-away actor): the caustic map,
-  // which covers the whole scene, loses the caustic's detail first.
+  // A view much larger than its refractors: the caustic map, which covers what
+  // the camera sees, loses the caustic's detail first.
   if (refractor &&
-    scene.ScaleOverSpecular() > vtkCausticsHierarchicalCausticMapPass::SCENE_SCALE_LIMIT)
+    caustics::VisibleOverSpecular(scene) > vtkCausticsHierarchicalCausticMapPass::SCENE_SCALE_LIMIT)
   {
     return "screen-space";
   }

@@ -38,29 +38,14 @@ glm::dvec4 Transform(const double rowMajor[16], const glm::dvec4& p)
 /** The box the fitted view must hold: specular actors and the scene the camera sees. */
 void FittedBox(const SceneData& scene, double box[6])
 {
-  // The camera's frustum (its 8 clip-space corners in the world), cut to the scene.
-  double seen[6] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-    std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-    std::numeric_limits<double>::max(), -std::numeric_limits<double>::max() };
-  for (int c = 0; c < 8; ++c)
-  {
-    const glm::dvec4 ndc((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0, 1.0);
-    const glm::dvec4 w = Transform(scene.View.clipToWorld, ndc);
-    for (int k = 0; k < 3; ++k)
-    {
-      const double x = w.w != 0.0 ? w[k] / w.w : 0.0;
-      seen[2 * k] = std::min(seen[2 * k], x);
-      seen[2 * k + 1] = std::max(seen[2 * k + 1], x);
-    }
-  }
+  double seen[6];
+  const bool any = VisibleBounds(scene, seen);
   for (int k = 0; k < 3; ++k)
   {
-    const double low = std::max(seen[2 * k], scene.Bounds[2 * k]);
-    const double high = std::min(seen[2 * k + 1], scene.Bounds[2 * k + 1]);
     // An empty cut (the camera sees none of the scene) leaves the specular box alone.
-    box[2 * k] = low <= high ? std::min(low, scene.SpecularBounds[2 * k]) : scene.SpecularBounds[2 * k];
+    box[2 * k] = any ? std::min(seen[2 * k], scene.SpecularBounds[2 * k]) : scene.SpecularBounds[2 * k];
     box[2 * k + 1] =
-      low <= high ? std::max(high, scene.SpecularBounds[2 * k + 1]) : scene.SpecularBounds[2 * k + 1];
+      any ? std::max(seen[2 * k + 1], scene.SpecularBounds[2 * k + 1]) : scene.SpecularBounds[2 * k + 1];
   }
 }
 

@@ -112,6 +112,12 @@ Vec3 Normalize(const Vec3& v)
                       : Vec3{ { 0, 0, -1 } };
 }
 
+double Diagonal(const double b[6])
+{
+  const double dx = b[1] - b[0], dy = b[3] - b[2], dz = b[5] - b[4];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 void BoundingSphere(const double bounds[6], Vec3& center, double& radius)
 {
   center = { { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
@@ -280,27 +286,18 @@ double LightView::FrustumSolidAngle() const
   return 4.0 * std::atan(t2 / std::sqrt(1.0 + 2.0 * t2));
 }
 
-LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus focus)
+namespace
+{
+/** The view of `light` (index `index`) aimed at the box `focusBounds`. */
+LightView AimLightView(
+  const SceneData& scene, const Light& light, int index, const double focusBounds[6])
 {
   LightView view;
   view.light = index;
-  if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
-  {
-    return view;
-  }
-  const Light& light = scene.Lights[index];
   Vec3 sceneCenter, focusCenter;
   double sceneRadius, focusRadius;
   BoundingSphere(scene.Bounds, sceneCenter, sceneRadius);
-  if (focus == LightView::Focus::Specular && scene.HasSpecular)
-  {
-    BoundingSphere(scene.SpecularBounds, focusCenter, focusRadius);
-  }
-  else
-  {
-    focusCenter = sceneCenter;
-    focusRadius = sceneRadius;
-  }
+  BoundingSphere(focusBounds, focusCenter, focusRadius);
   // A flat or point-like focus still needs a non-empty frustum.
   sceneRadius = std::max(sceneRadius,
     1e-6 *
@@ -323,6 +320,20 @@ LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus f
   }
   SetViewTransforms(view);
   return view;
+}
+}
+
+LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus focus)
+{
+  if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
+  {
+    LightView view;
+    view.light = index;
+    return view;
+  }
+  const bool specular = focus == LightView::Focus::Specular && scene.HasSpecular;
+  return AimLightView(
+    scene, scene.Lights[index], index, specular ? scene.SpecularBounds : scene.Bounds);
 }
 
 bool LightReachesSpecular(const Light& light, const double specularBounds[6])
@@ -357,63 +368,70 @@ bool LightReachesSpecular(const Light& light, const double specularBounds[6])
 
 namespace
 {
-/** Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5). */
-double TriangleDistance2(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+/** The point of triangle (a, b, c) nearest to p (Ericson, Real-Time Collision Detection 5.1.5). */
+Vec3 ClosestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
   auto sub = [](const Vec3& u, const Vec3& v) { return Vec3{ { u[0] - v[0], u[1] - v[1], u[2] - v[2] } }; };
   auto along = [](const Vec3& o, const Vec3& d, double t) {
     return Vec3{ { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] } };
   };
-  auto distance2 = [&sub](const Vec3& u, const Vec3& v) { const Vec3 d = sub(u, v); return Dot(d, d); };
   const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
   const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
   if (d1 <= 0.0 && d2 <= 0.0)
   {
-    return distance2(p, a);
+    return a;
   }
   const Vec3 bp = sub(p, b);
   const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
   if (d3 >= 0.0 && d4 <= d3)
   {
-    return distance2(p, b);
+    return b;
   }
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
   {
-    return distance2(p, along(a, ab, d1 / (d1 - d3)));
+    return along(a, ab, d1 / (d1 - d3));
   }
   const Vec3 cp = sub(p, c);
   const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
   if (d6 >= 0.0 && d5 <= d6)
   {
-    return distance2(p, c);
+    return c;
   }
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
   {
-    return distance2(p, along(a, ac, d2 / (d2 - d6)));
+    return along(a, ac, d2 / (d2 - d6));
   }
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
   {
-    return distance2(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    return along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
   }
   const double denominator = 1.0 / (va + vb + vc);
-  const Vec3 q = along(along(a, ab, vb * denominator), ac, vc * denominator);
-  return distance2(p, q);
-}
+  return along(along(a, ab, vb * denominator), ac, vc * denominator);
 }
 
-double ReceiverIncidenceAngle(const SceneData& scene, int index)
+/** A receiver triangle met by the incidence search: where, and its unit normal. */
+struct Candidate
 {
+  double key = std::numeric_limits<double>::infinity(); // hit distance or squared distance
+  Vec3 point{ { 0, 0, 0 } };
+  Vec3 normal{ { 0, 1, 0 } };
+};
+}
+
+ReceiverIncidence FindReceiverIncidence(const SceneData& scene, int index)
+{
+  ReceiverIncidence result;
   if (!scene.HasSpecular || index < 0 || index >= static_cast<int>(scene.Lights.size()))
   {
-    return 90.0;
+    return result;
   }
   const Light& light = scene.Lights[index];
   const double* sb = scene.SpecularBounds;
   const Vec3 origin{ { 0.5 * (sb[0] + sb[1]), 0.5 * (sb[2] + sb[3]), 0.5 * (sb[4] + sb[5]) } };
-  Vec3 direction = light.direction;
+  Vec3 direction = Normalize(light.direction);
   if (light.type != Light::Type::Directional)
   {
     const Vec3 away{ { origin[0] - light.position[0], origin[1] - light.position[1],
@@ -421,16 +439,15 @@ double ReceiverIncidenceAngle(const SceneData& scene, int index)
     const double length = std::sqrt(Dot(away, away));
     if (!(length > 1e-9 * std::max(1.0, scene.Scale())))
     {
-      return 90.0; // at the centre: light leaves towards every side
+      return result; // at the centre: light leaves towards every side
     }
     direction = Vec3{ { away[0] / length, away[1] / length, away[2] / length } };
   }
+  result.direction = direction;
   // The receiver the light's central ray meets first past the specular centre, or
   // failing that (the ray runs past every receiver: a grazing sun beyond the floor's
   // edge) the receiver nearest to that centre.
-  double nearestHit = std::numeric_limits<double>::infinity();
-  double nearestDistance2 = std::numeric_limits<double>::infinity();
-  double hitSine = -1.0, nearestSine = -1.0;
+  Candidate hit, nearest;
   for (const Mesh& mesh : scene.Meshes)
   {
     if (scene.Materials[mesh.material].role != Role::Receiver)
@@ -458,12 +475,13 @@ double ReceiverIncidenceAngle(const SceneData& scene, int index)
       {
         continue; // degenerate or NaN: no surface to meet
       }
-      const double sine = std::abs(Dot(normal, direction)) / area2;
-      const double distance2 = TriangleDistance2(origin, a, b, c);
-      if (distance2 < nearestDistance2)
+      const Vec3 unit{ { normal[0] / area2, normal[1] / area2, normal[2] / area2 } };
+      const Vec3 closest = ClosestPointOnTriangle(origin, a, b, c);
+      const Vec3 gap{ { closest[0] - origin[0], closest[1] - origin[1], closest[2] - origin[2] } };
+      const double distance2 = Dot(gap, gap);
+      if (distance2 < nearest.key)
       {
-        nearestDistance2 = distance2;
-        nearestSine = sine;
+        nearest = Candidate{ distance2, closest, unit };
       }
       // Moller-Trumbore; a ray in the triangle's plane misses it.
       const Vec3 q = Cross(direction, e2);
@@ -477,34 +495,220 @@ double ReceiverIncidenceAngle(const SceneData& scene, int index)
       const Vec3 r = Cross(toOrigin, e1);
       const double v = Dot(direction, r) / det;
       const double distance = Dot(e2, r) / det;
-      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && distance > 0.0 && distance < nearestHit)
+      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && distance > 0.0 && distance < hit.key)
       {
-        nearestHit = distance;
-        hitSine = sine;
+        hit = Candidate{ distance,
+          Vec3{ { origin[0] + distance * direction[0], origin[1] + distance * direction[1],
+            origin[2] + distance * direction[2] } },
+          unit };
       }
     }
   }
-  const double sine = hitSine >= 0.0 ? hitSine : nearestSine;
-  return sine < 0.0 ? -1.0 : std::asin(std::min(1.0, sine)) * 180.0 / 3.14159265358979323846;
+  const Candidate& met = std::isfinite(hit.key) ? hit : nearest;
+  if (!std::isfinite(met.key))
+  {
+    result.angle = -1.0; // no receiver
+    return result;
+  }
+  result.found = true;
+  result.point = met.point;
+  const double along = Dot(met.normal, direction);
+  // Facing the light: the light travels against the normal.
+  result.normal = along > 0.0 ? Vec3{ { -met.normal[0], -met.normal[1], -met.normal[2] } } : met.normal;
+  result.angle = std::asin(std::min(1.0, std::abs(along))) * 180.0 / 3.14159265358979323846;
+  return result;
+}
+
+double ReceiverIncidenceAngle(const SceneData& scene, int index)
+{
+  return FindReceiverIncidence(scene, index).angle;
 }
 
 namespace
 {
-double Diagonal(const double b[6])
+/** Rotates v about the unit axis k by `angle` radians (Rodrigues). */
+Vec3 Rotate(const Vec3& v, const Vec3& k, double angle)
 {
-  const double dx = b[1] - b[0], dy = b[3] - b[2], dz = b[5] - b[4];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double c = std::cos(angle), s = std::sin(angle), kv = Dot(k, v);
+  const Vec3 kxv = Cross(k, v);
+  Vec3 out;
+  for (int i = 0; i < 3; ++i)
+  {
+    out[i] = v[i] * c + kxv[i] * s + k[i] * kv * (1.0 - c);
+  }
+  return out;
 }
+
+/** Clips the convex polygon `polygon` to the half-space plane . (x, 1) >= 0 (Sutherland-Hodgman). */
+std::vector<Vec3> ClipPolygon(const std::vector<Vec3>& polygon, const double plane[4])
+{
+  std::vector<Vec3> out;
+  const std::size_t n = polygon.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % n];
+    const double da = plane[0] * a[0] + plane[1] * a[1] + plane[2] * a[2] + plane[3];
+    const double db = plane[0] * b[0] + plane[1] * b[1] + plane[2] * b[2] + plane[3];
+    if (da >= 0.0)
+    {
+      out.push_back(a);
+    }
+    if ((da >= 0.0) != (db >= 0.0))
+    {
+      const double t = da / (da - db);
+      out.push_back(Vec3{ { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) } });
+    }
+  }
+  return out;
+}
+}
+
+bool VisibleBounds(const SceneData& scene, double box[6])
+{
+  std::copy(scene.Bounds, scene.Bounds + 6, box);
+  const double* m = scene.View.worldToClip;
+  // The clip volume's six planes, -w <= x, y, z <= w, as rows of worldToClip.
+  double planes[6][4];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      planes[2 * axis][c] = m[12 + c] + m[4 * axis + c];
+      planes[2 * axis + 1][c] = m[12 + c] - m[4 * axis + c];
+    }
+  }
+  // The intersection's vertices lie on the box's faces (the faces clipped by the
+  // planes) or are corners of the clip volume inside the box.
+  const double* b = scene.Bounds;
+  std::vector<Vec3> vertices;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int side = 0; side < 2; ++side)
+    {
+      std::vector<Vec3> face(4);
+      const double corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+      for (int k = 0; k < 4; ++k)
+      {
+        face[k][axis] = b[2 * axis + side];
+        face[k][u] = b[2 * u + static_cast<int>(corners[k][0])];
+        face[k][v] = b[2 * v + static_cast<int>(corners[k][1])];
+      }
+      for (int plane = 0; plane < 6 && !face.empty(); ++plane)
+      {
+        face = ClipPolygon(face, planes[plane]);
+      }
+      vertices.insert(vertices.end(), face.begin(), face.end());
+    }
+  }
+  for (int c = 0; c < 8; ++c)
+  {
+    const double ndc[4] = { (c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0, 1.0 };
+    double world[4];
+    Transform(scene.View.clipToWorld, ndc, world);
+    if (!(world[3] > 0.0))
+    {
+      continue;
+    }
+    const Vec3 x{ { world[0] / world[3], world[1] / world[3], world[2] / world[3] } };
+    if (x[0] >= b[0] && x[0] <= b[1] && x[1] >= b[2] && x[1] <= b[3] && x[2] >= b[4] && x[2] <= b[5])
+    {
+      vertices.push_back(x);
+    }
+  }
+  double seen[6] = { std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+  for (const Vec3& x : vertices)
+  {
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      // Clipping rounds: stay inside the scene's box.
+      seen[2 * k] = std::max(b[2 * k], std::min(seen[2 * k], x[k]));
+      seen[2 * k + 1] = std::min(b[2 * k + 1], std::max(seen[2 * k + 1], x[k]));
+    }
+  }
+  if (!(seen[0] <= seen[1] && seen[2] <= seen[3] && seen[4] <= seen[5]))
+  {
+    return false;
+  }
+  std::copy(seen, seen + 6, box);
+  return true;
+}
+
+double VisibleScale(const SceneData& scene)
+{
+  double seen[6];
+  VisibleBounds(scene, seen);
+  if (scene.HasSpecular)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      seen[2 * k] = std::min(seen[2 * k], scene.SpecularBounds[2 * k]);
+      seen[2 * k + 1] = std::max(seen[2 * k + 1], scene.SpecularBounds[2 * k + 1]);
+    }
+  }
+  return Diagonal(seen);
+}
+
+double VisibleOverSpecular(const SceneData& scene)
+{
+  const double specular = scene.HasSpecular ? Diagonal(scene.SpecularBounds) : 0.0;
+  return specular > 0.0 ? VisibleScale(scene) / specular : 0.0;
+}
+
+LightView ComputeReceiverMapView(const SceneData& scene, int index,
+  const ReceiverIncidence& incidence, double minimumIncidence)
+{
+  if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
+  {
+    LightView view;
+    view.light = index;
+    return view;
+  }
+  double focus[6];
+  VisibleBounds(scene, focus);
+  Light light = scene.Lights[index];
+  if (incidence.found && incidence.angle < minimumIncidence)
+  {
+    // Turn the light about the receiver point, in the plane of its direction and
+    // the receiver's normal, until its direction meets the surface at the minimum.
+    const Vec3& d = incidence.direction;
+    Vec3 axis = Cross(d, Vec3{ { -incidence.normal[0], -incidence.normal[1], -incidence.normal[2] } });
+    const double length = std::sqrt(Dot(axis, axis));
+    if (length > 1e-12)
+    {
+      axis = Vec3{ { axis[0] / length, axis[1] / length, axis[2] / length } };
+    }
+    else
+    {
+      // Along the surface with no tangent part to turn from cannot happen (the
+      // angle would be 90); any axis in the surface will do.
+      axis = Normalize(Cross(incidence.normal, Vec3{ { 1, 0, 0 } }));
+    }
+    const double turn = (minimumIncidence - incidence.angle) * 3.14159265358979323846 / 180.0;
+    light.direction = Normalize(Rotate(light.direction, axis, turn));
+    if (light.type != Light::Type::Directional)
+    {
+      const Vec3 fromPoint{ { light.position[0] - incidence.point[0],
+        light.position[1] - incidence.point[1], light.position[2] - incidence.point[2] } };
+      const Vec3 turned = Rotate(fromPoint, axis, turn);
+      for (int i = 0; i < 3; ++i)
+      {
+        light.position[i] = incidence.point[i] + turned[i];
+      }
+    }
+  }
+  return AimLightView(scene, light, index, focus);
 }
 
 double SceneData::Scale() const
 {
   return Diagonal(this->Bounds);
-}
-
-double SceneData::ScaleOverSpecular() const
-{
-  const double specular = this->HasSpecular ? Diagonal(this->SpecularBounds) : 0.0;
-  return specular > 0.0 ? this->Scale() / specular : 0.0;
 }
 }

@@ -168,8 +168,6 @@ struct SceneData
 
   /** Length of the bounds' diagonal: the scene's size for relative tolerances. */
   double Scale() const;
-  /** Scale() over the specular actors' bounds diagonal; 0 without specular actors. */
-  double ScaleOverSpecular() const;
 };
 
 /**
@@ -194,6 +192,50 @@ bool LightReachesSpecular(const Light& light, const double specularBounds[6]);
  * (caustic maps) lose what lands on surfaces the light sees edge-on.
  */
 double ReceiverIncidenceAngle(const SceneData& scene, int index);
+
+/** Where ReceiverIncidenceAngle() meets the receivers, and the surface there. */
+struct ReceiverIncidence
+{
+  double angle = 90.0;                ///< as ReceiverIncidenceAngle()
+  bool found = false;                 ///< a receiver triangle was met or taken
+  Vec3 point{ { 0, 0, 0 } };          ///< the hit, or the nearest point of the nearest triangle
+  Vec3 normal{ { 0, 1, 0 } };         ///< that triangle's unit normal, facing the light
+  Vec3 direction{ { 0, 0, -1 } };     ///< the light's unit direction there
+};
+ReceiverIncidence FindReceiverIncidence(const SceneData& scene, int index);
+
+/**
+ * The part of the scene the camera sees: the bounding box of scene.Bounds cut by
+ * the camera's clip volume (scene.View, near to far plane), exactly (the box is
+ * clipped as a polyhedron, not box against box). Returns false, with `box` set to
+ * scene.Bounds, when the camera sees none of it.
+ */
+bool VisibleBounds(const SceneData& scene, double box[6]);
+
+/**
+ * The diagonal of the box around VisibleBounds() and the specular actors: the size
+ * of the region a frame's caustics are computed over, which relative tolerances
+ * follow (a far-away actor the camera does not see changes nothing).
+ */
+double VisibleScale(const SceneData& scene);
+
+/** VisibleScale() over the specular actors' bounds diagonal; 0 without specular actors. */
+double VisibleOverSpecular(const SceneData& scene);
+
+/**
+ * The view a light-space receiver map (a caustic map) of light `index` is stored
+ * in: the light's own view (ComputeLightView) aimed at the part of the scene the
+ * camera sees (VisibleBounds), so that its texels go where the image can show
+ * them whatever else the scene holds. When the light meets the receivers beyond
+ * the specular actors at under `minimumIncidence` degrees (`incidence`, from
+ * FindReceiverIncidence(scene, index), a scan of the receivers that callers keep
+ * while the light and meshes stay),
+ * the view is turned about that point, towards the receiver's normal, until it
+ * sees them at `minimumIncidence`: a surface the light sees edge-on has no texels
+ * in the light's view. The depth range holds the whole scene, as for every light view.
+ */
+LightView ComputeReceiverMapView(const SceneData& scene, int index,
+  const ReceiverIncidence& incidence, double minimumIncidence);
 }
 
 #endif

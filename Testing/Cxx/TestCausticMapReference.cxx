@@ -15,8 +15,12 @@
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsReferenceRenderer.h"
 
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <iostream>
 
 namespace
@@ -24,14 +28,20 @@ namespace
 /**
  * Renders `scene` on the GPU and with the reference; returns the metrics. With
  * throughRefractors off, the reference's camera rays pass refractors (the pool's
- * floor under the water), as the technique's output does.
+ * floor under the water), as the technique's output does. `change` edits the scene
+ * first (may be empty).
  */
-bool Compare(const char* scene, vtkCausticsErrorMetrics* metrics, bool throughRefractors = false)
+bool Compare(const char* scene, vtkCausticsErrorMetrics* metrics, bool throughRefractors = false,
+  const std::function<void(vtkRenderer*)>& change = {})
 {
   hcmtest::Frame f(scene, 1024, 256);
   if (!f.Populated)
   {
     return false;
+  }
+  if (change)
+  {
+    change(f.Renderer);
   }
   f.Render();
   auto caustic = f.Buffer("CausticIrradiance");
@@ -107,12 +117,13 @@ TEST(CausticMapReference, Ring)
   // The nephroid of a silver ring: one reflection per photon here, where the
   // reference also follows the grazing multiple reflections along the far wall
   // (a bright crescent the caustic map lacks) and blocks photons that the ring
-  // itself shadows after their reflection. Measured: relative L2 24.0 %, flux
-  // ratio 1.0038, peak on the same pixel.
+  // itself shadows after their reflection. Measured: relative L2 21.2 %, flux
+  // ratio 1.0079, peak on the same pixel (24.0 % and 1.0038 with the map in the
+  // sun's own view, 33 degrees above the floor, before MinimumMapIncidence).
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(Compare("ring", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.25);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.225);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.01);
   EXPECT_LE(metrics->GetPeakPositionError(), 2.0);
 }
@@ -131,4 +142,35 @@ TEST(CausticMapReference, Bunny)
   EXPECT_LT(metrics->GetRelativeL2Error(), 0.55);
   EXPECT_GT(metrics->GetFluxRatio(), 0.63);
   EXPECT_LT(metrics->GetFluxRatio(), 1.0);
+}
+
+TEST(CausticMapReference, GrazingSun)
+{
+  // The ball lens under a sun 2.9 degrees above the floor and exactly parallel to
+  // it: the light's own view sees the floor edge-on, and its caustic map kept 37 %
+  // and none of the caustic. The map's view now turns to MinimumMapIncidence (45
+  // degrees) about the floor point the light meets. Measured: relative L2 14.3 %
+  // and 17.3 %, flux ratio 0.931 and 0.919 (screen-space, at 128^2: 23 % and 35 %).
+  // The reference's own noise is large on so faint a caustic: 9.3 % and 9.9 %
+  // between two seeds.
+  struct Case
+  {
+    double rise, relL2;
+  };
+  for (const Case c : { Case{ 0.05, 0.155 }, Case{ 0.0, 0.185 } })
+  {
+    const double rise = c.rise;
+    vtkNew<vtkCausticsErrorMetrics> metrics;
+    ASSERT_TRUE(Compare("ball-lens", metrics, false,
+      [rise](vtkRenderer* renderer)
+      {
+        vtkLight* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+        sun->SetFocalPoint(0.0, 0.0, 0.0);
+        sun->SetPosition(-1.0, rise, 0.0);
+      }));
+    EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
+    EXPECT_LT(metrics->GetRelativeL2Error(), c.relL2) << rise;
+    EXPECT_GT(metrics->GetFluxRatio(), 0.9) << rise;
+    EXPECT_LT(metrics->GetFluxRatio(), 1.0) << rise;
+  }
 }

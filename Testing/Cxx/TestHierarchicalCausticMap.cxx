@@ -351,8 +351,8 @@ TEST(Pyramid, KeepsEveryPhotonsFlux)
     f.Render();
     vtkCausticsHierarchicalCausticMapPass::Counters c;
     ASSERT_TRUE(f.Pass->GetCounters(0, c));
-    const caustics::LightView view = caustics::ComputeLightView(
-      f.Pass->GetSceneExtractor()->GetScene(), 0, caustics::LightView::Focus::Scene);
+    ASSERT_NE(f.Pass->GetMapView(0), nullptr);
+    const caustics::LightView view = *f.Pass->GetMapView(0);
     double mapped = 0.0, splatted = 0.0;
     const int levels = f.Pass->GetCausticMap(0)->GetNumberOfLevels();
     EXPECT_EQ(
