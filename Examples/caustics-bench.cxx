@@ -148,18 +148,24 @@ struct Variant
 
 /**
  * A caustic-map configuration. map: caustic-map resolution (0: the pass's default);
- * cameraFloor: its MinimumCameraSplatRadius (the default 1 is not named in the knobs).
+ * cameraFloor: its MinimumCameraSplatRadius (the default 1 is not named in the knobs);
+ * incidence: its MinimumMapIncidence in degrees (negative: the default, not named).
  */
 void AddCausticMap(std::vector<Configuration>& table, int grid, const Variant& variant, int map = 0,
-  double cameraFloor = 1.0)
+  double cameraFloor = 1.0, int incidence = -1)
 {
   std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
   knobs += map > 0 ? " map=" + std::to_string(map) : "";
   knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
+  knobs += incidence >= 0 ? " map-incidence=" + std::to_string(incidence) : "";
   table.push_back({ "caustic-maps", knobs,
     Set<HCM>(
-      [grid, variant, map, cameraFloor](HCM* pass)
+      [grid, variant, map, cameraFloor, incidence](HCM* pass)
       {
+        if (incidence >= 0)
+        {
+          pass->SetMinimumMapIncidence(incidence);
+        }
         pass->SetLightBufferResolution(grid);
         pass->SetGatherMode(variant.Gather);
         pass->SetClusterMode(variant.Cluster);
@@ -215,6 +221,12 @@ void AddCausticMapConfigurations(std::vector<Configuration>& table)
       AddCausticMap(table, 1024, defaultVariant, map, cameraFloor);
     }
   }
+  // The least angle at which the map's view sees the receivers (MinimumMapIncidence):
+  // 0 is the paper's light view whatever the light's angle.
+  for (int incidence : { 0, 20, 45, 60 })
+  {
+    AddCausticMap(table, 256, defaultVariant, 0, 1.0, incidence);
+  }
 }
 
 /**
@@ -259,6 +271,8 @@ Selection:
   --list                     print the scenes, techniques and configurations, and exit
   --defaults                 each technique once with its own defaults (knobs
                              "default") instead of its configurations
+  --knobs TEXT               only the configurations whose knobs contain TEXT
+                             (e.g. "map-incidence", "grid=256 ")
 
 Measurement:
   --size N                   image size N x N pixels, 16..4096 (default 256)
@@ -319,6 +333,7 @@ struct Options
   std::string Docs;
   bool Smoke = false;
   bool Defaults = false;
+  std::string Knobs; // only configurations whose knobs contain it
   bool List = false;
   bool Help = false;
   std::string CommandLine;
@@ -405,6 +420,8 @@ void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& option
 {
   arguments.Flag("--list", [&options] { options.List = true; });
   arguments.Flag("--defaults", [&options] { options.Defaults = true; });
+  arguments.Value("--knobs",
+    [&options](const std::string&, const std::string& value) { options.Knobs = value; });
   arguments.Value("--scenes",
     [&options](const std::string& option, const std::string& value)
     {
@@ -1623,9 +1640,16 @@ void MeasureScene(const Options& options, const std::string& scene,
   {
     std::vector<Configuration> configurations =
       ConfigurationsOf(technique, options.Defaults ? std::vector<Configuration>() : table);
+    if (!options.Knobs.empty())
+    {
+      configurations.erase(std::remove_if(configurations.begin(), configurations.end(),
+                             [&options](const Configuration& c)
+                             { return (c.Knobs + " ").find(options.Knobs) == std::string::npos; }),
+        configurations.end());
+    }
     if (options.Smoke)
     {
-      configurations.resize(1);
+      configurations.resize(std::min<std::size_t>(configurations.size(), 1));
     }
     for (const auto& configuration : configurations)
     {
