@@ -43,6 +43,7 @@ uniform float depthTolerance; // window depth: VTK's image and the G-buffers agr
 
 layout(location = 0) out vec4 outColor;
 
+const int MARCH_STRIDE = 4;
 const int MISS = 0;
 const int OPAQUE = 1;
 const int REFRACTOR = 2;
@@ -64,37 +65,37 @@ float ViewDepth(vec3 p)
   return viewOrigin.w > 0.0 ? clip.w : clip.z;
 }
 
-// True when x lies beyond the surface sample (p, n) of its pixel as the camera
-// sees it: deeper along the view, or, within a few pixel footprints of p, on the
-// far side of its tangent plane (at grazing views the surface's depth varies more
-// across one pixel than a step of the ray).
-bool Beyond(vec3 x, float depth, vec3 p, vec3 n)
+// Whether x (view depth `depth`) is on the given side of the surface sample (p, n)
+// of its pixel as the camera sees it (beyond: deeper along the view; else in
+// front), or, within a few pixel footprints of p, on that side of its tangent
+// plane (at grazing views the surface's depth varies more across one pixel than a
+// step of the ray).
+bool OnSide(vec3 x, float depth, vec3 p, vec3 n, bool beyond)
 {
-  if (depth >= ViewDepth(p))
+  vec4 clip = worldToClip * vec4(p, 1.0);
+  float surfaceDepth = viewOrigin.w > 0.0 ? clip.w : clip.z;
+  if (beyond ? depth >= surfaceDepth : depth <= surfaceDepth)
   {
     return true;
   }
   vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
   float facing = dot(toCamera, n);
-  float footprint = abs((worldToClip * vec4(p, 1.0)).w) * pixelScale;
+  float footprint = abs(clip.w) * pixelScale;
   float cosine = abs(facing) / max(length(toCamera), 1e-20);
   float reach = tolerance + 2.0 * footprint / max(cosine, 0.1);
-  return dot(x - p, n) * facing <= 0.0 && distance(x, p) < reach;
+  float side = dot(x - p, n) * facing;
+  return (beyond ? side <= 0.0 : side >= 0.0) && distance(x, p) < reach;
+}
+
+bool Beyond(vec3 x, float depth, vec3 p, vec3 n)
+{
+  return OnSide(x, depth, p, n, true);
 }
 
 // In front of the surface sample (p, n): the converse, for leaving through it.
 bool InFront(vec3 x, float depth, vec3 p, vec3 n)
 {
-  if (depth <= ViewDepth(p))
-  {
-    return true;
-  }
-  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
-  float facing = dot(toCamera, n);
-  float footprint = abs((worldToClip * vec4(p, 1.0)).w) * pixelScale;
-  float cosine = abs(facing) / max(length(toCamera), 1e-20);
-  float reach = tolerance + 2.0 * footprint / max(cosine, 0.1);
-  return dot(x - p, n) * facing >= 0.0 && distance(x, p) < reach;
+  return OnSide(x, depth, p, n, false);
 }
 
 // Refines a crossing of the surface (p, n) near parameter t: the tangent-plane hit.
@@ -122,16 +123,84 @@ bool RefractorLayerHit(
   result.t = PlaneHit(o, d, p.xyz, n, t);
   result.pixel = q;
   result.layer = layer;
-  // Smooth across pixels, or the refracted image shows the pixel grid.
-  result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
-    pixelScale, o + result.t * d, q, layer, p.w, n);
+  result.normal = n; // smoothed once the march ends (SmoothHitNormal)
   result.material = int(p.w + 0.5);
   return true;
 }
 
+// An opaque hit refined on the surface's tangent plane, with the pixel the exact
+// crossing projects to (the step's sample can be a pixel beyond it).
+void RefineOpaqueHit(vec3 o, vec3 d, inout March result)
+{
+  if (result.kind != OPAQUE)
+  {
+    return;
+  }
+  ivec2 q = result.pixel;
+  result.t = PlaneHit(o, d, texelFetch(gPosition, q, 0).xyz, texelFetch(gNormal, q, 0).xyz, result.t);
+  vec4 clip = worldToClip * vec4(o + result.t * d, 1.0);
+  ivec2 exact = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * viewport));
+  bool inside = clip.w > 0.0 && all(greaterThanEqual(exact, ivec2(0))) &&
+    all(lessThan(exact, ivec2(viewport)));
+  vec4 there = inside ? texelFetch(gPosition, exact, 0) : vec4(0.0, 0.0, 0.0, -1.0);
+  bool same = there.w >= 0.0 &&
+    distance(there.xyz, o + result.t * d) < 4.0 * abs(clip.w) * pixelScale + tolerance;
+  result.pixel = same ? exact : q;
+}
+
+// The normal of a refractor hit, smoothed across pixels, or the refracted image
+// shows the pixel grid. Outside the march's loop: on llvmpipe, code in a loop
+// runs for a whole group of pixels whenever one of them takes it.
+void SmoothHitNormal(vec3 o, vec3 d, inout March result)
+{
+  if (result.kind == REFRACTOR)
+  {
+    result.normal = SspSmoothNormal(refractorPosition, refractorNormal, worldToClip, viewport,
+      pixelScale, o + result.t * d, result.pixel, result.layer, float(result.material),
+      result.normal);
+  }
+}
+
+// The march's sample j of `steps` along `line` (pixel-step centres, the last at the
+// segment's end): true when it meets the opaque G-buffer or a refractor layer
+// (see MarchRay), with `result` filled; untouched otherwise.
+bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps, int next,
+  int current, int layers, inout March result)
+{
+  float u = min(1.0, (float(j) + 0.5) / float(steps));
+  vec2 s = mix(line.start.xy, line.end.xy, u);
+  ivec2 q = clamp(ivec2(floor(s)), ivec2(0), ivec2(viewport) - 1);
+  float t = SspLineT(line, u);
+  if (t <= tolerance)
+  {
+    return false;
+  }
+  vec3 x = o + t * d;
+  float depth = depthLine.x + t * depthLine.y; // ViewDepth(x): affine in t
+  vec4 opaque = texelFetch(gPosition, q, 0);
+  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, texelFetch(gNormal, q, 0).xyz))
+  {
+    result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
+    result.t = t;
+    result.pixel = q;
+    return true;
+  }
+  if (next >= 0 && next < layers && RefractorLayerHit(o, d, t, depth, q, next, true, result))
+  {
+    return true;
+  }
+  return current >= 0 && current < layers && j > 1 &&
+    RefractorLayerHit(o, d, t, depth, q, current, false, result);
+}
+
 // Marches o + t d across the screen. next/current: refractor layers whose
 // surfaces end the march when the ray's depth passes beyond (next) or comes in
-// front of (current) them; -1 to ignore.
+// front of (current) them; -1 to ignore. The march strides MARCH_STRIDE pixels
+// and walks the pixels of the stride back one by one once a sample has met
+// something, so the first crossing is found at pixel steps: the surfaces it
+// meets stay behind (or in front) once passed, and only a feature thinner than
+// the stride, passed and left within it, can be missed. On llvmpipe the march
+// is most of a frame's time (docs/technique-screen-space.md, "Refraction").
 March MarchRay(vec3 o, vec3 d, int next, int current)
 {
   March result;
@@ -157,47 +226,30 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   int steps = int(clamp(ceil(max(span.x, span.y)), 1.0, max(viewport.x, viewport.y) + 1.0));
   line.info = vec4(float(steps), 0.0, 0.0, 0.0);
   int layers = int(ldiObjects[0].y);
+  vec4 clipOrigin = worldToClip * vec4(o, 1.0);
+  vec4 clipDirection = worldToClip * vec4(d, 0.0);
+  vec2 depthLine = viewOrigin.w > 0.0 ? vec2(clipOrigin.w, clipDirection.w)
+                                      : vec2(clipOrigin.z, clipDirection.z);
   // One sample per pixel step, at the step's centre, and one at the segment's end;
   // each is compared with the surfaces of the pixel it projects to.
-  for (int j = 0; j <= steps; ++j)
+  int stride = current < 0 ? MARCH_STRIDE : 1;
+  for (int coarse = 0; coarse < steps + stride; coarse += stride)
   {
-    float u = min(1.0, (float(j) + 0.5) / float(steps));
-    vec2 s = mix(line.start.xy, line.end.xy, u);
-    ivec2 q = clamp(ivec2(floor(s)), ivec2(0), ivec2(viewport) - 1);
-    float t = SspLineT(line, u);
-    if (t <= tolerance)
+    int j = min(coarse, steps);
+    if (MarchSample(o, d, line, depthLine, j, steps, next, current, layers, result))
     {
-      continue;
-    }
-    vec3 x = o + t * d;
-    float depth = ViewDepth(x);
-    vec4 opaque = texelFetch(gPosition, q, 0);
-    if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, texelFetch(gNormal, q, 0).xyz))
-    {
-      // Refine on the surface's tangent plane and look up the pixel the exact
-      // crossing projects to (the step's sample can be a pixel beyond it).
-      result.kind = OPAQUE;
-      result.t = PlaneHit(o, d, opaque.xyz, texelFetch(gNormal, q, 0).xyz, t);
-      vec4 clip = worldToClip * vec4(o + result.t * d, 1.0);
-      ivec2 exact = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * viewport));
-      bool inside = clip.w > 0.0 && all(greaterThanEqual(exact, ivec2(0))) &&
-        all(lessThan(exact, ivec2(viewport)));
-      vec4 there = inside ? texelFetch(gPosition, exact, 0) : vec4(0.0, 0.0, 0.0, -1.0);
-      bool same = there.w >= 0.0 &&
-        distance(there.xyz, o + result.t * d) < 4.0 * abs(clip.w) * pixelScale + tolerance;
-      result.pixel = same ? exact : q;
-      return result;
-    }
-    if (next >= 0 && next < layers && RefractorLayerHit(o, d, t, depth, q, next, true, result))
-    {
-      return result;
-    }
-    if (current >= 0 && current < layers && j > 1 &&
-      RefractorLayerHit(o, d, t, depth, q, current, false, result))
-    {
-      return result;
+      for (int fine = max(j - stride + 1, 0); fine < j; ++fine)
+      {
+        if (MarchSample(o, d, line, depthLine, fine, steps, next, current, layers, result))
+        {
+          break;
+        }
+      }
+      break;
     }
   }
+  RefineOpaqueHit(o, d, result);
+  SmoothHitNormal(o, d, result);
   return result;
 }
 
