@@ -139,6 +139,30 @@ bool BoxInFrustum(const Box& b, const double m[16])
 }
 
 /**
+ * Adds the actor's world bounds to `specular` if it is a visible reflector or
+ * refractor; false when it is one with no known extent.
+ */
+bool AddSpecularBounds(vtkActor* actor, double cutoff, std::vector<Box>& specular)
+{
+  if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+  {
+    return true;
+  }
+  const int role = vtkCausticsMaterial::Classify(actor, cutoff);
+  if (role != vtkCausticsMaterial::ROLE_REFLECTOR && role != vtkCausticsMaterial::ROLE_REFRACTOR)
+  {
+    return true;
+  }
+  const double* b = actor->GetBounds();
+  if (!b || !vtkMath::AreBoundsInitialized(b))
+  {
+    return false; // unknown extent: let the snapshot decide
+  }
+  specular.push_back({ b[0], b[1], b[2], b[3], b[4], b[5] });
+  return true;
+}
+
+/**
  * World bounds of the visible specular actors as the snapshot would classify
  * them (VTK's own bounds, cached by VTK). False when one has no known extent.
  */
@@ -153,24 +177,22 @@ bool CollectSpecularBounds(vtkRenderer* renderer, double cutoff, std::vector<Box
     {
       continue;
     }
+    // A plain actor is its own only path (walking it would allocate the path).
+    if (vtkActor* actor = vtkActor::SafeDownCast(prop))
+    {
+      if (!AddSpecularBounds(actor, cutoff, specular))
+      {
+        return false;
+      }
+      continue;
+    }
     prop->InitPathTraversal();
     while (vtkAssemblyPath* path = prop->GetNextPath())
     {
-      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
-      if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+      if (!AddSpecularBounds(
+            vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp()), cutoff, specular))
       {
-        continue;
-      }
-      const int role = vtkCausticsMaterial::Classify(actor, cutoff);
-      if (role == vtkCausticsMaterial::ROLE_REFLECTOR ||
-        role == vtkCausticsMaterial::ROLE_REFRACTOR)
-      {
-        const double* b = actor->GetBounds();
-        if (!b || !vtkMath::AreBoundsInitialized(b))
-        {
-          return false; // unknown extent: let the snapshot decide
-        }
-        specular.push_back({ b[0], b[1], b[2], b[3], b[4], b[5] });
+        return false;
       }
     }
   }

@@ -153,9 +153,44 @@ const char* vtkCausticsMaterial::GetRoleName(int role)
   return caustics::RoleName(static_cast<caustics::Role>(role));
 }
 
+namespace
+{
+/**
+ * What the actor does to light, from its keys and property alone: the part of
+ * Describe() that Classify() needs (the render pass asks it for every actor
+ * before each frame, so it reads no more than it must).
+ */
+caustics::Role RoleOf(vtkActor* actor, vtkProperty* property, double roughnessCutoff)
+{
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (keys && keys->Has(vtkCausticsMaterial::ROLE()))
+  {
+    const int role = keys->Get(vtkCausticsMaterial::ROLE());
+    return (role >= vtkCausticsMaterial::ROLE_NONE && role <= vtkCausticsMaterial::ROLE_REFRACTOR)
+      ? static_cast<caustics::Role>(role)
+      : caustics::Role::Receiver;
+  }
+  vtkInformation* info = property->GetInformation();
+  const double transmission = info && info->Has(vtkCausticsMaterial::TRANSMISSION())
+    ? info->Get(vtkCausticsMaterial::TRANSMISSION())
+    : 0.0;
+  if (transmission > 0.0)
+  {
+    return caustics::Role::Refractor;
+  }
+  if (property->GetInterpolation() == VTK_PBR && property->GetMetallic() >= 0.5 &&
+    property->GetRoughness() < roughnessCutoff)
+  {
+    return caustics::Role::Reflector;
+  }
+  return property->GetOpacity() < 1.0 ? caustics::Role::None : caustics::Role::Receiver;
+}
+}
+
 int vtkCausticsMaterial::Classify(vtkActor* actor, double roughnessCutoff)
 {
-  return static_cast<int>(vtkCausticsMaterial::Describe(actor, roughnessCutoff).role);
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  return static_cast<int>(property ? RoleOf(actor, property, roughnessCutoff) : caustics::Role::None);
 }
 
 caustics::Material vtkCausticsMaterial::Describe(vtkActor* actor, double roughnessCutoff)
@@ -181,7 +216,6 @@ caustics::Material vtkCausticsMaterial::Describe(vtkActor* actor, double roughne
     material.attenuation = { { std::max(0.0, a[0]), std::max(0.0, a[1]), std::max(0.0, a[2]) } };
   }
   const bool isPBR = property->GetInterpolation() == VTK_PBR;
-  const double transmission = info && info->Has(TRANSMISSION()) ? info->Get(TRANSMISSION()) : 0.0;
 
   // Conductor parameters: explicit (n, k), else from the base colour.
   if (info && info->Has(METAL_N()) && info->Has(METAL_K()))
@@ -199,29 +233,6 @@ caustics::Material vtkCausticsMaterial::Describe(vtkActor* actor, double roughne
     material.metalK = { { k[0], k[1], k[2] } };
   }
 
-  vtkInformation* keys = actor->GetPropertyKeys();
-  if (keys && keys->Has(ROLE()))
-  {
-    const int role = keys->Get(ROLE());
-    material.role = (role >= ROLE_NONE && role <= ROLE_REFRACTOR)
-      ? static_cast<caustics::Role>(role)
-      : caustics::Role::Receiver;
-  }
-  else if (transmission > 0.0)
-  {
-    material.role = caustics::Role::Refractor;
-  }
-  else if (isPBR && property->GetMetallic() >= 0.5 && property->GetRoughness() < roughnessCutoff)
-  {
-    material.role = caustics::Role::Reflector;
-  }
-  else if (property->GetOpacity() < 1.0)
-  {
-    material.role = caustics::Role::None;
-  }
-  else
-  {
-    material.role = caustics::Role::Receiver;
-  }
+  material.role = RoleOf(actor, property, roughnessCutoff);
   return material;
 }
