@@ -436,12 +436,14 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   auto& in = *this->Internal;
   const caustics::SceneData& scene = *f.Scene;
   if (!this->RefractionTracing ||
-    f.Geometry->GetNumberOfTriangles(vtkCausticsSceneGeometry::RoleBit(3)) == 0)
+    f.Geometry->GetNumberOfTriangles(
+      vtkCausticsSceneGeometry::RoleBit(2) | vtkCausticsSceneGeometry::RoleBit(3)) == 0)
   {
     return false;
   }
   // 1. The refractors' layered depth image in the camera's view (front and back
-  //    faces, every layer a viewing ray may cross).
+  //    faces, every layer a viewing ray may cross; none without refractors: then
+  //    only mirrors are traced).
   this->StartStage("refractor layers");
   in.RefractorLayers->SetRoleMask(vtkCausticsSceneGeometry::RoleBit(3));
   in.RefractorLayers->SetMaximumNumberOfLayers(std::min(16, 2 * this->RefractionEvents));

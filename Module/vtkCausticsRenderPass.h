@@ -209,7 +209,9 @@ public:
    * rays refracted and reflected through the refractors in screen space
    * (000_54cf099eeccf42d9.txt §4, vtkCausticsScreenSpaceRefraction) against a
    * layered depth image of the refractors, so they show what lies behind them,
-   * caustics included. Off, refractors are drawn by VTK as opaque surfaces.
+   * caustics included; and mirrors reflect what the camera sees (conductor
+   * Fresnel, up to RefractionEvents mirrors; VTK draws a metal without an
+   * environment dark). Off, refractors are drawn by VTK as opaque surfaces.
    * On in every technique that carries light through glass (screen-space,
    * caustic maps); off in this plain pass ("none"), which carries none, so the
    * floor under water would show black. RefractionEvents: interfaces a viewing

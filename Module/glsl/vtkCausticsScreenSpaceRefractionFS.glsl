@@ -269,105 +269,145 @@ vec3 Shade(ivec2 q)
     vec3 direct = hasDirect != 0 ? texelFetch(directIrradiance, q, 0).rgb : vec3(0.0);
     return albedo * (direct + caustic);
   }
-  return background; // a mirror hidden by the refractor: not in any image
+  return background; // a surface hidden from VTK's view: not in any image
 }
 
-vec3 Outcome(March m)
+// What a path that leaves a surface the camera sees brings back, in display
+// colour: o + t d marched through the refractor's layers (`inside` the refractor
+// between layers `current` and `next`; next = -1: the layers are not consulted,
+// as for rays that mirrors turned, whose order along the view the layers no
+// longer give), refracted with exact Fresnel weights (total internal reflection
+// stays inside), reflected by mirrors with the conductor's Fresnel reflectance,
+// until it meets another opaque surface (its colour) or leaves (the background),
+// at most maxEvents interfaces. One loop with one march, so that the march's code
+// is compiled once (llvmpipe compiles each inlined copy).
+vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption)
 {
-  return m.kind == OPAQUE ? Shade(m.pixel) : background;
+  vec3 throughput = vec3(1.0);
+  for (int event = 0; event < maxEvents; ++event)
+  {
+    March m = MarchRay(o, d, next, inside ? current : -1);
+    if (inside)
+    {
+      throughput *= CausticsTransmittance(absorption, m.t);
+    }
+    if (m.kind == MISS)
+    {
+      return throughput * background;
+    }
+    vec3 x = o + m.t * d;
+    if (m.kind == OPAQUE)
+    {
+      vec4 normalRole = texelFetch(gNormal, m.pixel, 0);
+      if (int(normalRole.w + 0.5) != ROLE_REFLECTOR)
+      {
+        return throughput * Shade(m.pixel);
+      }
+      CausticsMaterial mirror = causticsMaterials[int(texelFetch(gPosition, m.pixel, 0).w + 0.5)];
+      vec3 n = normalize(normalRole.xyz);
+      vec3 facing = dot(d, n) < 0.0 ? n : -n;
+      throughput *= FresnelConductor(
+        clamp(-dot(d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
+      d = reflect(d, facing);
+      next = -1;
+      current = -1;
+      inside = false;
+    }
+    else
+    {
+      CausticsMaterial hitMaterial = causticsMaterials[m.material];
+      float hitIor = max(hitMaterial.params.x, 1.0);
+      bool towardsOutside = dot(d, m.normal) > 0.0;
+      vec3 f = towardsOutside ? -m.normal : m.normal;
+      float c = clamp(-dot(d, f), 0.0, 1.0);
+      float n1 = inside ? hitIor : 1.0;
+      float n2 = inside ? 1.0 : hitIor;
+      float r;
+      vec3 mirrored, refracted;
+      if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
+      {
+        throughput *= 1.0 - r;
+        d = refracted;
+        inside = !inside;
+        absorption = hitMaterial.attenuation.rgb;
+        current = m.layer;
+        next = current + 1;
+      }
+      else
+      {
+        d = mirrored; // total internal reflection: still between the same layers
+      }
+    }
+    o = x;
+  }
+  return throughput * background;
 }
 
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   outColor = vec4(0.0);
-  if (ldiObjects[0].y == 0u)
-  {
-    return;
-  }
-  vec4 front = texelFetch(refractorPosition, ivec3(pixel, 0), 0);
-  if (front.w < 0.0)
-  {
-    return;
-  }
-  // Only where the refractor is what the camera sees and what VTK drew.
   vec4 opaque = texelFetch(gPosition, pixel, 0);
-  if (opaque.w >= 0.0 && ViewDepth(opaque.xyz) < ViewDepth(front.xyz))
+  vec4 front = ldiObjects[0].y > 0u ? texelFetch(refractorPosition, ivec3(pixel, 0), 0)
+                                    : vec4(0.0, 0.0, 0.0, -1.0);
+  // The paths that leave the surface the camera sees: weight, direction.
+  vec3 weights[2];
+  vec3 directions[2];
+  int paths = 0;
+  vec3 x;
+  vec3 absorption = vec3(0.0);
+  if (front.w < 0.0 || (opaque.w >= 0.0 && ViewDepth(opaque.xyz) < ViewDepth(front.xyz)))
   {
-    return;
-  }
-  vec4 frontClip = worldToClip * vec4(front.xyz, 1.0);
-  float frontDepth = frontClip.z / frontClip.w * 0.5 + 0.5;
-  if (abs(texelFetch(delegateDepth, pixel, 0).r - frontDepth) > 1e-4)
-  {
-    return;
-  }
-  vec3 v = viewOrigin.w > 0.0 ? normalize(front.xyz - viewOrigin.xyz) : viewOrigin.xyz;
-  vec3 n = texelFetch(refractorNormal, ivec3(pixel, 0), 0).xyz;
-  CausticsMaterial material = causticsMaterials[int(front.w + 0.5)];
-  float ior = max(material.params.x, 1.0);
-  vec3 facing = dot(v, n) < 0.0 ? n : -n;
-  float cosI = clamp(-dot(v, facing), 0.0, 1.0);
-  // The camera is in air: from index 1 into the refractor, whichever way n faces.
-  float reflectance;
-  vec3 reflected, d;
-  bool transmits = CausticsDielectric(v, facing, cosI, 1.0, ior, reflectance, reflected, d);
-
-  // The reflected part, outside.
-  vec3 color = reflectance * Outcome(MarchRay(front.xyz, reflected, -1, -1));
-
-  // The refracted part, through the object's layers.
-  if (!transmits)
-  {
-    outColor = vec4(color, 1.0);
-    return;
-  }
-  vec3 throughput = vec3(1.0 - reflectance);
-  vec3 o = front.xyz;
-  bool inside = true;
-  int current = 0;
-  vec3 absorption = material.attenuation.rgb;
-  bool done = false;
-  for (int event = 0; event < maxEvents && !done; ++event)
-  {
-    March m = inside ? MarchRay(o, d, current + 1, current) : MarchRay(o, d, current + 1, -1);
-    if (inside)
+    // No refractor in front: a mirror, where VTK drew it (VTK shows no reflection
+    // of the scene), reflects the view.
+    vec4 normalRole = texelFetch(gNormal, pixel, 0);
+    if (opaque.w < 0.0 || int(normalRole.w + 0.5) != ROLE_REFLECTOR ||
+      abs(texelFetch(delegateDepth, pixel, 0).r - texelFetch(gDepth, pixel, 0).r) > depthTolerance)
     {
-      throughput *= CausticsTransmittance(absorption, m.t);
+      return;
     }
-    if (m.kind != REFRACTOR)
-    {
-      color += throughput * Outcome(m);
-      done = true;
-      break;
-    }
-    vec3 x = o + m.t * d;
-    CausticsMaterial hitMaterial = causticsMaterials[m.material];
-    float hitIor = max(hitMaterial.params.x, 1.0);
-    bool towardsOutside = dot(d, m.normal) > 0.0;
-    vec3 f = towardsOutside ? -m.normal : m.normal;
-    float c = clamp(-dot(d, f), 0.0, 1.0);
-    float n1 = inside ? hitIor : 1.0;
-    float n2 = inside ? 1.0 : hitIor;
-    float r;
-    vec3 mirrored, refracted;
-    if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
-    {
-      throughput *= 1.0 - r;
-      d = refracted;
-      inside = !inside;
-      absorption = hitMaterial.attenuation.rgb;
-      current = m.layer;
-    }
-    else
-    {
-      d = mirrored; // total internal reflection: still between the same layers
-    }
-    o = x;
+    x = opaque.xyz;
+    vec3 v = viewOrigin.w > 0.0 ? normalize(x - viewOrigin.xyz) : viewOrigin.xyz;
+    vec3 n = normalize(normalRole.xyz);
+    vec3 facing = dot(v, n) < 0.0 ? n : -n;
+    CausticsMaterial mirror = causticsMaterials[int(opaque.w + 0.5)];
+    weights[0] =
+      FresnelConductor(clamp(-dot(v, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
+    directions[0] = reflect(v, facing);
+    paths = 1;
   }
-  if (!done)
+  else
   {
-    color += throughput * background;
+    // Only where the refractor is what VTK drew.
+    vec4 frontClip = worldToClip * vec4(front.xyz, 1.0);
+    float frontDepth = frontClip.z / frontClip.w * 0.5 + 0.5;
+    if (abs(texelFetch(delegateDepth, pixel, 0).r - frontDepth) > 1e-4)
+    {
+      return;
+    }
+    x = front.xyz;
+    vec3 v = viewOrigin.w > 0.0 ? normalize(x - viewOrigin.xyz) : viewOrigin.xyz;
+    vec3 n = texelFetch(refractorNormal, ivec3(pixel, 0), 0).xyz;
+    CausticsMaterial material = causticsMaterials[int(front.w + 0.5)];
+    float ior = max(material.params.x, 1.0);
+    vec3 facing = dot(v, n) < 0.0 ? n : -n;
+    float cosI = clamp(-dot(v, facing), 0.0, 1.0);
+    // The camera is in air: from index 1 into the refractor, whichever way n faces.
+    float reflectance;
+    vec3 reflected, refracted;
+    bool transmits = CausticsDielectric(v, facing, cosI, 1.0, ior, reflectance, reflected, refracted);
+    weights[0] = vec3(reflectance); // reflected, outside
+    directions[0] = reflected;
+    weights[1] = vec3(1.0 - reflectance); // refracted, through the object's layers
+    directions[1] = refracted;
+    paths = transmits ? 2 : 1;
+    absorption = material.attenuation.rgb;
+  }
+  vec3 color = vec3(0.0);
+  for (int k = 0; k < paths; ++k)
+  {
+    bool inside = k == 1;
+    color += weights[k] * TracePath(x, directions[k], inside, 0, inside ? 1 : -1, absorption);
   }
   outColor = vec4(color, 1.0);
 }
