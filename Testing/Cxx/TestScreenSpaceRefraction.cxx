@@ -129,12 +129,54 @@ void AddCheckerboardUnderSun(vtkRenderer* renderer)
   sun->SetIntensity(1.0);
   renderer->AddLight(sun);
 }
+
+/** The checkerboard under its sun, rendered by one technique at 256 x 256 pixels. */
+struct CheckerboardFrame
+{
+  vtkNew<vtkOpenGLRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkCausticsRenderPass> Pass;
+
+  explicit CheckerboardFrame(const std::string& technique)
+  {
+    AddCheckerboardUnderSun(this->Renderer);
+    this->Pass = vtkCausticsTechniques::Create(technique);
+    this->Renderer->SetPass(this->Pass);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(256, 256);
+    this->Window->AddRenderer(this->Renderer);
+  }
+  ~CheckerboardFrame()
+  {
+    this->Renderer->SetPass(nullptr);
+    this->Pass->ReleaseGraphicsResources(this->Window);
+  }
+  CheckerboardFrame(const CheckerboardFrame&) = delete;
+  CheckerboardFrame& operator=(const CheckerboardFrame&) = delete;
+
+  /** Renders from `position` towards `focal`; the technique's colours, null if none. */
+  vtkDataArray* Render(const double position[3], const double focal[3], double viewAngle)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetPosition(position[0], position[1], position[2]);
+    camera->SetFocalPoint(focal[0], focal[1], focal[2]);
+    camera->SetViewAngle(viewAngle);
+    this->Renderer->ResetCameraClippingRange();
+    this->Window->Render();
+    return this->Pass->ReadBuffer("TechniqueColor", this->Color)
+      ? this->Color->GetPointData()->GetArray(0)
+      : nullptr;
+  }
+  const caustics::SceneData& Scene() { return this->Pass->GetSceneExtractor()->GetScene(); }
+
+  vtkNew<vtkImageData> Color;
+};
 }
 
 TEST_P(ScreenSpaceRefraction, FlatWaterObeysSnell)
 {
-  vtkNew<vtkOpenGLRenderer> renderer;
-  AddCheckerboardUnderSun(renderer);
+  CheckerboardFrame f(GetParam());
   vtkNew<vtkPlaneSource> water;
   water->SetOrigin(-2.0, Depth, 2.0);
   water->SetPoint1(2.0, Depth, 2.0);
@@ -146,25 +188,12 @@ TEST_P(ScreenSpaceRefraction, FlatWaterObeysSnell)
   vtkNew<vtkActor> waterActor;
   waterActor->SetMapper(waterMapper);
   vtkCausticsMaterial::MakeGlass(waterActor->GetProperty(), 1.33);
-  renderer->AddActor(waterActor);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0.0, 4.0, 4.0);
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetViewAngle(40.0);
-  renderer->ResetCameraClippingRange();
-  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(GetParam());
-  renderer->SetPass(pass);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-  window->Render();
-  ASSERT_TRUE(pass->GetLastFrameHadCaustics());
-  vtkNew<vtkImageData> color;
-  ASSERT_TRUE(pass->ReadBuffer("TechniqueColor", color));
-  vtkDataArray* rgba = color->GetPointData()->GetArray(0);
-  const caustics::SceneData& scene = pass->GetSceneExtractor()->GetScene();
+  f.Renderer->AddActor(waterActor);
+  const double eye[3] = { 0.0, 4.0, 4.0 }, focal[3] = { 0.0, 0.0, 0.0 };
+  vtkDataArray* rgba = f.Render(eye, focal, 40.0);
+  ASSERT_TRUE(f.Pass->GetLastFrameHadCaustics());
+  ASSERT_NE(rgba, nullptr);
+  const caustics::SceneData& scene = f.Scene();
 
   // Under flat water the floor gets the sun through one interface: E T(0) with
   // T(0) = 1 - ((1.33 - 1) / 2.33)^2, no direct light (the water shadows it). A
@@ -224,8 +253,6 @@ TEST_P(ScreenSpaceRefraction, FlatWaterObeysSnell)
   // Measured: 0 of 33450 (the crossing is refined on the floor's tangent plane).
   // Allow 0.1% for rasterization differences at the pool's rim.
   EXPECT_LE(wrong, judged / 1000);
-  renderer->SetPass(nullptr);
-  pass->ReleaseGraphicsResources(window);
 }
 
 namespace
@@ -264,8 +291,7 @@ bool ReflectedFloorPoint(
 // reflected viewing ray reaches, dimmed by silver's reflectance (above 0.9 here).
 TEST_P(ScreenSpaceRefraction, FlatMirrorReflectsTheFloor)
 {
-  vtkNew<vtkOpenGLRenderer> renderer;
-  AddCheckerboardUnderSun(renderer);
+  CheckerboardFrame f(GetParam());
   vtkNew<vtkPlaneSource> wall;
   wall->SetOrigin(-2.0, 0.0, MirrorZ);
   wall->SetPoint1(2.0, 0.0, MirrorZ);
@@ -278,24 +304,11 @@ TEST_P(ScreenSpaceRefraction, FlatMirrorReflectsTheFloor)
   mirror->SetMapper(wallMapper);
   const double silverN[3] = { 0.155, 0.117, 0.138 }, silverK[3] = { 4.83, 3.12, 2.15 };
   vtkCausticsMaterial::MakeMirror(mirror->GetProperty(), silverN, silverK);
-  renderer->AddActor(mirror);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0.7, 2.5, 4.0);
-  camera->SetFocalPoint(0.0, 0.6, MirrorZ);
-  camera->SetViewAngle(45.0);
-  renderer->ResetCameraClippingRange();
-  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(GetParam());
-  renderer->SetPass(pass);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-  window->Render();
-  vtkNew<vtkImageData> color;
-  ASSERT_TRUE(pass->ReadBuffer("TechniqueColor", color));
-  vtkDataArray* rgba = color->GetPointData()->GetArray(0);
-  const caustics::SceneData& scene = pass->GetSceneExtractor()->GetScene();
+  f.Renderer->AddActor(mirror);
+  const double eye[3] = { 0.7, 2.5, 4.0 }, focal[3] = { 0.0, 0.6, MirrorZ };
+  vtkDataArray* rgba = f.Render(eye, focal, 45.0);
+  ASSERT_NE(rgba, nullptr);
+  const caustics::SceneData& scene = f.Scene();
 
   int mirrorPixels = 0, judged = 0, wrong = 0, replaced = 0;
   double lowestLight = 1e300;
@@ -355,6 +368,4 @@ TEST_P(ScreenSpaceRefraction, FlatMirrorReflectsTheFloor)
   // A light tile (0.9) through silver (reflectance above 0.9 from 0 to 80 degrees);
   // measured 0.877.
   EXPECT_GT(lowestLight, 0.8);
-  renderer->SetPass(nullptr);
-  pass->ReleaseGraphicsResources(window);
 }
