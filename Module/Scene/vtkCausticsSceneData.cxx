@@ -687,8 +687,8 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
     }
     else
     {
-      // Along the surface with no tangent part to turn from cannot happen (the
-      // angle would be 90); any axis in the surface will do.
+      // The light along the normal meets the surface at 90 degrees, more than any
+      // minimum; only rounding gets here, and any axis in the surface will do.
       axis = Normalize(Cross(incidence.normal, Vec3{ { 1, 0, 0 } }));
     }
     const double turn = (minimumIncidence - incidence.angle) * 3.14159265358979323846 / 180.0;
