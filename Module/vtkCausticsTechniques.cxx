@@ -144,7 +144,7 @@ std::string vtkCausticsTechniques::GetBestNameFor(vtkRenderer* renderer)
   {
     return "screen-space";
   }
-  // Closed refractors alone (the ball lens: 1.9 % against 5.1 %, 8x faster; the
+  // Closed refractors alone (the ball lens: 1.7 % against 5.1 %, 3.2x faster; the
   // bunny: 11 % against 29 %): caustic maps.
   return refractor ? "caustic-maps" : GetBestName();
 }
