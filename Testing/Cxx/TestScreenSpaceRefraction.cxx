@@ -27,6 +27,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <iostream>
 
@@ -83,6 +84,27 @@ bool LightTile(double x, double z, double margin, bool& edge)
   const double fu = u - std::floor(u), fv = v - std::floor(v);
   edge = std::min(fu, 1.0 - fu) * Tile < margin || std::min(fv, 1.0 - fv) * Tile < margin;
   return (static_cast<int>(std::floor(u)) + static_cast<int>(std::floor(v))) % 2 == 0;
+}
+
+/**
+ * Whether pixel (i, j), whose viewing ray `floorPoint` maps to the floor, must show a
+ * light tile. The lookup is quantized to the pixel where the ray crosses the floor:
+ * pixels whose floor point lies within one pixel footprint (the distance to the
+ * neighbours' floor points) of a tile edge, or whose neighbours miss, are not judged
+ * (false).
+ */
+bool JudgeTile(const std::function<bool(int, int, double&, double&)>& floorPoint, int i, int j,
+  double x, double z, bool& expected)
+{
+  double xi, zi, xj, zj;
+  if (!floorPoint(i + 1, j, xi, zi) || !floorPoint(i, j + 1, xj, zj))
+  {
+    return false;
+  }
+  const double footprint = std::max(std::hypot(xi - x, zi - z), std::hypot(xj - x, zj - z));
+  bool edge = false;
+  expected = LightTile(x, z, footprint, edge);
+  return !edge;
 }
 }
 
@@ -216,19 +238,14 @@ TEST_P(ScreenSpaceRefraction, FlatWaterObeysSnell)
       {
         continue; // the ray misses the water or lands off the floor
       }
-      // The lookup is quantized to the pixel where the refracted ray crosses the
-      // floor: pixels whose floor point lies within one pixel footprint (the
-      // distance to the neighbours' floor points) of a tile edge are not judged.
-      double xi, zi, xj, zj, unused0, unused1;
-      if (!RefractedFloorPoint(scene, i + 1, j, xi, zi, unused0, unused1) ||
-        !RefractedFloorPoint(scene, i, j + 1, xj, zj, unused0, unused1))
-      {
-        continue;
-      }
-      const double footprint = std::max(std::hypot(xi - x, zi - z), std::hypot(xj - x, zj - z));
-      bool edge = false;
-      const bool expected = LightTile(x, z, footprint, edge);
-      if (edge)
+      bool expected = false;
+      if (!JudgeTile(
+            [&scene](int a, int b, double& u, double& v)
+            {
+              double u0, v0;
+              return RefractedFloorPoint(scene, a, b, u, v, u0, v0);
+            },
+            i, j, x, z, expected))
       {
         continue;
       }
@@ -335,16 +352,14 @@ TEST_P(ScreenSpaceRefraction, FlatMirrorReflectsTheFloor)
       {
         continue;
       }
-      double xi, zi, xj, zj, unused;
-      if (!ReflectedFloorPoint(scene, i + 1, j, xi, zi, unused) ||
-        !ReflectedFloorPoint(scene, i, j + 1, xj, zj, unused))
-      {
-        continue;
-      }
-      const double footprint = std::max(std::hypot(xi - x, zi - z), std::hypot(xj - x, zj - z));
-      bool edge = false;
-      const bool expected = LightTile(x, z, footprint, edge);
-      if (edge)
+      bool expected = false;
+      if (!JudgeTile(
+            [&scene](int a, int b, double& u, double& v)
+            {
+              double unused;
+              return ReflectedFloorPoint(scene, a, b, u, v, unused);
+            },
+            i, j, x, z, expected))
       {
         continue;
       }
