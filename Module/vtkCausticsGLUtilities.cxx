@@ -5,6 +5,7 @@
 
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
@@ -246,6 +247,15 @@ void PhotonPlanes::Release(vtkWindow* window)
   this->Direction->ReleaseGraphicsResources(window);
   this->Flux->ReleaseGraphicsResources(window);
   this->Radius->ReleaseGraphicsResources(window);
+}
+
+void InvertColumnMajor(const float matrix[16], float inverse[16])
+{
+  // Transposition commutes with inversion: invert the column-major array as it is.
+  double in[16], out[16];
+  std::copy(matrix, matrix + 16, in);
+  vtkMatrix4x4::Invert(in, out);
+  std::copy(out, out + 16, inverse);
 }
 
 void ToColumnMajor(const double rowMajor[16], float columnMajor[16])

@@ -84,6 +84,9 @@ VTKRENDERINGCAUSTICS_EXPORT void SetMediumUniforms(
 /** Row-major double matrix (vtkMatrix4x4 layout) to column-major floats for GL. */
 VTKRENDERINGCAUSTICS_EXPORT void ToColumnMajor(const double rowMajor[16], float columnMajor[16]);
 
+/** The inverse of a 4x4 matrix, both column-major floats (inverted in double precision). */
+VTKRENDERINGCAUSTICS_EXPORT void InvertColumnMajor(const float matrix[16], float inverse[16]);
+
 /**
  * Downloads a 2D texture (float or integer colour, or depth) into a new image whose
  * point data has one array `arrayName` with `components` components (the first

@@ -109,6 +109,7 @@ void vtkCausticsPhotonEmitter::DescribeGrid(
 {
   caustics::PhotonGrid& grid = this->Grid;
   grid.Light = light;
+  grid.LightType = static_cast<int>(source.type);
   grid.Width = resolution;
   grid.BranchRows = resolution;
   grid.Height = this->SplitFresnel ? 2 * resolution : resolution;

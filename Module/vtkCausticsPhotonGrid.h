@@ -66,6 +66,7 @@ struct PhotonRecords
 struct PhotonGrid
 {
   int Light = -1;     ///< index of the emitting light in SceneData::Lights
+  int LightType = 0;  ///< its caustics::Light::Type (0 directional: measures are m^2, else sr)
   int Width = 0;      ///< columns: N, the light buffers' texels per side
   int Height = 0;     ///< rows: N per emission branch (N, or 2N with the reflected branch)
   int BranchRows = 0; ///< N: rows of one branch (grid neighbours never cross a branch)

@@ -1,6 +1,7 @@
 #include "vtkCausticsPhotonSplatter.h"
 
 #include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
@@ -11,6 +12,12 @@
 
 #include "vtkCausticsPhotonSplatFS.h"
 #include "vtkCausticsPhotonSplatVS.h"
+#include "vtkCausticsPhotonTriangleClassifyCS.h"
+#include "vtkCausticsPhotonTriangleCommon.h"
+#include "vtkCausticsPhotonTriangleFS.h"
+#include "vtkCausticsPhotonTriangleVS.h"
+
+#include <string>
 
 vtkStandardNewMacro(vtkCausticsPhotonSplatter);
 
@@ -20,6 +27,18 @@ vtkCausticsPhotonSplatter::vtkCausticsPhotonSplatter()
   this->Program->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   this->Program->SetVertexSource(vtkCausticsPhotonSplatVS);
   this->Program->SetFragmentSource(vtkCausticsPhotonSplatFS);
+  const std::string triangles = vtkCausticsPhotonTriangleCommon;
+  const std::string records = "uniform sampler2D hitPosition;\n"
+                              "uniform sampler2D hitNormal;\n"
+                              "uniform sampler2D hitFlux;\n";
+  this->ClassifyProgram->SetName("caustic triangle classification");
+  this->ClassifyProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->ClassifyProgram->SetComputeSource(
+    (records + triangles + vtkCausticsPhotonTriangleClassifyCS).c_str());
+  this->TriangleProgram->SetName("caustic triangles");
+  this->TriangleProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->TriangleProgram->SetVertexSource((records + triangles + vtkCausticsPhotonTriangleVS).c_str());
+  this->TriangleProgram->SetFragmentSource(vtkCausticsPhotonTriangleFS);
 }
 
 vtkCausticsPhotonSplatter::~vtkCausticsPhotonSplatter()
@@ -43,10 +62,6 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
     vtkErrorMacro(<< "Splat needs the landed photons' three record textures and their radii");
     return false;
   }
-  if (!this->Program->Bind(renWin))
-  {
-    return false;
-  }
   if (!this->VertexArray)
   {
     glCreateVertexArrays(1, &this->VertexArray);
@@ -60,18 +75,122 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglEnable(GL_PROGRAM_POINT_SIZE);
-
-  vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux, kernelRadius,
-    target->GetPositionTexture(), target->GetNormalTexture() };
-  const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "kernelRadius", "targetPosition",
-    "targetNormal" };
-  for (int i = 0; i < 6; ++i)
+  const bool triangles = this->Reconstruction == TRIANGLES;
+  if (triangles &&
+    (!this->ClassifyTriangles(renWin, grid, landed, target->GetSize(), worldToClip) ||
+      !this->DrawTriangles(renWin, grid, landed, target, worldToClip)))
   {
-    inputs[i]->Activate();
-    this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+    return false;
+  }
+  return this->DrawSplats(renWin, grid, landed, kernelRadius, target, worldToClip);
+}
+
+void vtkCausticsPhotonSplatter::SetRecordUniforms(vtkCausticsShaderProgram* program,
+  const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed, const int size[2],
+  const float worldToClip[16])
+{
+  vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux };
+  const char* names[] = { "hitPosition", "hitNormal", "hitFlux" };
+  for (int i = 0; i < 3; ++i)
+  {
+    program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+  }
+  program->SetUniform2i("hitGrid", grid.Width, grid.Height);
+  program->SetUniformi("hitBranchRows", grid.BranchRows > 0 ? grid.BranchRows : grid.Height);
+  program->SetUniformi("hitLightType", grid.LightType);
+  program->SetUniformf("triangleStretch", static_cast<float>(this->TriangleStretch));
+  program->SetUniformMatrix4("triangleWorldToClip", worldToClip);
+  program->SetUniform2f(
+    "triangleViewport", static_cast<float>(size[0]), static_cast<float>(size[1]));
+}
+
+bool vtkCausticsPhotonSplatter::ClassifyTriangles(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed, const int size[2],
+  const float worldToClip[16])
+{
+  caustics::gl::EnsureTexture(this->TriangleMask, renWin, grid.Width, grid.Height, GL_R32UI);
+  vtkCausticsShaderProgram* program = this->ClassifyProgram;
+  if (!program->Bind(renWin))
+  {
+    return false;
+  }
+  landed.Position->Activate();
+  landed.Direction->Activate();
+  landed.Flux->Activate();
+  this->SetRecordUniforms(program, grid, landed, size, worldToClip);
+  glBindImageTexture(0, this->TriangleMask->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+  program->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+  landed.Position->Deactivate();
+  landed.Direction->Deactivate();
+  landed.Flux->Deactivate();
+  program->Unbind(renWin);
+  return true;
+}
+
+bool vtkCausticsPhotonSplatter::DrawTriangles(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
+  vtkCausticsGBuffer* target, const float worldToClip[16])
+{
+  vtkCausticsShaderProgram* program = this->TriangleProgram;
+  if (!program->Bind(renWin))
+  {
+    return false;
+  }
+  vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux,
+    this->TriangleMask, target->GetPositionTexture(), target->GetNormalTexture() };
+  for (vtkTextureObject* input : inputs)
+  {
+    input->Activate();
+  }
+  this->SetRecordUniforms(program, grid, landed, target->GetSize(), worldToClip);
+  program->SetUniformi("triangleMask", this->TriangleMask->GetTextureUnit());
+  program->SetUniformi("targetPosition", target->GetPositionTexture()->GetTextureUnit());
+  program->SetUniformi("targetNormal", target->GetNormalTexture()->GetTextureUnit());
+  float clipToWorld[16];
+  caustics::gl::InvertColumnMajor(worldToClip, clipToWorld);
+  program->SetUniformMatrix4("clipToWorld", clipToWorld);
+  program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
+  program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+  glBindVertexArray(this->VertexArray);
+  // Six vertices (a screen rectangle) per triangle, two triangles per grid cell.
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(12 * grid.Count()));
+  glBindVertexArray(0);
+  for (vtkTextureObject* input : inputs)
+  {
+    input->Deactivate();
+  }
+  program->Unbind(renWin);
+  return true;
+}
+
+bool vtkCausticsPhotonSplatter::DrawSplats(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
+  vtkTextureObject* kernelRadius, vtkCausticsGBuffer* target, const float worldToClip[16])
+{
+  if (!this->Program->Bind(renWin))
+  {
+    return false;
+  }
+  const bool triangles = this->Reconstruction == TRIANGLES;
+  vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux, kernelRadius,
+    target->GetPositionTexture(), target->GetNormalTexture(),
+    triangles ? this->TriangleMask.GetPointer() : nullptr };
+  const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "kernelRadius", "targetPosition",
+    "targetNormal", "triangleMask" };
+  for (int i = 0; i < 7; ++i)
+  {
+    if (inputs[i])
+    {
+      inputs[i]->Activate();
+      this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+    }
   }
   const int* size = target->GetSize();
   this->Program->SetUniformi("hitWidth", grid.Width);
+  this->Program->SetUniformi("triangles", triangles ? 1 : 0);
+  this->Program->SetUniform2i("hitGridSize", grid.Width, grid.Height);
   this->Program->SetUniformMatrix4("worldToClip", worldToClip);
   this->Program->SetUniform2f("viewport", static_cast<float>(size[0]), static_cast<float>(size[1]));
   this->Program->SetUniformf("minimumRadiusPixels", static_cast<float>(this->MinimumRadiusPixels));
@@ -83,7 +202,10 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
   glBindVertexArray(0);
   for (vtkTextureObject* input : inputs)
   {
-    input->Deactivate();
+    if (input)
+    {
+      input->Deactivate();
+    }
   }
   this->Program->Unbind(renWin);
   return true;
@@ -92,6 +214,9 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
 void vtkCausticsPhotonSplatter::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->Program->ReleaseGraphicsResources(win);
+  this->ClassifyProgram->ReleaseGraphicsResources(win);
+  this->TriangleProgram->ReleaseGraphicsResources(win);
+  this->TriangleMask->ReleaseGraphicsResources(win);
   if (this->VertexArray)
   {
     glDeleteVertexArrays(1, &this->VertexArray);
@@ -106,4 +231,7 @@ void vtkCausticsPhotonSplatter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumRadiusPixels: " << this->MaximumRadiusPixels << "\n";
   os << indent << "PlaneTolerance: " << this->PlaneTolerance << "\n";
   os << indent << "NormalTolerance: " << this->NormalTolerance << "\n";
+  os << indent << "Reconstruction: " << (this->Reconstruction == TRIANGLES ? "triangles" : "splats")
+     << "\n";
+  os << indent << "TriangleStretch: " << this->TriangleStretch << "\n";
 }

@@ -18,6 +18,16 @@
  *    visible photon deposits exactly its flux — no scene-dependent scale factor.
  * The caller binds the target framebuffer (RGBA32F, same size as the G-buffer);
  * the splatter blends additively into it (alpha counts contributions).
+ *
+ * With Reconstruction TRIANGLES (caustic triangles; Umenhoffer, Patow and
+ * Szirmay-Kalos, "Caustic triangles on the GPU"), neighbouring photons of the grid
+ * that landed together on one receiver form triangles, each depositing the flux of
+ * the half grid cell between them over exactly the area it landed on, box-filtered
+ * over the pixels (glsl/vtkCausticsPhotonTriangleCommon.glsl). It needs no radius
+ * and keeps folds and focal lines sharp. Where neighbours diverge (another receiver
+ * or path, a silhouette, a triangle stretched beyond TriangleStretch spacings),
+ * the photons splat the share of their flux no valid triangle carried, so every
+ * photon still deposits exactly its flux.
  */
 #ifndef vtkCausticsPhotonSplatter_h
 #define vtkCausticsPhotonSplatter_h
@@ -71,6 +81,31 @@ public:
   vtkGetMacro(NormalTolerance, double);
   ///@}
 
+  /** How landed photons become irradiance. */
+  enum Reconstructions
+  {
+    SPLATS = 0,   ///< one kernel per photon
+    TRIANGLES = 1 ///< caustic triangles between grid neighbours, splats where they diverge
+  };
+
+  ///@{
+  /** SPLATS or TRIANGLES. Default SPLATS. */
+  vtkSetClampMacro(Reconstruction, int, SPLATS, TRIANGLES);
+  vtkGetMacro(Reconstruction, int);
+  void SetReconstructionToSplats() { this->SetReconstruction(SPLATS); }
+  void SetReconstructionToTriangles() { this->SetReconstruction(TRIANGLES); }
+  ///@}
+
+  ///@{
+  /**
+   * Longest edge of a caustic triangle, in the photons' unoccluded spacings on the
+   * receiver (the spacing they would have without the specular surfaces). Longer
+   * triangles span a silhouette or a change of path, and splat. Default 8.
+   */
+  vtkSetClampMacro(TriangleStretch, double, 1.0, 1000.0);
+  vtkGetMacro(TriangleStretch, double);
+  ///@}
+
 #ifndef __VTK_WRAP__
   /**
    * Splats the photons of `grid` that landed, `landed` in the photon record layout of
@@ -94,10 +129,27 @@ protected:
   double MaximumRadiusPixels = 24.0;
   double PlaneTolerance = 0.5;
   double NormalTolerance = 0.8;
+  int Reconstruction = SPLATS;
+  double TriangleStretch = 8.0;
   vtkNew<vtkCausticsShaderProgram> Program;
+  vtkNew<vtkCausticsShaderProgram> ClassifyProgram; // which triangles are valid
+  vtkNew<vtkCausticsShaderProgram> TriangleProgram;
+  vtkNew<vtkTextureObject> TriangleMask; // R32UI, one texel per grid cell
   unsigned int VertexArray = 0;
 
 private:
+  // Splat() in steps (the caller's framebuffer stays bound).
+  void SetRecordUniforms(vtkCausticsShaderProgram* program, const caustics::PhotonGrid& grid,
+    const caustics::PhotonRecords& landed, const int size[2], const float worldToClip[16]);
+  bool ClassifyTriangles(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    const caustics::PhotonRecords& landed, const int size[2], const float worldToClip[16]);
+  bool DrawTriangles(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    const caustics::PhotonRecords& landed, vtkCausticsGBuffer* target,
+    const float worldToClip[16]);
+  bool DrawSplats(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius,
+    vtkCausticsGBuffer* target, const float worldToClip[16]);
+
   vtkCausticsPhotonSplatter(const vtkCausticsPhotonSplatter&) = delete;
   void operator=(const vtkCausticsPhotonSplatter&) = delete;
 };

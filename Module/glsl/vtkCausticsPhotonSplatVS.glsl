@@ -10,6 +10,11 @@ uniform mat4 worldToClip;
 uniform vec2 viewport;
 uniform float minimumRadiusPixels;
 uniform float maximumRadiusPixels;
+// Caustic triangles (vtkCausticsPhotonTriangleCommon.glsl): when on, a photon splats
+// only the part of its flux its six triangles did not carry.
+uniform bool triangles;
+uniform usampler2D triangleMask; // bit t of a cell: its triangle t is valid
+uniform ivec2 hitGridSize;
 
 flat out vec3 splatCentre;
 flat out vec3 splatNormal;
@@ -21,6 +26,31 @@ void Discard()
   gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume
   gl_PointSize = 1.0;
   splatRadius = 0.0;
+}
+
+// Valid triangles of `cell` among those named by `bits`; none outside the grid.
+int ValidTriangles(ivec2 cell, uint bits)
+{
+  if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, hitGridSize)))
+  {
+    return 0;
+  }
+  return bitCount(texelFetch(triangleMask, cell, 0).r & bits);
+}
+
+// The share of a photon's flux that no caustic triangle carries: 1 - k/6, k of its
+// six triangles valid (it is corner a of both triangles of its cell, b of triangle
+// 0 of the cell to the left, c of triangle 1 of the cell below, d of both of the
+// cell below-left).
+float SplatShare(ivec2 texel)
+{
+  if (!triangles)
+  {
+    return 1.0;
+  }
+  int carried = ValidTriangles(texel, 3u) + ValidTriangles(texel - ivec2(1, 0), 1u) +
+    ValidTriangles(texel - ivec2(0, 1), 2u) + ValidTriangles(texel - ivec2(1, 1), 3u);
+  return 1.0 - float(carried) / 6.0;
 }
 
 vec2 ToPixels(vec3 p)
@@ -35,7 +65,7 @@ void main()
   vec4 position = texelFetch(hitPosition, texel, 0);
   vec3 normal = texelFetch(hitNormal, texel, 0).xyz;
   float radius = texelFetch(kernelRadius, texel, 0).r;
-  vec3 flux = texelFetch(hitFlux, texel, 0).rgb;
+  vec3 flux = texelFetch(hitFlux, texel, 0).rgb * SplatShare(texel);
   vec4 clip = worldToClip * vec4(position.xyz, 1.0);
   if (position.w <= 0.0 || clip.w <= 0.0 || dot(flux, vec3(1.0)) <= 0.0 ||
     !(radius > 0.0))

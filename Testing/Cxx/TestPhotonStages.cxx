@@ -122,82 +122,220 @@ TEST(PhotonEmitter, ConservesFluxAndRefractsAtNormalIncidence)
   emitter->ReleaseGraphicsResources(f.Window);
 }
 
+namespace
+{
+/**
+ * A top-down orthographic view of the ball lens's floor, 256 pixels over 8 m (1/32 m
+ * pixels), and an irradiance target of its size: where the splatter deposits
+ * photons that the test puts in the photon record layout.
+ */
+struct FloorTarget
+{
+  static constexpr int Size = 256;
+  static constexpr double Half = 4.0;
+  BallLens& Frame;
+  float WorldToClip[16];
+  vtkNew<vtkCausticsGBuffer> View;
+  vtkNew<vtkTextureObject> Target;
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  caustics::gl::PhotonPlanes Landed;
+
+  explicit FloorTarget(BallLens& frame)
+    : Frame(frame)
+  {
+    frame.GL()->MakeCurrent();
+    const double worldToClip[16] = { 1.0 / Half, 0, 0, 0, 0, 0, -1.0 / Half, 0, 0, -0.1, 0, 0.5, 0,
+      0, 0, 1 }; // x -> x, -z -> y, depth from y
+    caustics::gl::ToColumnMajor(worldToClip, this->WorldToClip);
+    EXPECT_TRUE(this->View->Render(frame.GL(), frame.Pass->GetGeometry(), this->WorldToClip, Size,
+      Size, vtkCausticsSceneGeometry::RoleBit(1)));
+    caustics::gl::EnsureTexture(this->Target, frame.GL(), Size, Size, GL_RGBA32F);
+  }
+  ~FloorTarget()
+  {
+    this->View->ReleaseGraphicsResources(this->Frame.Window);
+    this->Landed.Release(this->Frame.Window);
+    this->Target->ReleaseGraphicsResources(this->Frame.Window);
+    this->Framebuffer->ReleaseGraphicsResources(this->Frame.Window);
+  }
+
+  /** Landed photons (records of the grid's size, flat arrays of 4 floats each) and radii. */
+  caustics::PhotonRecords Upload(int width, int height, const std::vector<float>& positions,
+    const std::vector<float>& normals, const std::vector<float>& fluxes,
+    const std::vector<float>& radii)
+  {
+    this->Landed.EnsureWithRadius(this->Frame.GL(), width, height);
+    const caustics::PhotonRecords records = this->Landed.Records();
+    glTextureSubImage2D(records.Position->GetHandle(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
+      positions.data());
+    glTextureSubImage2D(records.Direction->GetHandle(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
+      normals.data());
+    glTextureSubImage2D(
+      records.Flux->GetHandle(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, fluxes.data());
+    glTextureSubImage2D(this->Landed.KernelRadius()->GetHandle(), 0, 0, 0, width, height, GL_RED,
+      GL_FLOAT, radii.data());
+    return records;
+  }
+
+  /** The irradiance (W/m^2, RGBA) the splatter deposits for the uploaded photons. */
+  vtkSmartPointer<vtkImageData> Deposit(
+    vtkCausticsPhotonSplatter* splatter, const caustics::PhotonGrid& grid)
+  {
+    vtkOpenGLState* state = this->Frame.GL()->GetState();
+    state->PushFramebufferBindings();
+    this->Framebuffer->SetContext(this->Frame.GL());
+    this->Framebuffer->Bind();
+    this->Framebuffer->AddColorAttachment(0, this->Target);
+    this->Framebuffer->ActivateDrawBuffers(1);
+    const float zero[4] = { 0, 0, 0, 0 };
+    glClearBufferfv(GL_COLOR, 0, zero);
+    state->vtkglViewport(0, 0, Size, Size);
+    state->vtkglDisable(GL_SCISSOR_TEST);
+    EXPECT_TRUE(splatter->Splat(this->Frame.GL(), grid, this->Landed.Records(),
+      this->Landed.KernelRadius(), this->View, this->WorldToClip));
+    state->PopFramebufferBindings();
+    return caustics::gl::ReadTexture(this->Target, "E", 4);
+  }
+
+  /** The flux (W) of one channel the image holds: irradiance times the pixels' area. */
+  static double Flux(vtkImageData* irradiance, int channel)
+  {
+    const double pixelArea = std::pow(2.0 * Half / Size, 2);
+    double flux = 0.0;
+    for (vtkIdType i = 0; i < Size * Size; ++i)
+    {
+      flux += Array(irradiance)->GetComponent(i, channel) * pixelArea;
+    }
+    return flux;
+  }
+
+  /** Irradiance of one channel at the pixel holding floor point (x, 0, z). */
+  static double At(vtkImageData* irradiance, double x, double z, int channel)
+  {
+    const int px = static_cast<int>((x / Half * 0.5 + 0.5) * Size);
+    const int py = static_cast<int>((-z / Half * 0.5 + 0.5) * Size);
+    return Array(irradiance)->GetComponent(static_cast<vtkIdType>(py) * Size + px, channel);
+  }
+};
+}
+
 TEST(PhotonSplatter, DepositsEachPhotonsFlux)
 {
   BallLens f;
-  f.GL()->MakeCurrent();
-  // A top-down orthographic view of the floor, 256 pixels over 8 m: 1/32 m pixels.
-  caustics::SceneData scene = f.Pass->GetSceneExtractor()->GetScene();
-  const double half = 4.0;
-  const double worldToClip[16] = { 1.0 / half, 0, 0, 0, 0, 0, -1.0 / half, 0, 0, -0.1, 0, 0.5, 0, 0,
-    0, 1 }; // x -> x, -z -> y, depth from y
-  float matrix[16];
-  caustics::gl::ToColumnMajor(worldToClip, matrix);
-  vtkNew<vtkCausticsGBuffer> view;
-  const int size = 256;
-  ASSERT_TRUE(view->Render(
-    f.GL(), f.Pass->GetGeometry(), matrix, size, size, vtkCausticsSceneGeometry::RoleBit(1)));
-
+  FloorTarget floor(f);
   // Three photons landed on the floor (the photon record layout), radius 0.2 m (6.4 pixels).
-  const float hits[3][4] = { { 0.0f, 0.0f, 0.0f, 1.0f }, { 1.0f, 0.0f, 1.0f, 1.0f },
-    { -2.0f, 0.0f, 0.5f, 1.0f } };
-  const float normals[3][4] = { { 0, 1, 0, 1 }, { 0, 1, 0, 1 }, { 0, 1, 0, 1 } };
-  const float fluxes[3][4] = { { 1, 2, 3, 0 }, { 0.5f, 0.5f, 0.5f, 0 }, { 2, 1, 0, 0 } };
-  const float radii[3] = { 0.2f, 0.2f, 0.2f };
-  caustics::gl::PhotonPlanes landed;
-  landed.EnsureWithRadius(f.GL(), 3, 1);
-  const caustics::PhotonRecords records = landed.Records();
-  glTextureSubImage2D(records.Position->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, hits);
-  glTextureSubImage2D(records.Direction->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, normals);
-  glTextureSubImage2D(records.Flux->GetHandle(), 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, fluxes);
-  glTextureSubImage2D(landed.KernelRadius()->GetHandle(), 0, 0, 0, 3, 1, GL_RED, GL_FLOAT, radii);
-
-  vtkNew<vtkTextureObject> target;
-  caustics::gl::EnsureTexture(target, f.GL(), size, size, GL_RGBA32F);
-  vtkNew<vtkOpenGLFramebufferObject> framebuffer;
-  vtkOpenGLState* state = f.GL()->GetState();
-  state->PushFramebufferBindings();
-  framebuffer->SetContext(f.GL());
-  framebuffer->Bind();
-  framebuffer->AddColorAttachment(0, target);
-  framebuffer->ActivateDrawBuffers(1);
-  const float zero[4] = { 0, 0, 0, 0 };
-  glClearBufferfv(GL_COLOR, 0, zero);
-  state->vtkglViewport(0, 0, size, size);
-  state->vtkglDisable(GL_SCISSOR_TEST);
+  floor.Upload(3, 1, { 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 1.0f, -2.0f, 0.0f, 0.5f, 1.0f },
+    { 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1 }, { 1, 2, 3, 0, 0.5f, 0.5f, 0.5f, 0, 2, 1, 0, 0 },
+    { 0.2f, 0.2f, 0.2f });
   vtkNew<vtkCausticsPhotonSplatter> splatter;
   caustics::PhotonGrid grid; // three hits in one row
   grid.Width = 3;
   grid.Height = grid.BranchRows = 1;
-  ASSERT_TRUE(splatter->Splat(f.GL(), grid, records, landed.KernelRadius(), view, matrix));
-  state->PopFramebufferBindings();
-
-  auto irradiance = caustics::gl::ReadTexture(target, "E", 4);
-  const double pixelArea = std::pow(2.0 * half / size, 2);
-  double deposited[3] = { 0, 0, 0 };
-  for (vtkIdType i = 0; i < size * size; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      deposited[c] += Array(irradiance)->GetComponent(i, c) * pixelArea;
-    }
-  }
+  auto irradiance = floor.Deposit(splatter, grid);
   // Sum of the kernel over pixel centres approximates its integral (1): the
   // midpoint rule on a 6.4-pixel-radius Epanechnikov kernel errs by ~h^2/r^2/12
   // = 0.2%; allow 1%.
-  const double expected[3] = { 3.5, 3.5, 3.5 };
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_NEAR(deposited[c] / expected[c], 1.0, 0.01) << "channel " << c;
+    EXPECT_NEAR(FloorTarget::Flux(irradiance, c) / 3.5, 1.0, 0.01) << "channel " << c;
   }
   // The first photon's centre pixel: 2 / (pi r^2) x flux = 15.9 W/m^2 in red.
-  double px = (0.0 / half * 0.5 + 0.5) * size, py = (0.0 * 0.5 + 0.5) * size;
-  const vtkIdType id = static_cast<vtkIdType>(py) * size + static_cast<vtkIdType>(px);
   EXPECT_NEAR(
-    Array(irradiance)->GetComponent(id, 0), 2.0 / (M_PI * 0.04), 0.05 * 2.0 / (M_PI * 0.04));
+    FloorTarget::At(irradiance, 0.0, 0.0, 0), 2.0 / (M_PI * 0.04), 0.05 * 2.0 / (M_PI * 0.04));
   splatter->ReleaseGraphicsResources(f.Window);
-  view->ReleaseGraphicsResources(f.Window);
-  landed.Release(f.Window);
-  target->ReleaseGraphicsResources(f.Window);
-  framebuffer->ReleaseGraphicsResources(f.Window);
+}
+
+namespace
+{
+/**
+ * A 33 x 33 grid of photons of a directional light (measure 0.01 m^2, 0.02 W each in
+ * every channel) landed on the floor at x = X(i), z = 0.1 j - 1.6, facing up: a
+ * lattice of 0.1 m where X is uniform, so its caustic triangles carry 2 W/m^2.
+ */
+struct Lattice
+{
+  static constexpr int N = 33;
+  static constexpr float PhotonFlux = 0.02f;
+  std::vector<float> Positions, Normals, Fluxes, Radii;
+  caustics::PhotonGrid Grid;
+
+  template <typename X>
+  explicit Lattice(X x)
+  {
+    for (int j = 0; j < N; ++j)
+    {
+      for (int i = 0; i < N; ++i)
+      {
+        const float position[4] = { static_cast<float>(x(i)), 0.0f, 0.1f * j - 1.6f, 1.0f };
+        const float normal[4] = { 0, 1, 0, 1 };
+        const float flux[4] = { PhotonFlux, PhotonFlux, PhotonFlux, 0.01f };
+        this->Positions.insert(this->Positions.end(), position, position + 4);
+        this->Normals.insert(this->Normals.end(), normal, normal + 4);
+        this->Fluxes.insert(this->Fluxes.end(), flux, flux + 4);
+        this->Radii.push_back(0.15f);
+      }
+    }
+    this->Grid.Width = this->Grid.Height = this->Grid.BranchRows = N;
+    this->Grid.LightType = 0;
+  }
+  float* Position(int i, int j) { return &this->Positions[4 * (j * N + i)]; }
+  caustics::PhotonRecords Upload(FloorTarget& floor)
+  {
+    return floor.Upload(N, N, this->Positions, this->Normals, this->Fluxes, this->Radii);
+  }
+};
+}
+
+// Caustic triangles deposit the exact irradiance of the piecewise-linear map from
+// the grid to the receiver, box-filtered over the pixels, and every photon's whole
+// flux, whether its triangles carry it or, where they are broken, its splat.
+TEST(PhotonSplatter, CausticTrianglesDepositTheMappedIrradiance)
+{
+  BallLens f;
+  FloorTarget floor(f);
+  vtkNew<vtkCausticsPhotonSplatter> splatter;
+  splatter->SetReconstructionToTriangles();
+  const double total = Lattice::N * Lattice::N * Lattice::PhotonFlux;
+
+  // A uniform lattice: 2 W/m^2 everywhere inside it (pixels of 1/32 m, unaligned
+  // with the 0.1 m lattice: only the box filter gives the exact value).
+  Lattice uniform([](int i) { return 0.1 * i - 1.6; });
+  uniform.Upload(floor);
+  auto irradiance = floor.Deposit(splatter, uniform.Grid);
+  EXPECT_NEAR(FloorTarget::Flux(irradiance, 0) / total, 1.0, 0.005);
+  for (double x : { -1.23, -0.5, 0.0, 0.71, 1.37 })
+  {
+    for (double z : { -1.31, 0.02, 0.93 })
+    {
+      EXPECT_NEAR(FloorTarget::At(irradiance, x, z, 0), 2.0, 0.01) << "at " << x << ", " << z;
+    }
+  }
+
+  // Columns 16 to 20 squeezed four times (0.025 m apart): 8 W/m^2 over the 0.1 m
+  // band, with edges as sharp as the pixels (a splat would spread it over its radius).
+  Lattice squeezed([](int i) {
+    return i <= 16 ? 0.1 * i - 1.6 : (i <= 20 ? 0.025 * (i - 16) : 0.1 * (i - 20) + 0.1);
+  });
+  squeezed.Upload(floor);
+  irradiance = floor.Deposit(splatter, squeezed.Grid);
+  EXPECT_NEAR(FloorTarget::Flux(irradiance, 0) / total, 1.0, 0.005);
+  EXPECT_NEAR(FloorTarget::At(irradiance, 0.05, 0.3, 0), 8.0, 0.04);
+  EXPECT_NEAR(FloorTarget::At(irradiance, -0.05, 0.3, 0), 2.0, 0.01);
+  EXPECT_NEAR(FloorTarget::At(irradiance, 0.15, 0.3, 0), 2.0, 0.01);
+
+  // Broken triangles: a photon that did not land, one that landed 3 m away (beyond
+  // 8 spacings: another path) and one on a surface 0.3 m higher. Their neighbours
+  // splat what their triangles do not carry; the flux of the landed photons stays.
+  Lattice broken([](int i) { return 0.1 * i - 1.6; });
+  broken.Position(10, 10)[3] = 0.0f;
+  broken.Position(20, 20)[0] += 3.0f;
+  broken.Position(25, 5)[1] += 0.3f;
+  broken.Upload(floor);
+  irradiance = floor.Deposit(splatter, broken.Grid);
+  // Lost: the photon that did not land, and the one off the floor (no receiver on
+  // its tangent plane); the one moved 3 m splats all of its flux.
+  EXPECT_NEAR(
+    FloorTarget::Flux(irradiance, 0) / (total - 2 * Lattice::PhotonFlux), 1.0, 0.01);
+  EXPECT_NEAR(FloorTarget::At(irradiance, 0.7, -0.4, 0), 2.0, 0.01); // far from all three
+  splatter->ReleaseGraphicsResources(f.Window);
 }
