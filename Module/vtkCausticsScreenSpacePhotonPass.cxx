@@ -362,6 +362,7 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     p->Unbind(renWin);
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
+  in.Splatter->SetReconstruction(this->Settings.Reconstruction);
   return in.Splatter->Splat(
     renWin, grid, in.Landed.Records(), in.Landed.KernelRadius(), f.CameraGBuffer, f.WorldToClip);
 }
@@ -593,6 +594,8 @@ void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SplatRadius: " << this->Settings.SplatRadius << " m (0: in pixel footprints)\n";
   os << indent << "SplatRadiusPixels: " << this->Settings.SplatRadiusPixels << "\n";
   os << indent << "SplatRadiusSpacings: " << this->Settings.SplatRadiusSpacings << "\n";
+  os << indent << "Reconstruction: "
+     << (this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES ? "triangles" : "splats") << "\n";
   os << indent << "GodRays: " << this->Settings.GodRays << "\n";
   os << indent << "GodRayBlurPixels: " << this->Settings.GodRayBlurPixels << "\n";
   os << indent << "SkipOffscreenSpecular: " << this->Settings.SkipOffscreenSpecular << "\n";

@@ -127,6 +127,24 @@ public:
   ///@}
 
   ///@{
+  /**
+   * How the landed photons become irradiance (the shared reconstruction,
+   * vtkCausticsPhotonSplatter): RECONSTRUCTION_SPLATS, one kernel per photon with
+   * the radius rules above; RECONSTRUCTION_TRIANGLES, caustic triangles between
+   * neighbouring photons that landed together, with splats where they diverge.
+   * Default splats.
+   */
+  enum
+  {
+    RECONSTRUCTION_SPLATS = 0,
+    RECONSTRUCTION_TRIANGLES = 1
+  };
+  vtkCausticsSettingClampMacro(Settings, Reconstruction, int, 0, 1);
+  void SetReconstructionToSplats() { this->SetReconstruction(RECONSTRUCTION_SPLATS); }
+  void SetReconstructionToTriangles() { this->SetReconstruction(RECONSTRUCTION_TRIANGLES); }
+  ///@}
+
+  ///@{
   /** Draw god-rays when the renderer has a scattering medium (§3.2). Default on. */
   vtkCausticsSettingMacro(Settings, GodRays, bool);
   vtkBooleanMacro(GodRays, bool);

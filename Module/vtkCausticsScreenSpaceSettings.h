@@ -28,6 +28,7 @@ struct ScreenSpaceSettings
   double SplatRadius = 0.0;                    ///< m, [0, 1e6]; 0: the pixel and spacing rules
   double SplatRadiusPixels = 2.0;              ///< pixel footprints, [0.5, 64]
   double SplatRadiusSpacings = 2.0;            ///< photon spacings, [0, 16]; 0: pixel rule only
+  int Reconstruction = 0; ///< vtkCausticsPhotonSplatter::Reconstructions: 0 splats, 1 triangles
   bool GodRays = true;                         ///< volume caustics in a medium (§3.2)
   double GodRayBlurPixels = 1.5;               ///< Gaussian standard deviation, pixels, [0, 16]
   bool SkipOffscreenSpecular = false;          ///< plain VTK when no specular actor is in view

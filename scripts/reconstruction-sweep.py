@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""Splats against caustic triangles (vtkCausticsPhotonSplatter::SetReconstruction):
+renders built-in scenes with the screen-space technique each way and prints, per
+scene, the relative L2 of the caustic irradiance and the flux against the CPU
+reference of the same frame (receiver pixels, vtkCausticsErrorMetrics), and the
+median frame time over repeats.
+
+    PYTHONPATH=build/lib/python3/dist-packages xvfb-run -a /usr/bin/python3 \\
+        scripts/reconstruction-sweep.py [--scenes ball-lens,pool,ring,bunny] [--size 256] \\
+        [--photons 256] [--reference-photons 4e6] [--repeats 3]
+
+Needs the Python wrapping (-DCAUSTICS_WRAP_PYTHON=ON) and a display or EGL.
+"""
+import argparse
+import statistics
+import time
+
+import vtkcaustics  # imports VTK's OpenGL2 rendering first
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
+
+MODES = {"splats": 0, "triangles": 1}
+
+
+class Frame:
+    def __init__(self, scene, size):
+        self.size = size
+        self.window = vtkcaustics.vtkCausticsWindowFactory().NewWindow(True)
+        self.window.SetMultiSamples(0)
+        self.window.SetSize(size, size)
+        self.renderer = vtkOpenGLRenderer()
+        self.window.AddRenderer(self.renderer)
+        self.scene = vtkcaustics.vtkCausticsBuiltinScene()
+        self.scene.SetSceneName(scene)
+        if not self.scene.Populate(self.renderer):
+            raise RuntimeError(self.scene.GetLastError())
+
+    def caustic(self, technique, mode, photons, repeats):
+        """The caustic irradiance and the median frame time (s)."""
+        caustics = vtkcaustics.vtkCausticsTechniques.NewPass(technique)
+        caustics.KeepBuffersOn()
+        caustics.SetLightBufferResolution(photons)
+        caustics.SetReconstruction(MODES[mode])
+        self.renderer.SetPass(caustics)
+        self.window.Render()  # compiles
+        times = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            self.window.Render()
+            caustics.ReadBuffer("CausticIrradiance", vtkImageData())  # waits for the GPU
+            times.append(time.perf_counter() - start)
+        image = vtkImageData()
+        if not caustics.ReadBuffer("CausticIrradiance", image):
+            raise RuntimeError("no caustic buffer")
+        self.renderer.SetPass(None)
+        caustics.ReleaseGraphicsResources(self.window)
+        return image, statistics.median(times)
+
+    def reference(self, photons):
+        reference = vtkcaustics.vtkCausticsReferenceRenderer()
+        reference.SetInputRenderer(self.renderer)
+        reference.SetImageSize(self.size, self.size)
+        reference.SetPhotonsPerLight(int(photons))
+        if not reference.Update():
+            raise RuntimeError(reference.GetLastError())
+        return reference.GetOutput()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--scenes", default="ball-lens,pool,ring,bunny")
+    parser.add_argument("--techniques", default="screen-space")
+    parser.add_argument("--size", type=int, default=256)
+    parser.add_argument("--photons", type=int, default=256)
+    parser.add_argument("--reference-photons", type=float, default=4e6)
+    parser.add_argument("--repeats", type=int, default=3)
+    options = parser.parse_args()
+    print("| scene | technique | reconstruction | relative L2 | flux / reference | frame (s) |")
+    print("|---|---|---|---|---|---|")
+    for scene in options.scenes.split(","):
+        frame = Frame(scene, options.size)
+        truth = frame.reference(options.reference_photons)
+        for technique in options.techniques.split(","):
+            for mode in MODES:
+                image, seconds = frame.caustic(technique, mode, options.photons, options.repeats)
+                metrics = vtkcaustics.vtkCausticsErrorMetrics()
+                metrics.SetArrayName("CausticIrradiance")
+                metrics.SetMaskArrayName("ReceiverMask")
+                metrics.SetAreaArrayName("PixelArea")
+                metrics.Compute(image, truth)
+                print("| %s | %s | %s | %.1f %% | %.3f | %.3f |" % (scene, technique, mode,
+                    100.0 * metrics.GetRelativeL2Error(), metrics.GetFluxRatio(), seconds),
+                    flush=True)
+
+
+if __name__ == "__main__":
+    main()
