@@ -83,6 +83,25 @@ inline int ParseInteger(const std::string& option, const std::string& text, int 
   return static_cast<int>(value);
 }
 
+/** The index of `text` among `choices` ("a, b or c" named in the error otherwise). */
+inline int ParseChoice(
+  const std::string& option, const std::string& text, const std::vector<std::string>& choices)
+{
+  for (std::size_t i = 0; i < choices.size(); ++i)
+  {
+    if (choices[i] == text)
+    {
+      return static_cast<int>(i);
+    }
+  }
+  std::string expected;
+  for (std::size_t i = 0; i < choices.size(); ++i)
+  {
+    expected += (i == 0 ? "" : (i + 1 == choices.size() ? " or " : ", ")) + choices[i];
+  }
+  throw UsageError(option + " expects " + expected + ", got '" + text + "'");
+}
+
 /**
  * The options of one program on vtksys::CommandLineArguments: each is declared
  * once with its handler, which parses and validates its value and throws

@@ -64,6 +64,10 @@ std::string QualityUsage()
   --trace-view MODE          screen-space: view photons are traced in: automatic
                              (default: the camera's unless a reflector or refractor
                              is outside it), camera, fitted
+  --reconstruction MODE      screen-space: how landed photons become irradiance:
+                             splats (default) or triangles (caustic triangles
+                             between neighbouring photons; sharp foci, see
+                             docs/accuracy.md)
   --size W[xH]               image size in pixels (default 512x512)
 )";
 }
@@ -234,15 +238,10 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.Value("--technique", Text(options.Technique));
   arguments.Value("--trace-view",
     [&options](const std::string& option, const std::string& value)
-    {
-      const std::vector<std::string> modes = { "automatic", "camera", "fitted" };
-      const auto found = std::find(modes.begin(), modes.end(), value);
-      if (found == modes.end())
-      {
-        throw UsageError(option + " expects automatic, camera or fitted, got '" + value + "'");
-      }
-      options.TraceView = static_cast<int>(found - modes.begin());
-    });
+    { options.TraceView = ParseChoice(option, value, { "automatic", "camera", "fitted" }); });
+  arguments.Value("--reconstruction",
+    [&options](const std::string& option, const std::string& value)
+    { options.Reconstruction = ParseChoice(option, value, { "splats", "triangles" }); });
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
@@ -512,6 +511,7 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))
   {
     screenSpace->SetTraceView(options.TraceView);
+    screenSpace->SetReconstruction(options.Reconstruction);
   }
   return pass;
 }

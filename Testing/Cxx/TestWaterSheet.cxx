@@ -29,7 +29,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <vector>
 
 namespace
@@ -112,8 +114,10 @@ std::vector<double> ExactColumns(double elevation)
     const int column = static_cast<int>(std::floor((landed + FloorHalf) / pixel));
     if (column >= 0 && column < Size)
     {
-      // The sun's flux through the surface's horizontal element dx, transmitted.
-      columns[column] += std::sin(e) * dx * (1.0 - 0.5 * (rs + rp)) / pixel;
+      // The sun's flux through the surface element (dx, h' dx): its cross-section of
+      // the beam, |sin e + h' cos e| dx, times the Fresnel transmittance.
+      const double section = std::abs(std::sin(e) + slope * std::cos(e)) * dx;
+      columns[column] += section * (1.0 - 0.5 * (rs + rp)) / pixel;
     }
   }
   return columns;
@@ -214,15 +218,17 @@ struct SheetFrame
 }
 
 // Caustic triangles keep the crests' focusing that splats blur: measured relative
-// L2 (splats, triangles) 14.1 and 6.1 % under a vertical sun, 52.8 and 13.9 % at 60
-// degrees; the bounds sit just above. Both conserve the flux.
+// L2 (splats, triangles) 14.1 and 6.1 % under a vertical sun, 51.4 and 13.9 % at 60
+// degrees; the bounds sit just above. Both keep the flux within 1e-4. (At 30
+// degrees the floor lies beyond the crests' folds, which are narrower than the
+// photons' spacing: 50 and 61 %, not asserted; see docs/accuracy.md.)
 TEST(WaterSheet, CausticTrianglesMatchTheExactFoci)
 {
   SheetFrame frame;
   const struct
   {
     double Elevation, Triangles, Splats;
-  } cases[] = { { 90.0, 0.07, 0.16 }, { 60.0, 0.155, 0.58 } };
+  } cases[] = { { 90.0, 0.07, 0.155 }, { 60.0, 0.155, 0.53 } };
   for (const auto& c : cases)
   {
     const auto triangles = frame.Compare(c.Elevation, 1);
@@ -230,8 +236,8 @@ TEST(WaterSheet, CausticTrianglesMatchTheExactFoci)
     EXPECT_LT(triangles.RelativeL2, c.Triangles) << "triangles, sun at " << c.Elevation;
     EXPECT_LT(splats.RelativeL2, c.Splats) << "splats, sun at " << c.Elevation;
     EXPECT_LT(triangles.RelativeL2, 0.5 * splats.RelativeL2) << "sun at " << c.Elevation;
-    EXPECT_NEAR(triangles.Flux, 1.0, 0.01) << "triangles, sun at " << c.Elevation;
-    EXPECT_NEAR(splats.Flux, 1.0, 0.01) << "splats, sun at " << c.Elevation;
+    EXPECT_NEAR(triangles.Flux, 1.0, 0.002) << "triangles, sun at " << c.Elevation;
+    EXPECT_NEAR(splats.Flux, 1.0, 0.002) << "splats, sun at " << c.Elevation;
     std::cout << "sun at " << c.Elevation << " degrees: relative L2 splats "
               << 100.0 * splats.RelativeL2 << " %, triangles " << 100.0 * triangles.RelativeL2
               << " %; flux " << splats.Flux << ", " << triangles.Flux << "\n";
