@@ -16,6 +16,7 @@
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
 #include "CausticsCommandLine.h"
 
+#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
@@ -239,6 +240,19 @@ std::vector<Configuration> MakeConfigurations()
   std::vector<Configuration> table;
   AddScreenSpaceConfigurations(table);
   AddCausticMapConfigurations(table);
+  // The CPU technique, one independent estimate per frame (its accumulated frames are
+  // one estimate from that many times the photons): its cost against its error.
+  for (int grid : { 128, 256, 512, 1024 })
+  {
+    table.push_back({ "cpu-progressive", "grid=" + std::to_string(grid) + " kernel=1 progressive=off",
+      Set<vtkCausticsProgressivePhotonPass>(
+        [grid](vtkCausticsProgressivePhotonPass* pass)
+        {
+          pass->SetLightBufferResolution(grid);
+          pass->SetKernelRadiusPixels(1.0);
+          pass->ProgressiveOff();
+        }) });
+  }
   // "none": the shared stages (snapshot, VTK delegate, G-buffers, light buffers,
   // composite) with no technique. Its cost at each photon-grid size the techniques
   // use is their cost floor; its error (1: no caustic light) is the ceiling.
@@ -1729,6 +1743,7 @@ int Run(const Options& options, OneLineOutputWindow* messages)
 
 int main(int argc, char* argv[])
 {
+  vtkCausticsProgressivePhotonPass::RegisterTechnique(); // the CPU technique, by name
   // Errors are taken per configuration: the one they broke fails, naming the first.
   return caustics_cli::RunMain("caustics-bench", caustics_cli::LoggedErrors::Remember,
     [&](OneLineOutputWindow* messages)

@@ -8,6 +8,7 @@
 #include "CausticsCommandLine.h"
 #include "CausticsSceneOptions.h"
 
+#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsGLTFImporter.h"
 #include "vtkCausticsImageIO.h"
@@ -446,6 +447,7 @@ std::string UsageText()
 
 int main(int argc, char* argv[])
 {
+  vtkCausticsProgressivePhotonPass::RegisterTechnique(); // the CPU technique, by name
   return caustics_cli::RunMain("caustics-render", caustics_cli::LoggedErrors::Fail,
     [&](caustics_cli::OneLineOutputWindow*)
     {

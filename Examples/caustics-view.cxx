@@ -10,6 +10,7 @@
 #include "CausticsCommandLine.h"
 #include "CausticsSceneOptions.h"
 #include "CausticsViewer.h"
+#include "vtkCausticsProgressivePhotonPass.h"
 
 #include "vtksys/SystemTools.hxx"
 
@@ -86,6 +87,7 @@ std::string ReadPlayback(const std::string& path)
 
 int main(int argc, char* argv[])
 {
+  vtkCausticsProgressivePhotonPass::RegisterTechnique(); // the CPU technique, by name
   return caustics_cli::RunMain("caustics-view", caustics_cli::LoggedErrors::Remember,
     [&](caustics_cli::OneLineOutputWindow* messages)
     {

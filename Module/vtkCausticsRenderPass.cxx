@@ -826,9 +826,12 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
 
   if (caustics && ok)
   {
-    this->StartStage("light buffers");
-    ok = this->RenderLightBuffers();
-    this->StopStage("light buffers");
+    if (this->GetCausticNeeds().LightBuffers)
+    {
+      this->StartStage("light buffers");
+      ok = this->RenderLightBuffers();
+      this->StopStage("light buffers");
+    }
     this->StartStage("caustic irradiance");
     ok = ok && this->RenderCaustics();
     this->StopStage("caustic irradiance");

@@ -312,6 +312,7 @@ protected:
     bool LitSpecular = false;    ///< a light reaches the specular actors' bounds
     bool SpecularInView = false; ///< a specular actor meets the camera's view frustum
     bool EarlySkip = true;       ///< the pre-snapshot test may skip the frame
+    bool LightBuffers = true;    ///< the technique reads the light buffers (else not rendered)
   };
 
   ///@{

@@ -21,14 +21,14 @@ namespace
 {
 struct Entry
 {
-  const char* Name;
-  const char* Description;
+  std::string Name;
+  std::string Description;
   std::function<vtkSmartPointer<vtkCausticsRenderPass>()> Make;
 };
 
-const std::vector<Entry>& Entries()
+std::vector<Entry>& Entries()
 {
-  static const std::vector<Entry> entries = {
+  static std::vector<Entry> entries = {
     { "none", "VTK's own shading plus the shared caustics buffers (no caustic light)",
       [] { return vtkSmartPointer<vtkCausticsRenderPass>::New(); } },
     { "screen-space",
@@ -92,6 +92,21 @@ bool IsClosed(const caustics::Mesh& mesh)
   }
   return std::all_of(edges.begin(), edges.end(), [](const auto& edge) { return edge.second == 2; });
 }
+}
+
+void vtkCausticsTechniques::Register(const std::string& name, const std::string& description,
+  std::function<vtkSmartPointer<vtkCausticsRenderPass>()> make)
+{
+  std::vector<Entry>& entries = Entries();
+  const auto found = std::find_if(
+    entries.begin(), entries.end(), [&name](const Entry& entry) { return entry.Name == name; });
+  if (found != entries.end())
+  {
+    found->Description = description;
+    found->Make = std::move(make);
+    return;
+  }
+  entries.push_back({ name, description, std::move(make) });
 }
 
 std::vector<std::string> vtkCausticsTechniques::GetNames()

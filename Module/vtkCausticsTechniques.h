@@ -17,7 +17,8 @@
 #include "vtkRenderingCausticsModule.h" // For export macro
 #include "vtkSmartPointer.h"            // For return value
 
-#include <string> // For std::string
+#include <functional> // For std::function
+#include <string>     // For std::string
 #include <vector> // For std::vector
 
 class vtkCausticsRenderPass;
@@ -44,6 +45,14 @@ public:
 #ifndef __VTK_WRAP__
   /** A new pass for `name` (or "best"); nullptr for an unknown name. */
   static vtkSmartPointer<vtkCausticsRenderPass> Create(const std::string& name);
+
+  /**
+   * Registers a technique of another module (which this one cannot link, e.g. the
+   * CPU technique of VTK::RenderingCausticsCPU, which links Embree). A name already
+   * registered is replaced. Thread-unsafe: register before rendering.
+   */
+  static void Register(const std::string& name, const std::string& description,
+    std::function<vtkSmartPointer<vtkCausticsRenderPass>()> make);
 #endif
   /** Create() for wrapped languages (Python): the caller owns the new pass. */
   VTK_NEWINSTANCE static vtkCausticsRenderPass* NewPass(const std::string& name);
