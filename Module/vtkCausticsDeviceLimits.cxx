@@ -1,5 +1,6 @@
 #include "vtkCausticsDeviceLimits.h"
 
+#include "vtkOpenGLRenderWindow.h"
 #include "vtk_glew.h"
 
 #include <cstdio>
@@ -76,6 +77,18 @@ DeviceLimits QueryDeviceLimits(double requested)
     limits.MemorySource = "half the physical memory (software OpenGL)";
   }
   return limits;
+}
+
+bool IsSoftwareOpenGL(vtkRenderWindow* window)
+{
+  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!renWin)
+  {
+    return false;
+  }
+  renWin->Initialize(); // makes the context if the window has none yet
+  renWin->MakeCurrent();
+  return IsSoftwareRenderer();
 }
 
 std::string FormatBytes(double bytes)

@@ -14,6 +14,8 @@
 
 #include <string> // For std::string
 
+class vtkRenderWindow;
+
 namespace caustics
 {
 namespace gl
@@ -33,6 +35,13 @@ struct DeviceLimits
  * memory, which is where its buffers live; else 0 (no limit).
  */
 DeviceLimits QueryDeviceLimits(double requested);
+
+/**
+ * True when `window` is an OpenGL window whose context is a software renderer
+ * (llvmpipe, softpipe, SWR: no GPU). Makes the window's context (Initialize) if it
+ * has none yet, as CheckResources() does; false for no window.
+ */
+bool IsSoftwareOpenGL(vtkRenderWindow* window);
 
 /** Bytes as "1.61 GB" / "134 MB" / "512 kB" (decimal units). */
 std::string FormatBytes(double bytes);

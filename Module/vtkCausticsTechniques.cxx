@@ -1,5 +1,6 @@
 #include "vtkCausticsTechniques.h"
 
+#include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneData.h"
@@ -7,6 +8,7 @@
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkRenderer.h"
 
 #include <algorithm>
 #include <array>
@@ -92,6 +94,74 @@ bool IsClosed(const caustics::Mesh& mesh)
   }
   return std::all_of(edges.begin(), edges.end(), [](const auto& edge) { return edge.second == 2; });
 }
+
+bool IsRegistered(const std::string& name)
+{
+  const std::vector<Entry>& entries = Entries();
+  return std::any_of(
+    entries.begin(), entries.end(), [&name](const Entry& entry) { return entry.Name == name; });
+}
+
+
+/**
+ * Whether a closed mesh is convex: no vertex lies outside the plane of a face (by
+ * more than 1e-4 of the mesh's size), tested on up to 256 faces spread over it.
+ */
+bool IsConvex(const caustics::Mesh& mesh)
+{
+  const std::size_t vertices = mesh.positions.size() / 3, faces = mesh.indices.size() / 3;
+  if (vertices == 0 || faces == 0)
+  {
+    return false;
+  }
+  auto point = [&mesh](std::size_t v)
+  {
+    return std::array<double, 3>{ mesh.positions[3 * v], mesh.positions[3 * v + 1],
+      mesh.positions[3 * v + 2] };
+  };
+  std::array<double, 3> low = point(0), high = low;
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    const auto p = point(v);
+    for (int k = 0; k < 3; ++k)
+    {
+      low[k] = std::min(low[k], p[k]);
+      high[k] = std::max(high[k], p[k]);
+    }
+  }
+  const double tolerance =
+    1e-4 * std::max({ high[0] - low[0], high[1] - low[1], high[2] - low[2] });
+  const std::size_t stride = std::max<std::size_t>(faces / 256, 1);
+  for (std::size_t f = 0; f < faces; f += stride)
+  {
+    const auto a = point(mesh.indices[3 * f]), b = point(mesh.indices[3 * f + 1]),
+               c = point(mesh.indices[3 * f + 2]);
+    const std::array<double, 3> u{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
+      w{ c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    std::array<double, 3> n{ u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+      u[0] * w[1] - u[1] * w[0] };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(length > 0.0))
+    {
+      continue; // a degenerate face has no plane
+    }
+    // Vertices on both sides of the plane (whichever way the face winds): concave.
+    bool above = false, below = false;
+    for (std::size_t v = 0; v < vertices && !(above && below); ++v)
+    {
+      const auto p = point(v);
+      const double height =
+        (n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2])) / length;
+      above = above || height > tolerance;
+      below = below || height < -tolerance;
+    }
+    if (above && below)
+    {
+      return false;
+    }
+  }
+  return true;
+}
 }
 
 void vtkCausticsTechniques::Register(const std::string& name, const std::string& description,
@@ -140,10 +210,21 @@ std::string vtkCausticsTechniques::GetBestNameFor(vtkRenderer* renderer)
   {
     return "screen-space";
   }
+  // Without a GPU (llvmpipe), the CPU technique where it measured better in less
+  // time (docs/benchmarks.md, "Which technique is best"): mirrors, open water and
+  // concave glass; a convex refractor alone keeps caustic maps.
+  const bool software = IsRegistered("cpu-progressive") &&
+    caustics::gl::IsSoftwareOpenGL(renderer->GetRenderWindow());
   bool refractor = false;
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
     const caustics::Role role = scene.Materials[mesh.material].role;
+    if (software &&
+      (role == caustics::Role::Reflector ||
+        (role == caustics::Role::Refractor && (!IsClosed(mesh) || !IsConvex(mesh)))))
+    {
+      return "cpu-progressive";
+    }
     // Mirrors (the ring: 20 % against 41 %) and open refractors such as a water
     // surface over a walled pool (9 % against 20 %): screen-space.
     if (role == caustics::Role::Reflector || (role == caustics::Role::Refractor && !IsClosed(mesh)))

@@ -3,6 +3,7 @@
 // nothing moves, it starts again when anything changes, and it stops tracing at
 // MaximumFrames. A frame renders no light buffers.
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
@@ -22,7 +23,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -164,4 +167,28 @@ TEST(ProgressivePhotonPass, StopsTracingAtMaximumFramesAndKeepsTheEstimate)
   f.Window->Render();
   f.Window->Render();
   EXPECT_EQ(f.Pass->GetNumberOfAccumulatedFrames(), 1);
+}
+
+// "best" without a GPU (docs/benchmarks.md, "Which technique is best"): the CPU
+// technique for mirrors, open water and concave glass, caustic maps for a convex
+// refractor alone. With a GPU, the GPU rule.
+TEST(ProgressivePhotonPass, BestTakesItWithoutAGPU)
+{
+  vtkCausticsProgressivePhotonPass::RegisterTechnique();
+  for (const auto& [name, gpu, cpu] : std::vector<std::array<std::string, 3>>{
+         { "ball-lens", "caustic-maps", "caustic-maps" },
+         { "pool", "screen-space", "cpu-progressive" }, { "ring", "screen-space", "cpu-progressive" },
+         { "bunny", "caustic-maps", "cpu-progressive" } })
+  {
+    vtkNew<vtkOpenGLRenderer> renderer;
+    vtkNew<vtkRenderWindow> window;
+    window->SetOffScreenRendering(1);
+    window->SetSize(32, 32);
+    window->AddRenderer(renderer);
+    vtkNew<vtkCausticsBuiltinScene> scene;
+    scene->SetSceneName(name.c_str());
+    ASSERT_TRUE(scene->Populate(renderer));
+    const bool software = caustics::gl::IsSoftwareOpenGL(window);
+    EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), software ? cpu : gpu) << name;
+  }
 }
