@@ -11,6 +11,9 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -45,6 +48,65 @@ struct RunningMean
   }
 };
 
+/**
+ * The scene without the triangles the reference refuses: those with a vertex whose
+ * position or normal is not finite (the extractor has warned of them already; the
+ * GPU passes leave them out as the rasterizer does). Returns false when there are
+ * none, `clean` untouched.
+ */
+bool LeaveOutBrokenTriangles(const caustics::SceneData& scene, caustics::SceneData& clean)
+{
+  auto broken = [](const caustics::Mesh& mesh, std::uint32_t v)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::size_t i = 3 * static_cast<std::size_t>(v) + k;
+      if (i >= mesh.positions.size() || i >= mesh.normals.size() ||
+        !std::isfinite(mesh.positions[i]) || !std::isfinite(mesh.normals[i]))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  const bool any = std::any_of(scene.Meshes.begin(), scene.Meshes.end(),
+    [](const caustics::Mesh& mesh)
+    {
+      return !std::all_of(mesh.positions.begin(), mesh.positions.end(),
+               [](float x) { return std::isfinite(x); }) ||
+        !std::all_of(
+          mesh.normals.begin(), mesh.normals.end(), [](float x) { return std::isfinite(x); });
+    });
+  if (!any)
+  {
+    return false;
+  }
+  clean = scene;
+  for (caustics::Mesh& mesh : clean.Meshes)
+  {
+    std::vector<std::uint32_t> kept;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+    {
+      if (!broken(mesh, mesh.indices[t]) && !broken(mesh, mesh.indices[t + 1]) &&
+        !broken(mesh, mesh.indices[t + 2]))
+      {
+        kept.insert(kept.end(), mesh.indices.begin() + t, mesh.indices.begin() + t + 3);
+      }
+    }
+    mesh.indices.swap(kept);
+    // Vertices no triangle uses any more must still be finite for the reference.
+    for (float& x : mesh.positions)
+    {
+      x = std::isfinite(x) ? x : 0.0f;
+    }
+    for (float& x : mesh.normals)
+    {
+      x = std::isfinite(x) ? x : 0.0f;
+    }
+  }
+  return true;
+}
+
 /** Writes an RGB image into a width x height RGBA32F texture (alpha 0). */
 void Upload(const std::vector<float>& rgb, int width, int height, vtkTextureObject* target)
 {
@@ -63,7 +125,9 @@ void Upload(const std::vector<float>& rgb, int width, int height, vtkTextureObje
 struct vtkCausticsProgressivePhotonPass::Internals
 {
   vtkNew<vtkCausticsReferenceRenderer> Tracer;
-  std::string SceneKey; // the accumulated scene's hash
+  std::string SceneKey;  // the accumulated scene's hash
+  std::string FailedKey; // a scene the tracer refused (said once; not retried)
+  caustics::SceneData Clean; // the snapshot without broken triangles, when it has some
   int Frames = 0;
   long long Photons = 0;
   int Width = 0, Height = 0;
@@ -163,15 +227,19 @@ bool vtkCausticsProgressivePhotonPass::Accumulate(const FrameInputs& in)
   {
     return true; // converged as far as asked: the estimate stays
   }
+  if (key == s.FailedKey)
+  {
+    return false; // refused before, with its reason: no caustics until it changes
+  }
   this->StartStage("cpu photon tracing");
   tracer->SetSeed(static_cast<unsigned int>(s.Frames + 1));
-  tracer->SetScene(scene);
+  tracer->SetScene(LeaveOutBrokenTriangles(scene, s.Clean) ? s.Clean : scene);
   tracer->SetImageSize(in.Width, in.Height);
-  const bool traced = tracer->Update();
+  const bool traced = tracer->Update(); // on failure the tracer reports why, once
   this->StopStage("cpu photon tracing");
   if (!traced)
   {
-    vtkErrorMacro(<< "CPU photon tracing failed: " << tracer->GetLastError());
+    s.FailedKey = key;
     return false;
   }
   ++s.Frames;

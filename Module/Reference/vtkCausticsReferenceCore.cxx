@@ -945,6 +945,17 @@ struct ReferenceTracer::Internals
 
   // --- Ray queries ---
 
+  /**
+   * Embree asserts a valid ray (finite origin and direction, 0 <= tnear <= tfar): a
+   * degenerate camera or a scene beyond float's range must be refused here, not abort.
+   */
+  static bool IsValidRay(const RTCRay& ray)
+  {
+    return std::isfinite(ray.org_x) && std::isfinite(ray.org_y) && std::isfinite(ray.org_z) &&
+      std::isfinite(ray.dir_x) && std::isfinite(ray.dir_y) && std::isfinite(ray.dir_z) &&
+      ray.tnear >= 0.0f && ray.tfar >= ray.tnear;
+  }
+
   bool Intersect(const glm::dvec3& o, const glm::dvec3& d, double tfar, Hit& hit) const
   {
     RTCIntersectContext context;
@@ -966,6 +977,10 @@ struct ReferenceTracer::Internals
     query.ray.flags = 0;
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    if (!IsValidRay(query.ray))
+    {
+      return false; // nothing is hit along no ray
+    }
     rtcIntersect1(this->Geometry, &context, &query);
     if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID)
     {
@@ -1021,6 +1036,10 @@ struct ReferenceTracer::Internals
     ray.mask = 0xFFFFFFFFu;
     ray.id = 0;
     ray.flags = 0;
+    if (!IsValidRay(ray))
+    {
+      return true; // no light travels along no ray
+    }
     rtcOccluded1(this->Geometry, &context, &ray);
     return ray.tfar < 0.0f;
   }

@@ -17,6 +17,7 @@
 #include "StressScene.h"
 #include "StressSoak.h"
 
+#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsTechniques.h"
 
@@ -274,6 +275,7 @@ bool Parse(int argc, char* argv[], Options& options)
 
 int main(int argc, char* argv[])
 {
+  vtkCausticsProgressivePhotonPass::RegisterTechnique(); // every technique, the CPU one too
   Options options;
   bool parsed = false;
   try
