@@ -102,17 +102,18 @@ std::function<bool(vtkCausticsRenderPass*)> Set(std::function<void(PassType*)> s
 /**
  * Screen-space photon tracing (docs/technique-screen-space.md): the photon grid
  * N x N per light at the default layer cap, then the layer cap at N = 256, then its
- * splat kernel.
+ * splat kernel, then caustic triangles instead of splats.
  */
 void AddScreenSpaceConfigurations(std::vector<Configuration>& table)
 {
-  auto add = [&table](int grid, int layers, double splat)
+  auto add = [&table](int grid, int layers, double splat, bool triangles = false)
   {
     std::string knobs = "grid=" + std::to_string(grid) + " layers=" + std::to_string(layers);
     knobs += splat > 0.0 ? " splat=1" : "";
+    knobs += triangles ? " triangles" : "";
     table.push_back({ "screen-space", knobs,
       Set<vtkCausticsScreenSpacePhotonPass>(
-        [grid, layers, splat](vtkCausticsScreenSpacePhotonPass* pass)
+        [grid, layers, splat, triangles](vtkCausticsScreenSpacePhotonPass* pass)
         {
           pass->SetLightBufferResolution(grid);
           pass->SetMaximumNumberOfLayers(layers);
@@ -120,6 +121,7 @@ void AddScreenSpaceConfigurations(std::vector<Configuration>& table)
           {
             pass->SetSplatRadiusPixels(splat);
           }
+          pass->SetReconstruction(triangles ? 1 : 0);
         }) });
   };
   for (int grid : { 64, 128, 256, 512 })
@@ -135,6 +137,11 @@ void AddScreenSpaceConfigurations(std::vector<Configuration>& table)
   for (int grid : { 256, 512 })
   {
     add(grid, 8, 1.0);
+  }
+  // Caustic triangles (docs/accuracy.md, "Caustic triangles against splats").
+  for (int grid : { 256, 512 })
+  {
+    add(grid, 8, 0.0, true);
   }
 }
 
