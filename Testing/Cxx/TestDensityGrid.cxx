@@ -12,6 +12,8 @@
 #include "vtkRenderer.h"
 #include "vtkTestErrorObserver.h"
 
+#include "TestTechniqueFrame.h"
+
 #include <openvdb/openvdb.h>
 
 #include <gtest/gtest.h>
@@ -285,4 +287,62 @@ TEST(DensityGrid, MatrixPlacesTheGridAfterItsOwnTransform)
   matrix->SetElement(0, 3, 6.0);
   EXPECT_GT(medium->GetMTime(), before);
   EXPECT_NEAR(medium->GetDensity()->Sample({ { 6 - 0.7, -2 + 0.6, 1.2 } }), 3.0, 1e-5);
+}
+
+TEST(DensityGrid, SnapshotCarriesTheGrid)
+{
+  const std::string file = Write("snapshot.vdb", { ConstantBox(0.5f, 20, 0.05) });
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(0.2, 0.4, 0.6);
+  medium->SetAbsorptionCoefficient(0.1, 0.0, 0.0);
+  vtkCausticsMedium::AttachTo(renderer, medium);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  ASSERT_TRUE(extractor->Update(renderer, 8, 8));
+  const caustics::Medium& homogeneous = extractor->GetScene().Participating;
+  EXPECT_FALSE(homogeneous.density);
+  EXPECT_EQ(homogeneous.MeanSigmaT(), (caustics::Vec3{ { 0.30000000000000004, 0.4, 0.6 } }));
+
+  ASSERT_TRUE(medium->LoadDensity(file.c_str()));
+  medium->SetDensityScale(4.0);
+  ASSERT_TRUE(extractor->Update(renderer, 8, 8));
+  const caustics::Medium& heterogeneous = extractor->GetScene().Participating;
+  ASSERT_TRUE(heterogeneous.density);
+  EXPECT_EQ(heterogeneous.density, medium->GetDensity());
+  EXPECT_DOUBLE_EQ(heterogeneous.MeanDensity(), 2.0);
+  EXPECT_DOUBLE_EQ(heterogeneous.MeanSigmaS()[2], 1.2);
+  EXPECT_DOUBLE_EQ(heterogeneous.MeanSigmaT()[0], 0.6);
+}
+
+// The GPU passes do not follow the density yet: they must say so, once per medium
+// change, and use the mean density.
+TEST(DensityGrid, GpuPassesWarnOncePerMediumChange)
+{
+  const std::string file = Write("gpu.vdb", { ConstantBox(1.0f, 8, 1.0) });
+  TechniqueFrame frame("caustic-maps", 64, 64);
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(0.05, 0.05, 0.05);
+  ASSERT_TRUE(medium->LoadDensity(file.c_str()));
+  vtkCausticsMedium::AttachTo(frame.Renderer, medium);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  frame.Pass->AddObserver(vtkCommand::WarningEvent, observer);
+  const std::string expected = std::string(frame.Pass->GetClassName()) +
+    ": heterogeneous density is not rendered on the GPU yet; using the grid's mean density (1)";
+  auto warnings = [&]()
+  {
+    const std::string text = observer->GetWarningMessage();
+    observer->Clear();
+    return text;
+  };
+  frame.Window->Render();
+  const std::string first = warnings();
+  EXPECT_NE(first.find(expected), std::string::npos) << first;
+  frame.Window->Render();
+  EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos) << "once, not every frame";
+  medium->SetDensityScale(0.5);
+  frame.Window->Render();
+  EXPECT_NE(warnings().find("using the grid's mean density (0.5)"), std::string::npos);
+  medium->RemoveDensity();
+  frame.Window->Render();
+  EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos);
 }
