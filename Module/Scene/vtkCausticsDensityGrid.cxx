@@ -96,6 +96,8 @@ struct DensityGrid::Voxels
   std::string FileName, GridName;
   openvdb::CoordBBox ActiveBox;
   double Maximum = 0.0, Mean = 0.0;
+  double MinimumActive = 0.0; ///< smallest active value
+  bool Dense = false;         ///< every voxel of ActiveBox is active
   std::int64_t ActiveVoxels = 0;
   std::uint64_t Hash = 0;
 };
@@ -178,6 +180,7 @@ std::shared_ptr<const DensityGrid> DensityGrid::Load(const std::string& fileName
     ++clamped;
   }
   double sum = 0.0, maximum = std::max(0.0, static_cast<double>(grid.background()));
+  double minimum = std::numeric_limits<double>::infinity();
   std::uint64_t hash = 0;
   for (auto value = grid.beginValueOn(); value; ++value)
   {
@@ -190,6 +193,7 @@ std::shared_ptr<const DensityGrid> DensityGrid::Load(const std::string& fileName
     }
     sum += static_cast<double>(v) * static_cast<double>(value.getVoxelCount());
     maximum = std::max(maximum, static_cast<double>(v));
+    minimum = std::min(minimum, static_cast<double>(v));
     const openvdb::Coord c = value.getCoord();
     hash =
       Mix(Mix(Mix(Mix(hash, static_cast<std::uint32_t>(c.x())), static_cast<std::uint32_t>(c.y())),
@@ -211,6 +215,9 @@ std::shared_ptr<const DensityGrid> DensityGrid::Load(const std::string& fileName
   voxels->ActiveVoxels = static_cast<std::int64_t>(grid.activeVoxelCount());
   voxels->ActiveBox = grid.evalActiveVoxelBoundingBox();
   voxels->Maximum = maximum;
+  voxels->MinimumActive = minimum;
+  voxels->Dense = grid.transform().isLinear() &&
+    static_cast<openvdb::Index64>(voxels->ActiveVoxels) == voxels->ActiveBox.volume();
   voxels->Mean = sum / static_cast<double>(voxels->ActiveVoxels);
   voxels->Hash = hash;
   try
@@ -281,6 +288,32 @@ void DensityGrid::GetWorldBounds(double bounds[6]) const
 double DensityGrid::GetMajorant() const
 {
   return this->Shared->Maximum * this->Scale;
+}
+
+double DensityGrid::GetMinimum(const double worldBox[6]) const
+{
+  const Voxels& voxels = *this->Shared;
+  if (!voxels.Dense)
+  {
+    return 0.0;
+  }
+  // Inside the centres' box, trilinear samples mix active values only. The box maps
+  // to a parallelepiped in index space (linear transforms): inside iff its corners are.
+  const openvdb::Vec3d lo = voxels.ActiveBox.min().asVec3d(), hi = voxels.ActiveBox.max().asVec3d();
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const openvdb::Vec3d world(
+      worldBox[corner & 1 ? 1 : 0], worldBox[corner & 2 ? 3 : 2], worldBox[corner & 4 ? 5 : 4]);
+    const openvdb::Vec3d index = voxels.Grid->worldToIndex(Transform(this->InverseMatrix, world));
+    for (int a = 0; a < 3; ++a)
+    {
+      if (!(index[a] >= lo[a] && index[a] <= hi[a]))
+      {
+        return 0.0;
+      }
+    }
+  }
+  return voxels.MinimumActive * this->Scale;
 }
 
 double DensityGrid::GetMeanDensity() const

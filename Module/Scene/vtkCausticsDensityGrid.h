@@ -59,6 +59,13 @@ public:
 
   /** Largest density x scale anywhere: a majorant for tracking. */
   double GetMajorant() const;
+  /**
+   * A lower bound of density x scale over a world box (xmin, xmax, ...): the smallest
+   * active value when the box lies inside the active voxels' centres and every voxel
+   * there is active (a dense block, as a fog volume covering the scene is), else 0.
+   * Tracking handles this part of the extinction in closed form.
+   */
+  double GetMinimum(const double worldBox[6]) const;
   /** Mean density x scale over the active voxels. */
   double GetMeanDensity() const;
   double GetScale() const;
