@@ -103,17 +103,18 @@ void vtkCausticsMedium::SetAbsorptionCoefficient(double r, double g, double b)
 
 bool vtkCausticsMedium::LoadDensity(const char* vdbFile, const char* gridName)
 {
-  if (!vdbFile || !*vdbFile || !gridName || !*gridName)
-  {
-    vtkErrorMacro(<< "LoadDensity needs a VDB file name and a grid name; keeping the previous "
-                     "density");
-    return false;
-  }
-  std::string error, warning;
-  auto grid = caustics::DensityGrid::Load(vdbFile, gridName, error, warning);
+  std::string warning;
+  this->LastError.clear();
+  auto grid = vdbFile && *vdbFile && gridName && *gridName
+    ? caustics::DensityGrid::Load(vdbFile, gridName, this->LastError, warning)
+    : nullptr;
   if (!grid)
   {
-    vtkErrorMacro(<< error << "; keeping the previous density");
+    if (this->LastError.empty())
+    {
+      this->LastError = "LoadDensity needs a VDB file name and a grid name";
+    }
+    vtkErrorMacro(<< this->LastError << "; keeping the previous density");
     return false;
   }
   if (!warning.empty())

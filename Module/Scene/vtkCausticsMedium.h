@@ -84,6 +84,8 @@ public:
   /** The loaded file and grid names; empty without a density grid. */
   const char* GetDensityFileName() const;
   const char* GetDensityGridName() const;
+  /** Why the last LoadDensity() failed (the error's line); empty after a success. */
+  const char* GetLastError() const { return this->LastError.c_str(); }
   ///@}
 
   ///@{
@@ -145,6 +147,7 @@ protected:
   std::shared_ptr<const caustics::DensityGrid> LoadedDensity; // as read, unplaced
   std::shared_ptr<const caustics::DensityGrid> PlacedDensity; // GetDensity()'s, kept while valid
   vtkMTimeType PlacedTime = 0;                                // GetMTime() it was placed at
+  std::string LastError;
 
 private:
   vtkCausticsMedium(const vtkCausticsMedium&) = delete;

@@ -137,6 +137,7 @@ TEST(DensityGrid, BadFilesGiveOneLineNamingTheProblem)
     const std::string error = LoadError(medium, c.file, c.grid);
     EXPECT_NE(error.find(c.expected), std::string::npos) << "got: " << error;
     EXPECT_NE(error.find("keeping the previous density"), std::string::npos) << error;
+    EXPECT_NE(error.find(medium->GetLastError()), std::string::npos) << medium->GetLastError();
     // VTK's "ERROR: In <file>, line <n>" header, then the message: one line.
     std::string message = error.substr(error.find('\n') + 1);
     message.erase(message.find_last_not_of('\n') + 1);
@@ -146,6 +147,8 @@ TEST(DensityGrid, BadFilesGiveOneLineNamingTheProblem)
     EXPECT_EQ(std::string(medium->GetDensityFileName()), good);
   }
   std::cout << "e.g.: " << LoadError(medium, several, "density");
+  EXPECT_EQ(LoadError(medium, good, "density"), "");
+  EXPECT_STREQ(medium->GetLastError(), "");
 }
 
 TEST(DensityGrid, NegativeAndNaNVoxelsAreClampedWithOneWarning)
