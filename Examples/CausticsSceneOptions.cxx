@@ -346,8 +346,13 @@ bool IsDensityFile(const std::string& value, std::string& file, std::string& gri
     grid = value.substr(colon + 5);
     return true;
   }
-  file = value;
-  return lower.size() > 4 && lower.compare(lower.size() - 4, 4, ".vdb") == 0;
+  if (lower.size() > 4 && lower.compare(lower.size() - 4, 4, ".vdb") == 0)
+  {
+    file = value;
+    grid = "density";
+    return true;
+  }
+  return false;
 }
 
 double ParseAnisotropy(const std::string& option, const std::string& value)
@@ -375,7 +380,7 @@ void DeclareMediumOptions(Arguments& arguments, SceneOptions& options)
         }
         return;
       }
-      medium.File.clear();
+      // Grey coefficients; with a grid given too, they are per unit density.
       medium.Grey = ParseVector(option, value);
       if (medium.Grey[0] < 0 || medium.Grey[1] < 0 || std::abs(medium.Grey[2]) >= 1.0)
       {
