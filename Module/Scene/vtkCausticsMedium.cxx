@@ -202,10 +202,15 @@ std::shared_ptr<const caustics::DensityGrid> vtkCausticsMedium::GetDensity()
   const vtkMTimeType time = this->GetMTime();
   if (!this->PlacedDensity || time != this->PlacedTime)
   {
-    const bool invertible = !this->DensityMatrix || this->DensityMatrix->Determinant() != 0.0;
+    const double* m = this->DensityMatrix ? this->DensityMatrix->GetData() : nullptr;
+    const bool invertible = !m ||
+      (m[12] == 0.0 && m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0 &&
+        std::isfinite(this->DensityMatrix->Determinant()) &&
+        this->DensityMatrix->Determinant() != 0.0);
     if (!invertible)
     {
-      vtkWarningMacro(<< "the density matrix is singular; the grid is placed without it");
+      vtkWarningMacro(<< "the density matrix is not an invertible affine transform; the grid is "
+                         "placed without it");
     }
     this->PlacedDensity = this->LoadedDensity->Placed(
       invertible && this->DensityMatrix ? this->DensityMatrix->GetData() : nullptr,

@@ -101,7 +101,8 @@ public:
   /**
    * Placement of the grid in the world, like an actor's user matrix: applied after the
    * file's own index-to-world transform. Default nullptr (identity). Must be affine and
-   * invertible. Changes to the matrix count as changes to the medium (GetMTime()).
+   * invertible (else ignored, with a warning). Changes to the matrix count as changes
+   * to the medium (GetMTime()).
    */
   void SetDensityMatrix(vtkMatrix4x4* matrix);
   vtkGetObjectMacro(DensityMatrix, vtkMatrix4x4);

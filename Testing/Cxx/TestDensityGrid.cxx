@@ -290,6 +290,20 @@ TEST(DensityGrid, MatrixPlacesTheGridAfterItsOwnTransform)
   matrix->SetElement(0, 3, 6.0);
   EXPECT_GT(medium->GetMTime(), before);
   EXPECT_NEAR(medium->GetDensity()->Sample({ { 6 - 0.7, -2 + 0.6, 1.2 } }), 3.0, 1e-5);
+
+  // A singular or projective matrix is ignored with a warning: the file's placement.
+  vtkNew<vtkTest::ErrorObserver> observer;
+  medium->AddObserver(vtkCommand::WarningEvent, observer);
+  for (int bad = 0; bad < 2; ++bad)
+  {
+    vtkNew<vtkMatrix4x4> wrong;
+    wrong->SetElement(bad == 0 ? 0 : 3, bad == 0 ? 0 : 0, bad == 0 ? 0.0 : 0.5);
+    medium->SetDensityMatrix(wrong);
+    EXPECT_NEAR(medium->GetDensity()->Sample({ { 0.3, 0.7, 0.2 } }), 3.0, 1e-5);
+    EXPECT_NE(
+      observer->GetWarningMessage().find("not an invertible affine transform"), std::string::npos);
+    observer->Clear();
+  }
 }
 
 TEST(DensityGrid, SnapshotCarriesTheGrid)
