@@ -3,6 +3,7 @@
 #include "CausticsSceneOptions.h"
 
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLTFImporter.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
@@ -13,6 +14,7 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -23,10 +25,12 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 
@@ -53,6 +57,13 @@ const char* const OverridesUsage = R"(Overrides:
   --view-angle DEGREES       vertical field of view, (0, 180)
   --medium SS,SA,G           homogeneous medium: scattering and absorption
                              coefficients in 1/m (0..1e9), Henyey-Greenstein g
+  --medium FILE.vdb[:GRID]   heterogeneous medium: the density of OpenVDB float
+                             grid GRID (default: density); coefficients are then
+                             per unit density (default scattering 1, absorption 0)
+  --medium-scattering R,G,B  --medium-absorption R,G,B
+                             per channel, 1/m per unit density (0..1e9)
+  --medium-density-scale S   factor on the grid's densities, 0..1e6 (default 1)
+  --medium-g G               Henyey-Greenstein g, (-1, 1)
 )";
 
 std::string QualityUsage()
@@ -308,23 +319,107 @@ void DeclareLightAndCameraOptions(Arguments& arguments, SceneOptions& options)
     });
 }
 
-void DeclareMediumOption(Arguments& arguments, SceneOptions& options)
+/** Coefficients in 1/m: >= 0 and small enough for the GPU's floats. */
+void CheckCoefficients(
+  const std::string& option, const std::string& value, std::initializer_list<double> coefficients)
 {
-  arguments.Value("--medium",
-    [&options](const std::string& option, const std::string& value)
+  const double most = vtkCausticsGLTFImporter::MAX_MEDIUM_COEFFICIENT;
+  for (double c : coefficients)
+  {
+    if (c > most)
     {
-      options.Medium = ParseVector(option, value);
-      if (options.Medium[0] < 0 || options.Medium[1] < 0 || std::abs(options.Medium[2]) >= 1.0)
+      throw UsageError(option + " coefficients must be <= " + Number(most) +
+        " per metre (opaque within a nanometre; larger ones overflow float), got " + value);
+    }
+  }
+}
+
+/** --medium FILE.vdb[:GRID]: a value ending in .vdb or holding ".vdb:" names a file. */
+bool IsDensityFile(const std::string& value, std::string& file, std::string& grid)
+{
+  const std::string lower = Lower(value);
+  const auto colon = lower.rfind(".vdb:");
+  if (colon != std::string::npos)
+  {
+    file = value.substr(0, colon + 4);
+    grid = value.substr(colon + 5);
+    return true;
+  }
+  if (lower.size() > 4 && lower.compare(lower.size() - 4, 4, ".vdb") == 0)
+  {
+    file = value;
+    grid = "density";
+    return true;
+  }
+  return false;
+}
+
+double ParseAnisotropy(const std::string& option, const std::string& value)
+{
+  const double g = ParseNumber(option, value);
+  if (!(std::abs(g) < 1.0))
+  {
+    throw UsageError(option + " must lie in (-1, 1), got " + value);
+  }
+  return g;
+}
+
+void DeclareMediumOptions(Arguments& arguments, SceneOptions& options)
+{
+  SceneOptions::MediumOptions& medium = options.Medium;
+  arguments.Value("--medium",
+    [&medium](const std::string& option, const std::string& value)
+    {
+      medium.Given = true;
+      if (IsDensityFile(value, medium.File, medium.Grid))
+      {
+        if (medium.Grid.empty())
+        {
+          throw UsageError(option + " " + value + ": the grid name after ':' is empty");
+        }
+        return;
+      }
+      // Grey coefficients; with a grid given too, they are per unit density.
+      medium.Grey = ParseVector(option, value);
+      if (medium.Grey[0] < 0 || medium.Grey[1] < 0 || std::abs(medium.Grey[2]) >= 1.0)
       {
         throw UsageError("--medium needs sigma_s >= 0, sigma_a >= 0 (1/m) and |g| < 1");
       }
-      const double most = vtkCausticsGLTFImporter::MAX_MEDIUM_COEFFICIENT;
-      if (options.Medium[0] > most || options.Medium[1] > most)
+      CheckCoefficients(option, value, { medium.Grey[0], medium.Grey[1] });
+      medium.HasGrey = true;
+    });
+  auto coefficients = [&medium](std::array<double, 3>& field, bool& given)
+  {
+    return [&medium, &field, &given](const std::string& option, const std::string& value)
+    {
+      field = ParseVector(option, value);
+      if (field[0] < 0 || field[1] < 0 || field[2] < 0)
       {
-        throw UsageError("--medium coefficients must be <= " + Number(most) +
-          " per metre (opaque within a nanometre; larger ones overflow float), got " + value);
+        throw UsageError(option + " needs coefficients >= 0 (1/m per unit density), got " + value);
       }
-      options.HasMedium = true;
+      CheckCoefficients(option, value, { field[0], field[1], field[2] });
+      given = medium.Given = true;
+    };
+  };
+  arguments.Value("--medium-scattering", coefficients(medium.Scattering, medium.HasScattering));
+  arguments.Value("--medium-absorption", coefficients(medium.Absorption, medium.HasAbsorption));
+  arguments.Value("--medium-g",
+    [&medium](const std::string& option, const std::string& value)
+    {
+      medium.G = ParseAnisotropy(option, value);
+      medium.HasG = medium.Given = true;
+    });
+  arguments.Value("--medium-density-scale",
+    [&medium](const std::string& option, const std::string& value)
+    {
+      medium.DensityScale = ParseNumber(option, value);
+      if (!(medium.DensityScale >= 0.0 &&
+            medium.DensityScale <= caustics::DensityGrid::MaximumScale))
+      {
+        throw UsageError(option + " must lie in [0, " +
+          Number(caustics::DensityGrid::MaximumScale) + "], got " + value);
+      }
+      medium.HasDensityScale = medium.Given = true;
     });
 }
 }
@@ -334,7 +429,7 @@ void DeclareSceneOptions(Arguments& arguments, SceneOptions& options, bool& scen
   DeclareSourceOptions(arguments, options, sceneGiven);
   DeclareQualityOptions(arguments, options);
   DeclareLightAndCameraOptions(arguments, options);
-  DeclareMediumOption(arguments, options);
+  DeclareMediumOptions(arguments, options);
 }
 
 void FinishSceneOptions(
@@ -437,6 +532,46 @@ void LoadScene(const SceneOptions& options, vtkRenderWindow* window, vtkRenderer
   }
 }
 
+namespace
+{
+/**
+ * The medium of the --medium options: --medium SS,SA,G gives grey coefficients, the
+ * per-channel options override them; a density grid alone scatters 1 per metre per
+ * unit density. A grid that cannot be read throws std::runtime_error with its error line.
+ */
+vtkSmartPointer<vtkCausticsMedium> MakeMedium(const SceneOptions::MediumOptions& options)
+{
+  const bool grid = !options.File.empty();
+  if (options.HasDensityScale && !grid)
+  {
+    throw UsageError("--medium-density-scale needs a density grid (--medium FILE.vdb)");
+  }
+  auto grey = [&](int index, double otherwise)
+  {
+    const double c = options.HasGrey ? options.Grey[index] : otherwise;
+    return std::array<double, 3>{ { c, c, c } };
+  };
+  const auto scattering = options.HasScattering ? options.Scattering : grey(0, grid ? 1.0 : 0.0);
+  const auto absorption = options.HasAbsorption ? options.Absorption : grey(1, 0.0);
+  auto medium = vtkSmartPointer<vtkCausticsMedium>::New();
+  medium->SetScatteringCoefficient(scattering.data());
+  medium->SetAbsorptionCoefficient(absorption.data());
+  medium->SetAnisotropy(options.HasG ? options.G : (options.HasGrey ? options.Grey[2] : 0.0));
+  if (grid)
+  {
+    // The error goes into the exception (one line), not to VTK's output window.
+    vtkNew<vtkCallbackCommand> quiet;
+    medium->AddObserver(vtkCommand::ErrorEvent, quiet);
+    if (!medium->LoadDensity(options.File.c_str(), options.Grid.c_str()))
+    {
+      throw std::runtime_error(std::string("--medium: ") + medium->GetLastError());
+    }
+    medium->SetDensityScale(options.DensityScale);
+  }
+  return medium;
+}
+}
+
 void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer)
 {
   vtkLight* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
@@ -484,13 +619,9 @@ void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer)
   CheckViewUp(options, camera);
   camera->OrthogonalizeViewUp();
   renderer->ResetCameraClippingRange();
-  if (options.HasMedium)
+  if (options.Medium.Given)
   {
-    vtkNew<vtkCausticsMedium> medium;
-    medium->SetScatteringCoefficient(options.Medium[0], options.Medium[0], options.Medium[0]);
-    medium->SetAbsorptionCoefficient(options.Medium[1], options.Medium[1], options.Medium[1]);
-    medium->SetAnisotropy(options.Medium[2]);
-    vtkCausticsMedium::AttachTo(renderer, medium);
+    vtkCausticsMedium::AttachTo(renderer, MakeMedium(options.Medium));
   }
 }
 

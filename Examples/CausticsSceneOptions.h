@@ -40,8 +40,17 @@ struct SceneOptions
   bool HasCameraPosition = false, HasCameraFocal = false, HasCameraUp = false;
   std::array<double, 3> CameraPosition{}, CameraFocal{}, CameraUp{};
   double ViewAngle = 0.0;
-  bool HasMedium = false;
-  std::array<double, 3> Medium{};
+  /** --medium and the --medium-* options (docs/scene-input.md). */
+  struct MediumOptions
+  {
+    bool Given = false;                 ///< any of the medium options
+    bool HasGrey = false;               ///< --medium SS,SA,G
+    std::array<double, 3> Grey{};       ///< sigma_s, sigma_a (1/m per unit density), g
+    std::string File, Grid = "density"; ///< --medium FILE.vdb[:GRID]
+    bool HasScattering = false, HasAbsorption = false, HasG = false, HasDensityScale = false;
+    std::array<double, 3> Scattering{}, Absorption{}; ///< per channel, 1/m per unit density
+    double G = 0.0, DensityScale = 1.0;
+  } Medium;
 };
 
 /** Help text, in the order the programs print it; each section ends with a newline. */

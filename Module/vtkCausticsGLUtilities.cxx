@@ -188,9 +188,11 @@ void SetMediumUniforms(vtkCausticsShaderProgram* program, const caustics::SceneD
 {
   const caustics::Medium& medium = scene.Participating;
   program->SetUniformi("causticsMediumOn", medium.enabled ? 1 : 0);
-  program->SetUniform3f("causticsSigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
-    static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
-    static_cast<float>(medium.sigmaS[2] + medium.sigmaA[2]));
+  // A density grid is not followed on the GPU yet: its mean density stands in
+  // (vtkCausticsRenderPass warns).
+  const caustics::Vec3 sigmaT = medium.MeanSigmaT();
+  program->SetUniform3f("causticsSigmaT", static_cast<float>(sigmaT[0]),
+    static_cast<float>(sigmaT[1]), static_cast<float>(sigmaT[2]));
   program->SetUniform3f("causticsMediumLow", static_cast<float>(scene.Bounds[0]),
     static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
   program->SetUniform3f("causticsMediumHigh", static_cast<float>(scene.Bounds[1]),

@@ -44,6 +44,7 @@
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -272,6 +273,8 @@ struct vtkCausticsRenderPass::Internals
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
   std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
+  // The density grid CheckMediumDensity() last warned about (a new one is a new medium).
+  std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -878,6 +881,10 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   this->Internal->Timings->StartStage("scene snapshot", false); // CPU work: no timer queries
   const bool sceneOk = this->PrepareScene(renderer);
   this->StopStage("scene snapshot");
+  if (sceneOk)
+  {
+    this->CheckMediumDensity();
+  }
   const bool caustics = sceneOk && this->NeedsCaustics(this->Frame);
   if (caustics)
   {
@@ -920,6 +927,26 @@ void vtkCausticsRenderPass::CheckSceneScale()
   {
     this->Internal->ReportedScaleWarning = text.str();
     vtkWarningMacro(<< text.str());
+  }
+}
+
+void vtkCausticsRenderPass::CheckMediumDensity()
+{
+  const caustics::Medium& medium = this->Frame.Scene->Participating;
+  const auto& density = medium.density;
+  if (!medium.enabled || !density)
+  {
+    this->Internal->ReportedDensity.reset();
+    return;
+  }
+  // Once per medium change (a new load, scale or placement is a new grid object).
+  if (this->Internal->ReportedDensity.lock() != density)
+  {
+    this->Internal->ReportedDensity = density;
+    vtkWarningMacro(<< this->GetClassName()
+                    << ": heterogeneous density is not rendered on the GPU yet; using the grid's "
+                       "mean density ("
+                    << medium.MeanDensity() << ")");
   }
 }
 

@@ -422,6 +422,7 @@ private:
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
+  void CheckMediumDensity(); // warns once per density grid: the GPU uses its mean density
   bool RenderDirectIrradiance();
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);

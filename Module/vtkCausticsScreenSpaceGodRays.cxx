@@ -119,11 +119,12 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
       static_cast<float>(view.ViewOrigin[3]) };
     p->SetUniform4f("viewOrigin", origin);
     const caustics::Medium& medium = *view.Medium;
-    p->SetUniform3f("sigmaS", static_cast<float>(medium.sigmaS[0]),
-      static_cast<float>(medium.sigmaS[1]), static_cast<float>(medium.sigmaS[2]));
-    p->SetUniform3f("sigmaT", static_cast<float>(medium.sigmaS[0] + medium.sigmaA[0]),
-      static_cast<float>(medium.sigmaS[1] + medium.sigmaA[1]),
-      static_cast<float>(medium.sigmaS[2] + medium.sigmaA[2]));
+    // The grid's mean density stands in for a density grid (vtkCausticsRenderPass warns).
+    const caustics::Vec3 sigmaS = medium.MeanSigmaS(), sigmaT = medium.MeanSigmaT();
+    p->SetUniform3f("sigmaS", static_cast<float>(sigmaS[0]), static_cast<float>(sigmaS[1]),
+      static_cast<float>(sigmaS[2]));
+    p->SetUniform3f("sigmaT", static_cast<float>(sigmaT[0]), static_cast<float>(sigmaT[1]),
+      static_cast<float>(sigmaT[2]));
     p->SetUniformf("anisotropy", static_cast<float>(medium.g));
     p->SetUniform3f("boundsMin", static_cast<float>(view.Bounds[0]),
       static_cast<float>(view.Bounds[2]), static_cast<float>(view.Bounds[4]));

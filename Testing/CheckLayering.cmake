@@ -1,5 +1,6 @@
 # The module layering of issue 12, checked on what was built and on the sources:
-# - the passes (VTK::RenderingCaustics) link neither Embree, OpenImageIO nor jsoncpp,
+# - the passes (VTK::RenderingCaustics) link neither Embree, OpenImageIO, jsoncpp nor
+#   OpenVDB (the scene module reads density grids; the passes get NanoVDB from it),
 #   and include none of them nor the I/O or reference classes;
 # - the scene module links no OpenGL and none of the other caustics modules;
 # - the reference (VTK::CausticsReference) does not depend on the passes.
@@ -38,7 +39,7 @@ function (forbid_includes what directory pattern)
 endfunction ()
 
 forbid("VTK::RenderingCaustics" "${PASSES}"
-  "embree|OpenImageIO|jsoncpp|vtkIOCaustics|vtkCausticsReference|vtkRenderingCausticsEGL|EGL")
+  "embree|OpenImageIO|jsoncpp|openvdb|vtkIOCaustics|vtkCausticsReference|vtkRenderingCausticsEGL|EGL")
 forbid("VTK::CausticsScene" "${SCENE}" "libGL|EGL|OpenGL|vtkRenderingCaustics|vtkIOCaustics|vtkCausticsReference")
 forbid("VTK::CausticsReference" "${REFERENCE}" "vtkRenderingCaustics|RenderingOpenGL2|libGL")
 

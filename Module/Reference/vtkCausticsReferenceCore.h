@@ -115,7 +115,12 @@ struct ReferenceBeam
   float start[3];     ///< m, inside the medium
   float direction[3]; ///< unit
   float length;       ///< m, clipped to the medium
-  float flux[3];      ///< W per channel at `start`; decays as exp(-sigma_t s) along it
+  /**
+   * W per channel at `start`; decays as exp(-sigma_t s) along it in a homogeneous
+   * medium. In a heterogeneous one a beam is a piece between two tentative collisions
+   * of ratio tracking, whose flux estimate is constant along it.
+   */
+  float flux[3];
 };
 
 /**

@@ -1,5 +1,6 @@
 #include "vtkCausticsReferenceRenderer.h"
 
+#include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsImageIO.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCommand.h"
@@ -408,6 +409,15 @@ std::string vtkCausticsReferenceRenderer::ComputeCacheKey(
     hash.Value(medium.sigmaS);
     hash.Value(medium.sigmaA);
     hash.Value(medium.g);
+  }
+  // A density grid: its voxels' values (hashed once when loaded), scale and placement.
+  // Nothing is added without one, so homogeneous keys are those of before grids.
+  if (medium.enabled && medium.density)
+  {
+    const caustics::DensityGrid& density = *medium.density;
+    hash.Value(density.GetContentHash());
+    hash.Value(density.GetScale());
+    hash.Bytes(density.GetMatrix(), 16 * sizeof(double));
   }
   return hash.Hex();
 }

@@ -1,15 +1,25 @@
 #include "vtkCausticsMedium.h"
 
+#include "vtkCausticsDensityGrid.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseKey.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderer.h"
 
+#include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkCausticsMedium);
 vtkInformationKeyMacro(vtkCausticsMedium, MEDIUM, ObjectBase);
+
+vtkCausticsMedium::vtkCausticsMedium() = default;
+
+vtkCausticsMedium::~vtkCausticsMedium()
+{
+  this->SetDensityMatrix(nullptr);
+}
 
 void vtkCausticsMedium::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -19,6 +29,25 @@ void vtkCausticsMedium::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AbsorptionCoefficient (1/m): " << this->AbsorptionCoefficient[0] << " "
      << this->AbsorptionCoefficient[1] << " " << this->AbsorptionCoefficient[2] << "\n";
   os << indent << "Anisotropy: " << this->Anisotropy << "\n";
+  os << indent << "Density: ";
+  if (this->LoadedDensity)
+  {
+    const caustics::DensityGrid& grid = *this->LoadedDensity;
+    os << "grid '" << grid.GetGridName() << "' of " << grid.GetFileName() << " ("
+       << grid.GetActiveVoxelCount() << " active voxels, mean " << grid.GetMeanDensity() << ", max "
+       << grid.GetMajorant() << ", NanoVDB " << grid.GetNanoVDBBytes() << " bytes, dense "
+       << grid.GetDenseBytes() << " bytes)\n";
+  }
+  else
+  {
+    os << "none (homogeneous, density 1)\n";
+  }
+  os << indent << "DensityScale: " << this->DensityScale << "\n";
+  os << indent << "DensityMatrix: " << this->DensityMatrix << "\n";
+  if (this->DensityMatrix)
+  {
+    this->DensityMatrix->PrintSelf(os, indent.GetNextIndent());
+  }
 }
 
 namespace
@@ -70,6 +99,125 @@ void vtkCausticsMedium::SetAbsorptionCoefficient(double r, double g, double b)
     this->AbsorptionCoefficient[2] = b;
     this->Modified();
   }
+}
+
+bool vtkCausticsMedium::LoadDensity(const char* vdbFile, const char* gridName)
+{
+  std::string warning;
+  this->LastError.clear();
+  auto grid = vdbFile && *vdbFile && gridName && *gridName
+    ? caustics::DensityGrid::Load(vdbFile, gridName, this->LastError, warning)
+    : nullptr;
+  if (!grid)
+  {
+    if (this->LastError.empty())
+    {
+      this->LastError = "LoadDensity needs a VDB file name and a grid name";
+    }
+    vtkErrorMacro(<< this->LastError << "; keeping the previous density");
+    return false;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
+  this->LoadedDensity = grid;
+  this->PlacedDensity.reset();
+  this->Modified();
+  return true;
+}
+
+void vtkCausticsMedium::RemoveDensity()
+{
+  if (this->LoadedDensity)
+  {
+    this->LoadedDensity.reset();
+    this->PlacedDensity.reset();
+    this->Modified();
+  }
+}
+
+bool vtkCausticsMedium::HasDensity() const
+{
+  return this->LoadedDensity != nullptr;
+}
+
+const char* vtkCausticsMedium::GetDensityFileName() const
+{
+  return this->LoadedDensity ? this->LoadedDensity->GetFileName().c_str() : "";
+}
+
+const char* vtkCausticsMedium::GetDensityGridName() const
+{
+  return this->LoadedDensity ? this->LoadedDensity->GetGridName().c_str() : "";
+}
+
+void vtkCausticsMedium::SetDensityScale(double scale)
+{
+  if (!std::isfinite(scale) || scale < 0.0 || scale > caustics::DensityGrid::MaximumScale)
+  {
+    vtkErrorMacro(<< "density scale " << scale << " must be finite, >= 0 and <= "
+                  << caustics::DensityGrid::MaximumScale << "; keeping the previous value");
+    return;
+  }
+  if (scale != this->DensityScale)
+  {
+    this->DensityScale = scale;
+    this->Modified();
+  }
+}
+
+void vtkCausticsMedium::SetDensityMatrix(vtkMatrix4x4* matrix)
+{
+  if (matrix == this->DensityMatrix)
+  {
+    return;
+  }
+  if (matrix)
+  {
+    matrix->Register(this);
+  }
+  if (this->DensityMatrix)
+  {
+    this->DensityMatrix->UnRegister(this);
+  }
+  this->DensityMatrix = matrix;
+  this->Modified();
+}
+
+vtkMTimeType vtkCausticsMedium::GetMTime()
+{
+  vtkMTimeType time = this->Superclass::GetMTime();
+  return this->DensityMatrix ? std::max(time, this->DensityMatrix->GetMTime()) : time;
+}
+
+std::shared_ptr<const caustics::DensityGrid> vtkCausticsMedium::GetDensity()
+{
+  if (!this->LoadedDensity)
+  {
+    return nullptr;
+  }
+  // Placing is cheap (the voxels are shared) but snapshots compare grids by pointer:
+  // the same placement keeps the same object.
+  const vtkMTimeType time = this->GetMTime();
+  if (!this->PlacedDensity || time != this->PlacedTime)
+  {
+    const double* m = this->DensityMatrix ? this->DensityMatrix->GetData() : nullptr;
+    const bool invertible = !m ||
+      (m[12] == 0.0 && m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0 &&
+        std::isfinite(this->DensityMatrix->Determinant()) &&
+        this->DensityMatrix->Determinant() != 0.0);
+    if (!invertible)
+    {
+      vtkWarningMacro(<< "the density matrix is not an invertible affine transform; the grid is "
+                         "placed without it");
+    }
+    this->PlacedDensity = this->LoadedDensity->Placed(
+      invertible && this->DensityMatrix ? this->DensityMatrix->GetData() : nullptr,
+      this->DensityScale);
+    this->PlacedTime = time;
+  }
+  return this->PlacedDensity;
 }
 
 bool vtkCausticsMedium::IsScattering() const

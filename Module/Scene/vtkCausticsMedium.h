@@ -1,11 +1,16 @@
 /**
  * @class   vtkCausticsMedium
- * @brief   A homogeneous participating medium (fog, smoke, murky water) for volume caustics.
+ * @brief   A participating medium (fog, smoke, murky water) for volume caustics.
  *
  * Single scattering with a Henyey-Greenstein phase function. Coefficients are per
- * RGB channel in 1/m (scene units are metres). Attach it to a renderer with
- * AttachTo(); every caustics pass and the reference renderer then read it from the
- * renderer's information (MEDIUM key), so a scene carries its own medium.
+ * RGB channel in 1/m per unit density (scene units are metres). Without a density
+ * grid the density is 1 everywhere: a homogeneous medium with exactly these
+ * coefficients. LoadDensity() makes it heterogeneous (../shared/papers/003_*.txt
+ * section 5.4): the density of an OpenVDB float grid (a fog volume) times
+ * DensityScale, placed by DensityMatrix, multiplies the coefficients.
+ * Attach it to a renderer with AttachTo(); every caustics pass and the reference
+ * renderer then read it from the renderer's information (MEDIUM key), so a scene
+ * carries its own medium.
  */
 #ifndef vtkCausticsMedium_h
 #define vtkCausticsMedium_h
@@ -13,8 +18,16 @@
 #include "vtkCausticsSceneModule.h" // For export macro
 #include "vtkObject.h"
 
+#include <memory> // For std::shared_ptr
+#include <string> // For std::string
+
 class vtkInformationObjectBaseKey;
+class vtkMatrix4x4;
 class vtkRenderer;
+namespace caustics
+{
+class DensityGrid;
+}
 
 class VTKCAUSTICSSCENE_EXPORT vtkCausticsMedium : public vtkObject
 {
@@ -25,8 +38,8 @@ public:
 
   ///@{
   /**
-   * Scattering coefficient sigma_s, 1/m, per RGB channel. Default 0. Negative or
-   * non-finite values are refused with an error (the old value stays).
+   * Scattering coefficient sigma_s, 1/m per unit density, per RGB channel. Default 0.
+   * Negative or non-finite values are refused with an error (the old value stays).
    */
   void SetScatteringCoefficient(double r, double g, double b);
   void SetScatteringCoefficient(const double rgb[3])
@@ -37,7 +50,10 @@ public:
   ///@}
 
   ///@{
-  /** Absorption coefficient sigma_a, 1/m, per RGB channel. Default 0. Validated likewise. */
+  /**
+   * Absorption coefficient sigma_a, 1/m per unit density, per RGB channel. Default 0.
+   * Validated likewise.
+   */
   void SetAbsorptionCoefficient(double r, double g, double b);
   void SetAbsorptionCoefficient(const double rgb[3])
   {
@@ -51,6 +67,57 @@ public:
   vtkSetClampMacro(Anisotropy, double, -0.99, 0.99);
   vtkGetMacro(Anisotropy, double);
   ///@}
+
+  ///@{
+  /**
+   * Reads the density from float grid `gridName` of OpenVDB file `vdbFile` (a fog
+   * volume). Returns false with one error line naming the problem, keeping the previous
+   * density: missing file, not a VDB or truncated, no such grid (the file's grids are
+   * listed), a grid of another type than float (named), a level set, an empty grid.
+   * Negative and NaN voxels are set to 0 with one warning giving their count.
+   * RemoveDensity() makes the medium homogeneous again (density 1 everywhere).
+   */
+  bool LoadDensity(const char* vdbFile, const char* gridName = "density");
+  void RemoveDensity();
+  /** True once a density grid is loaded. */
+  bool HasDensity() const;
+  /** The loaded file and grid names; empty without a density grid. */
+  const char* GetDensityFileName() const;
+  const char* GetDensityGridName() const;
+  /** Why the last LoadDensity() failed (the error's line); empty after a success. */
+  const char* GetLastError() const { return this->LastError.c_str(); }
+  ///@}
+
+  ///@{
+  /**
+   * Factor on the grid's densities (unitless). Default 1. Negative, non-finite or
+   * larger than 1e6 (surely a unit mistake) is refused with an error (the old value stays).
+   */
+  void SetDensityScale(double scale);
+  vtkGetMacro(DensityScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Placement of the grid in the world, like an actor's user matrix: applied after the
+   * file's own index-to-world transform. Default nullptr (identity). Must be affine and
+   * invertible (else ignored, with a warning). Changes to the matrix count as changes
+   * to the medium (GetMTime()).
+   */
+  void SetDensityMatrix(vtkMatrix4x4* matrix);
+  vtkGetObjectMacro(DensityMatrix, vtkMatrix4x4);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * The density grid placed by DensityMatrix and scaled by DensityScale (shared with the
+   * loaded grid's voxels); null without a density grid. Scene snapshots hold it.
+   */
+  std::shared_ptr<const caustics::DensityGrid> GetDensity();
+#endif
+
+  /** Includes the density matrix's modification time. */
+  vtkMTimeType GetMTime() override;
 
   /** True when any scattering coefficient is positive. */
   bool IsScattering() const;
@@ -70,12 +137,18 @@ public:
   static vtkInformationObjectBaseKey* MEDIUM();
 
 protected:
-  vtkCausticsMedium() = default;
-  ~vtkCausticsMedium() override = default;
+  vtkCausticsMedium();
+  ~vtkCausticsMedium() override;
 
   double ScatteringCoefficient[3] = { 0, 0, 0 };
   double AbsorptionCoefficient[3] = { 0, 0, 0 };
   double Anisotropy = 0.0;
+  double DensityScale = 1.0;
+  vtkMatrix4x4* DensityMatrix = nullptr;
+  std::shared_ptr<const caustics::DensityGrid> LoadedDensity; // as read, unplaced
+  std::shared_ptr<const caustics::DensityGrid> PlacedDensity; // GetDensity()'s, kept while valid
+  vtkMTimeType PlacedTime = 0;                                // GetMTime() it was placed at
+  std::string LastError;
 
 private:
   vtkCausticsMedium(const vtkCausticsMedium&) = delete;

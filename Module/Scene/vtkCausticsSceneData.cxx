@@ -1,5 +1,7 @@
 #include "vtkCausticsSceneData.h"
 
+#include "vtkCausticsDensityGrid.h"
+
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp> // For glm::make_mat4, glm::value_ptr
 
@@ -705,6 +707,24 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
     }
   }
   return AimLightView(scene, light, index, focus);
+}
+
+double Medium::MeanDensity() const
+{
+  return this->density ? this->density->GetMeanDensity() : 1.0;
+}
+
+Vec3 Medium::MeanSigmaS() const
+{
+  const double mean = this->MeanDensity();
+  return { { this->sigmaS[0] * mean, this->sigmaS[1] * mean, this->sigmaS[2] * mean } };
+}
+
+Vec3 Medium::MeanSigmaT() const
+{
+  const double mean = this->MeanDensity();
+  return { { (this->sigmaS[0] + this->sigmaA[0]) * mean,
+    (this->sigmaS[1] + this->sigmaA[1]) * mean, (this->sigmaS[2] + this->sigmaA[2]) * mean } };
 }
 
 double SceneData::Scale() const

@@ -16,6 +16,7 @@
 
 #include <array>   // For std::array
 #include <cstdint> // For std::uint32_t
+#include <memory>  // For std::shared_ptr
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
@@ -107,13 +108,31 @@ struct Camera
   bool WorldToPixel(const Vec3& world, double& px, double& py) const;
 };
 
-/** Homogeneous participating medium filling the scene (single scattering). */
+class DensityGrid; // vtkCausticsDensityGrid.h
+
+/**
+ * Participating medium filling the scene (single scattering): the coefficients times
+ * the density, which is 1 everywhere without a density grid (homogeneous).
+ */
 struct Medium
 {
   bool enabled = false;
-  Vec3 sigmaS{ { 0, 0, 0 } }; ///< scattering coefficient, 1/m
-  Vec3 sigmaA{ { 0, 0, 0 } }; ///< absorption coefficient, 1/m
+  Vec3 sigmaS{ { 0, 0, 0 } }; ///< scattering coefficient, 1/m per unit density
+  Vec3 sigmaA{ { 0, 0, 0 } }; ///< absorption coefficient, 1/m per unit density
   double g = 0.0;             ///< Henyey-Greenstein anisotropy
+  /** Density, placed and scaled (vtkCausticsMedium::GetDensity()); null: homogeneous. */
+  std::shared_ptr<const DensityGrid> density;
+
+  /** The grid's mean density, 1 without a grid. */
+  double MeanDensity() const;
+  ///@{
+  /**
+   * The coefficients times MeanDensity(): the homogeneous medium a technique that
+   * cannot follow the density uses instead (exactly sigmaS, sigmaS + sigmaA without a grid).
+   */
+  Vec3 MeanSigmaS() const;
+  Vec3 MeanSigmaT() const;
+  ///@}
 };
 
 struct SceneData;
