@@ -454,6 +454,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "MaximumSplatRadius: " << knobs.MaximumSplatRadius << " px\n";
   os << indent << "DropCoarseSplats: " << knobs.DropCoarseSplats << "\n";
   os << indent << "MaximumInternalEvents: " << knobs.MaximumInternalEvents << "\n";
+  os << indent << "MaximumReflections: " << knobs.MaximumReflections << "\n";
   os << indent << "SplitFresnel: " << knobs.SplitFresnel << "\n";
   os << indent << "MinimumMapIncidence: " << knobs.MinimumMapIncidence << " degrees\n";
   os << indent << "Lights: " << this->Internal->Lights.size() << "\n";

@@ -200,6 +200,16 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Mirrors a photon in air may meet after its emission (each reflects it with the
+   * conductor's Fresnel reflectance; the paper's photons stop at the first diffuse
+   * surface they meet and pass through any further specular one), in [0, 16]. 0:
+   * a mirror in the way stops the photon. Default 3 (as screen-space's bounces).
+   */
+  vtkCausticsSettingClampMacro(Settings, MaximumReflections, int, 0, 16);
+  ///@}
+
+  ///@{
   /** Emit a refractor's Fresnel-reflected part as a second photon branch. Default on. */
   vtkCausticsSettingMacro(Settings, SplitFresnel, bool);
   vtkBooleanMacro(SplitFresnel, bool);

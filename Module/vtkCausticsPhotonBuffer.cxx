@@ -49,22 +49,36 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   std::size_t Capacity = 0;
   double ChordLength = 0.0, AirLength = 0.0, FluxUnit = 1.0;
   double ReceiverLow[3] = { 0, 0, 0 }, ReceiverHigh[3] = { 0, 0, 0 };
-  vtkTextureObject* Inputs[9] = { nullptr };
+  bool Reflectors = false; // the reflector layer holds the scene's mirrors
+  vtkTextureObject* Inputs[11] = { nullptr };
 };
 
 namespace
 {
-const char* const TraceInputNames[9] = { "photonPosition", "photonDirection", "photonFlux",
+const char* const TraceInputNames[11] = { "photonPosition", "photonDirection", "photonFlux",
   "frontPosition", "frontNormal", "backPosition", "backNormal", "receiverPosition",
-  "receiverNormal" };
+  "receiverNormal", "reflectorPosition", "reflectorNormal" };
+
+/** Whether a mesh of the scene is a reflector (a mirror). */
+bool HasReflectors(const caustics::SceneData& scene)
+{
+  return std::any_of(scene.Meshes.begin(), scene.Meshes.end(),
+    [&scene](const caustics::Mesh& mesh)
+    {
+      return mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size()) &&
+        scene.Materials[mesh.material].role == caustics::Role::Reflector;
+    });
+}
 
 void SetTraceUniforms(
   vtkCausticsShaderProgram* program, const vtkCausticsPhotonBuffer::TraceUniforms& trace)
 {
-  for (int i = 0; i < 9; ++i)
+  for (int i = 0; i < 11; ++i)
   {
     program->SetUniformi(TraceInputNames[i], trace.Inputs[i]->GetTextureUnit());
   }
+  program->SetUniformi("hasReflectors", trace.Reflectors ? 1 : 0);
+  program->SetUniformi("maximumReflections", trace.Settings->MaximumReflections);
   const caustics::Light& source = *trace.Source;
   caustics::hcm::SetViewUniforms(
     program, "photonView", *trace.PhotonView, trace.Width, trace.Width);
@@ -222,6 +236,20 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   TraceUniforms trace;
   trace.Capacity = this->AllocateOutputs(renWin, grid.Width, grid.Height);
 
+  // Mirrors in the way of photons in air, as the caustic map's view sees them.
+  trace.Reflectors = HasReflectors(scene);
+  if (trace.Reflectors)
+  {
+    float mapMatrix[16];
+    caustics::gl::ToColumnMajor(mapView.worldToClip, mapMatrix);
+    const int* size = receivers->GetSize();
+    if (!this->ReflectorLayer->Render(renWin, geometry, mapMatrix, size[0], size[1],
+          vtkCausticsSceneGeometry::RoleBit(2)))
+    {
+      return false;
+    }
+  }
+
   // 3. One thread per photon, in two phases (inside the refractors, then in air).
   this->DescribeTrace(settings, scene, grid, photonView, mapView, receivers, trace);
   for (vtkTextureObject* input : trace.Inputs)
@@ -285,8 +313,11 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
   vtkTextureObject* inputs[] = { grid.Emitted.Position, grid.Emitted.Direction, grid.Emitted.Flux,
     this->FrontLayer->GetPositionTexture(), this->FrontLayer->GetNormalTexture(),
     this->BackLayer->GetPositionTexture(), this->BackLayer->GetNormalTexture(),
-    receivers->GetPositionTexture(), receivers->GetNormalTexture() };
-  std::copy(inputs, inputs + 9, trace.Inputs);
+    receivers->GetPositionTexture(), receivers->GetNormalTexture(),
+    // Without mirrors the receivers stand in (never read: hasReflectors is 0).
+    trace.Reflectors ? this->ReflectorLayer->GetPositionTexture() : receivers->GetPositionTexture(),
+    trace.Reflectors ? this->ReflectorLayer->GetNormalTexture() : receivers->GetNormalTexture() };
+  std::copy(inputs, inputs + 11, trace.Inputs);
   // Photons in air can only land inside the receivers' bounds: the search is
   // clipped to them (photons that never enter them cost one box test).
   double receiverBounds[6];
@@ -346,6 +377,7 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->FrontLayer->ReleaseGraphicsResources(win);
   this->BackLayer->ReleaseGraphicsResources(win);
+  this->ReflectorLayer->ReleaseGraphicsResources(win);
   this->Internal->Landed.Release(win);
   this->SortProgram->ReleaseGraphicsResources(win);
   this->InsideProgram->ReleaseGraphicsResources(win);

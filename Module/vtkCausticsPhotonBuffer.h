@@ -149,6 +149,7 @@ protected:
   double FluxUnit = 1.0; // W per unit of the GPU flux counters, set by Trace()
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;
+  vtkNew<vtkCausticsGBuffer> ReflectorLayer; // mirrors as the caustic map's view sees them
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;

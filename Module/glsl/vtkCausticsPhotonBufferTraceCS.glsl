@@ -10,7 +10,10 @@
 //    inside, up to maximumInternalEvents interfaces. The part reflected back
 //    inside at a partial exit is not followed (counted);
 // 2. in air, one thread per listed photon: the hit is found on the receivers as
-//    the caustic map's view sees them (a receiver-only depth layer).
+//    the caustic map's view sees them (a receiver-only depth layer); a mirror met
+//    before it (a mirror-only layer of the same view) reflects the photon with the
+//    conductor's Fresnel reflectance, up to maximumReflections times, after which
+//    a mirror in the way stops it (it no longer passes through).
 // Lists keep every thread of a work group busy: Mesa's llvmpipe runs the
 // instructions of branches no lane takes, so a texel-wide dispatch would pay
 // for the tracing code at every empty texel.
@@ -35,6 +38,10 @@ uniform sampler2D backPosition;     // refractors' farthest surfaces seen from t
 uniform sampler2D backNormal;
 uniform sampler2D receiverPosition; // receivers seen by the caustic map's view
 uniform sampler2D receiverNormal;
+uniform sampler2D reflectorPosition; // mirrors seen by the caustic map's view
+uniform sampler2D reflectorNormal;
+uniform int hasReflectors;           // 0: the scene has no mirror (the layer is not read)
+uniform int maximumReflections;      // mirrors a photon in air may meet
 uniform CausticsView photonView;    // the view the emitter's texels come from
 uniform CausticsView mapView;
 uniform ivec2 gridSize;
@@ -552,7 +559,62 @@ void main()
 #else
 // Phase 2: photons in air find the receiver they land on, as the caustic map sees
 // receivers, searched only where the ray is inside the receivers' bounds (slab
-// test; 1 / d is +-Inf on axis-parallel rays, which the test handles).
+// test; 1 / d is +-Inf on axis-parallel rays, which the test handles). A mirror
+// between the photon and that receiver reflects it (second reflections, e.g. inside
+// a mirror cup) and the search starts again from the mirror.
+
+// The first receiver along p + t d, t in the receivers' bounds: true with t and
+// the receiver's normal.
+bool FindReceiver(vec3 p, vec3 d, out float t, out vec3 n)
+{
+  vec3 inverse = 1.0 / d;
+  vec3 near = (receiverLow - p) * inverse, far = (receiverHigh - p) * inverse;
+  vec3 entries = min(near, far), exits = max(near, far);
+  float enter = max(max(entries.x, entries.y), entries.z);
+  float leave = min(min(exits.x, exits.y), exits.z);
+  float start = max(1e-4 * airLength, enter);
+  float end = min(airLength, leave);
+  vec3 s;
+  float material;
+  t = -1.0;
+  n = vec3(0.0, 0.0, 1.0);
+  return end > start &&
+    LayerHit(mapView, receiverPosition, receiverNormal, p, d, start, end, -1.0, t) &&
+    LayerAt(mapView, receiverPosition, receiverNormal, p + t * d, s, n, material) &&
+    dot(d, n) < 0.0; // a receiver reached from behind shows nothing
+}
+
+// The first mirror along p + t d before `limit`, away from the mirror the photon
+// may be leaving: true with t, its smoothed normal and material.
+bool FindReflector(vec3 p, vec3 d, float limit, out float t, out vec3 n, out int material)
+{
+  t = -1.0;
+  n = vec3(0.0, 0.0, 1.0);
+  material = -1;
+  if (hasReflectors == 0)
+  {
+    return false;
+  }
+  // Two texels off the mirror it leaves, so that the search does not meet it again.
+  float start = max(1e-4 * airLength, 2.0 * ViewTexelSize(mapView, p));
+  if (!(limit > start))
+  {
+    return false;
+  }
+  float from = LayerSide(mapView, reflectorPosition, reflectorNormal, p + start * d);
+  vec3 s, nearest;
+  float index;
+  if (!LayerHit(mapView, reflectorPosition, reflectorNormal, p, d, start, limit,
+        from == 0.0 ? -1.0 : from, t) ||
+    !LayerAt(mapView, reflectorPosition, reflectorNormal, p + t * d, s, nearest, index))
+  {
+    return false;
+  }
+  n = LayerNormal(mapView, reflectorPosition, reflectorNormal, p + t * d, nearest);
+  material = int(index + 0.5);
+  return true;
+}
+
 void main()
 {
   ivec2 texel;
@@ -565,26 +627,51 @@ void main()
   vec4 flux4 = imageLoad(outFlux, texel);
   vec3 p = start4.xyz;
   vec3 d = leaving.xyz;
-  float power = Power(flux4.rgb);
-  vec3 inverse = 1.0 / d;
-  vec3 near = (receiverLow - p) * inverse, far = (receiverHigh - p) * inverse;
-  vec3 entries = min(near, far), exits = max(near, far);
-  float enter = max(max(entries.x, entries.y), entries.z);
-  float leave = min(min(exits.x, exits.y), exits.z);
-  float t;
-  float start = max(1e-4 * airLength, enter);
-  float end = min(airLength, leave);
-  vec3 s, n;
-  float material;
-  bool landed = end > start &&
-    LayerHit(mapView, receiverPosition, receiverNormal, p, d, start, end, -1.0, t) &&
-    LayerAt(mapView, receiverPosition, receiverNormal, p + t * d, s, n, material) &&
-    dot(d, n) < 0.0; // a receiver reached from behind shows nothing
-  vec3 hit = p + t * d;
-  float path = start4.w + t;
-  if (!landed || !AllFinite(hit) || !(path > 0.0) || isinf(path))
+  float path = start4.w;
+  float t = -1.0;
+  vec3 n = vec3(0.0);
+  bool landed = false;
+  for (int reflection = 0; reflection <= maximumReflections; ++reflection)
   {
-    // Left the caustic map's view or the receivers' bounds.
+    landed = FindReceiver(p, d, t, n);
+    float mirrorT;
+    vec3 mirrorNormal;
+    int mirrorMaterial;
+    if (!FindReflector(p, d, landed ? t : airLength, mirrorT, mirrorNormal, mirrorMaterial))
+    {
+      break; // nothing in the way: it lands (or escapes)
+    }
+    landed = false;
+    vec3 x = p + mirrorT * d;
+    vec3 kept = flux4.rgb * (causticsMediumOn != 0 ? CausticsMediumTransmittance(p, d, 0.0, mirrorT)
+                                                   : vec3(1.0));
+    vec3 facing = dot(d, mirrorNormal) < 0.0 ? mirrorNormal : -mirrorNormal;
+    CausticsMaterial mirror = causticsMaterials[mirrorMaterial];
+    if (reflection < maximumReflections)
+    {
+      kept *= FresnelConductor(
+        clamp(-dot(d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
+    }
+    else
+    {
+      kept = vec3(0.0); // one mirror too many: stopped there
+    }
+    AddFlux(STAT_FLUX_ABSORBED, Power(flux4.rgb) - Power(kept));
+    flux4.rgb = kept;
+    path += mirrorT;
+    p = x;
+    d = reflect(d, facing);
+    if (!(Power(kept) > 0.0) || !AllFinite(p) || !AllFinite(d))
+    {
+      break;
+    }
+  }
+  float power = Power(flux4.rgb);
+  vec3 hit = p + t * d;
+  path += t;
+  if (!landed || !AllFinite(hit) || !(path > 0.0) || isinf(path) || !(power > 0.0))
+  {
+    // Left the caustic map's view or the receivers' bounds (or stopped by a mirror).
     atomicAdd(statistics[STAT_ESCAPED], 1u);
     AddFlux(STAT_FLUX_ESCAPED, power);
     imageStore(outPosition, texel, vec4(0.0));
