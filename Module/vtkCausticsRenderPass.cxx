@@ -469,6 +469,10 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   inputs.DelegateDepth = f.DelegateDepth;
   inputs.CausticIrradiance = f.CausticIrradiance;
   inputs.DirectIrradiance = direct ? f.DirectIrradiance : nullptr;
+  // What the composite takes off VTK's colour of a receiver, the refraction takes off
+  // too: a floor seen in a mirror or through glass is shadowed as seen directly.
+  inputs.LostShading =
+    direct && this->CorrectsVTKShading() ? in.LostShadingTexture.GetPointer() : nullptr;
   inputs.WorldToClip = f.WorldToClip;
   inputs.Width = f.Width;
   inputs.Height = f.Height;

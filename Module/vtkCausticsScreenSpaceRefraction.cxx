@@ -92,6 +92,10 @@ bool vtkCausticsScreenSpaceRefraction::Render(
     p->SetUniformi(
       "directIrradiance", units.Bind(direct ? inputs.DirectIrradiance : inputs.CausticIrradiance));
     p->SetUniformi("hasDirect", direct ? 1 : 0);
+    const bool lost = inputs.LostShading && inputs.LostShading->GetHandle();
+    p->SetUniformi(
+      "lostShading", units.Bind(lost ? inputs.LostShading : inputs.CausticIrradiance));
+    p->SetUniformi("hasLostShading", lost ? 1 : 0);
     glBindBufferBase(
       GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, layers->GetTableBuffer());
     inputs.Geometry->BindMaterials();

@@ -60,6 +60,9 @@ public:
     vtkTextureObject* DelegateDepth = nullptr;
     vtkTextureObject* CausticIrradiance = nullptr;
     vtkTextureObject* DirectIrradiance = nullptr; ///< may be nullptr (taken as 0)
+    /** VTK's shading that specular actors block (per unit albedo), taken off VTK's colour
+     * as the composite does; nullptr: none. */
+    vtkTextureObject* LostShading = nullptr;
     const float* WorldToClip = nullptr;           ///< column-major
     int Width = 0, Height = 0;
     double ViewOrigin[4] = { 0, 0, 0, 1 }; ///< eye (w = 1) or view direction (w = 0)

@@ -302,6 +302,8 @@ public:
     }
   }
 
+  bool IsEmpty() const { return this->Entries.empty(); }
+
   /** Irradiance sum_p flux_p K2(|x - x_p|, r) over photons whose normal agrees with n. */
   glm::dvec3 Estimate(const glm::dvec3& x, const glm::dvec3& n, double r, double normalCosine) const
   {
@@ -517,6 +519,8 @@ void ReferenceImage::Resize(int w, int h)
   }
   this->mask.assign(n, 0.0f);
   this->pixelArea.assign(n, 0.0f);
+  this->specular.assign(3 * n, 0.0f);
+  this->specularMask.assign(n, 0.0f);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1993,7 +1997,14 @@ struct ReferenceTracer::Internals
         }
       },
       this->Stage(0.45, 0.35));
-    this->GatherCaustics(hits, radii, image);
+    PhotonGrid grid;
+    double cell = 0.0;
+    if (!this->Photons.empty() && MedianPositive(radii, cell))
+    {
+      grid.Build(this->Photons, cell);
+    }
+    this->GatherCaustics(grid, hits, radii, image);
+    this->ShadeSpecularPixels(grid, hits, radii, image);
   }
 
   /** Pixel (i, j): its first visible surface, what lies there, and the medium before it. */
@@ -2048,6 +2059,11 @@ struct ReferenceTracer::Internals
     const Material& material = this->MaterialOf(hit.mesh);
     if (material.role != Role::Receiver)
     {
+      // Glass or a mirror: pass 3 follows the camera's paths from it
+      // (ShadeSpecularPixels); the pixel's footprint there sizes their caustic kernel.
+      image.specularMask[id] = 1.0f;
+      radius = -this->Settings.kernelRadiusPixels *
+        std::sqrt(this->PixelArea(i, j, hit.position, hit.geometricNormal, hit.t));
       return;
     }
     image.mask[id] = 1.0f;
@@ -2132,16 +2148,13 @@ struct ReferenceTracer::Internals
    * Pass 2: caustic irradiance from the deposits at every receiver pixel. Grid cells of
    * the median kernel radius keep most queries to 27 cells.
    */
-  void GatherCaustics(
-    const std::vector<Hit>& hits, const std::vector<double>& radii, ReferenceImage& image)
+  void GatherCaustics(const PhotonGrid& grid, const std::vector<Hit>& hits,
+    const std::vector<double>& radii, ReferenceImage& image)
   {
-    double cell = 0.0;
-    if (this->Photons.empty() || !MedianPositive(radii, cell))
+    if (grid.IsEmpty())
     {
       return;
     }
-    PhotonGrid grid;
-    grid.Build(this->Photons, cell);
     const int width = this->Scene->View.width;
     ParallelFor(
       this->Scene->View.height,
@@ -2161,6 +2174,125 @@ struct ReferenceTracer::Internals
         }
       },
       this->Stage(0.8, 0.05));
+  }
+
+  /**
+   * Pass 3: what the camera sees on glass and mirrors, in display units (VTK's
+   * Lambertian convention: albedo x irradiance), averaged over `specularSamples`
+   * camera paths per pixel whose first visible surface is specular (radii < 0 mark
+   * them, |radius| the caustic kernel's radius there).
+   */
+  void ShadeSpecularPixels(const PhotonGrid& grid, const std::vector<Hit>& hits,
+    const std::vector<double>& radii, ReferenceImage& image)
+  {
+    const int samples = this->Settings.specularSamples;
+    const int width = this->Scene->View.width;
+    if (samples <= 0)
+    {
+      std::fill(image.specularMask.begin(), image.specularMask.end(), 0.0f);
+      return;
+    }
+    ParallelFor(
+      this->Scene->View.height,
+      [&](std::int64_t row)
+      {
+        for (int i = 0; i < width; ++i)
+        {
+          const std::size_t id = static_cast<std::size_t>(row) * width + i;
+          if (image.specularMask[id] == 0.0f)
+          {
+            continue;
+          }
+          glm::dvec3 o{ 0.0 }, v{ 0.0 };
+          this->PixelRay(i, static_cast<int>(row), o, v);
+          Random random(this->Settings.seed ^ 0x27d4eb2fULL, 0x85ebULL + id, 3);
+          glm::dvec3 sum{ 0.0 };
+          for (int k = 0; k < samples; ++k)
+          {
+            sum += this->CameraPath(v, hits[id], grid, -radii[id], random);
+          }
+          StoreFloat(sum * (1.0 / samples), &image.specular[3 * id]);
+        }
+      },
+      this->Stage(0.85, 0.05));
+  }
+
+  /**
+   * One camera path leaving along v from the specular surface `hit`: at a dielectric
+   * it reflects with probability R (Fresnel) and refracts otherwise, which keeps the
+   * estimate unbiased with weight 1; a mirror reflects, weighted by its conductor
+   * Fresnel reflectance; Beer-Lambert inside glass. It ends on a receiver, with
+   * albedo x (direct + caustic irradiance there, the caustic from the photons with
+   * kernel radius `radius`), or leaving the scene, with the background; black after
+   * maxBounces events. The medium in air is not applied.
+   */
+  glm::dvec3 CameraPath(
+    glm::dvec3 v, Hit hit, const PhotonGrid& grid, double radius, Random& random) const
+  {
+    glm::dvec3 throughput{ 1.0 };
+    int inside = -1;
+    for (int event = 0; event <= this->Settings.maxBounces; ++event)
+    {
+      const Material& material = this->MaterialOf(hit.mesh);
+      glm::dvec3 ng, ns;
+      const bool front = FacingNormals(v, hit, ng, ns);
+      if (material.role == Role::Receiver)
+      {
+        const glm::dvec3 caustic = grid.IsEmpty()
+          ? glm::dvec3(0.0)
+          : grid.Estimate(hit.position, ng, radius, this->Settings.kernelNormalCosine);
+        return throughput * ToGlm(material.albedo) *
+          (this->DirectIrradiance(hit.position, ng, ns, random) + caustic);
+      }
+      glm::dvec3 next{ 0.0 };
+      if (material.role == Role::Reflector)
+      {
+        glm::dvec3 n = ns;
+        next = glm::reflect(v, n);
+        if (glm::dot(v, n) >= 0.0 || glm::dot(next, ng) <= 0.0)
+        {
+          n = ng; // an interpolated normal that sends the ray into the surface
+          next = glm::reflect(v, n);
+        }
+        const double cosI = -glm::dot(v, n);
+        for (int c = 0; c < 3; ++c)
+        {
+          throughput[c] *= FresnelConductor(cosI, material.metalN[c], material.metalK[c]);
+        }
+      }
+      else
+      {
+        const double etaI = front ? 1.0 : material.ior;
+        const double etaT = front ? material.ior : 1.0;
+        double reflectance;
+        glm::dvec3 reflected{ 0.0 }, refracted{ 0.0 };
+        if (!ScatterDielectric(v, ns, ng, etaI, etaT, reflectance, reflected, refracted))
+        {
+          ScatterDielectric(v, ng, ng, etaI, etaT, reflectance, reflected, refracted);
+        }
+        if (random.Uniform() < reflectance)
+        {
+          next = reflected;
+        }
+        else
+        {
+          next = refracted;
+          inside = front ? hit.mesh : -1;
+        }
+      }
+      Hit following;
+      if (!this->Intersect(this->Offset(hit.position, ng, next), next, Infinity, following))
+      {
+        return inside >= 0 ? glm::dvec3(0.0) : throughput * ToGlm(this->Settings.background);
+      }
+      if (inside >= 0)
+      {
+        throughput *= glm::exp(ToGlm(this->MaterialOf(inside).attenuation) * -following.t);
+      }
+      v = next;
+      hit = following;
+    }
+    return glm::dvec3(0.0);
   }
 
   /** Median of the positive finite values; false when there is none. */

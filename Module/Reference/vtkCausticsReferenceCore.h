@@ -94,6 +94,8 @@ struct ReferenceSettings
   double rayMarchStep = 0.0;             ///< m; 0: scene size / 256
   double volumeKernelRadiusPixels = 1.5; ///< beam kernel radius in pixel footprints
   bool cameraSeesRefractors = true;      ///< false: camera rays pass refractors unbent
+  int specularSamples = 0;               ///< camera paths per glass or mirror pixel (0: none)
+  Vec3 background{ { 0, 0, 0 } };        ///< what camera paths that leave the scene see
 };
 
 /** A photon that reached a receiver after at least one specular event. */
@@ -167,6 +169,8 @@ struct ReferenceImage
   std::vector<float> albedo;        ///< 3: receiver albedo (0 elsewhere)
   std::vector<float> mask;          ///< 1: 1 where the first visible surface is a receiver
   std::vector<float> pixelArea;     ///< 1: m^2 of that surface seen by the pixel
+  std::vector<float> specular;      ///< 3: display colour where the first surface is specular
+  std::vector<float> specularMask;  ///< 1: 1 where the first visible surface is glass or mirror
 
   void Resize(int w, int h);
 };

@@ -33,11 +33,15 @@ struct OutputArray
 {
   const char* name;
   int components;
+  bool optional = false; ///< absent from cache files written without it: zeros
 };
 const OutputArray OutputArrays[] = { { "CausticIrradiance", 3 }, { "DirectIrradiance", 3 },
   { "VolumeRadiance", 3 }, { "AirlightRadiance", 3 }, { "VolumeCausticRadiance", 3 },
   { "Transmittance", 3 }, { "Position", 3 }, { "Normal", 3 }, { "Albedo", 3 },
-  { "ReceiverMask", 1 }, { "PixelArea", 1 } };
+  { "ReceiverMask", 1 }, { "PixelArea", 1 },
+  // Cache entries of renders without specular samples (their keys leave the samples
+  // out) may predate these two.
+  { "SpecularColor", 3, true }, { "SpecularMask", 1, true } };
 
 /** 128-bit hash of the inputs: FNV-1a 64 and a SplitMix-based 64, over the same bytes. */
 class Hasher
@@ -124,7 +128,8 @@ bool HasOutputArrays(vtkImageData* image, const int size[2])
   for (const OutputArray& entry : OutputArrays)
   {
     vtkDataArray* array = valid ? image->GetPointData()->GetArray(entry.name) : nullptr;
-    valid = valid && array && array->GetNumberOfComponents() == entry.components;
+    valid = valid &&
+      (array ? array->GetNumberOfComponents() == entry.components : entry.optional);
   }
   return valid;
 }
@@ -351,6 +356,12 @@ caustics::ReferenceSettings vtkCausticsReferenceRenderer::GetSettings() const
   settings.rayMarchStep = this->RayMarchStep;
   settings.volumeKernelRadiusPixels = this->VolumeKernelRadiusPixels;
   settings.cameraSeesRefractors = this->CameraSeesRefractors;
+  settings.specularSamples = this->SpecularSamples;
+  if (this->InputRenderer && !this->Internal->HasSceneInput)
+  {
+    const double* background = this->InputRenderer->GetBackground();
+    settings.background = { { background[0], background[1], background[2] } };
+  }
   return settings;
 }
 
@@ -372,6 +383,12 @@ std::string vtkCausticsReferenceRenderer::ComputeCacheKey(
   hash.Value(settings.rayMarchStep);
   hash.Value(settings.volumeKernelRadiusPixels);
   hash.Value(settings.cameraSeesRefractors ? 1 : 0);
+  if (settings.specularSamples > 0)
+  {
+    // Only then: the keys of renders without them stay those of earlier versions.
+    hash.Value(settings.specularSamples);
+    hash.Value(settings.background);
+  }
   hash.Value(scene.Meshes.size());
   for (const auto& mesh : scene.Meshes)
   {
@@ -619,6 +636,8 @@ void vtkCausticsReferenceRenderer::MakeOutput(const caustics::ReferenceImage& im
   add("Albedo", 3, image.albedo);
   add("ReceiverMask", 1, image.mask);
   add("PixelArea", 1, image.pixelArea);
+  add("SpecularColor", 3, image.specular);
+  add("SpecularMask", 1, image.specularMask);
   this->Output->ShallowCopy(output);
 }
 
@@ -644,7 +663,18 @@ bool vtkCausticsReferenceRenderer::LoadFromCache(const std::string& key)
   output->SetDimensions(this->ImageSize[0], this->ImageSize[1], 1);
   for (const OutputArray& entry : OutputArrays)
   {
-    output->GetPointData()->AddArray(image->GetPointData()->GetArray(entry.name));
+    vtkDataArray* array = image->GetPointData()->GetArray(entry.name);
+    if (!array)
+    {
+      vtkNew<vtkFloatArray> zeros; // an optional array the entry predates
+      zeros->SetName(entry.name);
+      zeros->SetNumberOfComponents(entry.components);
+      zeros->SetNumberOfTuples(static_cast<vtkIdType>(this->ImageSize[0]) * this->ImageSize[1]);
+      zeros->Fill(0.0);
+      output->GetPointData()->AddArray(zeros);
+      continue;
+    }
+    output->GetPointData()->AddArray(array);
   }
   this->Output->ShallowCopy(output);
   this->Internal->Statistics = statistics;
@@ -712,6 +742,7 @@ void vtkCausticsReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RayMarchStep: " << this->RayMarchStep << " m (0 = scene size / 256)\n";
   os << indent << "VolumeKernelRadiusPixels: " << this->VolumeKernelRadiusPixels << "\n";
   os << indent << "CameraSeesRefractors: " << this->CameraSeesRefractors << "\n";
+  os << indent << "SpecularSamples: " << this->SpecularSamples << "\n";
   os << indent << "UseCache: " << (this->UseCache ? "on" : "off") << "\n";
   os << indent << "CacheDirectory: " << this->CacheDirectory << "\n";
   os << indent << "Version: " << ReferenceVersion << "\n";

@@ -213,6 +213,20 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Camera paths per pixel whose first visible surface is glass or a mirror, for the
+   * output arrays "SpecularColor" (display units: albedo x irradiance where the path
+   * ends on a receiver, the background where it leaves the scene; what the GPU passes'
+   * camera-view stage shows there) and "SpecularMask", in [0, 4096]; 0: none (zero
+   * arrays). Default 0: each path gathers the photons, which costs as much as a
+   * pixel's caustic per sample.
+   * The background is the input renderer's (black with SetScene()).
+   */
+  vtkSetClampMacro(SpecularSamples, int, 0, 4096);
+  vtkGetMacro(SpecularSamples, int);
+  ///@}
+
+  ///@{
   /** Load and store results in CacheDirectory. Default on. */
   vtkSetMacro(UseCache, bool);
   vtkGetMacro(UseCache, bool);
@@ -305,6 +319,7 @@ protected:
   double RayMarchStep = 0.0;
   double VolumeKernelRadiusPixels = 1.5;
   bool CameraSeesRefractors = true;
+  int SpecularSamples = 0;
   bool UseCache = true;
   std::string CacheDirectory;
 

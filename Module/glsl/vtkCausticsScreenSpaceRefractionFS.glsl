@@ -30,6 +30,8 @@ uniform sampler2D delegateDepth;
 uniform sampler2D causticIrradiance;
 uniform sampler2D directIrradiance;
 uniform int hasDirect;
+uniform sampler2D lostShading; // VTK's shading specular actors block, per unit albedo
+uniform int hasLostShading;
 uniform mat4 worldToClip;
 uniform vec2 viewport;
 uniform vec4 viewOrigin; // camera position (w = 1) or view direction (w = 0)
@@ -262,7 +264,13 @@ vec3 Shade(ivec2 q)
     role == ROLE_RECEIVER ? max(texelFetch(causticIrradiance, q, 0).rgb, vec3(0.0)) : vec3(0.0);
   if (abs(texelFetch(delegateDepth, q, 0).r - texelFetch(gDepth, q, 0).r) <= depthTolerance)
   {
-    return texelFetch(delegateColor, q, 0).rgb + albedo * caustic; // as the composite shows it
+    // As the composite shows it: VTK's colour, less the light specular actors block.
+    vec3 color = texelFetch(delegateColor, q, 0).rgb;
+    if (role == ROLE_RECEIVER && hasLostShading != 0)
+    {
+      color = max(color - albedo * texelFetch(lostShading, q, 0).rgb, vec3(0.0));
+    }
+    return color + albedo * caustic;
   }
   if (role == ROLE_RECEIVER)
   {
