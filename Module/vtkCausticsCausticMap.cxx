@@ -7,6 +7,7 @@
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
 #include "vtkCausticsPhotonGrid.h"
+#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
@@ -159,6 +160,31 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
     }
     program->Unbind(renWin);
   }
+  state->PopFramebufferBindings();
+  return ok;
+}
+
+bool vtkCausticsCausticMap::SplatWith(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsPhotonSplatter* splatter, const caustics::PhotonGrid& grid,
+  const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius)
+{
+  if (!this->Internal->HasView || !splatter)
+  {
+    vtkErrorMacro(<< "SplatWith needs RenderReceivers() first and a reconstruction");
+    return false;
+  }
+  vtkOpenGLState* state = renWin->GetState();
+  state->PushFramebufferBindings();
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  this->ClearLevels(renWin);
+  this->Framebuffers[0]->Bind();
+  const int size = this->GetLevelResolution(0);
+  state->vtkglViewport(0, 0, size, size);
+  float matrix[16];
+  caustics::gl::ToColumnMajor(this->Internal->View.worldToClip, matrix);
+  const bool ok = splatter->Splat(renWin, grid, landed, kernelRadius, this->Receivers[0], matrix);
   state->PopFramebufferBindings();
   return ok;
 }

@@ -36,6 +36,7 @@
 #include <memory> // For std::unique_ptr
 
 class vtkCausticsGBuffer;
+class vtkCausticsPhotonSplatter;
 class vtkCausticsPhotonBufferHierarchy;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
@@ -100,6 +101,15 @@ public:
    */
   bool Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera);
 #endif
+
+  /**
+   * Instead of Splat(): the landed photons through a shared reconstruction (e.g. caustic
+   * triangles) into the finest level, the others cleared, with the photons' kernel
+   * radii (m) for its splats. Needs RenderReceivers() first.
+   */
+  bool SplatWith(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonSplatter* splatter,
+    const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
+    vtkTextureObject* kernelRadius);
 
   /** Irradiance (W/m^2, RGBA32F) of level j after Splat(). */
   vtkTextureObject* GetIrradianceTexture(int j);

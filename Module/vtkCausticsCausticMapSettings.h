@@ -50,6 +50,8 @@ struct CausticMapSettings
   bool DropCoarseSplats = false;          ///< drop splats needing level 4+ (else level 3)
   int MaximumInternalEvents = 8;          ///< interfaces met inside a refractor, [1, 32]
   int MaximumReflections = 3;             ///< mirrors met in air after emission, [0, 16]
+  int Reconstruction = 0; ///< vtkCausticsPhotonSplatter::Reconstructions: 0 hierarchical splats,
+                          ///< 1 caustic triangles into the finest level
   bool SplitFresnel = true;               ///< emit a refractor's reflected part too
   double MinimumMapIncidence = 45.0;      ///< degrees, [0, 90]; the map's view turns to it
   int MarchSteps = 64; ///< samples of the photon trace's fallback march, [4, 1024] (no setter)

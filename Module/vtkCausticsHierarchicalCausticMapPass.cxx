@@ -7,6 +7,7 @@
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
@@ -62,6 +63,7 @@ struct PerLight
 struct vtkCausticsHierarchicalCausticMapPass::Internals
 {
   std::vector<std::unique_ptr<PerLight>> Lights;
+  vtkNew<vtkCausticsPhotonSplatter> Triangles; // RECONSTRUCTION_TRIANGLES (shared stage)
 };
 
 vtkCausticsHierarchicalCausticMapPass::vtkCausticsHierarchicalCausticMapPass()
@@ -273,9 +275,22 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
         light.MapView, static_cast<int>(scene.Lights[i].type), &scene.View);
     this->EndStage("hcm traversal");
     this->BeginStage("hcm splat");
-    light.Traced = gathered &&
-      light.Map->Splat(
-        renWin, this->Settings, grid, light.Photons->GetLanded(), light.Hierarchy, &scene.View);
+    if (this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES)
+    {
+      // The gather gave every photon its Eq. 2 radius: the splats of the flux the
+      // refused triangles leave.
+      vtkCausticsPhotonSplatter* triangles = this->Internal->Triangles;
+      triangles->SetReconstructionToTriangles();
+      light.Traced = gathered &&
+        light.Map->SplatWith(renWin, triangles, grid, light.Photons->GetLanded(),
+          light.Hierarchy->GetSplatRadiusTexture());
+    }
+    else
+    {
+      light.Traced = gathered &&
+        light.Map->Splat(
+          renWin, this->Settings, grid, light.Photons->GetLanded(), light.Hierarchy, &scene.View);
+    }
     this->EndStage("hcm splat");
     ok = ok && light.Traced;
   }
@@ -428,6 +443,7 @@ void vtkCausticsHierarchicalCausticMapPass::ReleaseTechniqueResources(vtkWindow*
     light->Release(w);
   }
   this->Internal->Lights.clear();
+  this->Internal->Triangles->ReleaseGraphicsResources(w);
 }
 
 void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent indent)
@@ -455,6 +471,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "DropCoarseSplats: " << knobs.DropCoarseSplats << "\n";
   os << indent << "MaximumInternalEvents: " << knobs.MaximumInternalEvents << "\n";
   os << indent << "MaximumReflections: " << knobs.MaximumReflections << "\n";
+  os << indent << "Reconstruction: "
+     << (knobs.Reconstruction == RECONSTRUCTION_TRIANGLES ? "triangles" : "splats") << "\n";
   os << indent << "SplitFresnel: " << knobs.SplitFresnel << "\n";
   os << indent << "MinimumMapIncidence: " << knobs.MinimumMapIncidence << " degrees\n";
   os << indent << "Lights: " << this->Internal->Lights.size() << "\n";

@@ -112,6 +112,23 @@ public:
 
   ///@{
   /**
+   * How the landed photons become the map's irradiance: RECONSTRUCTION_SPLATS, the
+   * paper's splats (SplatMode); RECONSTRUCTION_TRIANGLES, the shared reconstruction's
+   * caustic triangles (vtkCausticsPhotonSplatter) into the finest level, with the
+   * Eq. 2 splats for the flux of the triangles refused. Default splats.
+   */
+  enum
+  {
+    RECONSTRUCTION_SPLATS = 0,
+    RECONSTRUCTION_TRIANGLES = 1
+  };
+  vtkCausticsSettingClampMacro(Settings, Reconstruction, int, 0, 1);
+  void SetReconstructionToSplats() { this->SetReconstruction(RECONSTRUCTION_SPLATS); }
+  void SetReconstructionToTriangles() { this->SetReconstruction(RECONSTRUCTION_TRIANGLES); }
+  ///@}
+
+  ///@{
+  /**
    * Texels per side of each light's caustic map (its finest level), in [16, 8192].
    * The map looks from the light at the part of the scene the camera sees
    * (MinimumMapIncidence). Default 512.
