@@ -6,6 +6,7 @@
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLTFImporter.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
 #include "vtkCausticsRenderPass.h"
@@ -75,10 +76,10 @@ std::string QualityUsage()
   --trace-view MODE          screen-space: view photons are traced in: automatic
                              (default: the camera's unless a reflector or refractor
                              is outside it), camera, fitted
-  --reconstruction MODE      screen-space: how landed photons become irradiance:
-                             splats (default) or triangles (caustic triangles
-                             between neighbouring photons; sharp foci, see
-                             docs/accuracy.md)
+  --reconstruction MODE      screen-space and caustic-maps: how landed photons
+                             become irradiance: splats (default) or triangles
+                             (caustic triangles between neighbouring photons;
+                             sharp foci, see docs/accuracy.md)
   --size W[xH]               image size in pixels (default 512x512)
 )";
 }
@@ -643,6 +644,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   {
     screenSpace->SetTraceView(options.TraceView);
     screenSpace->SetReconstruction(options.Reconstruction);
+  }
+  if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))
+  {
+    maps->SetReconstruction(options.Reconstruction);
   }
   return pass;
 }

@@ -32,7 +32,7 @@ struct SceneOptions
   int CameraIndex = 0;
   int Photons = 0; ///< light-buffer side; 0: the technique's default
   int TraceView = 0; ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
-  int Reconstruction = 0; ///< screen-space: vtkCausticsScreenSpacePhotonPass::RECONSTRUCTION_*
+  int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
   int Width = 512, Height = 512;
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };
