@@ -174,18 +174,20 @@ bool vtkCausticsPhotonSplatter::DrawSplats(vtkOpenGLRenderWindow* renWin,
     return false;
   }
   const bool triangles = this->Reconstruction == TRIANGLES;
+  if (!triangles && !this->TriangleMask->GetHandle())
+  {
+    // Unread without triangles, but its unsigned sampler must not share a unit with
+    // a float one (an invalid draw for the GL): a texel of its own.
+    caustics::gl::EnsureTexture(this->TriangleMask, renWin, 1, 1, GL_R32UI);
+  }
   vtkTextureObject* inputs[] = { landed.Position, landed.Direction, landed.Flux, kernelRadius,
-    target->GetPositionTexture(), target->GetNormalTexture(),
-    triangles ? this->TriangleMask.GetPointer() : nullptr };
+    target->GetPositionTexture(), target->GetNormalTexture(), this->TriangleMask };
   const char* names[] = { "hitPosition", "hitNormal", "hitFlux", "kernelRadius", "targetPosition",
     "targetNormal", "triangleMask" };
   for (int i = 0; i < 7; ++i)
   {
-    if (inputs[i])
-    {
-      inputs[i]->Activate();
-      this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
-    }
+    inputs[i]->Activate();
+    this->Program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
   }
   const int* size = target->GetSize();
   this->Program->SetUniformi("hitWidth", grid.Width);
@@ -202,10 +204,7 @@ bool vtkCausticsPhotonSplatter::DrawSplats(vtkOpenGLRenderWindow* renWin,
   glBindVertexArray(0);
   for (vtkTextureObject* input : inputs)
   {
-    if (input)
-    {
-      input->Deactivate();
-    }
+    input->Deactivate();
   }
   this->Program->Unbind(renWin);
   return true;
