@@ -1376,6 +1376,8 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";
   os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
   os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
+  os << indent << "MediumGridBytes: " << this->GetMediumGridBytes() << " (dense "
+     << this->GetMediumDenseBytes() << ")\n";
   os << indent << "Scene:\n";
   this->Internal->Extractor->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Timings:\n" << this->Internal->Timings->GetReport();
