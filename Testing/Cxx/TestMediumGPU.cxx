@@ -5,6 +5,7 @@
 // vtkCausticsBuiltinScene, 128^2 images and 128^2 photons.
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsDensityGrid.h"
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
@@ -29,6 +30,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -323,4 +325,45 @@ TEST(MediumGPU, SlabGodRaysMatchReference)
   ASSERT_GT(slabs.Volume, 0.0);
   EXPECT_NEAR(sumReference / slabs.Volume, 1.0, 0.05);
   EXPECT_GT(mean.Volume / slabs.Volume, 1.3) << "the mean density is not the grid";
+}
+
+// The grid goes to the GPU once per load: frames, a new scale or a new placement upload
+// nothing (they share the voxels); a new load uploads once; Release() frees the buffer.
+TEST(MediumGPU, UploadsOncePerLoad)
+{
+  auto grid = Fog(0.1);
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(11)), 0.5f, true);
+  const std::string file = Write("upload.vdb", grid);
+  vtkNew<vtkRenderWindow> window; // a current GL context
+  window->SetOffScreenRendering(1);
+  window->SetSize(8, 8);
+  window->Render();
+  window->MakeCurrent();
+  vtkNew<vtkCausticsMedium> source;
+  ASSERT_TRUE(source->LoadDensity(file.c_str())) << source->GetLastError();
+  caustics::Medium medium;
+  medium.enabled = true;
+  medium.density = source->GetDensity();
+  caustics::gl::MediumBuffer buffer;
+  const long long before = caustics::gl::CountGraphicsMemory().BufferBytes;
+  ASSERT_TRUE(buffer.Update(medium));
+  ASSERT_TRUE(buffer.Update(medium));
+  EXPECT_EQ(buffer.GetUploads(), 1);
+  EXPECT_EQ(buffer.Bytes(), medium.density->GetNanoVDBBytes());
+  EXPECT_EQ(caustics::gl::CountGraphicsMemory().BufferBytes - before,
+    static_cast<long long>(buffer.Bytes()));
+  source->SetDensityScale(2.0);
+  medium.density = source->GetDensity();
+  ASSERT_TRUE(buffer.Update(medium));
+  EXPECT_EQ(buffer.GetUploads(), 1) << "a new scale shares the voxels";
+  EXPECT_EQ(buffer.GetGrid(), medium.density.get());
+  ASSERT_TRUE(source->LoadDensity(file.c_str()));
+  medium.density = source->GetDensity();
+  ASSERT_TRUE(buffer.Update(medium));
+  EXPECT_EQ(buffer.GetUploads(), 2) << "a new load uploads";
+  medium.enabled = false;
+  EXPECT_FALSE(buffer.Update(medium));
+  EXPECT_EQ(buffer.Bytes(), 0u);
+  buffer.Release();
+  EXPECT_EQ(caustics::gl::CountGraphicsMemory().BufferBytes, before) << "released";
 }
