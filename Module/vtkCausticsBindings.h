@@ -38,6 +38,10 @@
 // Indirect dispatch arguments of the line tracer.
 #define CAUSTICS_SSP_ARGUMENT_BINDING 15
 
+// Every stage that follows a heterogeneous medium: its NanoVDB density grid
+// (caustics::gl::MediumBuffer; PNanoVDB.h reads it, vtkCausticsShaderProgram).
+#define CAUSTICS_MEDIUM_GRID_BINDING 14
+
 // Hierarchical caustic map (vtkCausticsPhotonBufferCommon.glsl).
 #define CAUSTICS_PHOTON_STATISTICS_BINDING 1
 #define CAUSTICS_HIERARCHY_NODES_BINDING 2

@@ -1,5 +1,7 @@
 #include "vtkCausticsGLUtilities.h"
 
+#include "vtkCausticsBindings.h"
+#include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsShaderProgram.h"
 
@@ -184,19 +186,110 @@ bool EnsureTexture(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int
   return true;
 }
 
-void SetMediumUniforms(vtkCausticsShaderProgram* program, const caustics::SceneData& scene)
+void SetMediumDefine(vtkCausticsShaderProgram* program, const MediumBuffer* grid)
 {
-  const caustics::Medium& medium = scene.Participating;
+  if (grid && grid->HasGrid())
+  {
+    program->SetDefine("CAUSTICS_MEDIUM_GRID", 1);
+  }
+  else
+  {
+    program->RemoveDefine("CAUSTICS_MEDIUM_GRID");
+  }
+}
+
+void SetMediumUniforms(
+  vtkCausticsShaderProgram* program, const caustics::SceneData& scene, const MediumBuffer* grid)
+{
+  SetMediumUniforms(program, scene.Participating, scene.Bounds, grid);
+}
+
+void SetMediumUniforms(vtkCausticsShaderProgram* program, const caustics::Medium& medium,
+  const double bounds[6], const MediumBuffer* grid)
+{
   program->SetUniformi("causticsMediumOn", medium.enabled ? 1 : 0);
-  // A density grid is not followed on the GPU yet: its mean density stands in
-  // (vtkCausticsRenderPass warns).
-  const caustics::Vec3 sigmaT = medium.MeanSigmaT();
+  double low[3] = { bounds[0], bounds[2], bounds[4] };
+  double high[3] = { bounds[1], bounds[3], bounds[5] };
+  const bool followsGrid =
+    program->HasDefine("CAUSTICS_MEDIUM_GRID") && grid && grid->HasGrid() && medium.density;
+  if (followsGrid)
+  {
+    // The density is 0 outside the grid's bounds: march their overlap with the scene only.
+    double gridBounds[6];
+    grid->GetGrid()->GetWorldBounds(gridBounds);
+    for (int a = 0; a < 3; ++a)
+    {
+      low[a] = std::max(low[a], gridBounds[2 * a]);
+      high[a] = std::max(low[a], std::min(high[a], gridBounds[2 * a + 1])); // empty: flat
+    }
+    double worldToIndex[16];
+    grid->GetGrid()->GetWorldToIndex(worldToIndex);
+    float matrix[16];
+    ToColumnMajor(worldToIndex, matrix);
+    program->SetUniformMatrix4("causticsWorldToIndex", matrix);
+    program->SetUniformf("causticsDensityScale", static_cast<float>(grid->GetGrid()->GetScale()));
+    grid->Bind();
+  }
+  // Per unit density when the program follows the grid; else the grid's mean stands in
+  // (vtkCausticsRenderPass warns about the stages that do).
+  caustics::Vec3 sigmaT = medium.MeanSigmaT();
+  if (followsGrid)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sigmaT[c] = medium.sigmaS[c] + medium.sigmaA[c];
+    }
+  }
   program->SetUniform3f("causticsSigmaT", static_cast<float>(sigmaT[0]),
     static_cast<float>(sigmaT[1]), static_cast<float>(sigmaT[2]));
-  program->SetUniform3f("causticsMediumLow", static_cast<float>(scene.Bounds[0]),
-    static_cast<float>(scene.Bounds[2]), static_cast<float>(scene.Bounds[4]));
-  program->SetUniform3f("causticsMediumHigh", static_cast<float>(scene.Bounds[1]),
-    static_cast<float>(scene.Bounds[3]), static_cast<float>(scene.Bounds[5]));
+  program->SetUniform3f("causticsMediumLow", static_cast<float>(low[0]), static_cast<float>(low[1]),
+    static_cast<float>(low[2]));
+  program->SetUniform3f("causticsMediumHigh", static_cast<float>(high[0]),
+    static_cast<float>(high[1]), static_cast<float>(high[2]));
+}
+
+bool MediumBuffer::Update(const caustics::Medium& medium)
+{
+  std::shared_ptr<const caustics::DensityGrid> next = medium.enabled ? medium.density : nullptr;
+  if (!next)
+  {
+    // Without a grid held, its voxels may be freed and their address reused: upload anew.
+    this->Grid.reset();
+    this->Uploaded = nullptr;
+    return false;
+  }
+  // Placements of one load share its voxels (the held grid keeps them alive, so the same
+  // address means the same voxels): only a new load uploads.
+  const void* voxels = next->GetNanoVDBData();
+  const std::size_t bytes = next->GetNanoVDBBytes();
+  if (voxels != this->Uploaded || bytes != this->UploadedBytes)
+  {
+    this->Buffer.Allocate(bytes);
+    this->Buffer.Write(0, bytes, voxels);
+    this->Uploaded = voxels;
+    this->UploadedBytes = bytes;
+    ++this->Uploads;
+  }
+  this->Grid = std::move(next);
+  return true;
+}
+
+void MediumBuffer::Bind() const
+{
+  this->Buffer.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_MEDIUM_GRID_BINDING);
+}
+
+std::size_t MediumBuffer::Bytes() const
+{
+  return this->Grid ? this->Buffer.Bytes() : 0;
+}
+
+void MediumBuffer::Release()
+{
+  this->Buffer.Release();
+  this->Grid.reset();
+  this->Uploaded = nullptr;
+  this->UploadedBytes = 0;
 }
 
 bool PhotonPlanes::Ensure(vtkOpenGLRenderWindow* renWin, int width, int height)

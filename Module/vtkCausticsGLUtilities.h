@@ -17,6 +17,7 @@
 #include "vtkTextureObject.h"           // For vtkNew<vtkTextureObject>
 
 #include <cstddef> // For std::size_t
+#include <memory>  // For std::shared_ptr
 #include <string>  // For std::string
 
 class vtkCausticsShaderProgram;
@@ -26,6 +27,8 @@ class vtkWindow;
 
 namespace caustics
 {
+class DensityGrid;
+struct Medium;
 namespace gl
 {
 /** GL objects and their storage held by the caustics stages of this process. */
@@ -73,13 +76,29 @@ VTKRENDERINGCAUSTICS_EXPORT std::size_t BytesPerTexel(unsigned int internalForma
 VTKRENDERINGCAUSTICS_EXPORT bool EnsureTexture(vtkTextureObject* texture,
   vtkOpenGLRenderWindow* renWin, int width, int height, unsigned int internalFormat);
 
+class MediumBuffer;
+
+/**
+ * Before Bind(): gives `program` the define CAUSTICS_MEDIUM_GRID when `grid` holds a
+ * density grid (the program then compiles PNanoVDB.h and follows the density), removes
+ * it otherwise, so homogeneous media keep their program as it was. A program
+ * recompiles only when a grid appears or goes.
+ */
+VTKRENDERINGCAUSTICS_EXPORT void SetMediumDefine(
+  vtkCausticsShaderProgram* program, const MediumBuffer* grid);
+
 /**
  * Sets the participating medium's uniforms of vtkCausticsCommon.glsl
  * (causticsMediumOn, causticsSigmaT, causticsMediumLow/High: the scene's bounds) on
- * the bound program, for CausticsMediumTransmittance().
+ * the bound program, for CausticsMediumTransmittance(). A program compiled with
+ * CAUSTICS_MEDIUM_GRID (SetMediumDefine) also gets `grid`'s buffer and transform, and
+ * causticsSigmaT per unit density; any other takes the grid's mean density.
  */
-VTKRENDERINGCAUSTICS_EXPORT void SetMediumUniforms(
-  vtkCausticsShaderProgram* program, const caustics::SceneData& scene);
+VTKRENDERINGCAUSTICS_EXPORT void SetMediumUniforms(vtkCausticsShaderProgram* program,
+  const caustics::SceneData& scene, const MediumBuffer* grid = nullptr);
+/** The same for `medium` filling `bounds` (xmin, xmax, ...: the scene's). */
+VTKRENDERINGCAUSTICS_EXPORT void SetMediumUniforms(vtkCausticsShaderProgram* program,
+  const caustics::Medium& medium, const double bounds[6], const MediumBuffer* grid = nullptr);
 
 /** Row-major double matrix (vtkMatrix4x4 layout) to column-major floats for GL. */
 VTKRENDERINGCAUSTICS_EXPORT void ToColumnMajor(const double rowMajor[16], float columnMajor[16]);
@@ -156,6 +175,40 @@ private:
   unsigned int Name = 0;
   std::size_t Size = 0;
   Usage Use = Usage::Draw;
+};
+
+/**
+ * The density grid of the scene's heterogeneous medium on the GPU: its NanoVDB buffer
+ * (caustics::DensityGrid::GetNanoVDBData) in one storage buffer, read by PNanoVDB.h in
+ * the programs compiled with CAUSTICS_MEDIUM_GRID. Update() uploads only when the
+ * voxels change (a new load); a new placement or scale changes uniforms only, so no
+ * frame allocates or uploads in a steady scene. Owned by vtkCausticsRenderPass, shared
+ * by its stages.
+ */
+class VTKRENDERINGCAUSTICS_EXPORT MediumBuffer
+{
+public:
+  /** Follows `medium` (uploading its grid's voxels if new); false without a grid. */
+  bool Update(const caustics::Medium& medium);
+  /** True when the last Update() found a density grid. */
+  bool HasGrid() const { return this->Grid != nullptr; }
+  /** The grid of the last Update() (null when none). */
+  const caustics::DensityGrid* GetGrid() const { return this->Grid.get(); }
+  /** Binds the buffer at CAUSTICS_MEDIUM_GRID_BINDING. */
+  void Bind() const;
+  /** Bytes of the NanoVDB grid on the GPU (0 without a grid). */
+  std::size_t Bytes() const;
+  /** How many times the voxels were uploaded (tests: once per new grid). */
+  int GetUploads() const { return this->Uploads; }
+  /** Deletes the buffer and forgets the grid. */
+  void Release();
+
+private:
+  StorageBuffer Buffer;
+  std::shared_ptr<const caustics::DensityGrid> Grid; ///< what the uniforms follow
+  const void* Uploaded = nullptr;                    ///< the voxels in Buffer
+  std::size_t UploadedBytes = 0;
+  int Uploads = 0;
 };
 
 /**

@@ -4,6 +4,7 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
+#include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
@@ -275,6 +276,7 @@ struct vtkCausticsRenderPass::Internals
   std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
   // The density grid CheckMediumDensity() last warned about (a new one is a new medium).
   std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
+  caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -293,6 +295,7 @@ vtkCausticsRenderPass::vtkCausticsRenderPass()
   // The frame's inputs that never change: the pass's own stages.
   this->Frame.Scene = &in.Extractor->GetScene();
   this->Frame.Geometry = in.Geometry;
+  this->Frame.MediumGrid = &in.MediumGrid;
   this->Frame.CameraGBuffer = in.CameraGBuffer;
   this->Frame.RefractiveGBuffer = in.RefractiveGBuffer;
   this->Frame.LightBuffers = in.LightBuffers;
@@ -938,20 +941,32 @@ void vtkCausticsRenderPass::CheckMediumDensity()
 {
   const caustics::Medium& medium = this->Frame.Scene->Participating;
   const auto& density = medium.density;
-  if (!medium.enabled || !density)
+  if (!this->Internal->MediumGrid.Update(medium))
   {
     this->Internal->ReportedDensity.reset();
     return;
   }
+  const char* meanStages = this->GetMeanDensityStages();
   // Once per medium change (a new load, scale or placement is a new grid object).
-  if (this->Internal->ReportedDensity.lock() != density)
+  if (meanStages && this->Internal->ReportedDensity.lock() != density)
   {
     this->Internal->ReportedDensity = density;
-    vtkWarningMacro(<< this->GetClassName()
-                    << ": heterogeneous density is not rendered on the GPU yet; using the grid's "
+    vtkWarningMacro(<< this->GetClassName() << ": " << meanStages
+                    << " does not follow the heterogeneous density yet; using the grid's "
                        "mean density ("
                     << medium.MeanDensity() << ")");
   }
+}
+
+vtkIdType vtkCausticsRenderPass::GetMediumGridBytes() const
+{
+  return static_cast<vtkIdType>(this->Internal->MediumGrid.Bytes());
+}
+
+vtkIdType vtkCausticsRenderPass::GetMediumDenseBytes() const
+{
+  const caustics::DensityGrid* grid = this->Internal->MediumGrid.GetGrid();
+  return grid ? static_cast<vtkIdType>(grid->GetDenseBytes()) : 0;
 }
 
 bool vtkCausticsRenderPass::FitsTheDevice()
@@ -1007,6 +1022,7 @@ bool vtkCausticsRenderPass::DrawDirectIrradiance()
 {
   const FrameInputs& f = this->Frame;
   vtkCausticsShaderProgram* program = this->Internal->DirectProgram;
+  caustics::gl::SetMediumDefine(program, f.MediumGrid);
   if (!program->Bind(f.Window))
   {
     return false;
@@ -1059,7 +1075,7 @@ void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
   caustics::gl::ToColumnMajor(lightView.worldToClip, matrix);
   program->SetUniformMatrix4("lightWorldToClip", matrix);
   program->SetUniformi("lightType", static_cast<int>(light.type));
-  caustics::gl::SetMediumUniforms(program, *this->Frame.Scene);
+  caustics::gl::SetMediumUniforms(program, *this->Frame.Scene, this->Frame.MediumGrid);
   // Directional lights measure distance along the axis from the view's eye.
   const caustics::Vec3& origin =
     light.type == caustics::Light::Type::Directional ? lightView.eye : light.position;
@@ -1088,6 +1104,7 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   auto& in = *this->Internal;
   const FrameInputs& f = this->Frame;
   vtkCausticsShaderProgram* program = in.CompositeProgram;
+  caustics::gl::SetMediumDefine(program, f.MediumGrid);
   if (!program->Bind(f.Window))
   {
     return;
@@ -1123,7 +1140,7 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
     float clipToWorld[16];
     caustics::gl::ToColumnMajor(f.Scene->View.clipToWorld, clipToWorld);
     program->SetUniformMatrix4("clipToWorld", clipToWorld);
-    caustics::gl::SetMediumUniforms(program, *f.Scene);
+    caustics::gl::SetMediumUniforms(program, *f.Scene, f.MediumGrid);
   }
   // The two depth buffers come from the same triangles and matrix; allow float noise.
   program->SetUniformf("depthTolerance", 2e-6f);
@@ -1322,6 +1339,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   this->ReleaseTechniqueResources(w);
   in.LimitsWindow = nullptr; // a later window may reuse the address
   in.Geometry->ReleaseGraphicsResources(w);
+  in.MediumGrid.Release();
   in.CameraGBuffer->ReleaseGraphicsResources(w);
   in.RefractiveGBuffer->ReleaseGraphicsResources(w);
   in.LightBuffers->ReleaseGraphicsResources(w);
@@ -1362,6 +1380,8 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";
   os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
   os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
+  os << indent << "MediumGridBytes: " << this->GetMediumGridBytes() << " (dense "
+     << this->GetMediumDenseBytes() << ")\n";
   os << indent << "Scene:\n";
   this->Internal->Extractor->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Timings:\n" << this->Internal->Timings->GetReport();

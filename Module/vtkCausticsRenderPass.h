@@ -81,6 +81,10 @@ class vtkTextureObject;
 namespace caustics
 {
 struct SceneData;
+namespace gl
+{
+class MediumBuffer;
+}
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsRenderPass : public vtkImageProcessingPass
@@ -174,6 +178,16 @@ public:
 
   /** True if the last frame ran the caustic stages. */
   bool GetLastFrameHadCaustics() const;
+
+  ///@{
+  /**
+   * GPU bytes of the heterogeneous medium's density grid (NanoVDB, only the active
+   * tiles and leaves), and the bytes a dense float grid over the same active bounds
+   * would take (caustics::DensityGrid::GetDenseBytes). 0 without a density grid.
+   */
+  vtkIdType GetMediumGridBytes() const;
+  vtkIdType GetMediumDenseBytes() const;
+  ///@}
 
 #ifndef __VTK_WRAP__
   /**
@@ -290,6 +304,8 @@ protected:
     vtkTextureObject* DelegateDepth = nullptr;
     vtkTextureObject* CausticIrradiance = nullptr; ///< RGBA32F, W/m^2 (the technique's output)
     vtkTextureObject* DirectIrradiance = nullptr;  ///< RGBA32F, W/m^2 (when the result has it)
+    /** The medium's density grid on the GPU (caustics::gl::SetMediumDefine/Uniforms). */
+    const caustics::gl::MediumBuffer* MediumGrid = nullptr;
   };
 
   /** What the frame produced; reset at the start of every Render(). */
@@ -382,6 +398,13 @@ protected:
   /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
 
+  /**
+   * Hook: the technique's stages that take a density grid's mean density instead of
+   * following it (named in the warning a frame with a grid gives once); null when every
+   * stage follows the grid (the base pass's direct light and composite do).
+   */
+  virtual const char* GetMeanDensityStages() { return nullptr; }
+
   /** Whether the composite takes light off VTK's shading (SpecularShadows or a medium). */
   bool CorrectsVTKShading() const;
 
@@ -422,7 +445,7 @@ private:
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
-  void CheckMediumDensity(); // warns once per density grid: the GPU uses its mean density
+  void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);

@@ -100,6 +100,7 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
   glNamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
   state->vtkglBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   state->vtkglViewport(0, 0, in.Width, in.Height);
+  caustics::gl::SetMediumDefine(in.LineProgram, view.MediumGrid);
   bool ok = in.LineProgram->Bind(renWin);
   if (ok)
   {
@@ -119,8 +120,15 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
       static_cast<float>(view.ViewOrigin[3]) };
     p->SetUniform4f("viewOrigin", origin);
     const caustics::Medium& medium = *view.Medium;
-    // The grid's mean density stands in for a density grid (vtkCausticsRenderPass warns).
-    const caustics::Vec3 sigmaS = medium.MeanSigmaS(), sigmaT = medium.MeanSigmaT();
+    // With a grid the coefficients are per unit density (the shader samples the density
+    // and marches the transmittance); else the homogeneous ones.
+    const bool grid = p->HasDefine("CAUSTICS_MEDIUM_GRID");
+    if (grid)
+    {
+      caustics::gl::SetMediumUniforms(p, medium, view.Bounds, view.MediumGrid);
+    }
+    const caustics::Vec3 sigmaS = grid ? medium.sigmaS : medium.MeanSigmaS();
+    const caustics::Vec3 sigmaT = medium.MeanSigmaT();
     p->SetUniform3f("sigmaS", static_cast<float>(sigmaS[0]), static_cast<float>(sigmaS[1]),
       static_cast<float>(sigmaS[2]));
     p->SetUniform3f("sigmaT", static_cast<float>(sigmaT[0]), static_cast<float>(sigmaT[1]),

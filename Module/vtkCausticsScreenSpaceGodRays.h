@@ -36,6 +36,10 @@ namespace caustics
 {
 struct Medium;
 struct ScreenSpaceSettings;
+namespace gl
+{
+class MediumBuffer;
+}
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsScreenSpaceGodRays : public vtkObject
@@ -55,6 +59,8 @@ public:
     double ViewOrigin[4] = { 0, 0, 0, 1 }; ///< eye (w = 1) or view direction (w = 0)
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
     const caustics::Medium* Medium = nullptr;
+    /** Its density grid on the GPU (null or empty: homogeneous). */
+    const caustics::gl::MediumBuffer* MediumGrid = nullptr;
     vtkTextureObject* OpaqueDepth = nullptr;     ///< window depth, receivers and reflectors
     vtkTextureObject* RefractiveDepth = nullptr; ///< window depth, refractors
   };

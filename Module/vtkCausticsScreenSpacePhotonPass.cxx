@@ -240,6 +240,7 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   in.Current = 0;
   in.ClearCounter(0);
   vtkCausticsShaderProgram* p = in.InitialProgram;
+  caustics::gl::SetMediumDefine(p, f.MediumGrid);
   if (!p->Bind(renWin))
   {
     return false;
@@ -261,7 +262,7 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   const caustics::Vec3& eye = f.LightBuffers->GetView(light).eye;
   p->SetUniform3f(
     "viewEye", static_cast<float>(eye[0]), static_cast<float>(eye[1]), static_cast<float>(eye[2]));
-  caustics::gl::SetMediumUniforms(p, scene);
+  caustics::gl::SetMediumUniforms(p, scene, f.MediumGrid);
   in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
   in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
   in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
@@ -293,6 +294,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   in.Landed.ClearPositions();
 
   vtkCausticsShaderProgram* p = in.TransferProgram;
+  caustics::gl::SetMediumDefine(p, f.MediumGrid);
   if (!p->Bind(renWin))
   {
     return false;
@@ -319,7 +321,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   p->SetUniform4f("viewOrigin", origin);
   p->SetUniformf("splatRadius", static_cast<float>(this->Settings.SplatRadius));
   p->SetUniformf("splatRadiusPixels", static_cast<float>(this->Settings.SplatRadiusPixels));
-  caustics::gl::SetMediumUniforms(p, scene);
+  caustics::gl::SetMediumUniforms(p, scene, f.MediumGrid);
   p->SetUniformu(
     "seed", 0x9e3779b9u * static_cast<unsigned int>(bounce + 1) + static_cast<unsigned int>(light));
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Tracer->GetArgumentBuffer());
@@ -380,6 +382,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   std::copy(in.CameraOrigin, in.CameraOrigin + 4, view.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, view.Bounds);
   view.Medium = &scene.Participating;
+  view.MediumGrid = f.MediumGrid;
   view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
   view.RefractiveDepth = f.RefractiveGBuffer->GetDepthTexture();
   const int c = in.Current;

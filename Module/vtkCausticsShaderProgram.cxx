@@ -7,6 +7,7 @@
 
 #include "vtkCausticsBindingsSource.h" // embedded vtkCausticsBindings.h
 #include "vtkCausticsCommon.h"         // embedded glsl/vtkCausticsCommon.glsl
+#include "vtkCausticsPNanoVDBSource.h" // embedded nanovdb/PNanoVDB.h
 
 #include <map>
 #include <sstream>
@@ -98,7 +99,16 @@ std::string SourcePrefix(const std::map<std::string, std::string>& defines)
   {
     header << "#define " << define.first << " " << define.second << "\n";
   }
-  header << vtkCausticsBindingsSource << "\n" << vtkCausticsCommon << "\n#line 1\n";
+  header << vtkCausticsBindingsSource << "\n";
+  if (defines.count("CAUSTICS_MEDIUM_GRID"))
+  {
+    // PNanoVDB's GLSL reads its buffer as the global array pnanovdb_buf_data.
+    header << "#define PNANOVDB_GLSL\n"
+              "layout(std430, binding = CAUSTICS_MEDIUM_GRID_BINDING) readonly buffer "
+              "CausticsMediumGrid\n{\n  uint pnanovdb_buf_data[];\n};\n"
+           << vtkCausticsPNanoVDBSource << "\n";
+  }
+  header << vtkCausticsCommon << "\n#line 1\n";
   return header.str();
 }
 
@@ -175,6 +185,19 @@ void vtkCausticsShaderProgram::SetDefine(const char* name, const char* value)
     current = value;
     this->Internal->Dirty = true;
   }
+}
+
+void vtkCausticsShaderProgram::RemoveDefine(const char* name)
+{
+  if (this->Internal->Defines.erase(name))
+  {
+    this->Internal->Dirty = true;
+  }
+}
+
+bool vtkCausticsShaderProgram::HasDefine(const char* name) const
+{
+  return this->Internal->Defines.count(name) != 0;
 }
 
 void vtkCausticsShaderProgram::SetDefine(const char* name, int value)

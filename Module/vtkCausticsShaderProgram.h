@@ -17,7 +17,10 @@
  *
  * Every source gets `#version 450 core`, then the defines, then the binding
  * table shared with the host (vtkCausticsBindings.h), then the common include
- * (vtkCausticsCommon.glsl), prepended.
+ * (vtkCausticsCommon.glsl), prepended. A program with the define
+ * CAUSTICS_MEDIUM_GRID also gets NanoVDB's PNanoVDB.h (as GLSL) before the common
+ * include, reading the density grid's storage buffer: only the programs that follow a
+ * heterogeneous medium pay for its compilation.
  */
 
 #ifndef vtkCausticsShaderProgram_h
@@ -57,6 +60,9 @@ public:
    */
   void SetDefine(const char* name, const char* value);
   void SetDefine(const char* name, int value);
+  /** Drops a define (recompiles at the next Bind() if it was set). */
+  void RemoveDefine(const char* name);
+  bool HasDefine(const char* name) const;
 
   /**
    * Compiles and links if needed, then makes this program current.

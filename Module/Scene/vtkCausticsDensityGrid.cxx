@@ -351,6 +351,30 @@ const void* DensityGrid::GetNanoVDBData() const
   return this->Shared->Nano.data();
 }
 
+void DensityGrid::GetWorldToIndex(double matrix[16]) const
+{
+  // Both maps are affine: read the composition off the images of the origin and axes.
+  const openvdb::FloatGrid& grid = *this->Shared->Grid;
+  auto toIndex = [&](const openvdb::Vec3d& world)
+  { return grid.worldToIndex(Transform(this->InverseMatrix, world)); };
+  const openvdb::Vec3d origin = toIndex(openvdb::Vec3d(0.0));
+  Identity(matrix);
+  for (int c = 0; c < 3; ++c)
+  {
+    openvdb::Vec3d axis(0.0);
+    axis[c] = 1.0;
+    const openvdb::Vec3d column = toIndex(axis) - origin;
+    for (int r = 0; r < 3; ++r)
+    {
+      matrix[4 * r + c] = column[r];
+    }
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    matrix[4 * r + 3] = origin[r];
+  }
+}
+
 std::int64_t DensityGrid::GetActiveVoxelCount() const
 {
   return this->Shared->ActiveVoxels;

@@ -85,6 +85,12 @@ public:
   ///@}
   /** The NanoVDB grid, GetNanoVDBBytes() long, for upload to the GPU. */
   const void* GetNanoVDBData() const;
+  /**
+   * World to the grid's index space (voxel centres at integers), row-major: the inverse
+   * of the placement matrix, then the file's own transform (linear: affine). The GPU
+   * samples the NanoVDB grid with it.
+   */
+  void GetWorldToIndex(double matrix[16]) const;
 
   std::int64_t GetActiveVoxelCount() const;
   const std::string& GetFileName() const;

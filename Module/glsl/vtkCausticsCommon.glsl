@@ -76,6 +76,105 @@ uniform vec3 causticsSigmaT;     // extinction, 1/m
 uniform vec3 causticsMediumLow;  // the scene's bounds (m)
 uniform vec3 causticsMediumHigh;
 
+#ifdef CAUSTICS_MEDIUM_GRID
+// A heterogeneous medium (vtkCausticsShaderProgram prepends PNanoVDB.h and its buffer
+// to the programs with this define): causticsSigmaT is per unit density, the density
+// is the NanoVDB grid's value x causticsDensityScale, and causticsMediumLow/High are the
+// grid's world bounds within the scene's (0 outside).
+uniform mat4 causticsWorldToIndex; // world -> index space, voxel centres at integers
+uniform float causticsDensityScale;
+
+// March of the optical depth: this step (voxels) inside leaves, at most this many steps
+// per ray so that a frame cannot hang (longer rays take longer steps).
+#define CAUSTICS_MEDIUM_STEP_VOXELS 0.5
+#define CAUSTICS_MEDIUM_MAX_STEPS 256
+
+pnanovdb_readaccessor_t CausticsGridAccessor()
+{
+  pnanovdb_buf_t buf;
+  pnanovdb_grid_handle_t grid;
+  grid.address.byte_offset = 0u;
+  pnanovdb_readaccessor_t acc;
+  pnanovdb_readaccessor_init(acc, pnanovdb_tree_get_root(buf, pnanovdb_grid_get_tree(buf, grid)));
+  return acc;
+}
+
+float CausticsGridValue(inout pnanovdb_readaccessor_t acc, ivec3 ijk)
+{
+  pnanovdb_buf_t buf;
+  return pnanovdb_read_float(
+    buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
+}
+
+// Trilinear, as openvdb::tools::BoxSampler (caustics::DensityGrid::Sample); unscaled.
+float CausticsGridSample(inout pnanovdb_readaccessor_t acc, vec3 index)
+{
+  vec3 f = floor(index);
+  ivec3 i = ivec3(f);
+  vec3 w = index - f;
+  float v00 = mix(CausticsGridValue(acc, i), CausticsGridValue(acc, i + ivec3(0, 0, 1)), w.z);
+  float v01 =
+    mix(CausticsGridValue(acc, i + ivec3(0, 1, 0)), CausticsGridValue(acc, i + ivec3(0, 1, 1)), w.z);
+  float v10 =
+    mix(CausticsGridValue(acc, i + ivec3(1, 0, 0)), CausticsGridValue(acc, i + ivec3(1, 0, 1)), w.z);
+  float v11 =
+    mix(CausticsGridValue(acc, i + ivec3(1, 1, 0)), CausticsGridValue(acc, i + ivec3(1, 1, 1)), w.z);
+  return mix(mix(v00, v01, w.y), mix(v10, v11, w.y), w.x);
+}
+
+// The density (x scale) at a world point.
+float CausticsMediumDensity(vec3 world)
+{
+  pnanovdb_readaccessor_t acc = CausticsGridAccessor();
+  return causticsDensityScale * CausticsGridSample(acc, (causticsWorldToIndex * vec4(world, 1.0)).xyz);
+}
+
+// Integral of the density (x scale) along o + t d, t in [t0, t1], in density x m. Walks
+// the tree's nodes (pnanovdb_readaccessor_get_dim, as PNanoVDB's HDDA does): a tile or
+// empty node (dim > 1) is crossed in one step with its constant value, a leaf (dim 1) is
+// marched at CAUSTICS_MEDIUM_STEP_VOXELS with trilinear samples at the steps' midpoints.
+// Nodes are the boxes of their voxels' nearest-voxel cells, so the field is exact
+// inside them and linear over the last half voxel at a tile's edge.
+float CausticsMediumOpticalDepth(vec3 o, vec3 d, float t0, float t1)
+{
+  pnanovdb_readaccessor_t acc = CausticsGridAccessor();
+  pnanovdb_buf_t buf;
+  vec3 io = (causticsWorldToIndex * vec4(o, 1.0)).xyz;
+  vec3 id = mat3(causticsWorldToIndex) * d;
+  float voxelT = 1.0 / max(length(id), 1e-30); // t per voxel along the ray
+  float h = max(CAUSTICS_MEDIUM_STEP_VOXELS * voxelT, (t1 - t0) / float(CAUSTICS_MEDIUM_MAX_STEPS));
+  bvec3 crosses = greaterThan(abs(id), vec3(1e-30)); // axes along which the ray moves
+  float sum = 0.0;
+  float density = 0.0;
+  float t = t0;
+  for (int step = 0; step < CAUSTICS_MEDIUM_MAX_STEPS && t < t1; ++step)
+  {
+    vec3 index = io + t * id;
+    ivec3 ijk = ivec3(floor(index + 0.5));
+    int dim = int(pnanovdb_readaccessor_get_dim(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
+    float next;
+    if (dim > 1)
+    {
+      ivec3 lo = ijk & ~(dim - 1);
+      vec3 exitFace = vec3(lo) - 0.5 + vec3(greaterThan(id, vec3(0.0))) * float(dim);
+      vec3 exits = mix(vec3(3.0e38), (exitFace - io) / id, crosses);
+      next = min(t1, max(min(exits.x, min(exits.y, exits.z)), t + 1e-3 * voxelT));
+      density = CausticsGridValue(acc, ijk);
+    }
+    else
+    {
+      next = min(t1, t + h);
+      density = CausticsGridSample(acc, io + 0.5 * (t + next) * id);
+    }
+    sum += density * (next - t);
+    t = next;
+  }
+  // Out of steps: the rest at the last density (bounded work beats an exact tail).
+  sum += density * max(t1 - t, 0.0);
+  return causticsDensityScale * sum * length(d);
+}
+#endif
+
 // The medium's transmittance along o + t d, t in [t0, t1] (d need not be unit: the
 // distance is (t1 - t0) |d|); 1 without a medium or outside its box.
 vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
@@ -85,7 +184,11 @@ vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
   {
     return vec3(1.0);
   }
+#ifdef CAUSTICS_MEDIUM_GRID
+  return CausticsTransmittance(causticsSigmaT, CausticsMediumOpticalDepth(o, d, t0, t1));
+#else
   return CausticsTransmittance(causticsSigmaT, (t1 - t0) * length(d));
+#endif
 }
 
 // One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).

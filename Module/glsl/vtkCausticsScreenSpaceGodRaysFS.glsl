@@ -6,7 +6,8 @@
 // through exp(-sigma_t s') as radiance over the pixel's footprint A (m^2,
 // perpendicular to the view): L = sigma_s p flux T T' dl / A, W/(m^2 sr). Summed
 // over the image this conserves the scattered power; the Gaussian blur that
-// follows spreads it.
+// follows spreads it. A heterogeneous medium (CAUSTICS_MEDIUM_GRID) scatters with
+// sigma_s times the density at the fragment and marches both transmittances.
 flat in int rayIndex;
 flat in vec4 segment;
 flat in float majorPixels;
@@ -20,7 +21,7 @@ uniform sampler2D refractiveDepth; // window depth of refractors
 uniform mat4 clipToWorld;
 uniform vec2 viewport;
 uniform vec4 viewOrigin; // camera position (w = 1) or view direction (w = 0)
-uniform vec3 sigmaS;     // 1/m
+uniform vec3 sigmaS;     // 1/m (per unit density with CAUSTICS_MEDIUM_GRID)
 uniform vec3 sigmaT;     // 1/m
 uniform float anisotropy;
 uniform vec3 boundsMin;
@@ -57,6 +58,14 @@ void main()
   vec3 x = o + t * d;
 
   // Extinction along the photon's segment inside the medium, and towards the camera.
+#ifdef CAUSTICS_MEDIUM_GRID
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - x : -viewOrigin.xyz * 1.0e6;
+  float distanceToCamera = length(toCamera);
+  vec3 v = toCamera / distanceToCamera;
+  vec3 transmittance = CausticsMediumTransmittance(o, d, 0.0, t) *
+    CausticsMediumTransmittance(x, v, 0.0, distanceToCamera);
+  vec3 scattering = sigmaS * CausticsMediumDensity(x);
+#else
   float s0 = 0.0;
   float s1 = t;
   float along = CausticsClipToBox(o, d, boundsMin, boundsMax, s0, s1) ? s1 - s0 : 0.0;
@@ -67,6 +76,8 @@ void main()
   float c1 = distanceToCamera;
   float towards = CausticsClipToBox(x, v, boundsMin, boundsMax, c0, c1) ? c1 - c0 : 0.0;
   vec3 transmittance = exp(-sigmaT * (along + towards));
+  vec3 scattering = sigmaS;
+#endif
 
   // Footprint of the pixel at x, perpendicular to the view direction.
   float z = gl_FragCoord.z * 2.0 - 1.0;
@@ -80,5 +91,5 @@ void main()
   }
   vec3 flux = payloads[rayIndex].flux.rgb;
   float phase = SspHenyeyGreenstein(dot(d, v), anisotropy);
-  outRadiance = vec4(sigmaS * phase * flux * transmittance * dl / area, 1.0);
+  outRadiance = vec4(scattering * phase * flux * transmittance * dl / area, 1.0);
 }

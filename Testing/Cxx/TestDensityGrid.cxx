@@ -343,8 +343,10 @@ TEST(DensityGrid, GpuPassesWarnOncePerMediumChange)
   vtkCausticsMedium::AttachTo(frame.Renderer, medium);
   vtkNew<vtkTest::ErrorObserver> observer;
   frame.Pass->AddObserver(vtkCommand::WarningEvent, observer);
+  // Caustic maps' photon trace still takes the mean; the other GPU stages follow the grid.
   const std::string expected = std::string(frame.Pass->GetClassName()) +
-    ": heterogeneous density is not rendered on the GPU yet; using the grid's mean density (1)";
+    ": the photon trace of caustic maps does not follow the heterogeneous density yet; using "
+    "the grid's mean density (1)";
   auto warnings = [&]()
   {
     const std::string text = observer->GetWarningMessage();
@@ -362,4 +364,12 @@ TEST(DensityGrid, GpuPassesWarnOncePerMediumChange)
   medium->RemoveDensity();
   frame.Window->Render();
   EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos);
+
+  // Screen-space photons follow the grid in every stage: no warning.
+  TechniqueFrame screenSpace("screen-space", 64, 64);
+  ASSERT_TRUE(medium->LoadDensity(file.c_str()));
+  vtkCausticsMedium::AttachTo(screenSpace.Renderer, medium);
+  screenSpace.Pass->AddObserver(vtkCommand::WarningEvent, observer);
+  screenSpace.Window->Render();
+  EXPECT_EQ(warnings().find("mean density"), std::string::npos);
 }
