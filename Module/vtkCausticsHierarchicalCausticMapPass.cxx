@@ -250,7 +250,7 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     this->BeginStage("hcm trace");
     light.Traced = light.Traced &&
       light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
-        light.MapView, light.Map->GetReceivers(0));
+        light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid);
     this->EndStage("hcm trace");
     ok = ok && light.Traced;
   }

@@ -343,7 +343,6 @@ protected:
    */
   double GetSceneScaleLimit() override { return SCENE_SCALE_LIMIT; }
   /** The photon trace (vtkCausticsPhotonBuffer) attenuates photons by the mean density. */
-  const char* GetMeanDensityStages() override { return "the photon trace of caustic maps"; }
   vtkCausticsHierarchicalCausticMapPass();
   ~vtkCausticsHierarchicalCausticMapPass() override;
 

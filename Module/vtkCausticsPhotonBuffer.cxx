@@ -50,6 +50,7 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   double ChordLength = 0.0, AirLength = 0.0, FluxUnit = 1.0;
   double ReceiverLow[3] = { 0, 0, 0 }, ReceiverHigh[3] = { 0, 0, 0 };
   bool Reflectors = false; // the reflector layer holds the scene's mirrors
+  const caustics::gl::MediumBuffer* MediumGrid = nullptr; // the medium's density, if any
   vtkTextureObject* Inputs[11] = { nullptr };
 };
 
@@ -91,7 +92,7 @@ void SetTraceUniforms(
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
   program->SetUniformi("maximumInternalEvents", trace.Settings->MaximumInternalEvents);
   program->SetUniformi("marchSteps", trace.Settings->MarchSteps);
-  caustics::gl::SetMediumUniforms(program, *trace.Scene);
+  caustics::gl::SetMediumUniforms(program, *trace.Scene, trace.MediumGrid);
   program->SetUniformf("chordLength", static_cast<float>(trace.ChordLength));
   program->SetUniformf("airLength", static_cast<float>(trace.AirLength));
   program->SetUniformf("fluxUnit", static_cast<float>(trace.FluxUnit));
@@ -184,10 +185,11 @@ bool vtkCausticsPhotonBuffer::Render(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
   const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
   const caustics::LightView& photonView, const caustics::LightView& mapView,
-  vtkCausticsGBuffer* receivers)
+  vtkCausticsGBuffer* receivers, const caustics::gl::MediumBuffer* mediumGrid)
 {
   return this->RenderLayers(renWin, geometry, photonView, grid) &&
-    this->Trace(renWin, settings, geometry, scene, grid, photonView, mapView, receivers);
+    this->Trace(
+      renWin, settings, geometry, scene, grid, photonView, mapView, receivers, mediumGrid);
 }
 
 bool vtkCausticsPhotonBuffer::RenderLayers(vtkOpenGLRenderWindow* renWin,
@@ -217,7 +219,7 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
   const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
   const caustics::LightView& photonView, const caustics::LightView& mapView,
-  vtkCausticsGBuffer* receivers)
+  vtkCausticsGBuffer* receivers, const caustics::gl::MediumBuffer* mediumGrid)
 {
   const int light = grid.Light;
   if (!receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
@@ -252,6 +254,13 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
 
   // 3. One thread per photon, in two phases (inside the refractors, then in air).
   this->DescribeTrace(settings, scene, grid, photonView, mapView, receivers, trace);
+  // Photons follow a heterogeneous medium's density (the programs compile it in).
+  trace.MediumGrid = mediumGrid;
+  for (vtkCausticsShaderProgram* phase : { this->SortProgram.GetPointer(),
+         this->InsideProgram.GetPointer(), this->AirProgram.GetPointer() })
+  {
+    caustics::gl::SetMediumDefine(phase, mediumGrid);
+  }
   for (vtkTextureObject* input : trace.Inputs)
   {
     input->Activate();

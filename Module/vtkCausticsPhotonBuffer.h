@@ -68,6 +68,10 @@ struct LightView;
 struct PhotonGrid;
 struct PhotonRecords;
 struct SceneData;
+namespace gl
+{
+class MediumBuffer;
+}
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonBuffer : public vtkObject
@@ -88,7 +92,8 @@ public:
   bool Render(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
     vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
     const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
-    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers);
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers,
+    const caustics::gl::MediumBuffer* mediumGrid = nullptr);
 
   ///@{
   /** Render() in its two steps: the refractor layers (N x N), then the trace. */
@@ -97,7 +102,8 @@ public:
   bool Trace(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
     vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
     const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
-    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers);
+    const caustics::LightView& mapView, vtkCausticsGBuffer* receivers,
+    const caustics::gl::MediumBuffer* mediumGrid = nullptr);
   ///@}
 
   /** GPU counters of the last Render(); flux in W summed over RGB. */

@@ -9,6 +9,7 @@
 #include "vtkCommand.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
 #include "vtkRenderer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -331,45 +332,69 @@ TEST(DensityGrid, SnapshotCarriesTheGrid)
   EXPECT_DOUBLE_EQ(heterogeneous.MeanSigmaT()[0], 0.6);
 }
 
-// The GPU passes do not follow the density yet: they must say so, once per medium
-// change, and use the mean density.
-TEST(DensityGrid, GpuPassesWarnOncePerMediumChange)
+namespace
+{
+/** A technique with a stage that takes the mean density (none of the real ones does). */
+class MeanDensityPass : public vtkCausticsRenderPass
+{
+public:
+  static MeanDensityPass* New();
+  vtkTypeMacro(MeanDensityPass, vtkCausticsRenderPass);
+
+protected:
+  MeanDensityPass() = default;
+  const char* GetMeanDensityStages() override { return "the test's stage"; }
+};
+vtkStandardNewMacro(MeanDensityPass);
+}
+
+// A stage that takes a grid's mean density instead of following it must say so, once
+// per medium change; the GPU techniques follow the grid in every stage and say nothing.
+TEST(DensityGrid, MeanDensityStagesWarnOncePerMediumChange)
 {
   const std::string file = Write("gpu.vdb", { ConstantBox(1.0f, 8, 1.0) });
-  TechniqueFrame frame("caustic-maps", 64, 64);
   vtkNew<vtkCausticsMedium> medium;
   medium->SetScatteringCoefficient(0.05, 0.05, 0.05);
   ASSERT_TRUE(medium->LoadDensity(file.c_str()));
-  vtkCausticsMedium::AttachTo(frame.Renderer, medium);
   vtkNew<vtkTest::ErrorObserver> observer;
-  frame.Pass->AddObserver(vtkCommand::WarningEvent, observer);
-  // Caustic maps' photon trace still takes the mean; the other GPU stages follow the grid.
-  const std::string expected = std::string(frame.Pass->GetClassName()) +
-    ": the photon trace of caustic maps does not follow the heterogeneous density yet; using "
-    "the grid's mean density (1)";
   auto warnings = [&]()
   {
     const std::string text = observer->GetWarningMessage();
     observer->Clear();
     return text;
   };
-  frame.Window->Render();
-  const std::string first = warnings();
-  EXPECT_NE(first.find(expected), std::string::npos) << first;
-  frame.Window->Render();
-  EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos) << "once, not every frame";
-  medium->SetDensityScale(0.5);
-  frame.Window->Render();
-  EXPECT_NE(warnings().find("using the grid's mean density (0.5)"), std::string::npos);
-  medium->RemoveDensity();
-  frame.Window->Render();
-  EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos);
-
-  // Screen-space photons follow the grid in every stage: no warning.
-  TechniqueFrame screenSpace("screen-space", 64, 64);
-  ASSERT_TRUE(medium->LoadDensity(file.c_str()));
-  vtkCausticsMedium::AttachTo(screenSpace.Renderer, medium);
-  screenSpace.Pass->AddObserver(vtkCommand::WarningEvent, observer);
-  screenSpace.Window->Render();
-  EXPECT_EQ(warnings().find("mean density"), std::string::npos);
+  {
+    TechniqueFrame frame("none", 64, 64);
+    vtkNew<MeanDensityPass> pass;
+    pass->SetLightBufferResolution(64);
+    frame.Renderer->SetPass(pass);
+    vtkCausticsMedium::AttachTo(frame.Renderer, medium);
+    pass->AddObserver(vtkCommand::WarningEvent, observer);
+    const std::string expected = std::string(pass->GetClassName()) +
+      ": the test's stage does not follow the heterogeneous density yet; using the grid's "
+      "mean density (1)";
+    frame.Window->Render();
+    const std::string first = warnings();
+    EXPECT_NE(first.find(expected), std::string::npos) << first;
+    frame.Window->Render();
+    EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos) << "once, not every frame";
+    medium->SetDensityScale(0.5);
+    frame.Window->Render();
+    EXPECT_NE(warnings().find("using the grid's mean density (0.5)"), std::string::npos);
+    medium->RemoveDensity();
+    frame.Window->Render();
+    EXPECT_EQ(warnings().find("heterogeneous"), std::string::npos);
+    frame.Renderer->SetPass(nullptr);
+    pass->ReleaseGraphicsResources(frame.Window);
+  }
+  for (const char* technique : { "screen-space", "caustic-maps" })
+  {
+    TechniqueFrame frame(technique, 64, 64);
+    medium->SetDensityScale(1.0);
+    ASSERT_TRUE(medium->LoadDensity(file.c_str()));
+    vtkCausticsMedium::AttachTo(frame.Renderer, medium);
+    frame.Pass->AddObserver(vtkCommand::WarningEvent, observer);
+    frame.Window->Render();
+    EXPECT_EQ(warnings().find("mean density"), std::string::npos) << technique;
+  }
 }

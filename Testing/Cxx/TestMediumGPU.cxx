@@ -12,6 +12,7 @@
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
+#include "vtkCausticsTechniques.h"
 #include "vtkCausticsTimings.h"
 
 #include "vtkDataArray.h"
@@ -88,11 +89,12 @@ double Sum(vtkImageData* image)
 }
 
 /**
- * Renders the ball lens with screen-space photons (god-rays on) in `medium` (null: none),
- * `vdb` (empty: homogeneous) giving its density; optionally with the reference's direct
- * irradiance for comparison.
+ * Renders the ball lens with `technique` (screen-space: god-rays on) in `medium` (null:
+ * none), `vdb` (empty: homogeneous) giving its density; optionally with the reference's
+ * direct irradiance for comparison.
  */
-Frame Render(vtkCausticsMedium* medium, vtkCausticsReferenceRenderer* reference = nullptr)
+Frame Render(vtkCausticsMedium* medium, vtkCausticsReferenceRenderer* reference = nullptr,
+  const char* technique = "screen-space")
 {
   vtkNew<vtkOpenGLRenderer> renderer;
   vtkNew<vtkCausticsBuiltinScene> scene;
@@ -101,7 +103,7 @@ Frame Render(vtkCausticsMedium* medium, vtkCausticsReferenceRenderer* reference 
   {
     vtkCausticsMedium::AttachTo(renderer, medium);
   }
-  vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
   pass->SetLightBufferResolution(128);
   pass->KeepBuffersOn();
   pass->ComputeDirectIrradianceOn();
@@ -258,6 +260,30 @@ TEST(MediumGPU, TwoDensitySlabTransmittance)
             << ", reference / GPU " << sumReference / sumSlabs << " over " << count << " pixels\n";
   EXPECT_NEAR(kept / expected, 1.0, 0.002);
   EXPECT_NEAR(sumReference / sumSlabs, 1.0, 0.02);
+}
+
+// The caustic maps' photon trace follows the grid too: the two slabs (absorbing only)
+// take the same share of the ball lens's caustic from both techniques, whose photons
+// cross the slabs on the same paths; the grid's mean density over its bounds would not.
+TEST(MediumGPU, CausticMapsFollowTheSlabs)
+{
+  const std::string file = Slabs();
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetAbsorptionCoefficient(0.5, 0.5, 0.5);
+  ASSERT_TRUE(medium->LoadDensity(file.c_str())) << medium->GetLastError();
+  double kept[2];
+  const char* techniques[2] = { "screen-space", "caustic-maps" };
+  for (int t = 0; t < 2; ++t)
+  {
+    const Frame clear = Render(nullptr, nullptr, techniques[t]);
+    const Frame slabs = Render(medium, nullptr, techniques[t]);
+    ASSERT_GT(clear.Caustic, 0.0) << techniques[t];
+    kept[t] = slabs.Caustic / clear.Caustic;
+  }
+  std::cout << "caustic kept by the slabs: screen-space " << kept[0] << ", caustic maps "
+            << kept[1] << "\n";
+  EXPECT_LT(kept[0], 0.9) << "the slabs absorb";
+  EXPECT_NEAR(kept[1] / kept[0], 1.0, 0.03);
 }
 
 // Two 16^3 clouds 100 m apart: the GPU holds their NanoVDB leaves only, far below a dense
