@@ -231,7 +231,8 @@ struct Bounds
   double Elevation, Triangles, Splats; // most relative L2 of each reconstruction
 };
 
-void CheckSheet(const char* technique, std::initializer_list<Bounds> cases)
+/** `flux`: most |flux ratio - 1| of either reconstruction. */
+void CheckSheet(const char* technique, double flux, std::initializer_list<Bounds> cases)
 {
   SheetFrame frame(technique);
   for (const Bounds& c : cases)
@@ -241,8 +242,8 @@ void CheckSheet(const char* technique, std::initializer_list<Bounds> cases)
     EXPECT_LT(triangles.RelativeL2, c.Triangles) << technique << ", triangles, sun at " << c.Elevation;
     EXPECT_LT(splats.RelativeL2, c.Splats) << technique << ", splats, sun at " << c.Elevation;
     EXPECT_LT(triangles.RelativeL2, 0.5 * splats.RelativeL2) << technique << ", sun at " << c.Elevation;
-    EXPECT_NEAR(triangles.Flux, 1.0, 0.005) << technique << ", triangles, sun at " << c.Elevation;
-    EXPECT_NEAR(splats.Flux, 1.0, 0.005) << technique << ", splats, sun at " << c.Elevation;
+    EXPECT_NEAR(triangles.Flux, 1.0, flux) << technique << ", triangles, sun at " << c.Elevation;
+    EXPECT_NEAR(splats.Flux, 1.0, flux) << technique << ", splats, sun at " << c.Elevation;
     std::cout << technique << ", sun at " << c.Elevation << " degrees: relative L2 splats "
               << 100.0 * splats.RelativeL2 << " %, triangles " << 100.0 * triangles.RelativeL2
               << " %; flux " << splats.Flux << ", " << triangles.Flux << "\n";
@@ -253,11 +254,12 @@ void CheckSheet(const char* technique, std::initializer_list<Bounds> cases)
 // Caustic triangles keep the crests' focusing that splats blur. Measured relative L2
 // (splats, triangles): screen-space 14.1 and 6.1 % under a vertical sun, 51.4 and
 // 13.9 % at 60 degrees; caustic maps 31.4 and 6.7 %, 73.5 and 14.0 %. The bounds
-// sit just above; the flux stays within 0.5 %. (At 30 degrees the floor lies beyond
+// sit just above. The flux: screen-space within 1e-4 (bound 0.2 %), caustic maps
+// within 0.4 % (bound 0.5 %). (At 30 degrees the floor lies beyond
 // the crests' folds, which are narrower than the photons' spacing: screen-space 50
 // and 61 %, not asserted; see docs/accuracy.md.)
 TEST(WaterSheet, CausticTrianglesMatchTheExactFoci)
 {
-  CheckSheet("screen-space", { { 90.0, 0.07, 0.155 }, { 60.0, 0.155, 0.53 } });
-  CheckSheet("caustic-maps", { { 90.0, 0.075, 0.33 }, { 60.0, 0.155, 0.76 } });
+  CheckSheet("screen-space", 0.002, { { 90.0, 0.07, 0.155 }, { 60.0, 0.155, 0.53 } });
+  CheckSheet("caustic-maps", 0.005, { { 90.0, 0.075, 0.33 }, { 60.0, 0.155, 0.76 } });
 }
