@@ -107,10 +107,14 @@ bool LeaveOutBrokenTriangles(const caustics::SceneData& scene, caustics::SceneDa
   return true;
 }
 
-/** Writes an RGB image into a width x height RGBA32F texture (alpha 0). */
-void Upload(const std::vector<float>& rgb, int width, int height, vtkTextureObject* target)
+/**
+ * Writes an RGB image into a width x height RGBA32F texture (alpha 0), through
+ * `rgba`, a staging buffer kept between frames (resized only with the image).
+ */
+void Upload(const std::vector<float>& rgb, int width, int height, vtkTextureObject* target,
+  std::vector<float>& rgba)
 {
-  std::vector<float> rgba(4 * static_cast<std::size_t>(width) * height, 0.0f);
+  rgba.assign(4 * static_cast<std::size_t>(width) * height, 0.0f);
   for (std::size_t p = 0; 3 * p + 2 < rgb.size() && 4 * p + 3 < rgba.size(); ++p)
   {
     rgba[4 * p] = rgb[3 * p];
@@ -134,6 +138,7 @@ struct vtkCausticsProgressivePhotonPass::Internals
   RunningMean Caustic;
   RunningMean Volume;
   bool HasVolume = false;
+  std::vector<float> Staging; // the RGBA texels uploaded each frame
 };
 
 vtkCausticsProgressivePhotonPass::vtkCausticsProgressivePhotonPass()
@@ -189,7 +194,7 @@ bool vtkCausticsProgressivePhotonPass::RenderCausticIrradiance(const FrameInputs
     return false;
   }
   this->StartStage("cpu upload");
-  Upload(s.Caustic.Mean, in.Width, in.Height, in.CausticIrradiance);
+  Upload(s.Caustic.Mean, in.Width, in.Height, in.CausticIrradiance, s.Staging);
   this->StopStage("cpu upload");
   return true;
 }
@@ -262,7 +267,7 @@ bool vtkCausticsProgressivePhotonPass::RenderVolumeRadiance(
     return false;
   }
   caustics::gl::EnsureTexture(target, in.Window, in.Width, in.Height, GL_RGBA32F);
-  Upload(s.Volume.Mean, in.Width, in.Height, target);
+  Upload(s.Volume.Mean, in.Width, in.Height, target, s.Staging);
   return true;
 }
 
