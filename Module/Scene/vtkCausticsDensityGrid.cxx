@@ -160,8 +160,17 @@ std::shared_ptr<const DensityGrid> DensityGrid::Load(const std::string& fileName
       "volume first (openvdb::tools::sdfToFogVolume)";
     return nullptr;
   }
+  return FromGrid(openvdb::gridPtrCast<openvdb::FloatGrid>(base), fileName, gridName, named,
+    error, warning);
+}
+
+std::shared_ptr<const DensityGrid> DensityGrid::FromGrid(std::shared_ptr<void> gridPointer,
+  const std::string& fileName, const std::string& gridName, const std::string& named,
+  std::string& error, std::string& warning)
+{
+  auto floatGrid = std::static_pointer_cast<openvdb::FloatGrid>(gridPointer);
   auto voxels = std::make_shared<Voxels>();
-  voxels->Grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+  voxels->Grid = floatGrid;
   voxels->FileName = fileName;
   voxels->GridName = gridName;
   openvdb::FloatGrid& grid = *voxels->Grid;
@@ -232,6 +241,84 @@ std::shared_ptr<const DensityGrid> DensityGrid::Load(const std::string& fileName
   std::shared_ptr<DensityGrid> result(new DensityGrid);
   result->Shared = voxels;
   return result;
+}
+
+std::shared_ptr<const DensityGrid> DensityGrid::FromDense(const float* values, const int dimensions[3],
+  const double indexToWorld[16], const std::string& name, std::string& error, std::string& warning)
+{
+  static std::once_flag initialized;
+  std::call_once(initialized, []() { openvdb::initialize(); });
+  error.clear();
+  warning.clear();
+  const std::string named = "density '" + name + "'";
+  if (!values || !dimensions)
+  {
+    error = named + " has no values";
+    return nullptr;
+  }
+  double voxels = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dimensions[a] < 1)
+    {
+      error = named + " has a dimension < 1";
+      return nullptr;
+    }
+    voxels *= dimensions[a];
+  }
+  if (voxels > MaximumDenseVoxels)
+  {
+    std::ostringstream text;
+    text << named << " has " << voxels << " voxels, more than the " << MaximumDenseVoxels
+         << " a dense density may have (write a sparse .vdb instead)";
+    error = text.str();
+    return nullptr;
+  }
+  // OpenVDB maps row vectors (p' = p M): the transpose of the column-vector matrix given.
+  openvdb::math::Mat4d map;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      map(c, r) = indexToWorld ? indexToWorld[4 * r + c] : (r == c ? 1.0 : 0.0);
+      if (!std::isfinite(map(c, r)))
+      {
+        error = named + " has a non-finite index-to-world transform";
+        return nullptr;
+      }
+    }
+  }
+  const double determinant = map.getMat3().det();
+  if (!(std::abs(determinant) > 1e-300) || map(0, 3) != 0.0 || map(1, 3) != 0.0 ||
+    map(2, 3) != 0.0 || map(3, 3) != 1.0)
+  {
+    error = named + " has an index-to-world transform that is not affine and invertible";
+    return nullptr;
+  }
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(map));
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setName(name);
+  // Zero voxels stay inactive: what a fog volume's sparse tree leaves out. NaN and
+  // negative values are kept active here so that FromGrid() counts and clears them.
+  auto accessor = grid->getAccessor();
+  const std::size_t nx = static_cast<std::size_t>(dimensions[0]);
+  const std::size_t ny = static_cast<std::size_t>(dimensions[1]);
+  for (int k = 0; k < dimensions[2]; ++k)
+  {
+    for (int j = 0; j < dimensions[1]; ++j)
+    {
+      const float* row = values + (static_cast<std::size_t>(k) * ny + j) * nx;
+      for (int i = 0; i < dimensions[0]; ++i)
+      {
+        if (row[i] != 0.0f)
+        {
+          accessor.setValue(openvdb::Coord(i, j, k), row[i]);
+        }
+      }
+    }
+  }
+  return FromGrid(grid, "", name, named, error, warning);
 }
 
 std::shared_ptr<const DensityGrid> DensityGrid::Placed(const double matrix[16], double scale) const

@@ -41,6 +41,23 @@ public:
   static std::shared_ptr<const DensityGrid> Load(
     const std::string& file, const std::string& gridName, std::string& error, std::string& warning);
 
+  /** Most voxels a dense density may have (FromDense): 2^28, 1 GiB of floats. */
+  static constexpr double MaximumDenseVoxels = 268435456.0;
+
+  /**
+   * A sparse grid made from dense values (e.g. a vtkImageData's point scalars):
+   * `values` has dimensions[0] x [1] x [2] floats, x fastest; voxel (i, j, k) sits at
+   * indexToWorld (row-major 4x4, column vectors, as vtkMatrix4x4; null: identity) times
+   * (i, j, k, 1). Zero voxels stay inactive (cost nothing on the GPU). Fails with one
+   * line on: no values, a dimension < 1, more than MaximumDenseVoxels, a non-finite or
+   * non-invertible affine transform, no non-zero value. Negative and NaN values are
+   * set to 0, counted in `warning`, as Load() does. GetFileName() is empty; `name`
+   * stands in for the grid's name.
+   */
+  static std::shared_ptr<const DensityGrid> FromDense(const float* values, const int dimensions[3],
+    const double indexToWorld[16], const std::string& name, std::string& error,
+    std::string& warning);
+
   /**
    * This grid with another placement: `matrix` (row-major 4x4, as vtkMatrix4x4; null:
    * identity) applied after the file's own index-to-world transform, and densities
@@ -100,6 +117,11 @@ public:
 
 private:
   DensityGrid();
+  // Checks and clears a float grid (an openvdb::FloatGrid::Ptr, kept out of this header)
+  // and builds the statistics and the NanoVDB copy: the common end of Load and FromDense.
+  static std::shared_ptr<const DensityGrid> FromGrid(std::shared_ptr<void> floatGrid,
+    const std::string& fileName, const std::string& gridName, const std::string& named,
+    std::string& error, std::string& warning);
   struct Voxels;                        // the OpenVDB and NanoVDB grids and their statistics
   std::shared_ptr<const Voxels> Shared; // shared by every placement of the same load
   double Matrix[16];

@@ -1,15 +1,19 @@
 #include "vtkCausticsMedium.h"
 
 #include "vtkCausticsDensityGrid.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseKey.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkRenderer.h"
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 vtkStandardNewMacro(vtkCausticsMedium);
 vtkInformationKeyMacro(vtkCausticsMedium, MEDIUM, ObjectBase);
@@ -114,6 +118,97 @@ bool vtkCausticsMedium::LoadDensity(const char* vdbFile, const char* gridName)
     {
       this->LastError = "LoadDensity needs a VDB file name and a grid name";
     }
+    vtkErrorMacro(<< this->LastError << "; keeping the previous density");
+    return false;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
+  this->LoadedDensity = grid;
+  this->PlacedDensity.reset();
+  this->Modified();
+  return true;
+}
+
+bool vtkCausticsMedium::SetDensityData(vtkImageData* image, const char* arrayName)
+{
+  this->LastError.clear();
+  vtkDataArray* array = nullptr;
+  if (!image)
+  {
+    this->LastError = "SetDensityData needs an image";
+  }
+  else
+  {
+    array = arrayName && *arrayName ? image->GetPointData()->GetArray(arrayName)
+                                    : image->GetPointData()->GetScalars();
+    if (!array)
+    {
+      this->LastError = arrayName && *arrayName
+        ? "SetDensityData: the image has no numeric point array '" + std::string(arrayName) + "'"
+        : std::string("SetDensityData: the image has no point scalars");
+    }
+    else if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
+    {
+      this->LastError = "SetDensityData: the array has " +
+        std::to_string(array->GetNumberOfTuples()) + " values for " +
+        std::to_string(image->GetNumberOfPoints()) + " points";
+    }
+  }
+  std::shared_ptr<const caustics::DensityGrid> grid;
+  std::string warning;
+  if (this->LastError.empty())
+  {
+    int dimensions[3];
+    image->GetDimensions(dimensions);
+    double volume = 1.0;
+    for (int d : dimensions)
+    {
+      volume *= std::max(d, 0);
+    }
+    if (volume > caustics::DensityGrid::MaximumDenseVoxels)
+    {
+      this->LastError = "SetDensityData: the image has more than 2^28 points";
+    }
+    else
+    {
+      const vtkIdType count = array->GetNumberOfTuples();
+      std::vector<float> values(static_cast<std::size_t>(count));
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        values[static_cast<std::size_t>(i)] = static_cast<float>(array->GetComponent(i, 0));
+      }
+      // Array index (i, j, k) to world, as vtkImageData places points (origin, spacing,
+      // direction; the extent may start anywhere): read off the images of the first
+      // point and its three neighbours.
+      int extent[6];
+      image->GetExtent(extent);
+      double first[3], indexToWorld[16] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1 };
+      image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        int next[3] = { extent[0], extent[2], extent[4] };
+        ++next[axis];
+        double point[3];
+        image->TransformIndexToPhysicalPoint(next, point);
+        for (int r = 0; r < 3; ++r)
+        {
+          indexToWorld[4 * r + axis] = point[r] - first[r];
+        }
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        indexToWorld[4 * r + 3] = first[r];
+      }
+      const std::string name =
+        std::string("vtkImageData:") + (array->GetName() ? array->GetName() : "scalars");
+      grid = caustics::DensityGrid::FromDense(
+        values.data(), dimensions, indexToWorld, name, this->LastError, warning);
+    }
+  }
+  if (!grid)
+  {
     vtkErrorMacro(<< this->LastError << "; keeping the previous density");
     return false;
   }

@@ -21,6 +21,7 @@
 #include <memory> // For std::shared_ptr
 #include <string> // For std::string
 
+class vtkImageData;
 class vtkInformationObjectBaseKey;
 class vtkMatrix4x4;
 class vtkRenderer;
@@ -78,10 +79,23 @@ public:
    * RemoveDensity() makes the medium homogeneous again (density 1 everywhere).
    */
   bool LoadDensity(const char* vdbFile, const char* gridName = "density");
+  /**
+   * Takes the density from a volume VTK already holds: the first component of point
+   * array `arrayName` of `image` (null: its active scalars), one value per point, placed
+   * by the image's origin, spacing and direction (then by DensityMatrix, like a file's
+   * grid). Zero points are left out of the sparse grid, so a mostly empty volume costs
+   * what its content does. Returns false with one error line, keeping the previous
+   * density: no image or no such array, a non-numeric array, an image with no non-zero
+   * value, more than 2^28 points. Negative and NaN values become 0, with one warning.
+   */
+  bool SetDensityData(vtkImageData* image, const char* arrayName = nullptr);
   void RemoveDensity();
   /** True once a density grid is loaded. */
   bool HasDensity() const;
-  /** The loaded file and grid names; empty without a density grid. */
+  /**
+   * The loaded file and grid names; empty without a density grid. A density from
+   * SetDensityData() has no file name and "vtkImageData:<array>" as its grid name.
+   */
   const char* GetDensityFileName() const;
   const char* GetDensityGridName() const;
   /** Why the last LoadDensity() failed (the error's line); empty after a success. */

@@ -7,9 +7,13 @@
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCommand.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -330,6 +334,144 @@ TEST(DensityGrid, SnapshotCarriesTheGrid)
   EXPECT_DOUBLE_EQ(heterogeneous.MeanDensity(), 2.0);
   EXPECT_DOUBLE_EQ(heterogeneous.MeanSigmaS()[2], 1.2);
   EXPECT_DOUBLE_EQ(heterogeneous.MeanSigmaT()[0], 0.6);
+}
+
+namespace
+{
+/**
+ * An image whose density at point (i, j, k) is 1 + i + 2 j + 3 k (linear, so trilinear
+ * sampling reproduces it anywhere inside), placed with a non-zero extent start, an
+ * origin, anisotropic spacing and a rotation of 90 degrees about y.
+ */
+vtkSmartPointer<vtkImageData> LinearImage()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetExtent(2, 6, 0, 3, 1, 5);
+  image->SetOrigin(1.0, -2.0, 0.5);
+  image->SetSpacing(0.1, 0.2, 0.25);
+  // Columns are the index axes in world: i -> -z, j -> y, k -> x.
+  image->SetDirectionMatrix(0, 0, 1, 0, 1, 0, -1, 0, 0);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("smoke");
+  values->SetNumberOfTuples(image->GetNumberOfPoints());
+  vtkIdType id = 0;
+  for (int k = 1; k <= 5; ++k)
+    for (int j = 0; j <= 3; ++j)
+      for (int i = 2; i <= 6; ++i)
+        values->SetValue(id++, static_cast<float>(1 + i + 2 * j + 3 * k));
+  image->GetPointData()->AddArray(values);
+  return image;
+}
+
+/** SetDensityData's error line, "" on success. */
+std::string DataError(vtkCausticsMedium* medium, vtkImageData* image, const char* array)
+{
+  vtkNew<vtkTest::ErrorObserver> observer;
+  const unsigned long tag = medium->AddObserver(vtkCommand::ErrorEvent, observer);
+  const bool set = medium->SetDensityData(image, array);
+  medium->RemoveObserver(tag);
+  EXPECT_EQ(set, observer->GetErrorMessage().empty());
+  return observer->GetErrorMessage();
+}
+}
+
+// A density from a VTK volume: placed exactly as vtkImageData places its points
+// (extent start, origin, spacing, direction), zeros left out of the sparse grid.
+TEST(DensityGrid, ImageDataIsPlacedAsVTKPlacesItsPoints)
+{
+  auto image = LinearImage();
+  vtkNew<vtkCausticsMedium> medium;
+  ASSERT_EQ(DataError(medium, image, "smoke"), "");
+  EXPECT_STREQ(medium->GetDensityFileName(), "");
+  EXPECT_STREQ(medium->GetDensityGridName(), "vtkImageData:smoke");
+  auto density = medium->GetDensity();
+  ASSERT_TRUE(density);
+  EXPECT_EQ(density->GetActiveVoxelCount(), 5 * 4 * 5);
+  for (const std::array<double, 3>& ijk :
+    { std::array<double, 3>{ { 2, 0, 1 } }, { { 6, 3, 5 } }, { { 3.5, 1.25, 2.75 } } })
+  {
+    double world[3];
+    image->TransformContinuousIndexToPhysicalPoint(ijk.data(), world);
+    const double expected = 1 + ijk[0] + 2 * ijk[1] + 3 * ijk[2];
+    EXPECT_NEAR(density->Sample({ { world[0], world[1], world[2] } }), expected, 1e-4)
+      << ijk[0] << " " << ijk[1] << " " << ijk[2];
+  }
+  double bounds[6];
+  density->GetWorldBounds(bounds);
+  double first[3], last[3];
+  image->TransformIndexToPhysicalPoint(2, 0, 1, first);
+  image->TransformIndexToPhysicalPoint(6, 3, 5, last);
+  // x comes from k (spacing 0.25), y from j (0.2), z from -i (0.1); one voxel's reach.
+  EXPECT_NEAR(bounds[0], std::min(first[0], last[0]) - 0.25, 1e-9);
+  EXPECT_NEAR(bounds[3], std::max(first[1], last[1]) + 0.2, 1e-9);
+  EXPECT_NEAR(bounds[4], std::min(first[2], last[2]) - 0.1, 1e-9);
+
+  // Zero points are inactive: a sparse shell costs what it holds.
+  vtkNew<vtkImageData> sparse;
+  sparse->SetDimensions(40, 40, 40);
+  vtkNew<vtkFloatArray> shell;
+  shell->SetNumberOfTuples(sparse->GetNumberOfPoints());
+  shell->Fill(0.0);
+  shell->SetValue(sparse->ComputePointId(std::array<int, 3>{ { 20, 20, 20 } }.data()), 2.0f);
+  sparse->GetPointData()->SetScalars(shell);
+  ASSERT_EQ(DataError(medium, sparse, nullptr), "");
+  EXPECT_EQ(medium->GetDensity()->GetActiveVoxelCount(), 1);
+  EXPECT_STREQ(medium->GetDensityGridName(), "vtkImageData:scalars");
+  // Integer arrays are densities too.
+  vtkNew<vtkIntArray> counts;
+  counts->SetName("counts");
+  counts->SetNumberOfTuples(sparse->GetNumberOfPoints());
+  counts->Fill(3);
+  sparse->GetPointData()->AddArray(counts);
+  ASSERT_EQ(DataError(medium, sparse, "counts"), "");
+  EXPECT_DOUBLE_EQ(medium->GetDensity()->GetMajorant(), 3.0);
+}
+
+TEST(DensityGrid, BadImageDataGivesOneLineAndKeepsTheDensity)
+{
+  auto image = LinearImage();
+  vtkNew<vtkCausticsMedium> medium;
+  ASSERT_EQ(DataError(medium, image, "smoke"), "");
+  vtkNew<vtkImageData> zeros;
+  zeros->SetDimensions(4, 4, 4);
+  vtkNew<vtkFloatArray> none;
+  none->SetNumberOfTuples(64);
+  none->Fill(0.0);
+  zeros->GetPointData()->SetScalars(none);
+  vtkNew<vtkImageData> bare;
+  bare->SetDimensions(4, 4, 4);
+  const struct
+  {
+    vtkImageData* image;
+    const char* array;
+    const char* says;
+  } cases[] = { { nullptr, nullptr, "needs an image" },
+    { image, "missing", "no numeric point array 'missing'" },
+    { bare, nullptr, "no point scalars" }, { zeros, nullptr, "is empty (no active voxel)" } };
+  for (const auto& bad : cases)
+  {
+    const std::string error = DataError(medium, bad.image, bad.array);
+    EXPECT_NE(error.find(bad.says), std::string::npos) << error;
+    EXPECT_NE(error.find("keeping the previous density"), std::string::npos) << error;
+    EXPECT_STREQ(medium->GetDensityGridName(), "vtkImageData:smoke");
+  }
+  // NaN and negative points become 0 with one warning.
+  vtkNew<vtkImageData> odd;
+  odd->SetDimensions(2, 2, 2);
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfTuples(8);
+  values->Fill(1.0);
+  values->SetValue(0, std::numeric_limits<float>::quiet_NaN());
+  values->SetValue(7, -2.0f);
+  odd->GetPointData()->SetScalars(values);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  medium->AddObserver(vtkCommand::WarningEvent, observer);
+  ASSERT_TRUE(medium->SetDensityData(odd));
+  EXPECT_NE(observer->GetWarningMessage().find("2 negative or NaN density values set to 0"),
+    std::string::npos)
+    << observer->GetWarningMessage();
+  EXPECT_DOUBLE_EQ(medium->GetDensity()->Sample({ { 0.0, 0.0, 0.0 } }), 0.0);
+  EXPECT_DOUBLE_EQ(medium->GetDensity()->Sample({ { 1.0, 0.0, 0.0 } }), 1.0);
 }
 
 namespace
