@@ -4,11 +4,13 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCellArray.h"
 #include "vtkCylinderSource.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleKey.h"
 #include "vtkLight.h"
@@ -160,7 +162,7 @@ vtkCausticsBuiltinScene::~vtkCausticsBuiltinScene() = default;
 
 std::vector<std::string> vtkCausticsBuiltinScene::GetSceneNames()
 {
-  return { "ball-lens", "pool", "ring", "bunny" };
+  return { "ball-lens", "pool", "ring", "bunny", "underwater", "smoke-lens" };
 }
 
 bool vtkCausticsBuiltinScene::IsSceneName(const std::string& name)
@@ -343,6 +345,106 @@ void AddCeilingSpot(vtkRenderer* renderer)
   spot->SetInformation(lightInfo);
   renderer->AddLight(spot);
 }
+
+/**
+ * A smooth pseudo-noise in [-1, 1]: a product of sines (no seed, the same everywhere;
+ * Testing/CLI/MakeSmokePlume.cxx writes the same plume as a .vdb file).
+ */
+double Noise(double x, double y, double z, double frequency)
+{
+  return std::sin(3.1 * frequency * x + 1.7) * std::sin(2.3 * frequency * y + 0.4) *
+    std::sin(2.9 * frequency * z + 2.2);
+}
+
+/**
+ * A density on a regular grid of `voxel` metres over `box` (xmin, xmax, ymin, ymax,
+ * zmin, zmax), one value per point from `density(x, y, z)`; zeros stay out of the
+ * medium's sparse grid.
+ */
+template <typename Density>
+vtkSmartPointer<vtkImageData> SampleDensity(const double box[6], double voxel, Density density)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  int dimensions[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    dimensions[a] = 1 + static_cast<int>(std::ceil((box[2 * a + 1] - box[2 * a]) / voxel));
+  }
+  image->SetDimensions(dimensions);
+  image->SetOrigin(box[0], box[2], box[4]);
+  image->SetSpacing(voxel, voxel, voxel);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("density");
+  values->SetNumberOfTuples(image->GetNumberOfPoints());
+  vtkIdType id = 0;
+  for (int k = 0; k < dimensions[2]; ++k)
+  {
+    for (int j = 0; j < dimensions[1]; ++j)
+    {
+      for (int i = 0; i < dimensions[0]; ++i, ++id)
+      {
+        values->SetValue(id,
+          static_cast<float>(
+            density(box[0] + i * voxel, box[2] + j * voxel, box[4] + k * voxel)));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+/** Attaches `density` as a medium with the given coefficients (1/m per unit density). */
+void AttachMedium(vtkRenderer* renderer, vtkImageData* density, const double scattering[3],
+  const double absorption[3], double g)
+{
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(scattering[0], scattering[1], scattering[2]);
+  medium->SetAbsorptionCoefficient(absorption[0], absorption[1], absorption[2]);
+  medium->SetAnisotropy(g);
+  medium->SetDensityData(density);
+  vtkCausticsMedium::AttachTo(renderer, medium);
+}
+
+/**
+ * The underwater scene's murky water: below the pool's surface, a plankton layer
+ * (density peaking at 1, half a metre down, 0.25 m thick) in lumps of a smooth noise,
+ * over a faint haze (0.05). Sea water's colours: red absorbed most.
+ */
+void AttachPlankton(vtkRenderer* renderer)
+{
+  const double top = PoolWaterLevel - 0.06; // under the deepest trough (amplitudes sum to 0.053)
+  const double box[6] = { -PoolHalfSize, PoolHalfSize, 0.0, top, -PoolHalfSize, PoolHalfSize };
+  auto density = SampleDensity(box, 0.05,
+    [](double x, double y, double z)
+    {
+      const double depth = PoolWaterLevel - y - 0.5;
+      const double layer = std::exp(-0.5 * depth * depth / (0.25 * 0.25));
+      const double lumps = 0.65 + 0.35 * Noise(x, y, z, 1.5);
+      return 0.05 + layer * lumps;
+    });
+  const double scattering[3] = { 0.25, 0.3, 0.3 }, absorption[3] = { 0.3, 0.06, 0.04 };
+  AttachMedium(renderer, density, scattering, absorption, 0.6);
+}
+
+/**
+ * The smoke-lens plume: a lumpy ball of smoke (radius 1.2 m around (0, 1.2, 0)) under
+ * the glass ball, density 1 inside a 0.16 m ramp from its noisy surface, thinned by the
+ * same noise at twice the frequency.
+ */
+void AttachPlume(vtkRenderer* renderer)
+{
+  const double box[6] = { -1.5, 1.5, -0.3, 2.7, -1.5, 1.5 };
+  auto density = SampleDensity(box, 0.04,
+    [](double x, double y, double z)
+    {
+      const double r = std::sqrt(x * x + (y - 1.2) * (y - 1.2) + z * z);
+      const double inside = 1.2 - 0.12 * Noise(x, y, z, 1.0) - r;
+      const double fog = std::min(1.0, std::max(0.0, inside / 0.16));
+      return fog * (0.6 + 0.4 * Noise(x, y, z, 2.0));
+    });
+  const double scattering[3] = { 0.4, 0.4, 0.4 }, absorption[3] = { 0.05, 0.05, 0.05 };
+  AttachMedium(renderer, density, scattering, absorption, 0.3);
+}
 }
 
 bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
@@ -357,6 +459,7 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
   renderer->RemoveAllLights();
   renderer->AutomaticLightCreationOff();
   renderer->SetBackground(0.05, 0.05, 0.06);
+  vtkCausticsMedium::AttachTo(renderer, nullptr); // only the media scenes carry one
   if (!this->CheckSettings())
   {
     return false;
@@ -372,6 +475,15 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
   else if (this->SceneName == "ring")
   {
     this->AddRing(renderer);
+  }
+  else if (this->SceneName == "underwater")
+  {
+    this->AddPool(renderer);
+    AttachPlankton(renderer);
+  }
+  else if (this->SceneName == "smoke-lens")
+  {
+    this->AddSmokeLens(renderer);
   }
   else
   {
@@ -392,7 +504,8 @@ bool vtkCausticsBuiltinScene::CheckSettings()
   if (!IsSceneName(this->SceneName))
   {
     return this->Fail(
-      "unknown scene '" + this->SceneName + "' (known: ball-lens, pool, ring, bunny)");
+      "unknown scene '" + this->SceneName +
+      "' (known: ball-lens, pool, ring, bunny, underwater, smoke-lens)");
   }
   if (!(this->RefractiveIndex == 0.0 ||
         (this->RefractiveIndex >= 1.0 && std::isfinite(this->RefractiveIndex))))
@@ -431,6 +544,45 @@ void vtkCausticsBuiltinScene::AddBallLens(vtkRenderer* renderer)
 
   const double down[3] = { 0, -1, 0 };
   renderer->AddLight(DirectionalLight(down, 1.0));
+  const double eye[3] = { 0.0, 4.5, 9.0 }, focal[3] = { 0.0, 1.3, 0.0 };
+  SetCamera(renderer, eye, focal, 30.0);
+}
+
+void vtkCausticsBuiltinScene::AddSmokeLens(vtkRenderer* renderer)
+{
+  auto floor = MakeActor(Floor(-6, 6, -6, 6, 0.0), "floor");
+  MakeDiffuse(floor, 0.8, 0.8, 0.8);
+  renderer->AddActor(floor);
+
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1.0);
+  sphere->SetCenter(0.0, 3.0, 0.0);
+  sphere->SetThetaResolution(static_cast<int>(128 * this->Tessellation));
+  sphere->SetPhiResolution(static_cast<int>(64 * this->Tessellation));
+  sphere->Update();
+  auto ball = MakeActor(sphere->GetOutput(), "glass ball");
+  ball->GetProperty()->SetColor(1, 1, 1);
+  vtkCausticsMaterial::MakeGlass(ball->GetProperty(), this->IndexOfRefraction(1.5));
+  renderer->AddActor(ball);
+
+  // A spot 4 m above the ball's centre whose cone just covers the ball (asin(1/4) is
+  // 14.5 degrees): 16 W/sr give 1 W/m^2 at the ball's top, as the ball lens's sun.
+  auto spot = vtkSmartPointer<vtkLight>::New();
+  spot->SetLightTypeToSceneLight();
+  spot->SetPositional(true);
+  spot->SetPosition(0.0, 7.0, 0.0);
+  spot->SetFocalPoint(0.0, 0.0, 0.0);
+  spot->SetConeAngle(16.0);
+  spot->SetExponent(1.0);
+  spot->SetAttenuationValues(0.0, 0.0, 1.0); // physical 1/r^2
+  spot->SetColor(1, 1, 1);
+  spot->SetIntensity(16.0); // W/sr
+  vtkNew<vtkInformation> lightInfo;
+  lightInfo->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), 15.0);
+  spot->SetInformation(lightInfo);
+  renderer->AddLight(spot);
+  AttachPlume(renderer);
+
   const double eye[3] = { 0.0, 4.5, 9.0 }, focal[3] = { 0.0, 1.3, 0.0 };
   SetCamera(renderer, eye, focal, 30.0);
 }

@@ -11,7 +11,12 @@
  * - "ring": polished silver cylinder wall on the floor, light 20 degrees above the
  *   horizon: the nephroid (coffee-cup) caustic;
  * - "bunny": glass Stanford bunny (Data/bunny.ply) in a Cornell box lit by a spot
- *   light under the ceiling.
+ *   light under the ceiling;
+ * - "underwater": the pool over murky water whose density varies: a plankton layer
+ *   half a metre down in smooth lumps, over a faint haze (a heterogeneous
+ *   vtkCausticsMedium, made procedurally): the waves' light shafts in the water;
+ * - "smoke-lens": the ball lens lit by a spot light 4 m above it, focusing into a
+ *   lumpy ball of smoke (heterogeneous medium) on the floor.
  * The scene's y axis points up; lengths are metres. Nothing is random.
  */
 #ifndef vtkCausticsBuiltinScene_h
@@ -34,7 +39,11 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Which scene: "ball-lens" (default), "pool", "ring" or "bunny". */
+  /**
+   * Which scene: "ball-lens" (default), "pool", "ring", "bunny", "underwater" or
+   * "smoke-lens". The last two attach a vtkCausticsMedium to the renderer; Populate()
+   * detaches any other.
+   */
   vtkSetStdStringFromCharMacro(SceneName);
   vtkGetCharFromStdStringMacro(SceneName);
   ///@}
@@ -118,6 +127,7 @@ private:
   ///@{
   /** The scenes' actors, lights and camera. */
   void AddBallLens(vtkRenderer* renderer);
+  void AddSmokeLens(vtkRenderer* renderer);
   void AddPool(vtkRenderer* renderer);
   void AddRing(vtkRenderer* renderer);
   bool AddBunny(vtkRenderer* renderer);
