@@ -6,6 +6,7 @@
 #include "vtkCamera.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsDeviceLimits.h"
+#include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -277,6 +278,7 @@ struct vtkCausticsRenderPass::Internals
   // The density grid CheckMediumDensity() last warned about (a new one is a new medium).
   std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
   caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
+  vtkNew<vtkCausticsCameraOpticalDepth> CameraOpticalDepth; // its optical depth from the camera
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -296,6 +298,7 @@ vtkCausticsRenderPass::vtkCausticsRenderPass()
   this->Frame.Scene = &in.Extractor->GetScene();
   this->Frame.Geometry = in.Geometry;
   this->Frame.MediumGrid = &in.MediumGrid;
+  this->Frame.CameraOpticalDepth = in.CameraOpticalDepth;
   this->Frame.CameraGBuffer = in.CameraGBuffer;
   this->Frame.RefractiveGBuffer = in.RefractiveGBuffer;
   this->Frame.LightBuffers = in.LightBuffers;
@@ -834,6 +837,18 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   this->StopStage("camera g-buffers");
   this->Result.Buffers = true;
 
+  // A density grid dims everything the camera sees: integrate it once for the frame.
+  if (caustics && ok && f.MediumGrid->HasGrid())
+  {
+    this->StartStage("camera optical depth");
+    f.CameraOpticalDepth->Build(f.Window, f.Width, f.Height, *f.Scene, f.MediumGrid);
+    this->StopStage("camera optical depth");
+  }
+  else
+  {
+    f.CameraOpticalDepth->Invalidate();
+  }
+
   if (caustics && ok)
   {
     if (this->GetCausticNeeds().LightBuffers)
@@ -956,6 +971,11 @@ void vtkCausticsRenderPass::CheckMediumDensity()
                        "mean density ("
                     << medium.MeanDensity() << ")");
   }
+}
+
+vtkCausticsCameraOpticalDepth* vtkCausticsRenderPass::GetCameraOpticalDepth()
+{
+  return this->Internal->CameraOpticalDepth;
 }
 
 vtkIdType vtkCausticsRenderPass::GetMediumGridBytes() const
@@ -1105,6 +1125,7 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   const FrameInputs& f = this->Frame;
   vtkCausticsShaderProgram* program = in.CompositeProgram;
   caustics::gl::SetMediumDefine(program, f.MediumGrid);
+  f.CameraOpticalDepth->SetDefine(program);
   if (!program->Bind(f.Window))
   {
     return;
@@ -1141,10 +1162,12 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
     caustics::gl::ToColumnMajor(f.Scene->View.clipToWorld, clipToWorld);
     program->SetUniformMatrix4("clipToWorld", clipToWorld);
     caustics::gl::SetMediumUniforms(program, *f.Scene, f.MediumGrid);
+    f.CameraOpticalDepth->SetUniforms(program);
   }
   // The two depth buffers come from the same triangles and matrix; allow float noise.
   program->SetUniformf("depthTolerance", 2e-6f);
   this->DrawComposite(toFinalTexture);
+  f.CameraOpticalDepth->Deactivate();
   for (int i = 0; i < 9; ++i)
   {
     if (textures[i]->GetHandle() && textures[i]->IsBound())
@@ -1340,6 +1363,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.LimitsWindow = nullptr; // a later window may reuse the address
   in.Geometry->ReleaseGraphicsResources(w);
   in.MediumGrid.Release();
+  in.CameraOpticalDepth->ReleaseGraphicsResources(w);
   in.CameraGBuffer->ReleaseGraphicsResources(w);
   in.RefractiveGBuffer->ReleaseGraphicsResources(w);
   in.LightBuffers->ReleaseGraphicsResources(w);

@@ -66,6 +66,7 @@
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
+class vtkCausticsCameraOpticalDepth;
 class vtkCausticsGBuffer;
 class vtkCausticsLayeredDepth;
 class vtkCausticsLightBuffers;
@@ -241,6 +242,12 @@ public:
   vtkCausticsLayeredDepth* GetRefractorLayeredDepth();
   ///@}
 
+  /**
+   * The stage that integrates a heterogeneous medium's optical depth from the camera
+   * once per frame (its knobs: Enabled, PixelsPerColumn, Slices).
+   */
+  vtkCausticsCameraOpticalDepth* GetCameraOpticalDepth();
+
   ///@{
   /**
    * GPU memory (bytes) the technique may use, checked by CheckResources(). 0
@@ -306,6 +313,8 @@ protected:
     vtkTextureObject* DirectIrradiance = nullptr;  ///< RGBA32F, W/m^2 (when the result has it)
     /** The medium's density grid on the GPU (caustics::gl::SetMediumDefine/Uniforms). */
     const caustics::gl::MediumBuffer* MediumGrid = nullptr;
+    /** Its optical depth from the camera, built after the camera G-buffers (valid with a grid). */
+    vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr;
   };
 
   /** What the frame produced; reset at the start of every Render(). */

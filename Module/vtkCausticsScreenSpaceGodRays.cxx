@@ -1,8 +1,11 @@
 #include "vtkCausticsScreenSpaceGodRays.h"
 
+#include "vtkCausticsCameraOpticalDepth.h"
+
 #include "vtkCausticsScreenSpaceSettings.h"
 
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
+#include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
@@ -101,6 +104,10 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
   state->vtkglBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   state->vtkglViewport(0, 0, in.Width, in.Height);
   caustics::gl::SetMediumDefine(in.LineProgram, view.MediumGrid);
+  if (view.CameraOpticalDepth)
+  {
+    view.CameraOpticalDepth->SetDefine(in.LineProgram);
+  }
   bool ok = in.LineProgram->Bind(renWin);
   if (ok)
   {
@@ -126,6 +133,10 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
     if (grid)
     {
       caustics::gl::SetMediumUniforms(p, medium, view.Bounds, view.MediumGrid);
+      if (view.CameraOpticalDepth)
+      {
+        view.CameraOpticalDepth->SetUniforms(p);
+      }
     }
     const caustics::Vec3 sigmaS = grid ? medium.sigmaS : medium.MeanSigmaS();
     const caustics::Vec3 sigmaT = medium.MeanSigmaT();
@@ -143,6 +154,10 @@ bool vtkCausticsScreenSpaceGodRays::Draw(vtkOpenGLRenderWindow* renWin, const Vi
     glDrawArraysIndirect(GL_LINES, reinterpret_cast<const void*>(16));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glBindVertexArray(0);
+    if (view.CameraOpticalDepth)
+    {
+      view.CameraOpticalDepth->Deactivate();
+    }
     p->Unbind(renWin);
   }
   state->PopFramebufferBindings();

@@ -29,6 +29,7 @@
 #include <memory> // For std::unique_ptr
 
 class vtkOpenGLRenderWindow;
+class vtkCausticsCameraOpticalDepth;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -61,6 +62,8 @@ public:
     const caustics::Medium* Medium = nullptr;
     /** Its density grid on the GPU (null or empty: homogeneous). */
     const caustics::gl::MediumBuffer* MediumGrid = nullptr;
+    /** The grid's optical depth from the camera (vtkCausticsRenderPass builds it), or null. */
+    vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr;
     vtkTextureObject* OpaqueDepth = nullptr;     ///< window depth, receivers and reflectors
     vtkTextureObject* RefractiveDepth = nullptr; ///< window depth, refractors
   };

@@ -383,6 +383,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   std::copy(scene.Bounds, scene.Bounds + 6, view.Bounds);
   view.Medium = &scene.Participating;
   view.MediumGrid = f.MediumGrid;
+  view.CameraOpticalDepth = f.CameraOpticalDepth;
   view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
   view.RefractiveDepth = f.RefractiveGBuffer->GetDepthTexture();
   const int c = in.Current;

@@ -173,7 +173,17 @@ float CausticsMediumOpticalDepth(vec3 o, vec3 d, float t0, float t1)
   sum += density * max(t1 - t, 0.0);
   return causticsDensityScale * sum * length(d);
 }
+
+#ifdef CAUSTICS_CAMERA_OPTICAL_DEPTH
+// vtkCausticsCameraOpticalDepth: the optical depth from the near plane along the viewing
+// rays, a volume over the camera's frustum built once per frame.
+uniform sampler3D causticsCameraDepthVolume;
+uniform mat4 causticsCameraWorldToClip;
+uniform mat4 causticsCameraClipToWorld;
+uniform vec2 causticsCameraDepthRange; // m from the near plane: first and last slice
 #endif
+#endif
+
 
 // The medium's transmittance along o + t d, t in [t0, t1] (d need not be unit: the
 // distance is (t1 - t0) |d|); 1 without a medium or outside its box.
@@ -189,6 +199,33 @@ vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
 #else
   return CausticsTransmittance(causticsSigmaT, (t1 - t0) * length(d));
 #endif
+}
+
+// The medium's transmittance between p and the camera: with CAUSTICS_CAMERA_OPTICAL_DEPTH
+// one fetch of the volume (from the near plane), else, or outside the view, the march
+// from p to `from` (the caller's eye or near-plane point).
+vec3 CausticsMediumTransmittanceToCamera(vec3 p, vec3 from)
+{
+  if (causticsMediumOn == 0)
+  {
+    return vec3(1.0);
+  }
+#ifdef CAUSTICS_CAMERA_OPTICAL_DEPTH
+  vec4 clip = causticsCameraWorldToClip * vec4(p, 1.0);
+  vec2 ndc = clip.xy / clip.w;
+  if (clip.w > 0.0 && all(lessThanEqual(abs(ndc), vec2(1.0))))
+  {
+    vec4 near = causticsCameraClipToWorld * vec4(ndc, -1.0, 1.0);
+    vec3 size = vec3(textureSize(causticsCameraDepthVolume, 0));
+    float s = (distance(p, near.xyz / near.w) - causticsCameraDepthRange.x) /
+      max(causticsCameraDepthRange.y - causticsCameraDepthRange.x, 1e-30);
+    // Slices sit at the texel centres; before the first the medium has not begun.
+    vec3 coordinate = vec3(0.5 * ndc + 0.5, (clamp(s, 0.0, 1.0) * (size.z - 1.0) + 0.5) / size.z);
+    float depth = s <= 0.0 ? 0.0 : texture(causticsCameraDepthVolume, coordinate).r;
+    return CausticsTransmittance(causticsSigmaT, depth);
+  }
+#endif
+  return CausticsMediumTransmittance(p, from - p, 0.0, 1.0);
 }
 
 // One entry per mesh (vtkCausticsSceneGeometry::UploadMaterials).

@@ -64,7 +64,7 @@ void main()
     vec4 near = clipToWorld * vec4(ndc, -1.0, 1.0);
     vec4 surface = clipToWorld * vec4(ndc, 2.0 * depth - 1.0, 1.0);
     vec3 from = near.xyz / near.w;
-    color.rgb *= CausticsMediumTransmittance(from, surface.xyz / surface.w - from, 0.0, 1.0);
+    color.rgb *= CausticsMediumTransmittanceToCamera(surface.xyz / surface.w, from);
   }
   if (hasVolume != 0)
   {

@@ -63,7 +63,7 @@ void main()
   float distanceToCamera = length(toCamera);
   vec3 v = toCamera / distanceToCamera;
   vec3 transmittance = CausticsMediumTransmittance(o, d, 0.0, t) *
-    CausticsMediumTransmittance(x, v, 0.0, distanceToCamera);
+    CausticsMediumTransmittanceToCamera(x, x + toCamera);
   vec3 scattering = sigmaS * CausticsMediumDensity(x);
 #else
   float s0 = 0.0;

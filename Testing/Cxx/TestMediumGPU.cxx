@@ -4,6 +4,7 @@
 // with OpenVDB (no binary files in the repository). The ball lens of
 // vtkCausticsBuiltinScene, 128^2 images and 128^2 photons.
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsMedium.h"
@@ -21,11 +22,13 @@
 #include "vtkOpenGLRenderer.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
+#include "vtk_glew.h"
 
 #include <openvdb/openvdb.h>
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -392,4 +395,98 @@ TEST(MediumGPU, UploadsOncePerLoad)
   EXPECT_EQ(buffer.Bytes(), 0u);
   buffer.Release();
   EXPECT_EQ(caustics::gl::CountGraphicsMemory().BufferBytes, before) << "released";
+}
+
+namespace
+{
+/** A frame of a built-in media scene, with or without the camera optical-depth volume. */
+struct MediaFrame
+{
+  vtkSmartPointer<vtkImageData> Final, Volume;
+  double FrameMilliseconds = 0.0; ///< wall time of a second frame
+  double VolumeMilliseconds = 0.0;
+};
+
+MediaFrame RenderMediaScene(const char* sceneName, const char* technique, bool opticalDepthVolume)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  scene->SetSceneName(sceneName);
+  EXPECT_TRUE(scene->Populate(renderer)) << scene->GetLastError();
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
+  pass->SetLightBufferResolution(16);
+  pass->KeepBuffersOn();
+  pass->GetCameraOpticalDepth()->SetEnabled(opticalDepthVolume);
+  renderer->SetPass(pass);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(96, 96);
+  window->AddRenderer(renderer);
+  window->Render(); // compiles the programs
+  MediaFrame frame;
+  const auto start = std::chrono::steady_clock::now();
+  window->Render();
+  glFinish();
+  frame.FrameMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(pass->GetLastFrameHadCaustics());
+  EXPECT_EQ(pass->GetCameraOpticalDepth()->IsValid(), opticalDepthVolume);
+  frame.Final = vtkSmartPointer<vtkImageData>::New();
+  frame.Volume = vtkSmartPointer<vtkImageData>::New();
+  EXPECT_TRUE(pass->ReadBuffer("FinalColor", frame.Final));
+  pass->GlobalWarningDisplayOff();
+  pass->ReadBuffer("VolumeRadiance", frame.Volume);
+  pass->GlobalWarningDisplayOn();
+  vtkCausticsTimings* timings = pass->GetTimings();
+  for (int i = 0; i < timings->GetNumberOfStages(); ++i)
+  {
+    const std::string name = timings->GetStageName(i);
+    const double ms = timings->GetStageCPUMilliseconds(i);
+    frame.VolumeMilliseconds += name == "camera optical depth" ? ms : 0.0;
+  }
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return frame;
+}
+
+/** Relative L2 of `a` against `b` over every channel of every pixel, and the sum of b. */
+double RelativeL2(vtkImageData* a, vtkImageData* b)
+{
+  vtkDataArray* x = a->GetPointData()->GetArray(0);
+  vtkDataArray* y = b->GetPointData()->GetArray(0);
+  double difference = 0.0, norm = 0.0;
+  for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double d = x->GetComponent(i, c) - y->GetComponent(i, c);
+      difference += d * d;
+      norm += y->GetComponent(i, c) * y->GetComponent(i, c);
+    }
+  }
+  return std::sqrt(difference / std::max(norm, 1e-300));
+}
+}
+
+// The camera's optical-depth volume (vtkCausticsCameraOpticalDepth) stands in for a
+// march of the density per pixel (composite) and per god-ray fragment: on both media
+// scenes the final image and the god-rays agree with the per-pixel march. The
+// stand-in interpolates a smooth integral between columns 4 px apart and 64 slices.
+// Reached at 48^2: final 0.1-0.2 %, god-rays 0.3-0.5 % (printed).
+TEST(MediumGPU, CameraOpticalDepthVolumeMatchesTheMarch)
+{
+  for (const char* sceneName : { "smoke-lens", "underwater" })
+  {
+    const MediaFrame marched = RenderMediaScene(sceneName, "screen-space", false);
+    const MediaFrame looked = RenderMediaScene(sceneName, "screen-space", true);
+    const double finalError = RelativeL2(looked.Final, marched.Final);
+    const double volumeError = RelativeL2(looked.Volume, marched.Volume);
+    std::cout << sceneName << ": final image " << 100 * finalError << " %, god-rays "
+              << 100 * volumeError << " % from the march; frame " << marched.FrameMilliseconds
+              << " -> " << looked.FrameMilliseconds << " ms (wall, 96^2), of which the volume "
+              << looked.VolumeMilliseconds << " ms\n";
+    EXPECT_LT(finalError, 0.005) << sceneName;
+    EXPECT_LT(volumeError, 0.002) << sceneName;
+  }
 }
