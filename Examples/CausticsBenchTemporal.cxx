@@ -163,7 +163,7 @@ const std::vector<Sequence>& Sequences()
       "the light, 20 degrees above the horizon, sweeps 4 degrees of azimuth a frame; at the "
       "cut it jumps to 30 degrees elevation, azimuth 60 degrees, and stays",
       [](const Stage& s, int k, int cut)
-      { k < cut ? AimLight(s.Renderer, 20.0, 180.0 + 4.0 * k) : AimLight(s.Renderer, 30.0, 240.0); } },
+      { k < cut ? AimLight(s.Renderer, 20.0, 4.0 * k) : AimLight(s.Renderer, 30.0, 60.0); } },
   };
   return sequences;
 }
@@ -288,6 +288,18 @@ std::string Fixed(double value, int precision)
   return text.str();
 }
 
+/** Two significant digits ("0" for exactly 0): flicker spans 0 to 1e-6 to 1e-2. */
+std::string Significant(double value)
+{
+  if (!std::isfinite(value) || value == 0.0)
+  {
+    return value == 0.0 ? "0" : Fixed(value, 0);
+  }
+  std::ostringstream text;
+  text << std::setprecision(2) << value;
+  return text.str();
+}
+
 std::string CSVNumber(double value)
 {
   std::ostringstream text;
@@ -362,7 +374,7 @@ std::string MakeTemporalTable(const std::vector<TemporalRow>& rows)
     const auto& m = row.Metrics;
     md << "| " << row.Sequence << " | " << row.Technique
        << (row.Status == "ok" ? "" : " (" + row.Status + ")") << " | " << row.Variant << " | "
-       << Fixed(m.Flicker, 4) << " | " << Fixed(m.MovingError, 4) << " | "
+       << Significant(m.Flicker) << " | " << Fixed(m.MovingError, 4) << " | "
        << Fixed(m.MeanRelativeL2Error, 4) << " | " << Fixed(m.MeanFluxRatio, 3) << " | "
        << Fixed(m.SteadyError, 4) << " | " << (m.Lag < 0 ? "–" : std::to_string(m.Lag)) << " | "
        << Fixed(m.Ghosting, 2) << " | " << Fixed(row.MeanMilliseconds, 0) << " ms |\n";

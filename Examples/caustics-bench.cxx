@@ -1829,7 +1829,7 @@ int RunTemporal(const Options& options, OneLineOutputWindow* messages)
       std::cout << "  " << std::left << std::setw(13) << row.Sequence << std::setw(17)
                 << row.Technique << std::setw(17) << row.Variant << std::right << " "
                 << FormatTime(row.MeanMilliseconds) << "/frame  flicker "
-                << Fixed(row.Metrics.Flicker, 4) << "  moving err "
+                << Number(row.Metrics.Flicker, 2) << "  moving err "
                 << Fixed(row.Metrics.MovingError, 4) << "  lag " << row.Metrics.Lag
                 << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
     });

@@ -247,6 +247,73 @@ TEST(TemporalMetrics, MovingSpotGivesMovingError)
   }
 }
 
+// A still spot on the left, a spot moving 1 pixel a frame on the right, the
+// technique off by relative noise sigma = 0.03 everywhere: the flicker is that of the
+// still pixels only (about sigma: their reference may still vary by up to 1 %), and the
+// moving error is the noise's relative L2 over the pixels whose reference changes by
+// more than 1 %. Both are computed here independently from the class description.
+TEST(TemporalMetrics, StillAndMovingPixelsAreSeparated)
+{
+  const int frames = 10;
+  const double sigma = 0.03;
+  const auto z = StandardizedNoise(frames);
+  auto truth = [](int k)
+  { return [k](int x, int y) { return Spot(8, 16)(x, y) + Spot(20 + k, 16)(x, y); }; };
+  vtkNew<vtkCausticsTemporalMetrics> metrics;
+  for (int k = 0; k < frames; ++k)
+  {
+    auto test = MakeImage([&](int x, int y) { return truth(k)(x, y) * (1.0 + sigma * z[k][y * Size + x]); });
+    ASSERT_TRUE(metrics->AddFrame(test, MakeImage(truth(k))));
+  }
+  ASSERT_TRUE(metrics->Compute()) << metrics->GetLastError();
+  std::cout << metrics->GetSummary() << "\n";
+  double error = 0.0, norm = 0.0, weighted = 0.0, weight = 0.0;
+  vtkIdType moving = 0;
+  for (int p = 0; p < Size * Size; ++p)
+  {
+    const int x = p % Size, y = p / Size;
+    double mean = 0.0, squares = 0.0;
+    for (int k = 0; k < frames; ++k)
+    {
+      mean += truth(k)(x, y) / frames;
+    }
+    for (int k = 0; k < frames; ++k)
+    {
+      squares += (truth(k)(x, y) - mean) * (truth(k)(x, y) - mean) / frames;
+    }
+    if (std::sqrt(squares) <= 0.01 * mean)
+    {
+      double m = 0.0, deviation = 0.0;
+      for (int k = 0; k < frames; ++k)
+      {
+        m += truth(k)(x, y) * (1.0 + sigma * z[k][p]) / frames;
+      }
+      for (int k = 0; k < frames; ++k)
+      {
+        deviation += std::pow(truth(k)(x, y) * (1.0 + sigma * z[k][p]) - m, 2) / (frames - 1);
+      }
+      weighted += mean * std::sqrt(deviation) / m;
+      weight += mean;
+    }
+    else
+    {
+      ++moving;
+      for (int k = 0; k < frames; ++k)
+      {
+        error += std::pow(sigma * z[k][p] * truth(k)(x, y), 2);
+        norm += std::pow(truth(k)(x, y), 2);
+      }
+    }
+  }
+  EXPECT_EQ(metrics->GetNumberOfMovingValues(), moving);
+  EXPECT_EQ(metrics->GetNumberOfStaticValues(), Size * Size - moving);
+  EXPECT_GT(moving, 100);
+  EXPECT_GT(Size * Size - moving, 100);
+  EXPECT_NEAR(metrics->GetFlicker(), weighted / weight, 1e-12);
+  EXPECT_NEAR(metrics->GetFlicker(), sigma, 1e-4);
+  EXPECT_NEAR(metrics->GetMovingError(), std::sqrt(error / norm), 1e-12);
+}
+
 // A receiver pixel that is NaN in one frame is counted, reported once, and left out;
 // masked-out pixels are neither compared nor counted.
 TEST(TemporalMetrics, NonFinitePixelsAreLeftOut)
