@@ -93,6 +93,23 @@ std::vector<TemporalVariant> MakeTemporalVariants()
   };
 }
 
+std::vector<TemporalVariant> TemporalVariantsOf(const std::string& technique)
+{
+  std::vector<TemporalVariant> variants;
+  for (const auto& variant : MakeTemporalVariants())
+  {
+    if (variant.Technique == technique)
+    {
+      variants.push_back(variant);
+    }
+  }
+  if (variants.empty())
+  {
+    variants.push_back({ technique, "default", [](vtkCausticsRenderPass*) {} });
+  }
+  return variants;
+}
+
 namespace
 {
 /** The scene of one sequence as it is posed frame by frame. */
@@ -345,13 +362,12 @@ std::vector<TemporalRow> RunTemporal(const TemporalSettings& settings, vtkRender
     const auto references = RenderReferences(settings, sequence, stage, truth);
     messages->TakeError();
     truths.push_back(truth);
-    std::cout << sequence.Name << ": " << settings.Frames << " reference frames ("
-              << truth.Rendered << " rendered, the others cached) in " << Fixed(truth.Seconds, 1)
-              << " s" << std::endl;
-    for (const auto& variant : MakeTemporalVariants())
+    std::cout << sequence.Name << ": " << settings.Frames << " reference frames (" << truth.Rendered
+              << " rendered, the others cached) in " << Fixed(truth.Seconds, 1) << " s"
+              << std::endl;
+    for (const auto& technique : settings.Techniques)
     {
-      if (std::find(settings.Techniques.begin(), settings.Techniques.end(), variant.Technique) !=
-        settings.Techniques.end())
+      for (const auto& variant : TemporalVariantsOf(technique))
       {
         rows.push_back(MeasureVariant(
           settings, sequence, stage, variant, window, renderer, references, messages));

@@ -51,15 +51,21 @@ struct TemporalVariant
 /** Every variant, in table order (caustics-bench --animate runs those of the chosen techniques). */
 std::vector<TemporalVariant> MakeTemporalVariants();
 
+/**
+ * The variants of `technique`: its entries in MakeTemporalVariants(), or its defaults
+ * (variant "default") for a registered technique without entries.
+ */
+std::vector<TemporalVariant> TemporalVariantsOf(const std::string& technique);
+
 /** What an --animate run needs from the command line. */
 struct TemporalSettings
 {
-  int Frames = 16;          // N: frames per sequence; the cut is at N / 2
-  int Size = 128;           // image N x N pixels
-  int Warmup = 2;           // untimed frames at the first frame's pose
+  int Frames = 16; // N: frames per sequence; the cut is at N / 2
+  int Size = 128;  // image N x N pixels
+  int Warmup = 2;  // untimed frames at the first frame's pose
   double ReferencePhotons = 2e6;
   double ReferenceKernel = 1.0;
-  int SmokeResolution = 0;  // > 0: every pass's light-buffer resolution (--smoke)
+  int SmokeResolution = 0; // > 0: every pass's light-buffer resolution (--smoke)
   std::vector<std::string> Sequences;
   std::vector<std::string> Techniques;
 };

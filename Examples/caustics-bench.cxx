@@ -337,7 +337,8 @@ Output:
 Temporal stability:
   --animate N                instead of the sweep: render N frames (4..1000) of each
                              animated sequence with each technique's variants (its
-                             defaults; cpu-progressive also with progressive=off),
+                             defaults; cpu-progressive also with progressive=off;
+                             "none" only when --techniques names it),
                              the scene moving for N/2 frames, then cut to a distant
                              pose held still. Reports flicker where the reference is
                              still, the error where it moves, the lag and ghosting
@@ -381,6 +382,7 @@ struct Options
   int Animate = 0; // --animate N: frames per sequence; 0: the sweep
   std::vector<std::string> Sequences = caustics_bench::GetSequenceNames();
   bool SequencesGiven = false;
+  bool TechniquesGiven = false;
 };
 
 using caustics_cli::NoWindowError;
@@ -483,6 +485,7 @@ void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& option
     [&options](const std::string& option, const std::string& value)
     {
       options.Techniques = SplitList(option, value);
+      options.TechniquesGiven = true;
       for (auto& technique : options.Techniques)
       {
         technique = technique == "best" ? vtkCausticsTechniques::GetBestName() : technique;
@@ -584,6 +587,13 @@ void ApplyTemporal(Options& options, bool photonsGiven)
   if (!photonsGiven && !options.Smoke)
   {
     options.ReferencePhotons = 2e6; // one reference per distinct frame
+  }
+  // "none" (no caustics, error 1) is the sweep's floor; here only when asked for.
+  if (!options.TechniquesGiven)
+  {
+    options.Techniques.erase(
+      std::remove(options.Techniques.begin(), options.Techniques.end(), "none"),
+      options.Techniques.end());
   }
 }
 

@@ -10,7 +10,6 @@
 #include "vtkPointData.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -54,8 +53,8 @@ std::vector<double> Read(vtkImageData* image, const std::string& name)
  * Mean and standard deviation (divisor n - ddof) of values[k][i] over frames k in
  * [begin, end), shifted by the first frame's value so that a constant gives exactly 0.
  */
-std::pair<double, double> Moments(const std::vector<std::vector<double>>& values, std::size_t i,
-  int begin, int end, int ddof)
+std::pair<double, double> Moments(
+  const std::vector<std::vector<double>>& values, std::size_t i, int begin, int end, int ddof)
 {
   const double shift = values[begin][i];
   double sum = 0.0, squares = 0.0;
@@ -80,20 +79,79 @@ struct Sums
   double SquaredReference = 0.0;
   vtkIdType Values = 0;
 };
-}
 
-/** The frames added so far, checked by vtkCausticsErrorMetrics. */
-struct vtkCausticsTemporalMetrics::Frames
+/** The frames added so far (values pixel-major, channels inner), checked by the metrics. */
+struct FrameData
 {
   int Dimensions[3] = { 0, 0, 0 };
   int Components = 0;
   std::vector<std::vector<double>> Test, Reference, Area; // per frame
-  std::vector<unsigned char> Masked; // per pixel: masked in every reference frame
-  std::vector<unsigned char> Finite; // per pixel: finite in every test frame
+  std::vector<unsigned char> Masked;         // per pixel: masked in every reference frame
+  std::vector<unsigned char> Finite;         // per pixel: finite in every test frame
   std::vector<double> RelativeL2, FluxRatio; // per frame
 
   std::size_t Pixels() const { return this->Masked.size(); }
   int Count() const { return static_cast<int>(this->Test.size()); }
+};
+
+/** A segment of frames [Begin, End), whose flicker window starts at Settled. */
+struct Segment
+{
+  int Begin, Settled, End;
+};
+
+/** Step 3: every channel of pixel p has a reference within the tolerance over the segment. */
+bool IsStatic(const FrameData& s, std::size_t p, const Segment& segment, double tolerance)
+{
+  for (int c = 0; c < s.Components; ++c)
+  {
+    const auto reference =
+      Moments(s.Reference, p * s.Components + c, segment.Begin, segment.End, 0);
+    if (!(reference.second <= tolerance * reference.first))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/** Step 5: the flicker term of value i (of pixel p) over the segment's settled frames. */
+void AddFlicker(
+  const FrameData& s, std::size_t p, std::size_t i, const Segment& segment, Sums& sums)
+{
+  const int n = segment.End - segment.Settled;
+  if (n < 2)
+  {
+    return;
+  }
+  double w = 0.0; // the reference's mean flux at the pixel
+  for (int k = segment.Settled; k < segment.End; ++k)
+  {
+    w += (s.Area[k].empty() ? 1.0 : s.Area[k][p]) * s.Reference[k][i] / n;
+  }
+  const auto test = Moments(s.Test, i, segment.Settled, segment.End, 1);
+  const double rbar = Moments(s.Reference, i, segment.Settled, segment.End, 0).first;
+  if (w > 0.0)
+  {
+    sums.Weighted += w * test.second / (test.first > 0.0 ? test.first : rbar);
+    sums.Weight += w;
+  }
+}
+
+/** Step 6: the squared error and reference of value i over every frame of the segment. */
+void AddMovingError(const FrameData& s, std::size_t i, const Segment& segment, Sums& sums)
+{
+  for (int k = segment.Begin; k < segment.End; ++k)
+  {
+    const double difference = s.Test[k][i] - s.Reference[k][i];
+    sums.SquaredError += difference * difference;
+    sums.SquaredReference += s.Reference[k][i] * s.Reference[k][i];
+  }
+}
+}
+
+struct vtkCausticsTemporalMetrics::Frames : FrameData
+{
 };
 
 vtkCausticsTemporalMetrics::vtkCausticsTemporalMetrics()
@@ -206,8 +264,8 @@ void vtkCausticsTemporalMetrics::ComputeLag()
     return;
   }
   const int after = frames - cut;
-  r.SteadyError = Median(
-    std::vector<double>(s.RelativeL2.begin() + cut + after / 2, s.RelativeL2.end()));
+  r.SteadyError =
+    Median(std::vector<double>(s.RelativeL2.begin() + cut + after / 2, s.RelativeL2.end()));
   const double settled = (1.0 + this->SettleTolerance) * r.SteadyError;
   r.Lag = 0;
   for (int k = frames - 1; k >= cut; --k)
@@ -233,10 +291,9 @@ void vtkCausticsTemporalMetrics::ComputeLag()
 void vtkCausticsTemporalMetrics::ComputeSegments()
 {
   const Frames& s = *this->Sequence;
-  const int frames = s.Count(), cut = this->CutFrame, channels = s.Components;
+  const int frames = s.Count(), cut = this->CutFrame;
   Result& r = this->Metrics;
-  // [begin, settled, end): a segment and the first frame of its flicker window.
-  std::vector<std::array<int, 3>> segments;
+  std::vector<Segment> segments;
   if (cut < 0)
   {
     segments.push_back({ 0, 0, frames });
@@ -254,49 +311,14 @@ void vtkCausticsTemporalMetrics::ComputeSegments()
       r.NonFinitePixels += s.Masked[p] ? 1 : 0;
       continue;
     }
-    for (const auto& segment : segments)
+    for (const Segment& segment : segments)
     {
-      const int begin = segment[0], settled = segment[1], end = segment[2];
-      // Static: every channel's reference varies by at most the tolerance.
-      bool isStatic = true;
-      for (int c = 0; c < channels && isStatic; ++c)
+      const bool isStatic = IsStatic(s, p, segment, this->StaticTolerance);
+      (isStatic ? still : moving).Values += s.Components;
+      for (int c = 0; c < s.Components; ++c)
       {
-        const auto reference = Moments(s.Reference, p * channels + c, begin, end, 0);
-        isStatic = reference.second <= this->StaticTolerance * reference.first;
-      }
-      Sums& sums = isStatic ? still : moving;
-      sums.Values += channels;
-      for (int c = 0; c < channels; ++c)
-      {
-        const std::size_t i = p * channels + c;
-        if (!isStatic)
-        {
-          for (int k = begin; k < end; ++k)
-          {
-            const double difference = s.Test[k][i] - s.Reference[k][i];
-            sums.SquaredError += difference * difference;
-            sums.SquaredReference += s.Reference[k][i] * s.Reference[k][i];
-          }
-          continue;
-        }
-        const int n = end - settled;
-        if (n < 2)
-        {
-          continue;
-        }
-        double w = 0.0; // the reference's mean flux at the pixel
-        for (int k = settled; k < end; ++k)
-        {
-          w += (s.Area[k].empty() ? 1.0 : s.Area[k][p]) * s.Reference[k][i] / n;
-        }
-        const double m = Moments(s.Test, i, settled, end, 1).first;
-        const double deviation = Moments(s.Test, i, settled, end, 1).second;
-        const double rbar = Moments(s.Reference, i, settled, end, 0).first;
-        if (w > 0.0)
-        {
-          sums.Weighted += w * deviation / (m > 0.0 ? m : rbar);
-          sums.Weight += w;
-        }
+        const std::size_t i = p * s.Components + c;
+        isStatic ? AddFlicker(s, p, i, segment, still) : AddMovingError(s, i, segment, moving);
       }
     }
   }
@@ -308,9 +330,8 @@ void vtkCausticsTemporalMetrics::ComputeSegments()
   r.StaticValues = still.Values;
   r.MovingValues = moving.Values;
   r.Flicker = still.Weight > 0.0 ? still.Weighted / still.Weight : NaN;
-  r.MovingError = moving.SquaredReference > 0.0
-    ? std::sqrt(moving.SquaredError / moving.SquaredReference)
-    : NaN;
+  r.MovingError =
+    moving.SquaredReference > 0.0 ? std::sqrt(moving.SquaredError / moving.SquaredReference) : NaN;
 }
 
 bool vtkCausticsTemporalMetrics::Fail(const std::string& message)

@@ -169,7 +169,10 @@ public:
   };
 
   /** The results of the last Compute(). */
-  const Result& GetResult() const { return this->Metrics; }
+  const Result& GetResult() const
+  {
+    return this->Metrics;
+  }
 #endif
 
 protected:

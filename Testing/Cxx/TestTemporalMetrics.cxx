@@ -226,7 +226,9 @@ TEST(TemporalMetrics, MovingSpotGivesMovingError)
     double error = 0.0, norm = 0.0;
     for (int k = 0; k < frames; ++k)
     {
-      const PixelFunction shown = mode == 0 ? truth(k) : mode == 1 ? truth(std::max(k - 1, 0)) : smeared;
+      const PixelFunction shown = mode == 0 ? truth(k)
+        : mode == 1                         ? truth(std::max(k - 1, 0))
+                                            : smeared;
       ASSERT_TRUE(metrics->AddFrame(MakeImage(shown), MakeImage(truth(k))));
       for (int p = 0; p < Size * Size; ++p)
       {
@@ -262,7 +264,8 @@ TEST(TemporalMetrics, StillAndMovingPixelsAreSeparated)
   vtkNew<vtkCausticsTemporalMetrics> metrics;
   for (int k = 0; k < frames; ++k)
   {
-    auto test = MakeImage([&](int x, int y) { return truth(k)(x, y) * (1.0 + sigma * z[k][y * Size + x]); });
+    auto test =
+      MakeImage([&](int x, int y) { return truth(k)(x, y) * (1.0 + sigma * z[k][y * Size + x]); });
     ASSERT_TRUE(metrics->AddFrame(test, MakeImage(truth(k))));
   }
   ASSERT_TRUE(metrics->Compute()) << metrics->GetLastError();
@@ -334,8 +337,7 @@ TEST(TemporalMetrics, NonFinitePixelsAreLeftOut)
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 1);
   EXPECT_EQ(metrics->GetNumberOfStaticValues(), (Size - 1) * Size - 1);
   EXPECT_EQ(metrics->GetFlicker(), 0.0);
-  EXPECT_NE(observer->GetWarningMessage().find("1 receiver pixels have NaN/Inf"),
-    std::string::npos)
+  EXPECT_NE(observer->GetWarningMessage().find("1 receiver pixels have NaN/Inf"), std::string::npos)
     << observer->GetWarningMessage();
 }
 
@@ -364,8 +366,8 @@ TEST(TemporalMetrics, RejectsBadInput)
   values->Fill(1.0);
   wide->GetPointData()->AddArray(values);
   EXPECT_FALSE(metrics->AddFrame(wide, wide));
-  EXPECT_NE(std::string(metrics->GetLastError()).find("the first frame is 32x32"),
-    std::string::npos)
+  EXPECT_NE(
+    std::string(metrics->GetLastError()).find("the first frame is 32x32"), std::string::npos)
     << metrics->GetLastError();
   EXPECT_EQ(metrics->GetNumberOfFrames(), 1);
 
