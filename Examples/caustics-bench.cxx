@@ -573,8 +573,11 @@ void DeclareTemporalOptions(caustics_cli::Arguments& arguments, Options& options
     });
 }
 
-/** --animate: its own reference default; --sequences only with it. */
-void ApplyTemporal(Options& options, bool photonsGiven)
+/**
+ * --animate: its own reference default; --sequences only with it, and none of the
+ * sweep's own options with it (they would be ignored).
+ */
+void ApplyTemporal(Options& options, bool photonsGiven, bool ladderGiven)
 {
   if (options.Animate == 0)
   {
@@ -583,6 +586,16 @@ void ApplyTemporal(Options& options, bool photonsGiven)
       throw UsageError("--sequences needs --animate N");
     }
     return;
+  }
+  const char* sweepOnly = options.Defaults ? "--defaults"
+    : !options.Knobs.empty()               ? "--knobs"
+    : options.Images                       ? "--images"
+    : ladderGiven                          ? "--reference-ladder"
+    : options.List                         ? "--list"
+                                           : nullptr;
+  if (sweepOnly)
+  {
+    throw UsageError(std::string(sweepOnly) + " does not apply to --animate");
   }
   if (!photonsGiven && !options.Smoke)
   {
@@ -668,7 +681,7 @@ Options Parse(int argc, char* argv[])
   {
     ApplySmoke(options, ladderGiven);
   }
-  ApplyTemporal(options, photonsGiven);
+  ApplyTemporal(options, photonsGiven, ladderGiven);
   if (options.Animate == 0)
   {
     CheckLadder(options);
