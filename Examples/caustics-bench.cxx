@@ -11,9 +11,13 @@
 // Results: benchmarks.csv (one row per configuration), benchmark-stages.csv (one row
 // per stage), benchmarks.png (via scripts/plot-benchmarks.py) in the output folder;
 // --update-docs rewrites the generated section of docs/benchmarks.md.
+// With --animate N it measures temporal stability instead (CausticsBenchTemporal.h):
+// N frames of animated sequences per technique, flicker, error under motion, lag and
+// ghosting after a cut, into temporal.csv and the "Temporal stability" section.
 //
 // Every error is one line on stderr naming the problem, and a non-zero exit:
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "CausticsBenchTemporal.h"
 #include "CausticsCommandLine.h"
 
 #include "vtkCausticsProgressivePhotonPass.h"
@@ -327,6 +331,23 @@ Output:
   --smoke                    tiny run for CI: the first scene at 64 x 64, the first
                              configuration of each technique, 1 warm-up + 2 timed
                              frames, reference 1e5 photons, ladder 1e4,3e4 run once
+                             (with --animate: every sequence at 64 x 64, light
+                             buffers 64 x 64, 1 warm-up frame, reference 1e5 photons)
+
+Temporal stability:
+  --animate N                instead of the sweep: render N frames (4..1000) of each
+                             animated sequence with each technique's variants (its
+                             defaults; cpu-progressive also with progressive=off;
+                             "none" only when --techniques names it),
+                             the scene moving for N/2 frames, then cut to a distant
+                             pose held still. Reports flicker where the reference is
+                             still, the error where it moves, the lag and ghosting
+                             after the cut, time per frame (docs/benchmarks.md,
+                             "Temporal stability"); writes temporal.csv,
+                             temporal-frames.csv, temporal.md. The reference renders
+                             every frame (cached) with --reference-photons (default
+                             here 2e6); --warmup untimed frames come first
+  --sequences A,B,...        animated sequences (default: pool-waves,moving-ball,light-sweep)
   --help                     this text
 )";
 
@@ -358,6 +379,10 @@ struct Options
   bool List = false;
   bool Help = false;
   std::string CommandLine;
+  int Animate = 0; // --animate N: frames per sequence; 0: the sweep
+  std::vector<std::string> Sequences = caustics_bench::GetSequenceNames();
+  bool SequencesGiven = false;
+  bool TechniquesGiven = false;
 };
 
 using caustics_cli::NoWindowError;
@@ -460,6 +485,7 @@ void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& option
     [&options](const std::string& option, const std::string& value)
     {
       options.Techniques = SplitList(option, value);
+      options.TechniquesGiven = true;
       for (auto& technique : options.Techniques)
       {
         technique = technique == "best" ? vtkCausticsTechniques::GetBestName() : technique;
@@ -473,14 +499,17 @@ void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& option
 }
 
 void DeclareMeasurementOptions(
-  caustics_cli::Arguments& arguments, Options& options, bool& ladderGiven)
+  caustics_cli::Arguments& arguments, Options& options, bool& ladderGiven, bool& photonsGiven)
 {
   arguments.Value("--size", Count(options.Size, 16, 4096));
   arguments.Value("--frames", Count(options.Frames, 5, 1000));
   arguments.Value("--warmup", Count(options.Warmup, 2, 100));
   arguments.Value("--reference-photons",
-    [&options](const std::string& option, const std::string& value)
-    { options.ReferencePhotons = ParseCount(option, value, 1000, 1e10); });
+    [&options, &photonsGiven](const std::string& option, const std::string& value)
+    {
+      options.ReferencePhotons = ParseCount(option, value, 1000, 1e10);
+      photonsGiven = true;
+    });
   arguments.Value("--reference-ladder",
     [&options, &ladderGiven](const std::string& option, const std::string& value)
     {
@@ -523,6 +552,62 @@ void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
   arguments.Value(
     "--docs", [&options](const std::string&, const std::string& value) { options.Docs = value; });
   arguments.Flag("--smoke", [&options] { options.Smoke = true; });
+}
+
+void DeclareTemporalOptions(caustics_cli::Arguments& arguments, Options& options)
+{
+  arguments.Value("--animate", Count(options.Animate, 4, 1000));
+  arguments.Value("--sequences",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.Sequences = SplitList(option, value);
+      options.SequencesGiven = true;
+      const auto known = caustics_bench::GetSequenceNames();
+      for (const auto& sequence : options.Sequences)
+      {
+        if (std::find(known.begin(), known.end(), sequence) == known.end())
+        {
+          throw UsageError("unknown sequence '" + sequence + "' (known: " + Join(known) + ")");
+        }
+      }
+    });
+}
+
+/**
+ * --animate: its own reference default; --sequences only with it, and none of the
+ * sweep's own options with it (they would be ignored).
+ */
+void ApplyTemporal(Options& options, bool photonsGiven, bool ladderGiven)
+{
+  if (options.Animate == 0)
+  {
+    if (options.SequencesGiven)
+    {
+      throw UsageError("--sequences needs --animate N");
+    }
+    return;
+  }
+  const char* sweepOnly = options.Defaults ? "--defaults"
+    : !options.Knobs.empty()               ? "--knobs"
+    : options.Images                       ? "--images"
+    : ladderGiven                          ? "--reference-ladder"
+    : options.List                         ? "--list"
+                                           : nullptr;
+  if (sweepOnly)
+  {
+    throw UsageError(std::string(sweepOnly) + " does not apply to --animate");
+  }
+  if (!photonsGiven && !options.Smoke)
+  {
+    options.ReferencePhotons = 2e6; // one reference per distinct frame
+  }
+  // "none" (no caustics, error 1) is the sweep's floor; here only when asked for.
+  if (!options.TechniquesGiven)
+  {
+    options.Techniques.erase(
+      std::remove(options.Techniques.begin(), options.Techniques.end(), "none"),
+      options.Techniques.end());
+  }
 }
 
 /** --smoke: the first scene at 64 x 64, few frames, a small reference and ladder. */
@@ -580,13 +665,14 @@ Options Parse(int argc, char* argv[])
   {
     options.CommandLine += (i ? " " : "") + ShellQuote(argv[i]);
   }
-  bool ladderGiven = false;
+  bool ladderGiven = false, photonsGiven = false;
   caustics_cli::Arguments arguments;
   arguments.Flag("--help", [&options] { options.Help = true; });
   arguments.Flag("-h", [&options] { options.Help = true; });
   DeclareSelectionOptions(arguments, options);
-  DeclareMeasurementOptions(arguments, options, ladderGiven);
+  DeclareMeasurementOptions(arguments, options, ladderGiven, photonsGiven);
   DeclareOutputOptions(arguments, options);
+  DeclareTemporalOptions(arguments, options);
   for (const auto& positional : arguments.Parse(argc, argv))
   {
     throw UsageError("unknown option '" + positional + "' (see --help)");
@@ -595,7 +681,11 @@ Options Parse(int argc, char* argv[])
   {
     ApplySmoke(options, ladderGiven);
   }
-  CheckLadder(options);
+  ApplyTemporal(options, photonsGiven, ladderGiven);
+  if (options.Animate == 0)
+  {
+    CheckLadder(options);
+  }
   options.Python = options.Python.empty() ? DefaultPython() : options.Python;
   if (options.Docs.empty())
   {
@@ -753,6 +843,8 @@ struct Row
   bool IsReference() const { return this->Technique == "reference"; }
 };
 
+using caustics_bench::MakeReference;
+using caustics_bench::ReadCausticIrradiance;
 using caustics_cli::OneLineOutputWindow;
 
 /** Error of `test`'s CausticIrradiance against the reference image, on its receiver pixels. */
@@ -767,24 +859,6 @@ vtkCausticsErrorMetrics::Result CompareWithReference(vtkImageData* test, vtkImag
     throw std::runtime_error(std::string("comparison failed: ") + metrics->GetLastError());
   }
   return metrics->GetResult();
-}
-
-/** The renderer's scene at size x size, rendered by the reference with `photons` per light. */
-vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(vtkRenderer* renderer, int size,
-  double photons, double kernelPixels, unsigned int seed, bool cache)
-{
-  auto reference = vtkSmartPointer<vtkCausticsReferenceRenderer>::New();
-  reference->SetInputRenderer(renderer);
-  reference->SetImageSize(size, size);
-  reference->SetPhotonsPerLight(static_cast<vtkIdType>(photons));
-  reference->SetKernelRadiusPixels(kernelPixels);
-  reference->SetSeed(seed);
-  reference->SetUseCache(cache);
-  // The techniques output the irradiance at each pixel's nearest opaque surface
-  // (the pool's floor under the water, the floor behind the ball): compare with
-  // the reference's irradiance at the same points.
-  reference->CameraSeesRefractorsOff();
-  return reference;
 }
 
 /** What the run did to make its ground truths: one line per scene for the docs. */
@@ -844,28 +918,6 @@ std::vector<Row> TimeReferenceLadder(const Options& options, const std::string& 
     rows.push_back(row);
   }
   return rows;
-}
-
-/** The pass's caustic irradiance of the last frame, or zeros when it ran no caustic stage. */
-vtkSmartPointer<vtkImageData> ReadCausticIrradiance(vtkCausticsRenderPass* pass, int size)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  if (pass->GetLastFrameHadCaustics())
-  {
-    if (!pass->ReadBuffer("CausticIrradiance", image))
-    {
-      throw std::runtime_error("the caustic irradiance could not be read back");
-    }
-    return image;
-  }
-  image->SetDimensions(size, size, 1);
-  vtkNew<vtkFloatArray> zero;
-  zero->SetName("CausticIrradiance");
-  zero->SetNumberOfComponents(3);
-  zero->SetNumberOfTuples(static_cast<vtkIdType>(size) * size);
-  zero->Fill(0.0);
-  image->GetPointData()->AddArray(zero);
-  return image;
 }
 
 /**
@@ -1462,16 +1514,27 @@ std::string MakeDocsSection(const Options& options, const Machine& machine,
   return md.str();
 }
 
-const char* BeginMarker = "<!-- BEGIN caustics-bench --update-docs: generated, do not edit -->";
-const char* EndMarker = "<!-- END caustics-bench --update-docs -->";
+/** The lines around a generated section of the docs file. */
+struct Markers
+{
+  const char* Begin;
+  const char* End;
+};
+const Markers SweepMarkers = { "<!-- BEGIN caustics-bench --update-docs: generated, do not edit -->",
+  "<!-- END caustics-bench --update-docs -->" };
+const Markers TemporalMarkers = { "<!-- BEGIN caustics-bench --animate: generated, do not edit -->",
+  "<!-- END caustics-bench --animate -->" };
 
 /**
  * The docs file's text and where its generated section lies (between the end of
  * the begin marker and the start of the end marker). Throws, naming the problem, when
  * the file cannot be read or lacks one begin marker followed by one end marker.
  */
-std::string ReadDocs(const std::string& path, std::size_t& from, std::size_t& to)
+std::string ReadDocs(
+  const std::string& path, const Markers& markers, std::size_t& from, std::size_t& to)
 {
+  const char* BeginMarker = markers.Begin;
+  const char* EndMarker = markers.End;
   std::ifstream in(path);
   if (!in)
   {
@@ -1494,10 +1557,10 @@ std::string ReadDocs(const std::string& path, std::size_t& from, std::size_t& to
 }
 
 /** Replaces the generated section of the docs file with `section`; the rest is kept. */
-void UpdateDocs(const std::string& path, const std::string& section)
+void UpdateDocs(const std::string& path, const std::string& section, const Markers& markers)
 {
   std::size_t from = 0, to = 0;
-  const std::string text = ReadDocs(path, from, to);
+  const std::string text = ReadDocs(path, markers, from, to);
   std::ofstream out(path, std::ios::out | std::ios::trunc);
   out << text.substr(0, from) << "\n" << section << text.substr(to);
   if (!out)
@@ -1569,7 +1632,8 @@ void CheckOutputs(const Options& options)
   if (options.UpdateDocs)
   {
     std::size_t from = 0, to = 0;
-    ReadDocs(options.Docs, from, to); // its markers are checked before the long run
+    // Its markers are checked before the long run.
+    ReadDocs(options.Docs, options.Animate ? TemporalMarkers : SweepMarkers, from, to);
   }
   if (!vtksys::SystemTools::MakeDirectory(options.Output) ||
     !vtksys::SystemTools::FileIsDirectory(options.Output))
@@ -1707,13 +1771,117 @@ void WritePlotAndDocs(
   }
   UpdateDocs(options.Docs,
     MakeDocsSection(
-      options, results.Computer, results.Truths, results.Rows, plot, plotSkipped, runSeconds));
+      options, results.Computer, results.Truths, results.Rows, plot, plotSkipped, runSeconds),
+    SweepMarkers);
   std::cout << "updated " << options.Docs << (plot.empty() ? "" : " and benchmarks.png")
             << std::endl;
 }
 
+// ---------------------------------------------------------------------------
+// --animate: temporal stability (CausticsBenchTemporal.h).
+// ---------------------------------------------------------------------------
+
+/** The settings of the temporal run from the options. */
+caustics_bench::TemporalSettings TemporalSettingsOf(const Options& options)
+{
+  caustics_bench::TemporalSettings settings;
+  settings.Frames = options.Animate;
+  settings.Size = options.Size;
+  settings.Warmup = options.Warmup;
+  settings.ReferencePhotons = options.ReferencePhotons;
+  settings.ReferenceKernel = options.ReferenceKernel;
+  settings.SmokeResolution = options.Smoke ? 64 : 0;
+  settings.Sequences = options.Sequences;
+  settings.Techniques = options.Techniques;
+  return settings;
+}
+
+/** The generated "Temporal stability" section: the command, the conditions, the table. */
+std::string MakeTemporalDocsSection(const Options& options, const Machine& machine,
+  const std::vector<caustics_bench::TemporalTruth>& truths, const std::string& table,
+  double runSeconds)
+{
+  std::ostringstream md;
+  md << "Command (from the repository root, under `xvfb-run -a` where there is no display):\n\n"
+     << "```sh\n"
+     << options.CommandLine << "\n```\n\n";
+  md << "| | |\n|---|---|\n";
+  md << "| date | " << machine.Date << " |\n";
+  md << "| CPU | " << machine.CPU << ", " << machine.Threads << " hardware threads; load average "
+     << machine.LoadAverage << " at the start |\n";
+  md << "| OpenGL | " << machine.GLRenderer << "; " << machine.GLVersion << " |\n";
+  md << "| image | " << options.Size << " x " << options.Size << " pixels |\n";
+  md << "| frames | " << options.Animate << " per sequence after " << options.Warmup
+     << " untimed warm-up frames at frame 0's pose; cut at frame " << options.Animate / 2
+     << " |\n";
+  md << "| reference | every frame, " << static_cast<long long>(options.ReferencePhotons)
+     << " photons per light, seed 1, kernel radius " << Fixed(options.ReferenceKernel, 2)
+     << " pixel footprints, cached |\n";
+  for (const auto& truth : truths)
+  {
+    md << "| reference, " << truth.Sequence << " | " << truth.Rendered << " frames rendered, "
+       << options.Animate - truth.Rendered << " from the cache, " << Fixed(truth.Seconds, 0)
+       << " s |\n";
+  }
+  md << "| run time | " << Fixed(runSeconds, 0) << " s in all |\n\n";
+  md << caustics_bench::DescribeSequences(TemporalSettingsOf(options)) << "\n" << table;
+  return md.str();
+}
+
+/** --animate N: every chosen technique's variants over every chosen sequence. */
+int RunTemporal(const Options& options, OneLineOutputWindow* messages)
+{
+  const auto runStart = std::chrono::steady_clock::now();
+  CheckOutputs(options);
+  Machine machine = DescribeMachine();
+  vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options, machine);
+  std::cout << "caustics-bench --animate " << options.Animate << ": " << Join(options.Sequences)
+            << " x " << Join(options.Techniques) << ", " << options.Size << "x" << options.Size
+            << ", " << machine.CPU << " (" << machine.Threads << " threads)" << std::endl;
+  std::vector<caustics_bench::TemporalTruth> truths;
+  int failed = 0;
+  const auto rows = caustics_bench::RunTemporal(TemporalSettingsOf(options), window, messages,
+    truths,
+    [&](const caustics_bench::TemporalRow& row)
+    {
+      if (machine.GLRenderer == "unknown")
+      {
+        DescribeGL(window, machine);
+      }
+      failed += row.Status == "ok" ? 0 : 1;
+      std::cout << "  " << std::left << std::setw(13) << row.Sequence << std::setw(17)
+                << row.Technique << std::setw(17) << row.Variant << std::right << " "
+                << FormatTime(row.MeanMilliseconds) << "/frame  flicker "
+                << Number(row.Metrics.Flicker, 2) << "  moving err "
+                << Fixed(row.Metrics.MovingError, 4) << "  lag " << row.Metrics.Lag
+                << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
+    });
+  const std::string table = caustics_bench::MakeTemporalTable(rows);
+  const std::string csv = caustics_bench::WriteTemporalCSV(options.Output, rows);
+  std::ofstream(options.Output + "/temporal.md") << table;
+  std::cout << "\n" << table << "\nwrote " << csv << ", temporal-frames.csv and temporal.md"
+            << std::endl;
+  if (options.UpdateDocs)
+  {
+    UpdateDocs(options.Docs,
+      MakeTemporalDocsSection(options, machine, truths, table, Milliseconds(runStart) / 1000.0),
+      TemporalMarkers);
+    std::cout << "updated " << options.Docs << std::endl;
+  }
+  if (failed > 0)
+  {
+    throw std::runtime_error(
+      std::to_string(failed) + " sequence run(s) failed; their rows in " + csv + " say why");
+  }
+  return 0;
+}
+
 int Run(const Options& options, OneLineOutputWindow* messages)
 {
+  if (options.Animate > 0)
+  {
+    return RunTemporal(options, messages);
+  }
   const auto runStart = std::chrono::steady_clock::now();
   const std::vector<Configuration> table = MakeConfigurations();
   if (options.List)
