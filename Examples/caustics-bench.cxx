@@ -659,7 +659,14 @@ std::string DefaultPython()
 Options Parse(int argc, char* argv[])
 {
   Options options;
-  options.Scenes = vtkCausticsBuiltinScene::GetSceneNames();
+  // The surface scenes: the media scenes' volume layer has no rows yet (--scenes names them).
+  for (const std::string& name : vtkCausticsBuiltinScene::GetSceneNames())
+  {
+    if (!vtkCausticsBuiltinScene::IsMediaScene(name))
+    {
+      options.Scenes.push_back(name);
+    }
+  }
   options.Techniques = DefaultTechniques();
   for (int i = 0; i < argc; ++i)
   {

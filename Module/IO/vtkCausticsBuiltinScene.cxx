@@ -177,6 +177,11 @@ bool vtkCausticsBuiltinScene::IsSceneName(const std::string& name)
   return false;
 }
 
+bool vtkCausticsBuiltinScene::IsMediaScene(const std::string& name)
+{
+  return name == "underwater" || name == "smoke-lens";
+}
+
 namespace
 {
 /** Height field of the pool's water at time t, with analytic normals. */

@@ -52,6 +52,8 @@ public:
   static std::vector<std::string> GetSceneNames();
   /** True when name is one of GetSceneNames(). */
   static bool IsSceneName(const std::string& name);
+  /** True for the scenes that attach a participating medium (underwater, smoke-lens). */
+  static bool IsMediaScene(const std::string& name);
 
   ///@{
   /** Animation time in seconds (moves the pool's waves). Default 0. */
