@@ -6,7 +6,7 @@
  * with their ranges, on the class) write into it, and its steps take it by const
  * reference when they run. Defaults are those of SVGF (Schied et al. 2017, cited by
  * 002_97e66a5090de9b07.txt §3.3) where SVGF has the knob; the others are this
- * module's (history clamping, camera cuts), measured in docs/denoising.md.
+ * module's (history rejection by colour, camera cuts), measured in docs/denoising.md.
  */
 #ifndef vtkCausticsDenoiserSettings_h
 #define vtkCausticsDenoiserSettings_h
@@ -38,11 +38,11 @@ struct DenoiserSettings
   double SigmaLuminance = 4.0;
   /**
    * History rejection by colour, for light that moves over still receivers (a moving
-   * ball's caustic): the reprojected history is clamped to this frame's 5x5
-   * neighbourhood mean +- this many standard deviations, per channel. 0: off (plain
-   * SVGF, which ghosts such light), [0, 100].
+   * ball's caustic): a reprojected history outside this frame's 5x5 neighbourhood
+   * mean +- this many standard deviations (in any channel) is dropped, as a
+   * disoccluded one is. 0: off (plain SVGF, which ghosts such light), [0, 100].
    */
-  double HistoryClampSigmas = 2.0;
+  double HistoryRejectionSigmas = 2.0;
   /** Reprojection: a previous surface counts if its plane is within this fraction of
    * the distance to the camera, [1e-5, 1]. */
   double DepthTolerance = 0.01;

@@ -212,7 +212,7 @@ bool vtkCausticsSVGFDenoiser::Accumulate(const Inputs& in)
   program->SetUniformf("temporalAlpha", static_cast<float>(settings.TemporalAlpha));
   program->SetUniformf("momentsAlpha", static_cast<float>(settings.MomentsAlpha));
   program->SetUniformf("maximumFrames", static_cast<float>(settings.MaximumHistoryLength));
-  program->SetUniformf("clampSigmas", static_cast<float>(settings.HistoryClampSigmas));
+  program->SetUniformf("rejectSigmas", static_cast<float>(settings.HistoryRejectionSigmas));
   program->SetUniformf(
     "minimumFraction", static_cast<float>(settings.MinimumReprojectedFraction));
   program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
@@ -324,7 +324,7 @@ void vtkCausticsSVGFDenoiser::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SigmaDepth: " << s.SigmaDepth << "\n";
   os << indent << "SigmaNormal: " << s.SigmaNormal << "\n";
   os << indent << "SigmaLuminance: " << s.SigmaLuminance << "\n";
-  os << indent << "HistoryClampSigmas: " << s.HistoryClampSigmas << "\n";
+  os << indent << "HistoryRejectionSigmas: " << s.HistoryRejectionSigmas << "\n";
   os << indent << "DepthTolerance: " << s.DepthTolerance << "\n";
   os << indent << "NormalTolerance: " << s.NormalTolerance << "\n";
   os << indent << "MinimumReprojectedFraction: " << s.MinimumReprojectedFraction << "\n";

@@ -13,9 +13,9 @@
  *    followed exactly; a moving receiver is rejected where it moved (no per-actor
  *    motion vectors).
  * 2. Accumulate: colour and the first two moments of luminance, blended with
- *    max(alpha, 1/frames); the history is first clamped to this frame's
- *    neighbourhood (HistoryClampSigmas), so light that moves over a still receiver
- *    does not ghost. When fewer than MinimumReprojectedFraction of the receiver
+ *    max(alpha, 1/frames); a history outside this frame's neighbourhood
+ *    (HistoryRejectionSigmas) is dropped as a disoccluded one is, so light that
+ *    moves over a still receiver (a moving ball's caustic) does not ghost. When fewer than MinimumReprojectedFraction of the receiver
  *    pixels reproject (a camera cut), no history is used.
  * 3. Variance of luminance from the moments (spatially from 7x7 neighbours while a
  *    history is shorter than SpatialVarianceFrames).
@@ -77,9 +77,9 @@ public:
   vtkCausticsSettingClampMacro(Settings, SigmaNormal, double, 0.0, 1e4);
   /** Luminance edge-stopping, standard deviations, [1e-3, 1e3]. Default 4 (SVGF). */
   vtkCausticsSettingClampMacro(Settings, SigmaLuminance, double, 1e-3, 1e3);
-  /** History clamp to this frame's neighbourhood, standard deviations; 0 off, [0, 100].
-   * Default 2. */
-  vtkCausticsSettingClampMacro(Settings, HistoryClampSigmas, double, 0.0, 100.0);
+  /** History rejected outside this frame's neighbourhood mean +- this many standard
+   * deviations; 0 off, [0, 100]. Default 2. */
+  vtkCausticsSettingClampMacro(Settings, HistoryRejectionSigmas, double, 0.0, 100.0);
   /** Reprojection plane tolerance, fraction of the camera distance, [1e-5, 1]. Default 0.01. */
   vtkCausticsSettingClampMacro(Settings, DepthTolerance, double, 1e-5, 1.0);
   /** Reprojection normal tolerance (cosine), [-1, 1]. Default 0.9. */

@@ -3,9 +3,10 @@
 // second moments of its luminance likewise. No history where almost nothing
 // reprojected (a camera cut: fewer than minimumFraction of the receivers).
 // Light that moves over a still receiver (the caustic of a moving ball) is no
-// disocclusion: the history is clamped to this frame's 5x5 neighbourhood mean +-
-// clampSigmas standard deviations first. A non-finite input texel is rejected (the
-// history stays as it was, or zero without one); a negative one counts as zero.
+// disocclusion of a surface: a history outside this frame's 5x5 neighbourhood mean
+// +- rejectSigmas standard deviations is dropped, as a disoccluded one is. A
+// non-finite input texel is rejected (the history stays as it was, or zero without
+// one); a negative one counts as zero.
 layout(rgba32f, binding = 2) uniform readonly image2D irradiance; // W/m^2, this frame
 layout(rgba32f, binding = 3) uniform readonly image2D reprojectedColor;
 layout(rgba32f, binding = 4) uniform readonly image2D reprojectedMoments;
@@ -15,7 +16,7 @@ layout(r32ui, binding = 7) uniform readonly uimage2D counts;
 uniform float temporalAlpha;
 uniform float momentsAlpha;
 uniform float maximumFrames;
-uniform float clampSigmas;
+uniform float rejectSigmas;
 uniform float minimumFraction;
 
 // This frame's irradiance at q as the filter takes it: finite, not negative.
@@ -26,8 +27,9 @@ vec3 Sample(ivec2 q, out bool finite)
   return finite ? max(c.rgb, vec3(0.0)) : vec3(0.0);
 }
 
-// The history clamped to this frame's neighbourhood (finite receiver texels).
-vec3 ClampHistory(ivec2 p, vec3 history)
+// Whether the history lies within this frame's neighbourhood (finite receiver
+// texels): mean +- rejectSigmas standard deviations in every channel.
+bool InNeighbourhood(ivec2 p, vec3 history)
 {
   vec3 sum = vec3(0.0), sum2 = vec3(0.0);
   float count = 0.0;
@@ -36,9 +38,13 @@ vec3 ClampHistory(ivec2 p, vec3 history)
     for (int dx = -2; dx <= 2; ++dx)
     {
       ivec2 q = p + ivec2(dx, dy);
+      if (!SVGFInside(q) || !SVGFReceiver(q))
+      {
+        continue;
+      }
       bool finite;
-      vec3 c = SVGFInside(q) && SVGFReceiver(q) ? Sample(q, finite) : vec3(0.0);
-      if (SVGFInside(q) && SVGFReceiver(q) && finite)
+      vec3 c = Sample(q, finite);
+      if (finite)
       {
         sum += c;
         sum2 += c * c;
@@ -48,7 +54,7 @@ vec3 ClampHistory(ivec2 p, vec3 history)
   }
   vec3 mean = sum / max(count, 1.0);
   vec3 deviation = sqrt(max(sum2 / max(count, 1.0) - mean * mean, vec3(0.0)));
-  return clamp(history, mean - clampSigmas * deviation, mean + clampSigmas * deviation);
+  return all(lessThanEqual(abs(history - mean), rejectSigmas * deviation));
 }
 
 void main()
@@ -78,9 +84,9 @@ void main()
     imageStore(historyMoments, p, vec4(historyM.rg, frames, 0.0));
     return;
   }
-  if (frames > 0.0 && clampSigmas > 0.0)
+  if (frames > 0.0 && rejectSigmas > 0.0 && !InNeighbourhood(p, history.rgb))
   {
-    history.rgb = ClampHistory(p, history.rgb);
+    frames = 0.0; // light moved here or away: a disocclusion of the light
   }
   float alpha = max(temporalAlpha, 1.0 / (frames + 1.0));
   float alphaM = max(momentsAlpha, 1.0 / (frames + 1.0));
