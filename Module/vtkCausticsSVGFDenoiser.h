@@ -20,8 +20,10 @@
  * 3. Variance of luminance from the moments (spatially from 7x7 neighbours while a
  *    history is shorter than SpatialVarianceFrames).
  * 4. A-trous: AtrousIterations wavelet iterations guided by depth, normal and
- *    luminance; the HistoryIteration-th output becomes the colour history, the last
- *    the denoised irradiance, written back into the input texture.
+ *    luminance; the last output is the denoised irradiance, written back into the
+ *    input texture. The colour history is the unfiltered accumulated colour
+ *    (HistoryIteration 0; SVGF keeps the first iteration's output, which feeds its
+ *    blur back frame after frame).
  * The filter's weights are normalized and it filters irradiance itself (already
  * free of albedo: nothing to demodulate), so W/m^2 stay W/m^2. A non-finite input
  * texel is rejected (its history carries on; zero without one), never spread; a
@@ -69,7 +71,8 @@ public:
   vtkCausticsSettingClampMacro(Settings, SpatialVarianceFrames, int, 1, 255);
   /** A-trous iterations, [0, 10]. Default 5 (SVGF). */
   vtkCausticsSettingClampMacro(Settings, AtrousIterations, int, 0, 10);
-  /** The a-trous output kept as colour history (0: unfiltered), [0, 10]. Default 1 (SVGF). */
+  /** The a-trous output kept as colour history (0: unfiltered), [0, 10]. Default 0 (SVGF:
+   * 1, measured more biased, see caustics::DenoiserSettings). */
   vtkCausticsSettingClampMacro(Settings, HistoryIteration, int, 0, 10);
   /** Depth edge-stopping, pixel footprints per pixel of offset, [1e-3, 1e3]. Default 1. */
   vtkCausticsSettingClampMacro(Settings, SigmaDepth, double, 1e-3, 1e3);
