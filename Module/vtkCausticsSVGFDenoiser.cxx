@@ -43,8 +43,8 @@ void BindImage(unsigned int unit, vtkTextureObject* texture, unsigned int access
 
 void CopyTexture(vtkTextureObject* from, vtkTextureObject* to, int width, int height)
 {
-  glCopyImageSubData(from->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, to->GetHandle(),
-    GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+  glCopyImageSubData(from->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, to->GetHandle(), GL_TEXTURE_2D,
+    0, 0, 0, 0, width, height, 1);
 }
 
 void Barrier()
@@ -107,8 +107,7 @@ vtkTextureObject* vtkCausticsSVGFDenoiser::GetRawTexture()
 
 bool vtkCausticsSVGFDenoiser::Denoise(const Inputs& in)
 {
-  if (!in.Window || !in.Irradiance || !in.GBuffer || !in.Camera || in.Width < 1 ||
-    in.Height < 1)
+  if (!in.Window || !in.Irradiance || !in.GBuffer || !in.Camera || in.Width < 1 || in.Height < 1)
   {
     return false;
   }
@@ -213,8 +212,7 @@ bool vtkCausticsSVGFDenoiser::Accumulate(const Inputs& in)
   program->SetUniformf("momentsAlpha", static_cast<float>(settings.MomentsAlpha));
   program->SetUniformf("maximumFrames", static_cast<float>(settings.MaximumHistoryLength));
   program->SetUniformf("rejectSigmas", static_cast<float>(settings.HistoryRejectionSigmas));
-  program->SetUniformf(
-    "minimumFraction", static_cast<float>(settings.MinimumReprojectedFraction));
+  program->SetUniformf("minimumFraction", static_cast<float>(settings.MinimumReprojectedFraction));
   program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
   Barrier();
   program->Unbind(in.Window);
@@ -232,8 +230,7 @@ bool vtkCausticsSVGFDenoiser::EstimateVariance(const Inputs& in)
   this->SetCommonUniforms(in, VARIANCE);
   BindImage(2, s.HistoryMoments, GL_READ_ONLY);
   BindImage(3, s.Filter[0], GL_READ_WRITE);
-  program->SetUniformf(
-    "spatialFrames", static_cast<float>(this->Settings.SpatialVarianceFrames));
+  program->SetUniformf("spatialFrames", static_cast<float>(this->Settings.SpatialVarianceFrames));
   program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
   Barrier();
   program->Unbind(in.Window);

@@ -15,8 +15,9 @@
  * 2. Accumulate: colour and the first two moments of luminance, blended with
  *    max(alpha, 1/frames); a history outside this frame's neighbourhood
  *    (HistoryRejectionSigmas) is dropped as a disoccluded one is, so light that
- *    moves over a still receiver (a moving ball's caustic) does not ghost. When fewer than MinimumReprojectedFraction of the receiver
- *    pixels reproject (a camera cut), no history is used.
+ *    moves over a still receiver (a moving ball's caustic) does not ghost. When
+ *    fewer than MinimumReprojectedFraction of the receiver pixels reproject (a
+ *    camera cut), no history is used.
  * 3. Variance of luminance from the moments (spatially from 7x7 neighbours while a
  *    history is shorter than SpatialVarianceFrames).
  * 4. A-trous: AtrousIterations wavelet iterations guided by depth, normal and
@@ -93,14 +94,17 @@ public:
 
 #ifndef __VTK_WRAP__
   /** The knobs as one value. */
-  const caustics::DenoiserSettings& GetSettings() const { return this->Settings; }
+  const caustics::DenoiserSettings& GetSettings() const
+  {
+    return this->Settings;
+  }
 
   /** What one frame's denoising reads; the irradiance is also where the result goes. */
   struct Inputs
   {
     vtkOpenGLRenderWindow* Window = nullptr;
-    vtkTextureObject* Irradiance = nullptr; ///< RGBA32F, W/m^2; denoised in place
-    vtkCausticsGBuffer* GBuffer = nullptr;  ///< this frame's camera G-buffer (opaque roles)
+    vtkTextureObject* Irradiance = nullptr;   ///< RGBA32F, W/m^2; denoised in place
+    vtkCausticsGBuffer* GBuffer = nullptr;    ///< this frame's camera G-buffer (opaque roles)
     const caustics::Camera* Camera = nullptr; ///< this frame's camera (world-to-clip, eye)
     int Width = 0;
     int Height = 0;
@@ -121,7 +125,10 @@ public:
    * frame, ResetHistory(), resize), the last one included: 1 when it started afresh.
    * A camera cut found on the GPU (MinimumReprojectedFraction) is not counted here.
    */
-  int GetFramesSinceReset() const { return this->FramesSinceReset; }
+  int GetFramesSinceReset() const
+  {
+    return this->FramesSinceReset;
+  }
 
   /** The last frame's input as it was before denoising (RGBA32F, W/m^2). */
   vtkTextureObject* GetRawTexture();

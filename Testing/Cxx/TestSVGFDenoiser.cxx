@@ -38,10 +38,10 @@
 namespace
 {
 // Bounds just past the figures reached (in the comments; docs/denoising.md).
-constexpr double FLICKER_BALL = 7.0; // 7.58x less flicker than the raw estimate
-constexpr double L2_BALL = 0.25;     // 0.214 of the raw estimate's relative L2
-constexpr double FLICKER_RING = 7.5; // 8.07x
-constexpr double L2_RING = 0.6;      // 0.528
+constexpr double FLICKER_BALL = 7.0;  // 7.58x less flicker than the raw estimate
+constexpr double L2_BALL = 0.25;      // 0.214 of the raw estimate's relative L2
+constexpr double FLICKER_RING = 7.5;  // 8.07x
+constexpr double L2_RING = 0.6;       // 0.528
 constexpr double HISTORY_GAIN = 0.65; // 0.581 of SVGF's own choice's L2 (0.115 against 0.198)
 constexpr std::size_t STEP_LAG = 1;   // 0 frames to settle after the step
 constexpr double STEP_AFTER = 0.9;    // at most 0.867 of the raw estimate's error after it
@@ -182,8 +182,7 @@ struct Frame
     while (vtkProp* prop = props->GetNextProp())
     {
       auto* actor = vtkActor::SafeDownCast(prop);
-      if (actor &&
-        vtkCausticsMaterial::Classify(actor, 0.3) == vtkCausticsMaterial::ROLE_REFRACTOR)
+      if (actor && vtkCausticsMaterial::Classify(actor, 0.3) == vtkCausticsMaterial::ROLE_REFRACTOR)
       {
         return actor;
       }
@@ -318,8 +317,9 @@ struct StillFigures
     // The flicker once the history is there (the last 24 frames).
     this->RawFlicker = Flicker({ raw.begin() + 8, raw.end() }, truth);
     this->DenoisedFlicker = Flicker({ denoised.begin() + 8, denoised.end() }, truth);
-    std::cout << scene << ", history from iteration " << historyIteration << ": flicker raw " << this->RawFlicker << ", denoised "
-              << this->DenoisedFlicker << " (" << this->RawFlicker / this->DenoisedFlicker
+    std::cout << scene << ", history from iteration " << historyIteration << ": flicker raw "
+              << this->RawFlicker << ", denoised " << this->DenoisedFlicker << " ("
+              << this->RawFlicker / this->DenoisedFlicker
               << "x less); relative L2 over 32 frames raw " << this->RawL2 << ", denoised "
               << this->DenoisedL2 << " (" << this->DenoisedL2 / this->RawL2 << " of it)\n";
   }
@@ -425,8 +425,8 @@ TEST(SVGFDenoiser, FollowsAMovingBall)
       worst = std::max(worst, truth.RelativeL2(f.Denoised()));
     }
   }
-  std::cout << "moving ball: raw relative L2 " << rawL2 << ", denoised at most " << worst
-            << " (" << worst / rawL2 << " of it)\n";
+  std::cout << "moving ball: raw relative L2 " << rawL2 << ", denoised at most " << worst << " ("
+            << worst / rawL2 << " of it)\n";
   EXPECT_LE(worst, MOVING * rawL2);
 }
 
@@ -510,8 +510,8 @@ TEST(SVGFDenoiser, KeepsTheFluxOfAStillInput)
   }
   const Truth truth(f.Renderer, size);
   const double raw = truth.Flux(f.Raw()), denoised = truth.Flux(f.Denoised());
-  std::cout << "flux raw " << raw << " W, denoised " << denoised << " W (ratio "
-            << denoised / raw << ")\n";
+  std::cout << "flux raw " << raw << " W, denoised " << denoised << " W (ratio " << denoised / raw
+            << ")\n";
   EXPECT_GT(raw, 0.0);
   EXPECT_NEAR(denoised / raw, 1.0, FLUX);
 }
