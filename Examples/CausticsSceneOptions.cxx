@@ -80,6 +80,8 @@ std::string QualityUsage()
                              become irradiance: splats (default) or triangles
                              (caustic triangles between neighbouring photons;
                              sharp foci, see docs/accuracy.md)
+  --denoise                  denoise the caustic irradiance over space and time
+                             (SVGF, docs/denoising.md; default: the technique's)
   --size W[xH]               image size in pixels (default 512x512)
 )";
 }
@@ -257,6 +259,7 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
+  arguments.Flag("--denoise", [&options] { options.Denoise = true; });
   arguments.Value("--size",
     [&options](const std::string& option, const std::string& value)
     {
@@ -639,6 +642,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   if (options.Photons > 0)
   {
     pass->SetLightBufferResolution(options.Photons);
+  }
+  if (options.Denoise)
+  {
+    pass->DenoiseOn();
   }
   if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))
   {

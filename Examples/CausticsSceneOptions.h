@@ -34,6 +34,7 @@ struct SceneOptions
   int TraceView = 0; ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
   int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
   int Width = 512, Height = 512;
+  bool Denoise = false; ///< --denoise: SVGF on the caustic irradiance (else the technique's)
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };
   double LightIntensity = 1.0;
@@ -68,7 +69,7 @@ Arguments::ValueHandler Text(std::string& field);
 
 /**
  * Declares --scene, --role, --ior, --time, --camera-index, --technique, --photons,
- * --size, the light and camera overrides and --medium on `arguments`.
+ * --denoise, --size, the light and camera overrides and --medium on `arguments`.
  * `sceneGiven` becomes true once --scene was given.
  */
 void DeclareSceneOptions(Arguments& arguments, SceneOptions& options, bool& sceneGiven);
@@ -96,7 +97,8 @@ void LoadScene(const SceneOptions& options, vtkRenderWindow* window, vtkRenderer
  */
 void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer);
 
-/** The technique's pass (--technique), with --photons as its LightBufferResolution. */
+/** The technique's pass (--technique), with --photons as its LightBufferResolution and
+ * --denoise. */
 vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtkRenderer* renderer);
 /** --technique, with "best" resolved for the renderer's scene (vtkCausticsTechniques). */
 std::string TechniqueFor(const SceneOptions& options, vtkRenderer* renderer);

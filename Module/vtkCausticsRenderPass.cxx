@@ -14,6 +14,7 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
@@ -252,6 +253,9 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkCausticsScreenSpaceRefraction> Refraction;
   vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
+  vtkNew<vtkCausticsSVGFDenoiser> Denoiser; // denoises CausticTexture in place (Denoise)
+  bool PreviousDenoised = false;            // whether the frame before this one was denoised
+  std::array<std::size_t, 3> DenoisedStructure = { { 0, 0, 0 } }; // meshes, materials, lights
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
   vtkNew<vtkTextureObject> LostShadingTexture;
@@ -315,6 +319,16 @@ vtkCausticsRenderPass::~vtkCausticsRenderPass()
     this->DelegatePass->Delete();
     this->DelegatePass = nullptr;
   }
+}
+
+vtkCausticsSVGFDenoiser* vtkCausticsRenderPass::GetDenoiser()
+{
+  return this->Internal->Denoiser;
+}
+
+void vtkCausticsRenderPass::ResetDenoiserHistory()
+{
+  this->Internal->Denoiser->ResetHistory();
 }
 
 void vtkCausticsRenderPass::SetRoughnessCutoff(double cutoff)
@@ -596,6 +610,7 @@ bool vtkCausticsRenderPass::SceneNeedsCaustics(const CausticNeeds& needs)
 void vtkCausticsRenderPass::BeginFrame(const vtkRenderState* s)
 {
   this->NumberOfRenderedProps = 0;
+  this->Internal->PreviousDenoised = this->Result.Denoised; // the denoiser's history rule
   this->Result = FrameResult(); // the one place a frame's result starts over
   vtkRenderer* renderer = s->GetRenderer();
   auto* renWin = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
@@ -801,6 +816,29 @@ bool vtkCausticsRenderPass::RenderCaustics()
   return ok;
 }
 
+bool vtkCausticsRenderPass::DenoiseCaustics()
+{
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  // No history across a frame without denoising or a change of the scene's structure
+  // (the denoiser itself drops it on a resize and, on the GPU, on a camera cut).
+  const std::array<std::size_t, 3> structure = { { f.Scene->Meshes.size(),
+    f.Scene->Materials.size(), f.Scene->Lights.size() } };
+  if (!in.PreviousDenoised || structure != in.DenoisedStructure)
+  {
+    in.Denoiser->ResetHistory();
+  }
+  in.DenoisedStructure = structure;
+  vtkCausticsSVGFDenoiser::Inputs inputs;
+  inputs.Window = f.Window;
+  inputs.Irradiance = in.CausticTexture;
+  inputs.GBuffer = f.CameraGBuffer;
+  inputs.Camera = &f.Scene->View;
+  inputs.Width = f.Width;
+  inputs.Height = f.Height;
+  return in.Denoiser->Denoise(inputs);
+}
+
 bool vtkCausticsRenderPass::CorrectsVTKShading() const
 {
   return this->SpecularShadows || this->Frame.Scene->Participating.enabled;
@@ -861,6 +899,12 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
     ok = ok && this->RenderCaustics();
     this->StopStage("caustic irradiance");
     this->Result.Caustics = ok;
+    if (ok && this->Denoise)
+    {
+      this->StartStage("denoise");
+      this->Result.Denoised = this->DenoiseCaustics();
+      this->StopStage("denoise");
+    }
   }
   // The light that reflectors and refractors pass on is the caustic: VTK's direct
   // light where they block it comes off in the composite.
@@ -1232,6 +1276,13 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
       [](Pass* p) { return p->KeepBuffers; } },
     { "CausticIrradiance", 3, false, [](Pass* p, int) { return p->Internal->CausticTexture.Get(); },
       caustics },
+    { "RawCausticIrradiance", 3, false,
+      [](Pass* p, int)
+      {
+        return p->Result.Denoised ? p->Internal->Denoiser->GetRawTexture()
+                                  : p->Internal->CausticTexture.Get();
+      },
+      caustics },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
     { "LostShading", 3, false,
@@ -1370,6 +1421,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.ShadowBuffers->ReleaseGraphicsResources(w);
   in.RefractorLayers->ReleaseGraphicsResources(w);
   in.Refraction->ReleaseGraphicsResources(w);
+  in.Denoiser->ReleaseGraphicsResources(w);
   vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture,
     in.LostShadingTexture, in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
@@ -1402,6 +1454,9 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RoughnessCutoff: " << this->GetRoughnessCutoff() << "\n";
   os << indent << "RefractionTracing: " << this->RefractionTracing << "\n";
   os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";
+  os << indent << "Denoise: " << this->Denoise << "\n";
+  os << indent << "Denoiser:\n";
+  this->Internal->Denoiser->PrintSelf(os, indent.GetNextIndent());
   os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
   os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
   os << indent << "MediumGridBytes: " << this->GetMediumGridBytes() << " (dense "

@@ -27,7 +27,9 @@
  *    with CausticFramebuffer bound and cleared the technique's hooks
  *    RenderCausticIrradiance (transport and reconstruction: W/m^2 at each
  *    pixel's visible opaque surface point before albedo) and
- *    RenderVolumeRadiance (optional, W/(m^2 sr) into VolumeTexture).
+ *    RenderVolumeRadiance (optional, W/(m^2 sr) into VolumeTexture); with Denoise
+ *    on, the caustic irradiance is then denoised in place (vtkCausticsSVGFDenoiser,
+ *    SVGF as in 002_97e66a5090de9b07.txt §3.3; stage "denoise").
  * 7. RenderDirectIrradiance (ComputeDirectIrradiance, SpecularShadows in a frame
  *    with caustics, or a technique asking with EnsureDirectIrradiance): direct
  *    irradiance, W/m^2, with shadow maps aimed at the whole scene, and the part of
@@ -72,6 +74,7 @@ class vtkCausticsLayeredDepth;
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneExtractor;
 class vtkCausticsSceneGeometry;
+class vtkCausticsSVGFDenoiser;
 class vtkCausticsTimings;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
@@ -147,6 +150,27 @@ public:
   vtkSetMacro(KeepBuffers, bool);
   vtkGetMacro(KeepBuffers, bool);
   vtkBooleanMacro(KeepBuffers, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Denoise the caustic irradiance over space and time (SVGF,
+   * vtkCausticsSVGFDenoiser, 002_97e66a5090de9b07.txt §3.3) right after the
+   * technique made it, before direct light and composite; ReadBuffer
+   * ("CausticIrradiance") is then the denoised irradiance (W/m^2), and
+   * ReadBuffer("RawCausticIrradiance") the technique's. The history is dropped on
+   * the first frame, a resize, a frame without denoising before, a change of the
+   * scene's structure (meshes, materials, lights), a camera cut (too few pixels
+   * reproject) or ResetDenoiserHistory(). Off in this base pass; techniques whose
+   * irradiance is noisy per frame turn it on. Knobs: GetDenoiser().
+   */
+  vtkSetMacro(Denoise, bool);
+  vtkGetMacro(Denoise, bool);
+  vtkBooleanMacro(Denoise, bool);
+  /** The denoising stage and its settings (vtkCausticsSVGFDenoiser's Set/Get methods). */
+  vtkCausticsSVGFDenoiser* GetDenoiser();
+  /** Drops the denoiser's history: the next frame starts afresh (e.g. a scripted cut). */
+  void ResetDenoiserHistory();
   ///@}
 
   ///@{
@@ -274,7 +298,8 @@ public:
 
   /**
    * Reads an intermediate buffer of the last frame into `output` (point-data array
-   * named `name`). Names: FinalColor, CausticIrradiance, DirectIrradiance,
+   * named `name`). Names: FinalColor, CausticIrradiance (denoised with Denoise on),
+   * RawCausticIrradiance (the technique's, before denoising), DirectIrradiance,
    * VolumeRadiance, TechniqueColor, Position, Normal, Albedo, Depth, ReceiverMask,
    * RefractivePosition, RefractiveNormal, RefractiveDepth, and per light i
    * LightPosition:i, LightNormal:i, LightFlux:i, LightDepth:i. Returns false (with
@@ -325,6 +350,7 @@ protected:
     bool Direct = false;         ///< direct irradiance
     bool Volume = false;         ///< the technique wrote volume radiance
     bool TechniqueColor = false; ///< the technique wrote display colours
+    bool Denoised = false;       ///< the caustic irradiance was denoised (Denoise)
   };
 
   /**
@@ -451,6 +477,7 @@ private:
   bool RenderCameraGBuffers();
   bool RenderLightBuffers();
   bool RenderCaustics();
+  bool DenoiseCaustics();
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
@@ -474,6 +501,7 @@ private:
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;
   bool SpecularShadows = false; // techniques that carry caustic light turn it on
+  bool Denoise = false;         // techniques noisy per frame turn it on
 
   FrameInputs Frame;
   FrameResult Result;

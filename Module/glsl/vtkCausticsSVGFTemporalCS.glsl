@@ -1,0 +1,98 @@
+// SVGF step 2, temporal accumulation: this frame's irradiance blended into the
+// reprojected history with weight max(alpha, 1/(frames + 1)), and the first and
+// second moments of its luminance likewise. No history where almost nothing
+// reprojected (a camera cut: fewer than minimumFraction of the receivers).
+// Light that moves over a still receiver (the caustic of a moving ball) is no
+// disocclusion of a surface: a history outside this frame's 5x5 neighbourhood mean
+// +- rejectSigmas standard deviations is dropped, as a disoccluded one is. A
+// non-finite input texel is rejected (the history stays as it was, or zero without
+// one); a negative one counts as zero.
+layout(rgba32f, binding = 2) uniform readonly image2D irradiance; // W/m^2, this frame
+layout(rgba32f, binding = 3) uniform readonly image2D reprojectedColor;
+layout(rgba32f, binding = 4) uniform readonly image2D reprojectedMoments;
+layout(rgba32f, binding = 5) uniform writeonly image2D integratedColor; // rgb, a: 0
+layout(rgba32f, binding = 6) uniform writeonly image2D historyMoments;  // m1, m2, frames
+layout(r32ui, binding = 7) uniform readonly uimage2D counts;
+uniform float temporalAlpha;
+uniform float momentsAlpha;
+uniform float maximumFrames;
+uniform float rejectSigmas;
+uniform float minimumFraction;
+
+// This frame's irradiance at q as the filter takes it: finite, not negative.
+vec3 Sample(ivec2 q, out bool finite)
+{
+  vec4 c = imageLoad(irradiance, q);
+  finite = SVGFFinite(c);
+  return finite ? max(c.rgb, vec3(0.0)) : vec3(0.0);
+}
+
+// Whether the history lies within this frame's neighbourhood (finite receiver
+// texels): mean +- rejectSigmas standard deviations in every channel.
+bool InNeighbourhood(ivec2 p, vec3 history)
+{
+  vec3 sum = vec3(0.0), sum2 = vec3(0.0);
+  float count = 0.0;
+  for (int dy = -2; dy <= 2; ++dy)
+  {
+    for (int dx = -2; dx <= 2; ++dx)
+    {
+      ivec2 q = p + ivec2(dx, dy);
+      if (!SVGFInside(q) || !SVGFReceiver(q))
+      {
+        continue;
+      }
+      bool finite;
+      vec3 c = Sample(q, finite);
+      if (finite)
+      {
+        sum += c;
+        sum2 += c * c;
+        count += 1.0;
+      }
+    }
+  }
+  vec3 mean = sum / max(count, 1.0);
+  vec3 deviation = sqrt(max(sum2 / max(count, 1.0) - mean * mean, vec3(0.0)));
+  return all(lessThanEqual(abs(history - mean), rejectSigmas * deviation));
+}
+
+void main()
+{
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (!SVGFInside(p))
+  {
+    return;
+  }
+  if (!SVGFReceiver(p))
+  {
+    imageStore(integratedColor, p, vec4(0.0));
+    imageStore(historyMoments, p, vec4(0.0));
+    return;
+  }
+  float receivers = float(imageLoad(counts, ivec2(0, 0)).x);
+  float reprojected = float(imageLoad(counts, ivec2(1, 0)).x);
+  bool cut = reprojected < minimumFraction * receivers;
+  vec4 history = cut ? vec4(0.0) : imageLoad(reprojectedColor, p);
+  vec4 historyM = cut ? vec4(0.0) : imageLoad(reprojectedMoments, p);
+  float frames = min(historyM.b, maximumFrames);
+  bool finite;
+  vec3 c = Sample(p, finite);
+  if (!finite && frames > 0.0)
+  {
+    imageStore(integratedColor, p, vec4(history.rgb, 0.0)); // nothing new here
+    imageStore(historyMoments, p, vec4(historyM.rg, frames, 0.0));
+    return;
+  }
+  if (frames > 0.0 && rejectSigmas > 0.0 && !InNeighbourhood(p, history.rgb))
+  {
+    frames = 0.0; // light moved here or away: a disocclusion of the light
+  }
+  float alpha = max(temporalAlpha, 1.0 / (frames + 1.0));
+  float alphaM = max(momentsAlpha, 1.0 / (frames + 1.0));
+  float l = SVGFLuminance(c);
+  vec2 moments = mix(historyM.rg, vec2(l, l * l), alphaM);
+  float kept = finite ? min(frames + 1.0, maximumFrames) : 0.0;
+  imageStore(integratedColor, p, vec4(mix(history.rgb, c, alpha), 0.0));
+  imageStore(historyMoments, p, vec4(moments, kept, 0.0));
+}
