@@ -86,10 +86,19 @@ std::vector<TemporalVariant> MakeTemporalVariants()
         }
         cpu->ProgressiveOff();
       } },
-    // DENOISE VARIANTS GO HERE, one line each once vtkCausticsRenderPass::SetDenoise
-    // (SVGF) lands, e.g.:
-    //   { "screen-space", "denoised", [](vtkCausticsRenderPass* p) { p->SetDenoise(true); } },
-    // and likewise for "caustic-maps" and the "cascaded" technique.
+    // The SVGF stage (docs/denoising.md) on each technique: whether it smears motion
+    // shows in the lag and ghosting columns.
+    { "screen-space", "denoised", [](vtkCausticsRenderPass* p) { p->DenoiseOn(); } },
+    { "caustic-maps", "denoised", [](vtkCausticsRenderPass* p) { p->DenoiseOn(); } },
+    { "cpu-progressive", "progressive=off,denoised",
+      [](vtkCausticsRenderPass* p)
+      {
+        if (auto* cpu = vtkCausticsProgressivePhotonPass::SafeDownCast(p))
+        {
+          cpu->ProgressiveOff();
+        }
+        p->DenoiseOn();
+      } },
   };
 }
 

@@ -38,7 +38,8 @@
 namespace caustics_cli
 {
 const char* const SceneUsage = R"(Scene (default: ball-lens):
-  SCENE                      built-in: ball-lens, pool, ring, bunny
+  SCENE                      built-in: ball-lens, pool, ring, bunny, underwater,
+                             smoke-lens (the last two in heterogeneous media)
   FILE.gltf | FILE.glb       glTF 2.0 with KHR_materials_ior/transmission and
                              KHR_lights_punctual (directional intensity = W/m^2,
                              point/spot intensity = W/sr)
@@ -523,7 +524,8 @@ void LoadScene(const SceneOptions& options, vtkRenderWindow* window, vtkRenderer
   else if (extension.empty())
   {
     throw UsageError("unknown scene '" + options.Scene +
-      "' (built-in: ball-lens, pool, ring, bunny; or a .gltf/.glb/.ply/.obj/.stl file)");
+      "' (built-in: ball-lens, pool, ring, bunny, underwater, smoke-lens; or a "
+      ".gltf/.glb/.ply/.obj/.stl file)");
   }
   else
   {
