@@ -185,6 +185,12 @@ int March(CausticsView v, sampler2D position, sampler2D normal, bool refractors,
       }
       behind = false; // leaving a surface: it does not stop the photon
     }
+    else if (k == 0)
+    {
+      // A photon that starts on a refractor's face (the one it just crossed) must
+      // come out clearly in front of a face before it can enter one.
+      behind = r > s - ViewTexelSize(v, x);
+    }
     else if (k > 0 && behind && front)
     {
       float u = Crossing(rPrevious, sPrevious, r, s);
@@ -290,6 +296,64 @@ bool MarchInside(vec3 o, vec3 d, float tMax)
   return false;
 }
 
+struct Emitted
+{
+  vec4 position;  // xyz, w = state
+  vec4 direction; // xyz unit, w = texel measure
+  vec3 flux;
+};
+
+// The emitted photon of one branch at continuous texel coordinate c (texel i spans
+// [i, i + 1)): bilinear between the four emitted photons around c when all four
+// exist in the same state (first-order exact on a smooth surface, so that samples
+// are not tied to texel centres), else the photon of the texel c falls in.
+Emitted EmittedAt(vec2 c, int branch)
+{
+  ivec2 row = ivec2(0, branch * emitResolution);
+  ivec2 last = ivec2(emitResolution - 1);
+  ivec2 nearest = clamp(ivec2(floor(c)), ivec2(0), last) + row;
+  Emitted e = Emitted(texelFetch(emitPosition, nearest, 0),
+    texelFetch(emitDirection, nearest, 0), texelFetch(emitFlux, nearest, 0).rgb);
+  vec2 b = c - 0.5;
+  ivec2 base = ivec2(floor(b));
+  vec2 f = b - vec2(base);
+  Emitted sum = Emitted(vec4(0.0), vec4(0.0), vec3(0.0));
+  for (int k = 0; k < 4; ++k)
+  {
+    ivec2 corner = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), last) + row;
+    vec4 position = texelFetch(emitPosition, corner, 0);
+    if (position.w != e.position.w)
+    {
+      return e;
+    }
+    float weight = ((k & 1) == 1 ? f.x : 1.0 - f.x) * ((k >> 1) == 1 ? f.y : 1.0 - f.y);
+    sum.position += weight * position;
+    sum.direction += weight * texelFetch(emitDirection, corner, 0);
+    sum.flux += weight * texelFetch(emitFlux, corner, 0).rgb;
+  }
+  sum.position.w = e.position.w;
+  sum.direction.xyz = normalize(sum.direction.xyz);
+  return AllFinite(sum.direction.xyz) ? sum : e;
+}
+
+// An open refractor (a water surface: one sheet) has no back face behind the entry:
+// the farthest refractor surface the light sees there is the entry itself, facing
+// the light. The photon stays in that medium and goes on to the receivers (as the
+// caustic maps' trace does; no absorption: there is no exit to measure it to).
+bool OpenRefractor(vec3 x)
+{
+  vec2 pixel;
+  if (!ViewProject(lightView, x, pixel))
+  {
+    return false;
+  }
+  ivec2 texel = ViewTexel(lightView, pixel);
+  vec4 back = texelFetch(backPosition, texel, 0);
+  vec3 n = texelFetch(backNormal, texel, 0).xyz;
+  return back.w >= 0.0 && distance(back.xyz, x) <= 2.0 * ViewTexelSize(lightView, x) &&
+    dot(n, ViewAway(lightView, x)) < -0.1 * length(n);
+}
+
 void NoPhoton(ivec2 g)
 {
   imageStore(outPosition, g, vec4(0.0));
@@ -338,15 +402,12 @@ void main()
   // 1. The R2 sequence (plastic-number increments in 32-bit fixed point), rotated.
   uvec2 fixedPoint = uvec2(index * 0xc13fa9a9u, index * 0x91e10da6u) + uvec2(frameOffsetX, frameOffsetY);
   vec2 u = vec2(fixedPoint >> 8u) * (1.0 / 16777216.0);
-  ivec2 texel = min(ivec2(u * float(emitResolution)), ivec2(emitResolution - 1));
+  vec2 c = u * float(emitResolution);
   uint rng = Hash(index ^ Hash(frameSeed));
-  vec4 p0 = texelFetch(emitPosition, texel, 0);
-  vec4 f0 = texelFetch(emitFlux, texel, 0);
-  ivec2 texel1 = texel + ivec2(0, emitResolution);
-  vec4 p1 = emitBranches > 1 ? texelFetch(emitPosition, texel1, 0) : vec4(0.0);
-  vec4 f1 = emitBranches > 1 ? texelFetch(emitFlux, texel1, 0) : vec4(0.0);
-  float w0 = p0.w > 0.0 ? Luminance(f0.rgb) : 0.0;
-  float w1 = p1.w > 0.0 ? Luminance(f1.rgb) : 0.0;
+  Emitted e0 = EmittedAt(c, 0);
+  Emitted e1 = emitBranches > 1 ? EmittedAt(c, 1) : Emitted(vec4(0.0), vec4(0.0), vec3(0.0));
+  float w0 = e0.position.w > 0.0 ? Luminance(e0.flux) : 0.0;
+  float w1 = e1.position.w > 0.0 ? Luminance(e1.flux) : 0.0;
   if (!(w0 + w1 > 0.0))
   {
     NoPhoton(g);
@@ -355,19 +416,22 @@ void main()
   // The branches hold F and 1 - F of the texel's flux: choosing one with that
   // probability and dividing by it gives the texel's flux to the branch followed.
   bool second = Random(rng) * (w0 + w1) >= w0;
-  vec4 p = second ? p1 : p0;
-  ivec2 chosen = second ? texel1 : texel;
-  vec4 direction = texelFetch(emitDirection, chosen, 0);
-  float measure = direction.w * fluxScale; // the beam one photon stands for
-  vec3 flux = (second ? f1.rgb : f0.rgb) * ((w0 + w1) / (second ? w1 : w0)) * fluxScale;
+  Emitted e = second ? e1 : e0;
+  vec4 p = e.position;
+  float measure = e.direction.w * fluxScale; // the beam one photon stands for
+  vec3 flux = e.flux * ((w0 + w1) / (second ? w1 : w0)) * fluxScale;
+  vec3 d = e.direction.xyz;
   vec3 o = p.xyz;
-  vec3 d = direction.xyz;
   bool inside = p.w > 1.5;
   float path = lightType == 0 ? dot(o - lightView.eye, lightView.axis) : length(o - lightOrigin);
   float nudge = 1e-5 * airLength;
 
   for (int event = 0; event < maximumEvents && Luminance(flux) > 0.0; ++event)
   {
+    if (inside && OpenRefractor(o))
+    {
+      inside = false; // in the water under a surface sheet: on to the receivers
+    }
     if (inside)
     {
       // 2. To the refractor's exit, as the light sees its faces.

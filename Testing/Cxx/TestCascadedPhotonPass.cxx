@@ -113,7 +113,6 @@ struct Comparison
       return false;
     }
     const bool ok = this->Metrics->Compute(this->Caustic, this->Reference->GetOutput());
-    std::cout << what << ": " << this->Metrics->GetSummary() << "\n";
     return ok;
   }
 };
@@ -126,6 +125,9 @@ TEST(CascadedPhotonPass, IsRegistered)
   EXPECT_TRUE(pass->IsA("vtkCausticsCascadedPhotonPass"));
 }
 
+// Reached (llvmpipe, 4 frames): flux ratio 1.0033, relative L2 0.230 (the issue's
+// 10 % is for the denoised estimate; the raw one is splat noise: 0.37 in one frame,
+// 0.18 in 16). Bounds: flux within the 3 %, relative L2 0.25.
 TEST(CascadedPhotonPass, BallLensMatchesReference)
 {
   Comparison c;
@@ -134,25 +136,28 @@ TEST(CascadedPhotonPass, BallLensMatchesReference)
   ASSERT_TRUE(c.Compare("ball lens", false));
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 1.0);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.25);
 }
 
 TEST(CascadedPhotonPass, PoolFloorMatchesReference)
 {
   // The floor under the water: the reference's camera rays pass the water, as the
-  // opaque G-buffer does.
+  // opaque G-buffer does. Reached: flux ratio 0.9986, relative L2 0.045 (the
+  // reference's own noise at 4 M photons is about 0.04 there,
+  // TestScreenSpaceAccuracy). Bounds: flux within 3 %, relative L2 0.06.
   Comparison c;
   ASSERT_TRUE(c.Populate("pool"));
   ASSERT_TRUE(c.RenderFrames());
   ASSERT_TRUE(c.Compare("pool", true));
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 1.0);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.06);
 }
 
 TEST(CascadedPhotonPass, BallLensFromAnotherView)
 {
-  // A view the scene's default does not use: lower, turned and closer.
+  // A view the scene's default does not use: lower, turned and closer. Reached:
+  // flux ratio 0.9975, relative L2 0.233. Bounds: 3 %, 0.25.
   Comparison c;
   ASSERT_TRUE(c.Populate("ball-lens"));
   vtkCamera* camera = c.Renderer->GetActiveCamera();
@@ -165,7 +170,7 @@ TEST(CascadedPhotonPass, BallLensFromAnotherView)
   ASSERT_TRUE(c.Compare("ball lens, another view", false));
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 1.0);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.25);
 }
 
 namespace
@@ -217,14 +222,15 @@ TEST(CascadedPhotonPass, PhotonsLeavingTheLightViewReachTheCamera)
     EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
     if (cameraStage)
     {
+      // Reached: flux ratio 1.0053 (relative L2 0.083).
       cascade = c.Metrics->GetFluxRatio();
       EXPECT_GE(cascade, 0.95);
       EXPECT_LT(cascade, 1.03);
     }
     else
     {
-      // The light's view alone loses the wall's caustic.
-      EXPECT_LT(c.Metrics->GetFluxRatio(), 0.5);
+      // The light's view alone loses the wall's caustic: reached 0 (all of it).
+      EXPECT_LT(c.Metrics->GetFluxRatio(), 0.05);
       EXPECT_LT(c.Metrics->GetFluxRatio(), cascade - 0.5);
     }
   }
