@@ -166,6 +166,7 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.Grid.Emitted = s.Landed.Records();
 
   this->BeginStage("cascaded trace");
+  caustics::gl::SetMediumDefine(s.Program, in.MediumGrid); // recompiles only when it changes
   if (!s.Program->Bind(in.Window))
   {
     this->EndStage("cascaded trace");
@@ -204,6 +205,7 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
   s.Program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(in.Scene->Bounds)));
   s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+  caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
   s.Program->DispatchCovering2D(width, height, 8, 8);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   s.Program->Unbind(in.Window);

@@ -23,13 +23,15 @@
  *    refined by Eq. 2; where the ray leaves the light's view or passes behind what
  *    the light sees, the last position is reprojected into the camera's view and
  *    the march goes on there against the camera's depth (Fig. 5); hits pass the
- *    normal check; mirrors reflect, up to MaximumEvents specular events;
+ *    normal check; mirrors reflect, up to MaximumEvents specular events; a
+ *    participating medium (homogeneous, or a density grid) attenuates every stretch
+ *    in air;
  * 5. irradiance (Eq. 3): the landed photons, in the shared photon record layout, go
  *    to vtkCausticsPhotonSplatter, whose energy-normalized splats give W/m^2.
  * CameraStage off keeps step 4 in the light's view (photons leaving it are lost).
  * Not done: the paper's roughness and luminance cut-offs (every surface is either
  * perfectly specular or diffuse here, and a luminance cut-off would bias the
- * estimate); camera-view marches see no refractors; media do not attenuate.
+ * estimate); camera-view marches see no refractors.
  */
 #ifndef vtkCausticsCascadedPhotonPass_h
 #define vtkCausticsCascadedPhotonPass_h

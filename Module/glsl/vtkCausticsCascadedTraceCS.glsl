@@ -16,7 +16,8 @@
 //    the camera view and the march goes on against the camera's opaque G-buffer
 //    (Fig. 5); a hit counts when the light arrives on the side the camera sees
 //    (<-d, n> >= 0 with n facing the camera). Mirrors reflect (conductor Fresnel)
-//    and refractors met in the light's view are entered, up to maximumEvents;
+//    and refractors met in the light's view are entered, up to maximumEvents; a
+//    participating medium attenuates every stretch in air;
 // 4. output: landed photons in the photon record layout (vtkCausticsCommon.glsl) and
 //    their kernel radii, for vtkCausticsPhotonSplatter (Eq. 3 by splatting).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -354,6 +355,15 @@ bool OpenRefractor(vec3 x)
     dot(n, ViewAway(lightView, x)) < -0.1 * length(n);
 }
 
+// A straight stretch in air from a to b: the path grows, the participating medium
+// (vtkCausticsCommon.glsl: homogeneous, or a density grid) takes its share.
+void Travel(vec3 a, vec3 b, inout vec3 flux, inout float path)
+{
+  float length = distance(a, b);
+  flux *= length > 0.0 ? CausticsMediumTransmittance(a, (b - a) / length, 0.0, length) : vec3(1.0);
+  path += length;
+}
+
 void NoPhoton(ivec2 g)
 {
   imageStore(outPosition, g, vec4(0.0));
@@ -424,6 +434,9 @@ void main()
   vec3 o = p.xyz;
   bool inside = p.w > 1.5;
   float path = lightType == 0 ? dot(o - lightView.eye, lightView.axis) : length(o - lightOrigin);
+  // The participating medium between the light and the first specular surface.
+  float reach = lightType == 0 ? 3.0e38 : distance(o, lightOrigin);
+  flux *= CausticsMediumTransmittance(o, -ViewAway(lightView, o), 0.0, reach);
   float nudge = 1e-5 * airLength;
 
   for (int event = 0; event < maximumEvents && Luminance(flux) > 0.0; ++event)
@@ -459,7 +472,7 @@ void main()
       if (March(lightView, frontPosition, frontNormal, true, o, d, reach, false) == MARCH_HIT &&
         hitRole == ROLE_REFRACTOR)
       {
-        path += length(hitPoint - o);
+        Travel(o, hitPoint, flux, path);
         Scatter(d, flux, inside, ROLE_REFRACTOR, rng);
         o = hitPoint + nudge * d;
         continue;
@@ -473,7 +486,7 @@ void main()
     {
       // Reprojection into the camera view (§3.2, Fig. 5): march on from the last
       // position the light's view could vouch for.
-      path += length(lastPoint - o);
+      Travel(o, lastPoint, flux, path);
       o = lastPoint;
       result = March(cameraView, cameraPosition, cameraNormal, false, o, d, airLength, false);
     }
@@ -481,7 +494,7 @@ void main()
     {
       break;
     }
-    path += length(hitPoint - o);
+    Travel(o, hitPoint, flux, path);
     if (hitRole == ROLE_REFLECTOR)
     {
       Scatter(d, flux, inside, ROLE_REFLECTOR, rng);

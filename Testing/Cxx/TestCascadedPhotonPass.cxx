@@ -13,8 +13,10 @@
 #include "vtkCausticsCascadedPhotonPass.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsTechniques.h"
+#include "vtkCausticsTimings.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -28,7 +30,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
+#include <string>
+#include <vector>
 #include <iostream>
 
 namespace
@@ -67,11 +72,11 @@ struct Comparison
     builtin->SetSceneName(scene);
     return builtin->Populate(this->Renderer);
   }
-  /** Averages the caustic irradiance of Frames frames into Caustic. */
-  bool RenderFrames()
+  /** Averages the caustic irradiance of `frames` frames into Caustic. */
+  bool RenderFrames(int frames = Frames)
   {
     vtkDataArray* sum = nullptr;
-    for (int frame = 0; frame < Frames; ++frame)
+    for (int frame = 0; frame < frames; ++frame)
     {
       this->Window->Render();
       vtkNew<vtkImageData> image;
@@ -95,7 +100,7 @@ struct Comparison
     }
     for (vtkIdType i = 0; sum && i < sum->GetNumberOfValues(); ++i)
     {
-      sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() / Frames);
+      sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() / frames);
     }
     return sum != nullptr;
   }
@@ -113,6 +118,7 @@ struct Comparison
       return false;
     }
     const bool ok = this->Metrics->Compute(this->Caustic, this->Reference->GetOutput());
+    std::cout << what << ": " << this->Metrics->GetSummary() << "\n";
     return ok;
   }
 };
@@ -171,6 +177,24 @@ TEST(CascadedPhotonPass, BallLensFromAnotherView)
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
   EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.25);
+}
+
+TEST(CascadedPhotonPass, BallLensInAMedium)
+{
+  // A homogeneous scattering medium (0.1 /m) filling the scene: the way from the
+  // light to the ball and from the ball to the floor takes its share (the reference
+  // follows the same medium). Reached: flux ratio 1.0011, relative L2 0.216 (against
+  // 1 M reference photons, which take 50 s with the medium). Bounds: 3 %, 0.23.
+  Comparison c;
+  ASSERT_TRUE(c.Populate("ball-lens"));
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(0.1, 0.1, 0.1);
+  vtkCausticsMedium::AttachTo(c.Renderer, medium);
+  ASSERT_TRUE(c.RenderFrames());
+  ASSERT_TRUE(c.Compare("ball lens in a medium", false, 1000000));
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.23);
 }
 
 namespace
@@ -233,5 +257,78 @@ TEST(CascadedPhotonPass, PhotonsLeavingTheLightViewReachTheCamera)
       EXPECT_LT(c.Metrics->GetFluxRatio(), 0.05);
       EXPECT_LT(c.Metrics->GetFluxRatio(), cascade - 0.5);
     }
+  }
+}
+
+// The raw estimate's error against the splat radius and the frames averaged (not run
+// by default: --gtest_also_run_disabled_tests; figures in docs/technique-cascaded.md).
+TEST(CascadedPhotonPass, DISABLED_KernelSpacingsAndFrames)
+{
+  for (const char* scene : { "ball-lens", "pool" })
+  {
+    for (double spacings : { 2.0, 4.0 })
+    {
+      for (int frames : { 1, 4, 16 })
+      {
+        Comparison c;
+        ASSERT_TRUE(c.Populate(scene));
+        c.Pass->SetKernelSpacings(spacings);
+        ASSERT_TRUE(c.RenderFrames(frames));
+        const std::string what = std::string(scene) + ", KernelSpacings " +
+          std::to_string(spacings).substr(0, 3) + ", " + std::to_string(frames) + " frame(s)";
+        ASSERT_TRUE(c.Compare(what.c_str(), std::string(scene) == "pool"));
+      }
+    }
+  }
+}
+
+namespace
+{
+/** Wall time (ms) of a stage of the last frame: its CPU time in synchronous mode. */
+double Wall(vtkCausticsTimings* timings, const char* name)
+{
+  for (int i = 0; i < timings->GetNumberOfStages(); ++i)
+  {
+    if (std::string(timings->GetStageName(i)) == name && timings->GetStageRan(i))
+    {
+      return timings->GetStageCPUMilliseconds(i);
+    }
+  }
+  return -1.0;
+}
+}
+
+// Table 1 of the paper for this implementation: the pool (water over a floor, as the
+// paper's flooded scenes) at 256^2 pixels from a 1024^2 light buffer, 0.5, 1 and 2 M
+// photons; median of 3 synchronous frames of each stage (not run by default:
+// --gtest_also_run_disabled_tests; figures in docs/technique-cascaded.md).
+TEST(CascadedPhotonPass, DISABLED_Table1)
+{
+  for (int photons : { 524288, 1048576, 2097152 })
+  {
+    Comparison c;
+    ASSERT_TRUE(c.Populate("pool"));
+    c.Pass->SetLightBufferResolution(1024);
+    c.Pass->SetNumberOfPhotons(photons);
+    c.Pass->GetTimings()->SynchronousOn();
+    const char* stages[] = { "cascaded emit", "cascaded light layers", "cascaded trace",
+      "cascaded splat" };
+    std::vector<std::vector<double>> times(4);
+    for (int frame = 0; frame < 4; ++frame)
+    {
+      c.Window->Render();
+      ASSERT_TRUE(c.Pass->GetLastFrameHadCaustics());
+      for (int s = 0; frame > 0 && s < 4; ++s) // the first frame compiles the programs
+      {
+        times[s].push_back(Wall(c.Pass->GetTimings(), stages[s]));
+      }
+    }
+    std::cout << "photons " << photons;
+    for (int s = 0; s < 4; ++s)
+    {
+      std::sort(times[s].begin(), times[s].end());
+      std::cout << ", " << stages[s] << " " << times[s][times[s].size() / 2] << " ms";
+    }
+    std::cout << "\n";
   }
 }
