@@ -4,8 +4,8 @@
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLightBuffers.h"
-#include "vtkCausticsOptics.h"               // Surface interaction (shared)
-#include "vtkCausticsPhotonBufferCommon.h"   // CausticsView and its projections (shared)
+#include "vtkCausticsOptics.h"                // Surface interaction (shared)
+#include "vtkCausticsPhotonBufferCommon.h"    // CausticsView and its projections (shared)
 #include "vtkCausticsPhotonBufferUtilities.h" // The views' uniforms
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonSplatter.h"

@@ -1,6 +1,6 @@
 /**
  * @file   vtkCausticsCascadedSettings.h
- * @brief  The knobs of the cascaded image-space photon tracing technique, as one value (not wrapped).
+ * @brief  The knobs of cascaded image-space photon tracing, as one value (not wrapped).
  *
  * vtkCausticsCascadedPhotonPass owns one CascadedSettings; its Set/Get methods
  * (documented, with their ranges, on the pass) write into it and the trace takes it

@@ -32,9 +32,9 @@
 
 #include <algorithm>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
-#include <iostream>
 
 namespace
 {
@@ -95,7 +95,8 @@ struct Comparison
       vtkDataArray* add = image->GetPointData()->GetArray("CausticIrradiance");
       for (vtkIdType i = 0; i < sum->GetNumberOfValues(); ++i)
       {
-        sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() + add->GetVariantValue(i).ToDouble());
+        sum->SetVariantValue(
+          i, sum->GetVariantValue(i).ToDouble() + add->GetVariantValue(i).ToDouble());
       }
     }
     for (vtkIdType i = 0; sum && i < sum->GetNumberOfValues(); ++i)
@@ -241,8 +242,9 @@ TEST(CascadedPhotonPass, PhotonsLeavingTheLightViewReachTheCamera)
     MirrorAndWall(c.Renderer);
     c.Pass->SetCameraStage(cameraStage);
     ASSERT_TRUE(c.RenderFrames());
-    ASSERT_TRUE(c.Compare(cameraStage ? "mirror and wall, cascade" : "mirror and wall, light view only",
-      false, 1000000));
+    ASSERT_TRUE(
+      c.Compare(cameraStage ? "mirror and wall, cascade" : "mirror and wall, light view only",
+        false, 1000000));
     EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
     if (cameraStage)
     {

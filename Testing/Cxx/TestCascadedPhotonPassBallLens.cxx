@@ -39,7 +39,8 @@ int TestCascadedPhotonPassBallLens(int argc, char* argv[])
   window->AddRenderer(renderer);
   window->Render();
   vtkNew<vtkImageData> caustic;
-  const bool read = pass->GetLastFrameHadCaustics() && pass->ReadBuffer("CausticIrradiance", caustic);
+  const bool read =
+    pass->GetLastFrameHadCaustics() && pass->ReadBuffer("CausticIrradiance", caustic);
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
   if (!read)
