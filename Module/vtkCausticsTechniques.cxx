@@ -1,5 +1,6 @@
 #include "vtkCausticsTechniques.h"
 
+#include "vtkCausticsCascadedPhotonPass.h"
 #include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsRenderPass.h"
@@ -41,6 +42,10 @@ std::vector<Entry>& Entries()
       "photon buffers from the lights gathered hierarchically into multi-resolution caustic "
       "maps (Wyman 2008, docs/technique-caustic-maps.md)",
       [] { return vtkSmartPointer<vtkCausticsHierarchicalCausticMapPass>::New(); } },
+    { "cascaded",
+      "photons sampled from the light buffers, marched in the light's view, then the camera's "
+      "(Meenrattanakorn and Lambers, docs/technique-cascaded.md)",
+      [] { return vtkSmartPointer<vtkCausticsCascadedPhotonPass>::New(); } },
   };
   return entries;
 }

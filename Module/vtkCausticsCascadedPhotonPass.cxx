@@ -1,0 +1,263 @@
+#include "vtkCausticsCascadedPhotonPass.h"
+
+#include "vtkCausticsCascadedTraceCS.h" // The cascade's compute shader
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsOptics.h"                // Surface interaction (shared)
+#include "vtkCausticsPhotonBufferCommon.h"    // CausticsView and its projections (shared)
+#include "vtkCausticsPhotonBufferUtilities.h" // The views' uniforms
+#include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonSplatter.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsTimings.h"
+#include "vtkObjectFactory.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+vtkStandardNewMacro(vtkCausticsCascadedPhotonPass);
+
+namespace
+{
+double Diagonal(const double bounds[6])
+{
+  const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/** A well-mixed 32-bit hash (the frame's offsets and seed). */
+unsigned int Mix(unsigned int x)
+{
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+constexpr int NumberOfInputs = 11;
+const char* const InputNames[NumberOfInputs] = { "emitPosition", "emitDirection", "emitFlux",
+  "opaquePosition", "opaqueNormal", "frontPosition", "frontNormal", "backPosition", "backNormal",
+  "cameraPosition", "cameraNormal" };
+}
+
+struct vtkCausticsCascadedPhotonPass::Internals
+{
+  vtkNew<vtkCausticsPhotonEmitter> Emitter;   // 1. the first specular event (shared)
+  vtkNew<vtkCausticsGBuffer> Opaque;          // 2. receivers and reflectors from the light
+  vtkNew<vtkCausticsGBuffer> Front;           //    refractors' nearest faces from the light
+  vtkNew<vtkCausticsGBuffer> Back;            //    refractors' farthest faces from the light
+  vtkNew<vtkCausticsShaderProgram> Program;   // 3-4. sampling and the cascade
+  vtkNew<vtkCausticsPhotonSplatter> Splatter; // 5. irradiance (shared)
+  caustics::gl::PhotonPlanes Landed;          // the cascade's output, with kernel radii
+  caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
+};
+
+vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
+  : Internal(new Internals)
+{
+  auto& s = *this->Internal;
+  s.Program->SetName("cascaded photon trace");
+  const std::string source =
+    std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsCascadedTraceCS;
+  s.Program->SetComputeSource(source.c_str());
+  s.Emitter->SetSplitFresnel(true); // both branches: the trace chooses one by roulette
+  s.Back->KeepFarthestOn();
+  this->SetSpecularShadows(true); // its photons replace the light the specular actors block
+  // TODO(denoise): this->SetDenoise(true) once the base pass has the SVGF denoiser (§3.3).
+}
+
+vtkCausticsCascadedPhotonPass::~vtkCausticsCascadedPhotonPass() = default;
+
+void vtkCausticsCascadedPhotonPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const caustics::CascadedSettings& knobs = this->Settings;
+  os << indent << "NumberOfPhotons: " << knobs.NumberOfPhotons << "\n";
+  os << indent << "CameraStage: " << (knobs.CameraStage ? "on" : "off") << "\n";
+  os << indent << "MarchSteps: " << knobs.MarchSteps << "\n";
+  os << indent << "MaximumEvents: " << knobs.MaximumEvents << "\n";
+  os << indent << "KernelSpacings: " << knobs.KernelSpacings << "\n";
+  os << indent << "FrameIndex: " << this->FrameIndex << "\n";
+  os << indent << "Sampling: R2 sequence, per-frame Cranley-Patterson rotation\n";
+}
+
+vtkCausticsRenderPass::CausticNeeds vtkCausticsCascadedPhotonPass::GetCausticNeeds()
+{
+  CausticNeeds needs;
+  needs.LitSpecular = true; // a light must reach a specular actor
+  return needs;
+}
+
+vtkCausticsRenderPass::PhotonStorage vtkCausticsCascadedPhotonPass::GetPhotonStorage()
+{
+  // Per emitter slot (N x 2N): the three light layers (28 B per texel, two slots per
+  // texel). Beside the grid: the landed records and radii (52 B per sampled photon).
+  return { 3.0 * 14.0, 0.0, 52.0 * this->Settings.NumberOfPhotons, false };
+}
+
+bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
+{
+  bool ok = true;
+  for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
+  {
+    if (!in.LightBuffers->GetView(light).valid || this->Settings.NumberOfPhotons <= 0)
+    {
+      continue;
+    }
+    ok = this->Emit(in, light) && this->RenderLightLayers(in, light) && this->Trace(in, light) &&
+      this->Splat(in);
+  }
+  ++this->FrameIndex; // the next frame is a fresh, independent estimate
+  return ok;
+}
+
+bool vtkCausticsCascadedPhotonPass::Emit(const FrameInputs& in, int light)
+{
+  this->BeginStage("cascaded emit");
+  const bool ok =
+    this->Internal->Emitter->Emit(in.Window, in.LightBuffers, light, in.Geometry, *in.Scene);
+  this->EndStage("cascaded emit");
+  return ok;
+}
+
+bool vtkCausticsCascadedPhotonPass::RenderLightLayers(const FrameInputs& in, int light)
+{
+  auto& s = *this->Internal;
+  const caustics::LightView& view = in.LightBuffers->GetView(light);
+  const int n = s.Emitter->GetGrid().BranchRows;
+  float lightToClip[16];
+  caustics::gl::ToColumnMajor(view.worldToClip, lightToClip);
+  const int opaque = vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(2);
+  const int refractors = vtkCausticsSceneGeometry::RoleBit(3);
+  this->BeginStage("cascaded light layers");
+  const bool ok = s.Opaque->Render(in.Window, in.Geometry, lightToClip, n, n, opaque) &&
+    s.Front->Render(in.Window, in.Geometry, lightToClip, n, n, refractors) &&
+    s.Back->Render(in.Window, in.Geometry, lightToClip, n, n, refractors);
+  this->EndStage("cascaded light layers");
+  return ok;
+}
+
+bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
+{
+  auto& s = *this->Internal;
+  const caustics::PhotonGrid& emitted = s.Emitter->GetGrid();
+  const caustics::LightView& view = in.LightBuffers->GetView(light);
+  const caustics::Light& source = in.Scene->Lights[light];
+  const int photons = this->Settings.NumberOfPhotons;
+  const int width = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(photons)))));
+  const int height = (photons + width - 1) / width;
+  const double texelsPerPhoton =
+    double(emitted.BranchRows) * double(emitted.BranchRows) / double(photons);
+
+  // The landed photons' grid: what the splatter draws.
+  s.Grid = emitted;
+  s.Grid.Width = width;
+  s.Grid.Height = height;
+  s.Grid.BranchRows = height;
+  s.Grid.MaximumPhotonFlux = emitted.MaximumPhotonFlux * texelsPerPhoton;
+  s.Landed.EnsureWithRadius(in.Window, width, height); // reallocates on a change only
+  s.Grid.Emitted = s.Landed.Records();
+
+  this->BeginStage("cascaded trace");
+  caustics::gl::SetMediumDefine(s.Program, in.MediumGrid); // recompiles only when it changes
+  if (!s.Program->Bind(in.Window))
+  {
+    this->EndStage("cascaded trace");
+    return false;
+  }
+  vtkTextureObject* inputs[NumberOfInputs] = { emitted.Emitted.Position, emitted.Emitted.Direction,
+    emitted.Emitted.Flux, s.Opaque->GetPositionTexture(), s.Opaque->GetNormalTexture(),
+    s.Front->GetPositionTexture(), s.Front->GetNormalTexture(), s.Back->GetPositionTexture(),
+    s.Back->GetNormalTexture(), in.CameraGBuffer->GetPositionTexture(),
+    in.CameraGBuffer->GetNormalTexture() };
+  for (int i = 0; i < NumberOfInputs; ++i)
+  {
+    inputs[i]->Activate();
+    s.Program->SetUniformi(InputNames[i], inputs[i]->GetTextureUnit());
+  }
+  s.Landed.BindImages(0, GL_WRITE_ONLY);
+  s.Landed.BindRadiusImage(3, GL_WRITE_ONLY);
+
+  caustics::hcm::SetViewUniforms(s.Program, "lightView", view, emitted.Width, emitted.BranchRows);
+  caustics::hcm::SetCameraViewUniforms(s.Program, "cameraView", in.Scene->View);
+  s.Program->SetUniformi("emitResolution", emitted.BranchRows);
+  s.Program->SetUniformi("emitBranches", emitted.Height > emitted.BranchRows ? 2 : 1);
+  s.Program->SetUniform2i("photonGrid", width, height);
+  s.Program->SetUniformi("photonCount", photons);
+  // The frame's rotation of the R2 sequence and the roulette's seed.
+  const unsigned int frame = this->FrameIndex;
+  s.Program->SetUniformu("frameOffsetX", Mix(2u * frame + 1u));
+  s.Program->SetUniformu("frameOffsetY", Mix(2u * frame + 2u));
+  s.Program->SetUniformu("frameSeed", Mix(frame ^ 0x5bd1e995u));
+  s.Program->SetUniformf("fluxScale", static_cast<float>(texelsPerPhoton));
+  s.Program->SetUniformi("lightType", static_cast<int>(source.type));
+  s.Program->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
+    static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
+  s.Program->SetUniformi("cameraStage", this->Settings.CameraStage ? 1 : 0);
+  s.Program->SetUniformi("marchSteps", this->Settings.MarchSteps);
+  s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
+  s.Program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(in.Scene->Bounds)));
+  s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+  caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
+  s.Program->DispatchCovering2D(width, height, 8, 8);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  s.Program->Unbind(in.Window);
+  for (unsigned int i = 0; i < 4; ++i)
+  {
+    glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  }
+  for (vtkTextureObject* input : inputs)
+  {
+    input->Deactivate();
+  }
+  this->EndStage("cascaded trace");
+  return true;
+}
+
+bool vtkCausticsCascadedPhotonPass::Splat(const FrameInputs& in)
+{
+  auto& s = *this->Internal;
+  this->BeginStage("cascaded splat");
+  const bool ok = s.Splatter->Splat(in.Window, s.Grid, s.Landed.Records(), s.Landed.KernelRadius(),
+    in.CameraGBuffer, in.WorldToClip);
+  this->EndStage("cascaded splat");
+  return ok;
+}
+
+void vtkCausticsCascadedPhotonPass::BeginStage(const char* name)
+{
+  // With synchronous timings (benchmarks, tests) a stage's time is its GPU work.
+  if (this->GetTimings()->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StartStage(name);
+}
+
+void vtkCausticsCascadedPhotonPass::EndStage(const char* name)
+{
+  if (this->GetTimings()->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StopStage(name);
+}
+
+void vtkCausticsCascadedPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
+{
+  auto& s = *this->Internal;
+  s.Emitter->ReleaseGraphicsResources(w);
+  s.Opaque->ReleaseGraphicsResources(w);
+  s.Front->ReleaseGraphicsResources(w);
+  s.Back->ReleaseGraphicsResources(w);
+  s.Program->ReleaseGraphicsResources(w);
+  s.Splatter->ReleaseGraphicsResources(w);
+  s.Landed.Release(w);
+}

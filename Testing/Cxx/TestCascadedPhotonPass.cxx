@@ -1,0 +1,337 @@
+// Cascaded image-space photon tracing (vtkCausticsCascadedPhotonPass,
+// 002_97e66a5090de9b07.txt) against the CPU reference renderer
+// (vtkCausticsReferenceRenderer, cached; docs/accuracy.md metrics) at 256^2 pixels and
+// the pass's defaults (65536 photons per light and frame from 256^2 light-buffer
+// texels). The estimator is jittered: each frame is a fresh estimate, so the
+// caustic irradiance of Frames consecutive frames is averaged first (what a temporal
+// filter would do). No denoiser runs here (the base pass has none yet): the figures
+// are the raw estimate's. Each bound is the figure reached (printed, and in
+// docs/technique-cascaded.md) plus a small margin for the reference's noise.
+#include "TestReferenceUtilities.h"
+
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsCascadedPhotonPass.h"
+#include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
+#include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsTechniques.h"
+#include "vtkCausticsTimings.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int Frames = 4;
+
+/** A scene rendered by the cascaded pass (Frames frames averaged) and by the reference. */
+struct Comparison
+{
+  vtkNew<vtkOpenGLRenderer> Renderer;
+  vtkNew<vtkCausticsCascadedPhotonPass> Pass;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkImageData> Caustic;
+  vtkNew<vtkCausticsErrorMetrics> Metrics;
+  vtkSmartPointer<vtkCausticsReferenceRenderer> Reference;
+
+  Comparison()
+  {
+    this->Renderer->SetPass(this->Pass);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(256, 256);
+    this->Window->AddRenderer(this->Renderer);
+    this->Metrics->SetArrayName("CausticIrradiance");
+    this->Metrics->SetMaskArrayName("ReceiverMask");
+    this->Metrics->SetAreaArrayName("PixelArea");
+  }
+  ~Comparison()
+  {
+    this->Renderer->SetPass(nullptr);
+    this->Pass->ReleaseGraphicsResources(this->Window);
+  }
+  bool Populate(const char* scene)
+  {
+    vtkNew<vtkCausticsBuiltinScene> builtin;
+    builtin->SetSceneName(scene);
+    return builtin->Populate(this->Renderer);
+  }
+  /** Averages the caustic irradiance of `frames` frames into Caustic. */
+  bool RenderFrames(int frames = Frames)
+  {
+    vtkDataArray* sum = nullptr;
+    for (int frame = 0; frame < frames; ++frame)
+    {
+      this->Window->Render();
+      vtkNew<vtkImageData> image;
+      if (!this->Pass->GetLastFrameHadCaustics() ||
+        !this->Pass->ReadBuffer("CausticIrradiance", image))
+      {
+        std::cerr << "frame " << frame << ": no caustics\n";
+        return false;
+      }
+      if (frame == 0)
+      {
+        this->Caustic->DeepCopy(image);
+        sum = this->Caustic->GetPointData()->GetArray("CausticIrradiance");
+        continue;
+      }
+      vtkDataArray* add = image->GetPointData()->GetArray("CausticIrradiance");
+      for (vtkIdType i = 0; i < sum->GetNumberOfValues(); ++i)
+      {
+        sum->SetVariantValue(
+          i, sum->GetVariantValue(i).ToDouble() + add->GetVariantValue(i).ToDouble());
+      }
+    }
+    for (vtkIdType i = 0; sum && i < sum->GetNumberOfValues(); ++i)
+    {
+      sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() / frames);
+    }
+    return sum != nullptr;
+  }
+  /** The reference for the renderer as it is (cached by the reference renderer). */
+  bool Compare(const char* what, bool throughRefractors, vtkIdType photons = 4000000)
+  {
+    this->Reference = vtkSmartPointer<vtkCausticsReferenceRenderer>::New();
+    this->Reference->SetInputRenderer(this->Renderer);
+    this->Reference->SetImageSize(256, 256);
+    this->Reference->SetPhotonsPerLight(photons);
+    this->Reference->SetCameraSeesRefractors(!throughRefractors);
+    if (!this->Reference->Update())
+    {
+      std::cerr << this->Reference->GetLastError() << "\n";
+      return false;
+    }
+    const bool ok = this->Metrics->Compute(this->Caustic, this->Reference->GetOutput());
+    std::cout << what << ": " << this->Metrics->GetSummary() << "\n";
+    return ok;
+  }
+};
+}
+
+TEST(CascadedPhotonPass, IsRegistered)
+{
+  auto pass = vtkCausticsTechniques::Create("cascaded");
+  ASSERT_NE(pass, nullptr);
+  EXPECT_TRUE(pass->IsA("vtkCausticsCascadedPhotonPass"));
+}
+
+// Reached (llvmpipe, 4 frames): flux ratio 1.0033, relative L2 0.230 (the issue's
+// 10 % is for the denoised estimate; the raw one is splat noise: 0.37 in one frame,
+// 0.18 in 16). Bounds: flux within the 3 %, relative L2 0.25.
+TEST(CascadedPhotonPass, BallLensMatchesReference)
+{
+  Comparison c;
+  ASSERT_TRUE(c.Populate("ball-lens"));
+  ASSERT_TRUE(c.RenderFrames());
+  ASSERT_TRUE(c.Compare("ball lens", false));
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.25);
+}
+
+TEST(CascadedPhotonPass, PoolFloorMatchesReference)
+{
+  // The floor under the water: the reference's camera rays pass the water, as the
+  // opaque G-buffer does. Reached: flux ratio 0.9986, relative L2 0.045 (the
+  // reference's own noise at 4 M photons is about 0.04 there,
+  // TestScreenSpaceAccuracy). Bounds: flux within 3 %, relative L2 0.06.
+  Comparison c;
+  ASSERT_TRUE(c.Populate("pool"));
+  ASSERT_TRUE(c.RenderFrames());
+  ASSERT_TRUE(c.Compare("pool", true));
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.06);
+}
+
+TEST(CascadedPhotonPass, BallLensFromAnotherView)
+{
+  // A view the scene's default does not use: lower, turned and closer. Reached:
+  // flux ratio 0.9975, relative L2 0.233. Bounds: 3 %, 0.25.
+  Comparison c;
+  ASSERT_TRUE(c.Populate("ball-lens"));
+  vtkCamera* camera = c.Renderer->GetActiveCamera();
+  camera->Azimuth(50.0);
+  camera->Elevation(-12.0);
+  camera->Dolly(1.3);
+  camera->OrthogonalizeViewUp();
+  c.Renderer->ResetCameraClippingRange();
+  ASSERT_TRUE(c.RenderFrames());
+  ASSERT_TRUE(c.Compare("ball lens, another view", false));
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.25);
+}
+
+TEST(CascadedPhotonPass, BallLensInAMedium)
+{
+  // A homogeneous scattering medium (0.1 /m) filling the scene: the way from the
+  // light to the ball and from the ball to the floor takes its share (the reference
+  // follows the same medium). Reached: flux ratio 1.0011, relative L2 0.216 (against
+  // 1 M reference photons, which take 50 s with the medium). Bounds: 3 %, 0.23.
+  Comparison c;
+  ASSERT_TRUE(c.Populate("ball-lens"));
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(0.1, 0.1, 0.1);
+  vtkCausticsMedium::AttachTo(c.Renderer, medium);
+  ASSERT_TRUE(c.RenderFrames());
+  ASSERT_TRUE(c.Compare("ball lens in a medium", false, 1000000));
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.23);
+}
+
+namespace
+{
+/**
+ * Fig. 5 of the paper: a 45 degree mirror under a vertical sun sends its light
+ * sideways onto a wall 1.5 m away, outside the light's view (aimed at the mirror,
+ * 0.28 m in half width). Camera on the wall and the mirror.
+ */
+void MirrorAndWall(vtkRenderer* renderer)
+{
+  vtkNew<vtkPlaneSource> mirror;
+  mirror->SetOrigin(-0.1414, 1.1414, -0.2);
+  mirror->SetPoint1(0.1414, 0.8586, -0.2);
+  mirror->SetPoint2(-0.1414, 1.1414, 0.2);
+  mirror->Update();
+  auto mirrorActor = reftest::MakeActor(mirror->GetOutput(), "mirror");
+  vtkCausticsMaterial::SetRole(mirrorActor, vtkCausticsMaterial::ROLE_REFLECTOR);
+  const double n[3] = { 0.16, 0.14, 0.13 }, k[3] = { 3.9, 3.2, 2.4 }; // silver-like
+  vtkCausticsMaterial::SetComplexIOR(mirrorActor->GetProperty(), n, k);
+  renderer->AddActor(mirrorActor);
+  vtkNew<vtkPlaneSource> wall; // x = 1.5, facing -x
+  wall->SetOrigin(1.5, 0.0, 1.0);
+  wall->SetPoint1(1.5, 0.0, -1.0);
+  wall->SetPoint2(1.5, 2.0, 1.0);
+  wall->Update();
+  auto wallActor = reftest::MakeActor(wall->GetOutput(), "wall");
+  wallActor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  renderer->AddActor(wallActor);
+  renderer->AddActor(reftest::Floor(2.0));
+  renderer->AddLight(reftest::Directional(0.0, -1.0, 0.0, 2.0));
+  const double position[3] = { -0.6, 1.4, 3.2 }, focal[3] = { 0.9, 0.9, 0.0 },
+               up[3] = { 0.0, 1.0, 0.0 };
+  reftest::SetCamera(renderer, position, focal, up, 40.0);
+}
+}
+
+TEST(CascadedPhotonPass, PhotonsLeavingTheLightViewReachTheCamera)
+{
+  double cascade = 0.0;
+  for (bool cameraStage : { true, false })
+  {
+    Comparison c;
+    MirrorAndWall(c.Renderer);
+    c.Pass->SetCameraStage(cameraStage);
+    ASSERT_TRUE(c.RenderFrames());
+    ASSERT_TRUE(
+      c.Compare(cameraStage ? "mirror and wall, cascade" : "mirror and wall, light view only",
+        false, 1000000));
+    EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+    if (cameraStage)
+    {
+      // Reached: flux ratio 1.0053 (relative L2 0.083).
+      cascade = c.Metrics->GetFluxRatio();
+      EXPECT_GE(cascade, 0.95);
+      EXPECT_LT(cascade, 1.03);
+    }
+    else
+    {
+      // The light's view alone loses the wall's caustic: reached 0 (all of it).
+      EXPECT_LT(c.Metrics->GetFluxRatio(), 0.05);
+      EXPECT_LT(c.Metrics->GetFluxRatio(), cascade - 0.5);
+    }
+  }
+}
+
+// The raw estimate's error against the splat radius and the frames averaged (not run
+// by default: --gtest_also_run_disabled_tests; figures in docs/technique-cascaded.md).
+TEST(CascadedPhotonPass, DISABLED_KernelSpacingsAndFrames)
+{
+  for (const char* scene : { "ball-lens", "pool" })
+  {
+    for (double spacings : { 2.0, 4.0 })
+    {
+      for (int frames : { 1, 4, 16 })
+      {
+        Comparison c;
+        ASSERT_TRUE(c.Populate(scene));
+        c.Pass->SetKernelSpacings(spacings);
+        ASSERT_TRUE(c.RenderFrames(frames));
+        const std::string what = std::string(scene) + ", KernelSpacings " +
+          std::to_string(spacings).substr(0, 3) + ", " + std::to_string(frames) + " frame(s)";
+        ASSERT_TRUE(c.Compare(what.c_str(), std::string(scene) == "pool"));
+      }
+    }
+  }
+}
+
+namespace
+{
+/** Wall time (ms) of a stage of the last frame: its CPU time in synchronous mode. */
+double Wall(vtkCausticsTimings* timings, const char* name)
+{
+  for (int i = 0; i < timings->GetNumberOfStages(); ++i)
+  {
+    if (std::string(timings->GetStageName(i)) == name && timings->GetStageRan(i))
+    {
+      return timings->GetStageCPUMilliseconds(i);
+    }
+  }
+  return -1.0;
+}
+}
+
+// Table 1 of the paper for this implementation: the pool (water over a floor, as the
+// paper's flooded scenes) at 256^2 pixels from a 1024^2 light buffer, 0.5, 1 and 2 M
+// photons; each stage's wall time, the larger of the second and third synchronous
+// frames' (the first compiles the programs) (not run by default:
+// --gtest_also_run_disabled_tests; figures in docs/technique-cascaded.md).
+TEST(CascadedPhotonPass, DISABLED_Table1)
+{
+  for (int photons : { 524288, 1048576, 2097152 })
+  {
+    Comparison c;
+    ASSERT_TRUE(c.Populate("pool"));
+    c.Pass->SetLightBufferResolution(1024);
+    c.Pass->SetNumberOfPhotons(photons);
+    c.Pass->GetTimings()->SynchronousOn();
+    const char* stages[] = { "cascaded emit", "cascaded light layers", "cascaded trace",
+      "cascaded splat" };
+    std::vector<std::vector<double>> times(4);
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      c.Window->Render();
+      ASSERT_TRUE(c.Pass->GetLastFrameHadCaustics());
+      for (int s = 0; frame > 0 && s < 4; ++s) // the first frame compiles the programs
+      {
+        times[s].push_back(Wall(c.Pass->GetTimings(), stages[s]));
+      }
+    }
+    std::cout << "photons " << photons;
+    for (int s = 0; s < 4; ++s)
+    {
+      std::sort(times[s].begin(), times[s].end());
+      std::cout << ", " << stages[s] << " " << times[s][times[s].size() / 2] << " ms";
+    }
+    std::cout << "\n";
+  }
+}
