@@ -70,7 +70,8 @@ vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
   s.Emitter->SetSplitFresnel(true); // both branches: the trace chooses one by roulette
   s.Back->KeepFarthestOn();
   this->SetSpecularShadows(true); // its photons replace the light the specular actors block
-  // TODO(denoise): this->SetDenoise(true) once the base pass has the SVGF denoiser (§3.3).
+  // Paper 002, section 3.3: the jittered estimate is denoised with SVGF (the shared stage).
+  this->DenoiseOn();
 }
 
 vtkCausticsCascadedPhotonPass::~vtkCausticsCascadedPhotonPass() = default;
