@@ -28,7 +28,8 @@ namespace
 constexpr int Size = 128;
 
 /** Relative L2 of the technique's colour against the reference's on specular pixels. */
-double SpecularError(const std::string& sceneName, const std::string& technique)
+double SpecularError(const std::string& sceneName, const std::string& technique,
+  int method = vtkCausticsRenderPass::SCREEN_SPACE)
 {
   vtkNew<vtkOpenGLRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
@@ -50,6 +51,7 @@ double SpecularError(const std::string& sceneName, const std::string& technique)
 
   vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
   pass->SetLightBufferResolution(256);
+  pass->SetCameraViewMethod(method);
   pass->KeepBuffersOn();
   renderer->SetPass(pass);
   window->Render();
@@ -83,7 +85,8 @@ double SpecularError(const std::string& sceneName, const std::string& technique)
   }
   EXPECT_GT(pixels, 500) << sceneName;
   const double error = norm > 0.0 ? std::sqrt(difference / norm) : 1.0;
-  std::cout << sceneName << ", " << technique << ": " << pixels
+  const char* methods[] = { "screen-space view", "impostor view", "screen-space + impostor view" };
+  std::cout << sceneName << ", " << technique << ", " << methods[method] << ": " << pixels
             << " specular pixels, relative L2 " << 100.0 * error << " %\n";
   return error;
 }
@@ -102,4 +105,13 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
   EXPECT_LT(SpecularError("ring", "screen-space"), 0.35);
   EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.35);
   EXPECT_LT(SpecularError("pool", "screen-space"), 0.32);
+}
+
+TEST(SpecularAppearance, DistanceImpostors)
+{
+  for (const char* name : { "ball-lens", "ring", "pool", "bunny" })
+  {
+    SpecularError(name, "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS);
+    SpecularError(name, "screen-space", vtkCausticsRenderPass::BOTH);
+  }
 }
