@@ -327,10 +327,24 @@ ivec2 CameraPixel(vec3 h, float slack)
   return same ? q : ivec2(-1);
 }
 
-// o + t d traced against the distance impostors (004 §2-4): inside a refractor,
-// against its own map (the exit point, its normal); outside, against the map of
-// what surrounds the kind of object the ray left (`leftRole`). An opaque hit
-// carries the camera pixel that shows it (Shade()), or (-1, -1).
+// The first crossing of o + t d with the surface of impostor map `map` (Hit()),
+// over the part of the ray inside the scene's bounds (and the map's reach).
+bool ImpostorSearch(int map, vec3 o, vec3 d, out float t, out ivec3 texel)
+{
+  float t0 = 0.0;
+  float t1 = impostorReach[map];
+  t = t1;
+  texel = ivec3(0);
+  return CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) &&
+    ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
+}
+
+// o + t d traced against the distance impostors (004 §2-4): outside, against the
+// map of what surrounds the kind of object the ray left (`leftRole`); inside a
+// refractor, against its own map (the exit point and its normal, §4) and the
+// environment's, whichever is nearer (an open refractor such as a water surface
+// has no exit below: the ray meets the pool's floor). An opaque hit carries the
+// camera pixel that shows it (Shade()), or (-1, -1) and its map's colour.
 March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
 {
   March m;
@@ -342,19 +356,21 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
   m.material = -1;
   m.role = ROLE_NONE;
   m.radiance = vec3(0.0);
-  int map = inside ? IMPOSTOR_REFRACTOR_SURFACE
-                   : (leftRole == ROLE_REFLECTOR ? IMPOSTOR_REFLECTOR_ENVIRONMENT
-                                                 : IMPOSTOR_REFRACTOR_ENVIRONMENT);
-  float t0 = 0.0;
-  float t1 = impostorReach[map];
-  if (!inside &&
-    !CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1))
-  {
-    return m;
-  }
+  int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
+                                                   : IMPOSTOR_REFRACTOR_ENVIRONMENT;
   float t;
   ivec3 texel;
-  if (!ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel))
+  bool found = ImpostorSearch(map, o, d, t, texel);
+  float tExit;
+  ivec3 exitTexel;
+  if (inside && ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, tExit, exitTexel) &&
+    (!found || tExit < t))
+  {
+    found = true;
+    t = tExit;
+    texel = exitTexel;
+  }
+  if (!found)
   {
     return m;
   }
@@ -362,13 +378,13 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
   vec4 normalRole = texelFetch(impostorNormal, texel, 0);
   m.t = t;
   m.material = int(position.w + 0.5);
-  m.role = inside ? ROLE_REFRACTOR : int(normalRole.w + 0.5);
+  m.role = int(normalRole.w + 0.5);
   m.normal = normalize(normalRole.xyz);
   m.kind = m.role == ROLE_REFRACTOR ? REFRACTOR : OPAQUE;
   if (m.kind == OPAQUE)
   {
     vec3 h = o + t * d;
-    float texelSize = 4.0 * distance(h, impostorCentre[map]) / float(impostorResolution);
+    float texelSize = 4.0 * distance(h, impostorCentre[texel.z / 6]) / float(impostorResolution);
     m.pixel = CameraPixel(h, texelSize);
     m.radiance = texelFetch(impostorRadiance, texel, 0).rgb;
   }

@@ -66,6 +66,18 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
     ADD_FAILURE() << "missing arrays";
     return 1.0;
   }
+  if (getenv("DUMP_SA"))
+  {
+    std::string base = std::string("/tmp/sa_") + sceneName + "_" + std::to_string(method);
+    FILE* fo = fopen((base + ".f32").c_str(), "wb");
+    for (vtkIdType p = 0; p < Size * Size; ++p)
+      for (int c = 0; c < 4; ++c)
+      {
+        float v[3] = { float(shown->GetComponent(p, c)), float(c < 3 ? truth->GetComponent(p, c) : 0), float(specular->GetComponent(p, 0)) };
+        fwrite(v, 4, 3, fo);
+      }
+    fclose(fo);
+  }
   double difference = 0.0, norm = 0.0;
   int pixels = 0;
   for (vtkIdType p = 0; p < Size * Size; ++p)
