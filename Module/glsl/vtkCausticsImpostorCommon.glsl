@@ -32,14 +32,43 @@ ivec3 ImpostorTexel(int map, vec3 d)
   return ivec3(t, 6 * map + face);
 }
 
-// How far p is beyond the map's surface in p's direction: |p - o| - |surface - o|
-// (m; < 0 before it). A direction without a surface is never passed.
+// How far p is beyond the map's surface in p's direction from the reference point
+// (m; < 0 on the reference point's side). Measured from the texel's tangent plane,
+// not as a difference of distances from the reference point: exact for planar
+// surfaces between texels (the paper's assumption, §2.1) even where the map sees
+// them at grazing angles and one texel spans much of the surface; the distance
+// difference where the surface is seen edge-on. A direction without a surface is
+// never passed.
 float ImpostorGap(int map, vec3 p, out ivec3 texel)
 {
   vec3 d = p - impostorCentre[map];
   texel = ImpostorTexel(map, d);
   vec4 s = texelFetch(impostorPosition, texel, 0);
-  return s.w < 0.0 ? -3.0e38 : length(d) - distance(s.xyz, impostorCentre[map]);
+  if (s.w < 0.0)
+  {
+    return -3.0e38;
+  }
+  vec3 n = texelFetch(impostorNormal, texel, 0).xyz;
+  float side = dot(impostorCentre[map] - s.xyz, n);
+  float radial = length(d) - distance(s.xyz, impostorCentre[map]);
+  return abs(side) > 1e-3 * distance(s.xyz, impostorCentre[map]) * length(n)
+    ? -dot(p - s.xyz, n) * sign(side) / max(length(n), 1e-20)
+    : radial;
+}
+
+// Whether the crossing h of a texel's tangent plane lies on the texel's surface:
+// within one texel footprint (the texel's angle at its distance, stretched by the
+// angle the reference point sees the surface at) of the surface point it holds.
+// The plane reaches beyond the surface's edge; the surface does not.
+bool ImpostorOnSurface(int map, vec3 h, ivec3 texel)
+{
+  vec3 s = texelFetch(impostorPosition, texel, 0).xyz;
+  vec3 n = texelFetch(impostorNormal, texel, 0).xyz;
+  vec3 toCentre = impostorCentre[map] - s;
+  float distanceToCentre = length(toCentre);
+  float cosine = abs(dot(toCentre, n)) / max(distanceToCentre * length(n), 1e-20);
+  float footprint = 2.0 * distanceToCentre / float(impostorResolution) / max(cosine, 0.02);
+  return texelFetch(impostorPosition, texel, 0).w >= 0.0 && distance(h, s) <= footprint;
 }
 
 // Hit(): the first crossing of the map's surface by o + t d, t in (tMin, tMax].
@@ -105,5 +134,11 @@ bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, o
     }
   }
   t = (g1 - g0) > 0.0 ? t0 + (t1 - t0) * (-g0) / (g1 - g0) : t1;
-  return true;
+  // The texel in the crossing's own direction: empty beyond a surface's edge.
+  ivec3 own;
+  if (ImpostorGap(map, o + t * d, own) > -3.0e38)
+  {
+    texel = own;
+  }
+  return ImpostorOnSurface(map, o + t * d, texel);
 }

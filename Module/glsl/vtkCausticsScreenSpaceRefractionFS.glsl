@@ -66,6 +66,7 @@ struct March
   int material; // material index (OPAQUE: once CompleteHit ran)
   int role;     // the surface's role (once CompleteHit ran)
   vec3 radiance; // OPAQUE impostor hit the camera does not see: its map's colour
+  bool leftView; // MISS of the march: the ray left the view before the scene's bounds
 };
 
 // Distance along the view: clip w (perspective) or clip z (parallel), both growing away.
@@ -222,10 +223,17 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   result.material = -1;
   result.role = ROLE_NONE;
   result.radiance = vec3(0.0);
+  result.leftView = false;
   float t0 = 0.0;
   float t1 = 3.0e38;
-  if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) ||
-    !SspClipToFrustum(worldToClip, o, d, t0, t1))
+  if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1))
+  {
+    return result;
+  }
+  float tScene = t1;
+  bool inView = SspClipToFrustum(worldToClip, o, d, t0, t1);
+  result.leftView = !inView || t1 < tScene;
+  if (!inView)
   {
     return result;
   }
@@ -356,6 +364,7 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
   m.material = -1;
   m.role = ROLE_NONE;
   m.radiance = vec3(0.0);
+  m.leftView = false;
   int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
                                                    : IMPOSTOR_REFRACTOR_ENVIRONMENT;
   float t;
@@ -411,7 +420,7 @@ vec3 TracePath(
     if (!impostor)
     {
       m = MarchRay(o, d, next, inside ? current : -1);
-      impostor = m.kind == MISS && viewMethod == METHOD_BOTH;
+      impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
     }
     if (impostor)
     {
