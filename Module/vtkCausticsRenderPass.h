@@ -250,7 +250,8 @@ public:
    * specular objects (004 §2-4, vtkCausticsDistanceImpostors, rendered only when
    * the geometry changes), which see what the screen does not; BOTH, the march and,
    * where it leaves the view or the scene, the impostors.
-   * Default SCREEN_SPACE (docs/technique-distance-impostors.md: the measurement).
+   * Default BOTH: it halves the ball lens's error against the reference and keeps every
+   * screen-space answer (docs/technique-distance-impostors.md: the measurement).
    */
   enum CameraViewMethods
   {
@@ -486,7 +487,7 @@ private:
   double MaximumGPUMemory = 0.0;
   bool RefractionTracing = false; // techniques that carry caustic light turn it on
   int RefractionEvents = 4;
-  int CameraViewMethod = SCREEN_SPACE;
+  int CameraViewMethod = BOTH;
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;
   bool SpecularShadows = false; // techniques that carry caustic light turn it on
