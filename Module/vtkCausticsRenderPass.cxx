@@ -4,9 +4,10 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
+#include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsDeviceLimits.h"
-#include "vtkCausticsCameraOpticalDepth.h"
+#include "vtkCausticsDistanceImpostors.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -251,6 +252,7 @@ struct vtkCausticsRenderPass::Internals
   // The camera's view of glass and water (RenderTechniqueColor()).
   vtkNew<vtkCausticsLayeredDepth> RefractorLayers;
   vtkNew<vtkCausticsScreenSpaceRefraction> Refraction;
+  vtkNew<vtkCausticsDistanceImpostors> Impostors; // CameraViewMethod's cube maps
   vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkCausticsSVGFDenoiser> Denoiser; // denoises CausticTexture in place (Denoise)
@@ -449,6 +451,11 @@ vtkCausticsLayeredDepth* vtkCausticsRenderPass::GetRefractorLayeredDepth()
   return this->Internal->RefractorLayers;
 }
 
+vtkCausticsDistanceImpostors* vtkCausticsRenderPass::GetDistanceImpostors()
+{
+  return this->Internal->Impostors;
+}
+
 double vtkCausticsRenderPass::GetViewTolerance(double sceneScale)
 {
   return 1e-3 * sceneScale;
@@ -478,7 +485,10 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   {
     return false;
   }
-  // 2. Surfaces seen only through a refractor are shaded from their irradiance.
+  // 2. The distance impostors' cube maps, if the method uses them (only when the
+  //    geometry changed: vtkCausticsDistanceImpostors).
+  const bool impostors = this->CameraViewMethod != SCREEN_SPACE && this->UpdateImpostors(f);
+  // 3. Surfaces seen only through a refractor are shaded from their irradiance.
   const bool direct = this->EnsureDirectIrradiance("direct irradiance for refraction");
   this->StartStage("refraction tracing");
   vtkCausticsScreenSpaceRefraction::Inputs inputs;
@@ -502,9 +512,19 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
   inputs.Tolerance = this->GetViewTolerance(caustics::VisibleScale(scene));
+  inputs.Method = impostors ? this->CameraViewMethod : SCREEN_SPACE;
+  inputs.Impostors = impostors ? in.Impostors.GetPointer() : nullptr;
   in.Refraction->SetMaximumEvents(this->RefractionEvents);
   const bool ok = in.Refraction->Render(f.Window, inputs, target);
   this->StopStage("refraction tracing");
+  return ok;
+}
+
+bool vtkCausticsRenderPass::UpdateImpostors(const FrameInputs& f)
+{
+  this->StartStage("distance impostors");
+  const bool ok = this->Internal->Impostors->Update(f.Window, f.Geometry, *f.Scene);
+  this->StopStage("distance impostors");
   return ok;
 }
 
@@ -1422,6 +1442,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.RefractorLayers->ReleaseGraphicsResources(w);
   in.Refraction->ReleaseGraphicsResources(w);
   in.Denoiser->ReleaseGraphicsResources(w);
+  in.Impostors->ReleaseGraphicsResources(w);
   vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture,
     in.LostShadingTexture, in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
@@ -1457,6 +1478,7 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Denoise: " << this->Denoise << "\n";
   os << indent << "Denoiser:\n";
   this->Internal->Denoiser->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "CameraViewMethod: " << this->CameraViewMethod << "\n";
   os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
   os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
   os << indent << "MediumGridBytes: " << this->GetMediumGridBytes() << " (dense "

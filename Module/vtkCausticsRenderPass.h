@@ -69,6 +69,7 @@
 #include <string> // For std::string
 
 class vtkCausticsCameraOpticalDepth;
+class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
 class vtkCausticsLayeredDepth;
 class vtkCausticsLightBuffers;
@@ -271,6 +272,29 @@ public:
    * once per frame (its knobs: Enabled, PixelsPerColumn, Slices).
    */
   vtkCausticsCameraOpticalDepth* GetCameraOpticalDepth();
+
+  ///@{
+  /**
+   * How the camera view of glass and mirrors (RefractionTracing) follows a ray after
+   * the first surface: SCREEN_SPACE, the march against the camera's layered depth
+   * (000 §4); DISTANCE_IMPOSTORS, Hit() against cube maps of distances around the
+   * specular objects (004 §2-4, vtkCausticsDistanceImpostors, rendered only when
+   * the geometry changes), which see what the screen does not; BOTH, the march and,
+   * where it leaves the view or the scene, the impostors.
+   * Default BOTH: it halves the ball lens's error against the reference and keeps every
+   * screen-space answer (docs/technique-distance-impostors.md: the measurement).
+   */
+  enum CameraViewMethods
+  {
+    SCREEN_SPACE = 0,
+    DISTANCE_IMPOSTORS = 1,
+    BOTH = 2
+  };
+  vtkSetClampMacro(CameraViewMethod, int, SCREEN_SPACE, BOTH);
+  vtkGetMacro(CameraViewMethod, int);
+  /** The maps of DISTANCE_IMPOSTORS and BOTH (their resolution and search knobs). */
+  vtkCausticsDistanceImpostors* GetDistanceImpostors();
+  ///@}
 
   ///@{
   /**
@@ -483,6 +507,7 @@ private:
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
   void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
+  bool UpdateImpostors(const FrameInputs& f); // CameraViewMethod's maps, timed
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);
   void Composite(bool toFinalTexture);
@@ -498,6 +523,7 @@ private:
   double MaximumGPUMemory = 0.0;
   bool RefractionTracing = false; // techniques that carry caustic light turn it on
   int RefractionEvents = 4;
+  int CameraViewMethod = BOTH;
   bool ComputeDirectIrradiance = false;
   bool KeepBuffers = false;
   bool SpecularShadows = false; // techniques that carry caustic light turn it on

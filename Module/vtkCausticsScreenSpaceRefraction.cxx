@@ -1,6 +1,7 @@
 #include "vtkCausticsScreenSpaceRefraction.h"
 
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
+#include "vtkCausticsDistanceImpostors.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
@@ -14,6 +15,7 @@
 #include "vtk_glew.h"
 
 #include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsImpostorCommon.h"
 #include "vtkCausticsOptics.h"
 #include "vtkCausticsScreenSpaceCommon.h"
 #include "vtkCausticsScreenSpaceRefractionFS.h"
@@ -35,7 +37,7 @@ vtkCausticsScreenSpaceRefraction::vtkCausticsScreenSpaceRefraction()
   this->Internal->Program->SetName("screen-space refraction");
   this->Internal->Program->SetVertexSource(vtkCausticsFullScreenVS);
   this->Internal->Program->SetFragmentSource((std::string(vtkCausticsOptics) +
-    vtkCausticsScreenSpaceCommon + vtkCausticsScreenSpaceRefractionFS)
+    vtkCausticsScreenSpaceCommon + vtkCausticsImpostorCommon + vtkCausticsScreenSpaceRefractionFS)
                                                .c_str());
 }
 
@@ -79,7 +81,8 @@ bool vtkCausticsScreenSpaceRefraction::Render(
   {
     caustics::ssp::TextureUnits units(renWin);
     vtkCausticsLayeredDepth* layers = inputs.RefractorLayers;
-    p->SetUniformi("refractorPosition", units.Bind(layers->GetPositionTexture()));
+    const int layerUnit = units.Bind(layers->GetPositionTexture());
+    p->SetUniformi("refractorPosition", layerUnit);
     p->SetUniformi("refractorNormal", units.Bind(layers->GetNormalTexture()));
     p->SetUniformi("gPosition", units.Bind(inputs.Opaque->GetPositionTexture()));
     p->SetUniformi("gNormal", units.Bind(inputs.Opaque->GetNormalTexture()));
@@ -119,6 +122,16 @@ bool vtkCausticsScreenSpaceRefraction::Render(
     // VTK's depth and the G-buffer's come from the same triangles and matrix (as
     // the composite's test).
     p->SetUniformf("depthTolerance", 2e-6f);
+    const bool impostors = inputs.Method != 0 && inputs.Impostors;
+    p->SetUniformi("viewMethod", impostors ? inputs.Method : 0);
+    if (impostors)
+    {
+      inputs.Impostors->SetUniforms(p, units);
+    }
+    else
+    {
+      vtkCausticsDistanceImpostors::SetAbsentUniforms(p, layerUnit);
+    }
     in.Triangle.Draw();
     p->Unbind(renWin);
   }

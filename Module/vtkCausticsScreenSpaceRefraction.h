@@ -19,6 +19,11 @@
  *    scene or the view: the background colour (the environment);
  * 4. a surface's colour is the one the composite gives it where VTK shows it,
  *    else albedo x (direct + caustic irradiance), VTK's display units.
+ * With distance impostors (Inputs::Impostors, 004_4da4b323b51d1415.txt §2-4) the
+ * rays after the first surface are traced against vtkCausticsDistanceImpostors'
+ * cube maps instead (Method 1), or where the march leaves the view or the scene
+ * (Method 2); an impostor hit on a surface the camera does not show takes the
+ * map's colour (albedo x unshadowed direct irradiance, no caustic).
  * The output colour has alpha 1 where it replaces VTK's colour, 0 elsewhere.
  */
 #ifndef vtkCausticsScreenSpaceRefraction_h
@@ -29,6 +34,7 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
 class vtkCausticsLayeredDepth;
 class vtkCausticsSceneGeometry;
@@ -69,6 +75,10 @@ public:
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
     double Background[3] = { 0, 0, 0 };
     double Tolerance = 0.0; ///< m
+    /** Rays after the first surface: 0 screen-space march, 1 distance impostors, 2 the
+     * march then the impostors where it leaves the view or the scene. */
+    int Method = 0;
+    vtkCausticsDistanceImpostors* Impostors = nullptr; ///< updated; needed by methods 1, 2
   };
 
   /** Writes the colours into `target` (made RGBA32F, Width x Height). */

@@ -42,6 +42,10 @@ uniform int maxEvents;
 uniform float tolerance;      // m
 uniform float pixelScale;     // world size of one pixel at clip w = 1, m
 uniform float depthTolerance; // window depth: VTK's image and the G-buffers agree
+// How rays are traced after the first surface (vtkCausticsRenderPass::CameraViewMethod):
+// 0 the screen-space march; 1 the distance impostors (glsl/vtkCausticsImpostorCommon.glsl);
+// 2 the march, then the impostors from where a march leaves the view or the scene.
+uniform int viewMethod;
 
 layout(location = 0) out vec4 outColor;
 
@@ -49,6 +53,8 @@ const int MARCH_STRIDE = 4;
 const int MISS = 0;
 const int OPAQUE = 1;
 const int REFRACTOR = 2;
+const int METHOD_IMPOSTORS = 1;
+const int METHOD_BOTH = 2;
 
 struct March
 {
@@ -57,7 +63,10 @@ struct March
   ivec2 pixel;  // where it was found
   int layer;    // REFRACTOR: the layer
   vec3 normal;  // REFRACTOR: as modelled
-  int material; // REFRACTOR: material index
+  int material; // material index (OPAQUE: once CompleteHit ran)
+  int role;     // the surface's role (once CompleteHit ran)
+  vec3 radiance; // OPAQUE impostor hit the camera does not see: its map's colour
+  bool leftView; // MISS of the march: the ray left the view before the scene's bounds
 };
 
 // Distance along the view: clip w (perspective) or clip z (parallel), both growing away.
@@ -212,10 +221,19 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   result.layer = -1;
   result.normal = vec3(0.0);
   result.material = -1;
+  result.role = ROLE_NONE;
+  result.radiance = vec3(0.0);
+  result.leftView = false;
   float t0 = 0.0;
   float t1 = 3.0e38;
-  if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) ||
-    !SspClipToFrustum(worldToClip, o, d, t0, t1))
+  if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1))
+  {
+    return result;
+  }
+  float tScene = t1;
+  bool inView = SspClipToFrustum(worldToClip, o, d, t0, t1);
+  result.leftView = !inView || t1 < tScene;
+  if (!inView)
   {
     return result;
   }
@@ -280,6 +298,108 @@ vec3 Shade(ivec2 q)
   return background; // a surface hidden from VTK's view: not in any image
 }
 
+// The role, normal and material of a hit: the opaque G-buffer's at the march's
+// pixel (an impostor hit brings its own, from its map).
+void CompleteHit(inout March m)
+{
+  if (m.kind == OPAQUE && m.role == ROLE_NONE)
+  {
+    vec4 normalRole = texelFetch(gNormal, m.pixel, 0);
+    m.role = int(normalRole.w + 0.5);
+    m.normal = normalize(normalRole.xyz);
+    m.material = int(texelFetch(gPosition, m.pixel, 0).w + 0.5);
+  }
+  else if (m.kind == REFRACTOR)
+  {
+    m.role = ROLE_REFRACTOR;
+  }
+}
+
+// The camera pixel that shows the surface point h in the opaque G-buffer (within
+// `slack` m and a few pixel footprints), or (-1, -1) where the camera does not see it.
+ivec2 CameraPixel(vec3 h, float slack)
+{
+  vec4 clip = worldToClip * vec4(h, 1.0);
+  if (!(clip.w > 0.0))
+  {
+    return ivec2(-1);
+  }
+  ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * viewport));
+  if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(viewport))))
+  {
+    return ivec2(-1);
+  }
+  vec4 there = texelFetch(gPosition, q, 0);
+  bool same =
+    there.w >= 0.0 && distance(there.xyz, h) < 4.0 * clip.w * pixelScale + slack + tolerance;
+  return same ? q : ivec2(-1);
+}
+
+// The first crossing of o + t d with the surface of impostor map `map` (Hit()),
+// over the part of the ray inside the scene's bounds (and the map's reach).
+bool ImpostorSearch(int map, vec3 o, vec3 d, out float t, out ivec3 texel)
+{
+  float t0 = 0.0;
+  float t1 = impostorReach[map];
+  t = t1;
+  texel = ivec3(0);
+  return CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) &&
+    ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
+}
+
+// o + t d traced against the distance impostors (004 §2-4): outside, against the
+// map of what surrounds the kind of object the ray left (`leftRole`); inside a
+// refractor, against its own map (the exit point and its normal, §4) and the
+// environment's, whichever is nearer (an open refractor such as a water surface
+// has no exit below: the ray meets the pool's floor). An opaque hit carries the
+// camera pixel that shows it (Shade()), or (-1, -1) and its map's colour.
+March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
+{
+  March m;
+  m.kind = MISS;
+  m.t = 0.0;
+  m.pixel = ivec2(-1);
+  m.layer = -1;
+  m.normal = vec3(0.0);
+  m.material = -1;
+  m.role = ROLE_NONE;
+  m.radiance = vec3(0.0);
+  m.leftView = false;
+  int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
+                                                   : IMPOSTOR_REFRACTOR_ENVIRONMENT;
+  float t;
+  ivec3 texel;
+  bool found = ImpostorSearch(map, o, d, t, texel);
+  float tExit;
+  ivec3 exitTexel;
+  if (inside && ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, tExit, exitTexel) &&
+    (!found || tExit < t))
+  {
+    found = true;
+    t = tExit;
+    texel = exitTexel;
+  }
+  if (!found)
+  {
+    return m;
+  }
+  vec4 position = texelFetch(impostorPosition, texel, 0);
+  vec4 normalRole = texelFetch(impostorNormal, texel, 0);
+  m.t = t;
+  m.material = int(position.w + 0.5);
+  m.role = int(normalRole.w + 0.5);
+  m.normal = normalize(normalRole.xyz);
+  m.kind = m.role == ROLE_REFRACTOR ? REFRACTOR : OPAQUE;
+  if (m.kind == OPAQUE)
+  {
+    vec3 h = o + t * d;
+    float texelSize = 4.0 * distance(h, impostorCentre[texel.z / 6]) / float(impostorResolution);
+    m.pixel = CameraPixel(h, texelSize);
+    m.radiance = texelFetch(impostorRadiance, texel, 0).rgb;
+  }
+  return m;
+}
+
 // What a path that leaves a surface the camera sees brings back, in display
 // colour: o + t d marched through the refractor's layers (`inside` the refractor
 // between layers `current` and `next`; next = -1: the layers are not consulted,
@@ -289,12 +409,24 @@ vec3 Shade(ivec2 q)
 // until it meets another opaque surface (its colour) or leaves (the background),
 // at most maxEvents interfaces. One loop with one march, so that the march's code
 // is compiled once (llvmpipe compiles each inlined copy).
-vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption)
+vec3 TracePath(
+  vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption, int leftRole)
 {
   vec3 throughput = vec3(1.0);
+  bool impostor = viewMethod == METHOD_IMPOSTORS;
   for (int event = 0; event < maxEvents; ++event)
   {
-    March m = MarchRay(o, d, next, inside ? current : -1);
+    March m;
+    if (!impostor)
+    {
+      m = MarchRay(o, d, next, inside ? current : -1);
+      impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+    }
+    if (impostor)
+    {
+      m = ImpostorRay(o, d, inside, leftRole);
+    }
+    CompleteHit(m);
     if (inside)
     {
       throughput *= CausticsTransmittance(absorption, m.t);
@@ -306,13 +438,12 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
     vec3 x = o + m.t * d;
     if (m.kind == OPAQUE)
     {
-      vec4 normalRole = texelFetch(gNormal, m.pixel, 0);
-      if (int(normalRole.w + 0.5) != ROLE_REFLECTOR)
+      if (m.role != ROLE_REFLECTOR)
       {
-        return throughput * Shade(m.pixel);
+        return throughput * (m.pixel.x >= 0 ? Shade(m.pixel) : m.radiance);
       }
-      CausticsMaterial mirror = causticsMaterials[int(texelFetch(gPosition, m.pixel, 0).w + 0.5)];
-      vec3 n = normalize(normalRole.xyz);
+      CausticsMaterial mirror = causticsMaterials[m.material];
+      vec3 n = m.normal;
       vec3 facing = dot(d, n) < 0.0 ? n : -n;
       throughput *= FresnelConductor(
         clamp(-dot(d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
@@ -320,6 +451,7 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
       next = -1;
       current = -1;
       inside = false;
+      leftRole = ROLE_REFLECTOR;
     }
     else
     {
@@ -340,6 +472,7 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
         absorption = hitMaterial.attenuation.rgb;
         current = m.layer;
         next = current + 1;
+        leftRole = ROLE_REFRACTOR;
       }
       else
       {
@@ -364,6 +497,7 @@ void main()
   int paths = 0;
   vec3 x;
   vec3 absorption = vec3(0.0);
+  int leftRole = ROLE_REFLECTOR;
   if (front.w < 0.0 || (opaque.w >= 0.0 && ViewDepth(opaque.xyz) < ViewDepth(front.xyz)))
   {
     // No refractor in front: a mirror, where VTK drew it (VTK shows no reflection
@@ -410,12 +544,14 @@ void main()
     directions[1] = refracted;
     paths = transmits ? 2 : 1;
     absorption = material.attenuation.rgb;
+    leftRole = ROLE_REFRACTOR;
   }
   vec3 color = vec3(0.0);
   for (int k = 0; k < paths; ++k)
   {
     bool inside = k == 1;
-    color += weights[k] * TracePath(x, directions[k], inside, 0, inside ? 1 : -1, absorption);
+    color += weights[k] *
+      TracePath(x, directions[k], inside, 0, inside ? 1 : -1, absorption, leftRole);
   }
   outColor = vec4(color, 1.0);
 }

@@ -9,6 +9,7 @@
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsTechniques.h"
+#include "vtkCausticsTimings.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -28,7 +29,8 @@ namespace
 constexpr int Size = 128;
 
 /** Relative L2 of the technique's colour against the reference's on specular pixels. */
-double SpecularError(const std::string& sceneName, const std::string& technique)
+double SpecularError(const std::string& sceneName, const std::string& technique,
+  int method = vtkCausticsRenderPass::SCREEN_SPACE)
 {
   vtkNew<vtkOpenGLRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
@@ -50,10 +52,15 @@ double SpecularError(const std::string& sceneName, const std::string& technique)
 
   vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
   pass->SetLightBufferResolution(256);
+  pass->SetCameraViewMethod(method);
   pass->KeepBuffersOn();
+  pass->GetTimings()->SynchronousOn();
   renderer->SetPass(pass);
   window->Render();
+  // The maps' cost, once (the second frame makes none), and the camera view's, per frame.
+  const double maps = pass->GetTimings()->GetGPUMilliseconds("distance impostors");
   window->Render();
+  const double view = pass->GetTimings()->GetGPUMilliseconds("refraction tracing");
   vtkNew<vtkImageData> color;
   EXPECT_TRUE(pass->ReadBuffer("TechniqueColor", color));
   renderer->SetPass(nullptr);
@@ -83,8 +90,10 @@ double SpecularError(const std::string& sceneName, const std::string& technique)
   }
   EXPECT_GT(pixels, 500) << sceneName;
   const double error = norm > 0.0 ? std::sqrt(difference / norm) : 1.0;
-  std::cout << sceneName << ", " << technique << ": " << pixels
-            << " specular pixels, relative L2 " << 100.0 * error << " %\n";
+  const char* methods[] = { "screen-space view", "impostor view", "screen-space + impostor view" };
+  std::cout << sceneName << ", " << technique << ", " << methods[method] << ": " << pixels
+            << " specular pixels, relative L2 " << 100.0 * error << " %; camera view "
+            << view << " ms a frame, maps " << maps << " ms once\n";
   return error;
 }
 }
@@ -102,4 +111,24 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
   EXPECT_LT(SpecularError("ring", "screen-space"), 0.35);
   EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.35);
   EXPECT_LT(SpecularError("pool", "screen-space"), 0.32);
+}
+
+// The same with the distance impostors (paper 004, docs/technique-distance-impostors.md),
+// alone and behind the screen-space march (BOTH). Measured (relative L2):
+// DISTANCE_IMPOSTORS ball lens 11.5 %, ring 27.0 %, pool 28.4 %, bunny 58.0 %;
+// BOTH ball lens 13.6 %, ring 33.1 %, pool 30.4 %, bunny 72.1 %. Bounds just above.
+// The 10 % is not reached (the ball is closest; its reference is noisy at 64
+// paths per pixel): the ring's mirror seen from its centre, the pool's thin water
+// layer seen at grazing angles, the bunny's concavities hidden from its centre.
+TEST(SpecularAppearance, DistanceImpostors)
+{
+  const int impostors = vtkCausticsRenderPass::DISTANCE_IMPOSTORS;
+  const int both = vtkCausticsRenderPass::BOTH;
+  EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.12);
+  EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.14);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.28);
+  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.34);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.29);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.31);
+  EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.59);
 }

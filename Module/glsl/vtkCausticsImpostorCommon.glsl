@@ -1,0 +1,144 @@
+// Distance impostors (004_4da4b323b51d1415.txt §2-4): lookups into the cube maps of
+// vtkCausticsDistanceImpostors and the Hit() search along a ray. A map's layer
+// 6 map + face holds, per texel, the world position of the surface seen from the
+// map's reference point in that direction (w = material index, -1: none) and its
+// normal as modelled (w = role). The distance of a point is |p - reference point|.
+uniform sampler2DArray impostorPosition;
+uniform sampler2DArray impostorNormal;
+uniform sampler2DArray impostorRadiance; // receivers: albedo x unshadowed direct irradiance
+uniform mat4 impostorFaceRotation[6]; // points relative to the reference point -> face clip
+uniform vec3 impostorCentre[3];       // reference points, m
+uniform float impostorReach[3];       // longest segment a search of the map needs, m
+uniform int impostorValid[3];         // 1: the map exists
+uniform int impostorResolution;
+uniform int impostorLinearSteps;
+uniform int impostorSecantSteps;
+
+const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
+const int IMPOSTOR_REFRACTOR_SURFACE = 1;
+const int IMPOSTOR_REFLECTOR_ENVIRONMENT = 2;
+
+// The texel of `map` in direction d from its reference point (the face of d's
+// major axis, through the same matrix the face was rendered with).
+ivec3 ImpostorTexel(int map, vec3 d)
+{
+  vec3 a = abs(d);
+  int face = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0 ? 0 : 1)
+                                       : (a.y >= a.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5));
+  vec4 clip = impostorFaceRotation[face] * vec4(d, 1.0);
+  vec2 uv = clip.xy / max(clip.w, 1e-30) * 0.5 + 0.5;
+  ivec2 t = clamp(ivec2(floor(uv * float(impostorResolution))), ivec2(0),
+    ivec2(impostorResolution - 1));
+  return ivec3(t, 6 * map + face);
+}
+
+// How far p is beyond the map's surface in p's direction from the reference point
+// (m; < 0 on the reference point's side). Measured from the texel's tangent plane,
+// not as a difference of distances from the reference point: exact for planar
+// surfaces between texels (the paper's assumption, §2.1) even where the map sees
+// them at grazing angles and one texel spans much of the surface; the distance
+// difference where the surface is seen edge-on. A direction without a surface is
+// never passed.
+float ImpostorGap(int map, vec3 p, out ivec3 texel)
+{
+  vec3 d = p - impostorCentre[map];
+  texel = ImpostorTexel(map, d);
+  vec4 s = texelFetch(impostorPosition, texel, 0);
+  if (s.w < 0.0)
+  {
+    return -3.0e38;
+  }
+  vec3 n = texelFetch(impostorNormal, texel, 0).xyz;
+  float side = dot(impostorCentre[map] - s.xyz, n);
+  float radial = length(d) - distance(s.xyz, impostorCentre[map]);
+  return abs(side) > 1e-3 * distance(s.xyz, impostorCentre[map]) * length(n)
+    ? -dot(p - s.xyz, n) * sign(side) / max(length(n), 1e-20)
+    : radial;
+}
+
+// Whether the crossing h of a texel's tangent plane lies on the texel's surface:
+// within one texel footprint (the texel's angle at its distance, stretched by the
+// angle the reference point sees the surface at) of the surface point it holds.
+// The plane reaches beyond the surface's edge; the surface does not.
+bool ImpostorOnSurface(int map, vec3 h, ivec3 texel)
+{
+  vec3 s = texelFetch(impostorPosition, texel, 0).xyz;
+  vec3 n = texelFetch(impostorNormal, texel, 0).xyz;
+  vec3 toCentre = impostorCentre[map] - s;
+  float distanceToCentre = length(toCentre);
+  float cosine = abs(dot(toCentre, n)) / max(distanceToCentre * length(n), 1e-20);
+  float footprint = 2.0 * distanceToCentre / float(impostorResolution) / max(cosine, 0.02);
+  return texelFetch(impostorPosition, texel, 0).w >= 0.0 && distance(h, s) <= footprint;
+}
+
+// Hit(): the first crossing of the map's surface by o + t d, t in (tMin, tMax].
+// A linear march of impostorLinearSteps samples finds the first sample beyond the
+// surface; false position (Illinois) between it and the sample before refines it
+// impostorSecantSteps times (the paper's iteration, §3, with its "undershooting /
+// overshooting" pair kept as a bracket so that it converges). Returns false when no
+// sample passes the surface; else t and the texel of the surface found.
+bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, out ivec3 texel)
+{
+  t = tMax;
+  texel = ivec3(0);
+  if (impostorValid[map] == 0 || !(tMax > tMin))
+  {
+    return false;
+  }
+  ivec3 unused;
+  float t0 = tMin;
+  float g0 = max(min(ImpostorGap(map, o + tMin * d, unused), 0.0), -(tMax - tMin));
+  float t1 = tMax;
+  float g1 = -1.0;
+  bool found = false;
+  for (int i = 1; i <= impostorLinearSteps && !found; ++i)
+  {
+    float ti = tMin + (tMax - tMin) * float(i) / float(impostorLinearSteps);
+    float gi = ImpostorGap(map, o + ti * d, texel);
+    if (gi >= 0.0)
+    {
+      t1 = ti;
+      g1 = gi;
+      found = true;
+    }
+    else
+    {
+      t0 = ti;
+      g0 = max(gi, -(tMax - tMin)); // a direction without surface counts as far before
+    }
+  }
+  if (!found)
+  {
+    return false;
+  }
+  int side = 0; // Illinois: halve the weight of an end kept twice
+  for (int k = 0; k < impostorSecantSteps; ++k)
+  {
+    float tm = (g1 - g0) > 0.0 ? t0 + (t1 - t0) * (-g0) / (g1 - g0) : 0.5 * (t0 + t1);
+    ivec3 q;
+    float gm = ImpostorGap(map, o + tm * d, q);
+    if (gm >= 0.0)
+    {
+      t1 = tm;
+      g1 = gm;
+      texel = q;
+      g0 = side == -1 ? 0.5 * g0 : g0;
+      side = -1;
+    }
+    else
+    {
+      t0 = tm;
+      g0 = max(gm, -(tMax - tMin));
+      g1 = side == 1 ? 0.5 * g1 : g1;
+      side = 1;
+    }
+  }
+  t = (g1 - g0) > 0.0 ? t0 + (t1 - t0) * (-g0) / (g1 - g0) : t1;
+  // The texel in the crossing's own direction: empty beyond a surface's edge.
+  ivec3 own;
+  if (ImpostorGap(map, o + t * d, own) > -3.0e38)
+  {
+    texel = own;
+  }
+  return ImpostorOnSurface(map, o + t * d, texel);
+}

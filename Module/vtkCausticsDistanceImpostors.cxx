@@ -1,0 +1,385 @@
+#include "vtkCausticsDistanceImpostors.h"
+
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsScreenSpaceUtilities.h"
+#include "vtkCausticsShaderProgram.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkCausticsImpostorShadeCS.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <vector>
+
+vtkStandardNewMacro(vtkCausticsDistanceImpostors);
+
+namespace
+{
+constexpr int Faces = 6;
+
+// Forward and up axes of the six faces (+x, -x, +y, -y, +z, -z), the GL cube order.
+constexpr double FaceAxes[Faces][2][3] = {
+  { { 1, 0, 0 }, { 0, -1, 0 } },
+  { { -1, 0, 0 }, { 0, -1, 0 } },
+  { { 0, 1, 0 }, { 0, 0, 1 } },
+  { { 0, -1, 0 }, { 0, 0, -1 } },
+  { { 0, 0, 1 }, { 0, -1, 0 } },
+  { { 0, 0, -1 }, { 0, -1, 0 } },
+};
+
+/**
+ * Column-major clip matrix of face `face` (a 90-degree frustum, near/far in m) for
+ * points relative to the reference point: P x V, V the face's rotation.
+ */
+std::array<float, 16> FaceRotation(int face, double nearPlane, double farPlane)
+{
+  const double* f = FaceAxes[face][0];
+  const double* up = FaceAxes[face][1];
+  const double s[3] = { f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2],
+    f[0] * up[1] - f[1] * up[0] };
+  const double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
+    s[0] * f[1] - s[1] * f[0] };
+  const double a = -(farPlane + nearPlane) / (farPlane - nearPlane);
+  const double b = -2.0 * farPlane * nearPlane / (farPlane - nearPlane);
+  // Rows of P x V: (s, 0), (u, 0), (a (-f), b), (f, 0).
+  std::array<float, 16> m{};
+  for (int c = 0; c < 3; ++c)
+  {
+    m[4 * c + 0] = static_cast<float>(s[c]);
+    m[4 * c + 1] = static_cast<float>(u[c]);
+    m[4 * c + 2] = static_cast<float>(-a * f[c]);
+    m[4 * c + 3] = static_cast<float>(f[c]);
+  }
+  m[14] = static_cast<float>(b);
+  return m;
+}
+
+/** The same with the translation to a reference point: world to the face's clip space. */
+std::array<float, 16> FaceWorldToClip(const std::array<float, 16>& rotation, const double c[3])
+{
+  std::array<float, 16> m = rotation;
+  for (int r = 0; r < 4; ++r)
+  {
+    m[12 + r] -= static_cast<float>(
+      rotation[r] * c[0] + rotation[4 + r] * c[1] + rotation[8 + r] * c[2]);
+  }
+  return m;
+}
+
+/** Roles each map draws, its reference group (the roles whose box centre is the point). */
+constexpr int MapRoles[vtkCausticsDistanceImpostors::NUMBER_OF_MAPS] = {
+  vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(2),
+  vtkCausticsSceneGeometry::RoleBit(3),
+  vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(3),
+};
+constexpr caustics::Role MapGroup[vtkCausticsDistanceImpostors::NUMBER_OF_MAPS] = {
+  caustics::Role::Refractor, caustics::Role::Refractor, caustics::Role::Reflector
+};
+}
+
+struct vtkCausticsDistanceImpostors::Internals
+{
+  vtkNew<vtkCausticsGBuffer> Face; // one face at a time, copied into the arrays
+  caustics::ssp::Texture Position; // RGBA32F, layer 6 map + face: world xyz, w = material
+  caustics::ssp::Texture Normal;   // RGBA16F: normal as modelled, w = role
+  caustics::ssp::Texture Radiance; // RGBA32F: receivers' albedo x direct irradiance
+  vtkNew<vtkCausticsShaderProgram> Shade;
+  std::array<std::array<float, 16>, Faces> Rotation{};
+  double Centre[NUMBER_OF_MAPS][3] = {};
+  double Reach[NUMBER_OF_MAPS] = {}; // longest ray segment a search needs, m
+  bool Made[NUMBER_OF_MAPS] = {};
+  // What the maps were made from: (version, material, role) per mesh, the lights'
+  // parameters and the materials' albedos, and the resolution.
+  std::vector<std::tuple<unsigned long, int, int>> Key;
+  std::vector<double> LightKey;
+  int KeyResolution = 0;
+};
+
+vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
+  : Internal(new Internals)
+{
+  this->Internal->Shade->SetName("distance impostor shading");
+  this->Internal->Shade->SetComputeSource(vtkCausticsImpostorShadeCS);
+}
+
+vtkCausticsDistanceImpostors::~vtkCausticsDistanceImpostors()
+{
+  if (this->Internal->Position.Handle)
+  {
+    vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): GL objects leaked");
+  }
+}
+
+bool vtkCausticsDistanceImpostors::Update(
+  vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene)
+{
+  if (!this->SceneChanged(scene))
+  {
+    return true;
+  }
+  this->ChooseReferencePoints(scene);
+  auto& in = *this->Internal;
+  const int r = this->Resolution;
+  in.Position.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
+  in.Normal.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA16F);
+  in.Radiance.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
+  bool ok = true;
+  for (int map = 0; map < NUMBER_OF_MAPS && ok; ++map)
+  {
+    ok = !in.Made[map] || this->RenderMap(renWin, geometry, map);
+  }
+  ok = ok && this->ShadeMaps(renWin, geometry, scene);
+  ++this->MapRenders;
+  if (!ok)
+  {
+    in.Key.clear(); // try again next frame
+    std::fill(in.Made, in.Made + NUMBER_OF_MAPS, false);
+  }
+  return ok;
+}
+
+bool vtkCausticsDistanceImpostors::SceneChanged(const caustics::SceneData& scene)
+{
+  auto& in = *this->Internal;
+  std::vector<std::tuple<unsigned long, int, int>> key;
+  key.reserve(scene.Meshes.size());
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    const int role = mesh.material >= 0 &&
+        mesh.material < static_cast<int>(scene.Materials.size())
+      ? static_cast<int>(scene.Materials[mesh.material].role)
+      : 0;
+    key.emplace_back(mesh.version, mesh.material, role);
+  }
+  std::vector<double> lights;
+  for (const caustics::Light& light : scene.Lights)
+  {
+    lights.push_back(static_cast<double>(light.type));
+    lights.insert(lights.end(), light.position.begin(), light.position.end());
+    lights.insert(lights.end(), light.direction.begin(), light.direction.end());
+    lights.insert(lights.end(), light.radiometric.begin(), light.radiometric.end());
+    lights.push_back(light.cosOuter);
+    lights.push_back(light.cosInner);
+  }
+  for (const caustics::Material& material : scene.Materials)
+  {
+    lights.insert(lights.end(), material.albedo.begin(), material.albedo.end());
+  }
+  if (key == in.Key && lights == in.LightKey && this->Resolution == in.KeyResolution &&
+    in.Position.Handle)
+  {
+    return false;
+  }
+  in.Key = std::move(key);
+  in.LightKey = std::move(lights);
+  in.KeyResolution = this->Resolution;
+  return true;
+}
+
+void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneData& scene)
+{
+  auto& in = *this->Internal;
+  const double diagonal = std::max(scene.Scale(), 1e-6);
+  for (int map = 0; map < NUMBER_OF_MAPS; ++map)
+  {
+    double box[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    for (const caustics::Mesh& mesh : scene.Meshes)
+    {
+      if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.Materials.size()) ||
+        scene.Materials[mesh.material].role != MapGroup[map])
+      {
+        continue;
+      }
+      for (std::size_t v = 0; v + 2 < mesh.positions.size(); v += 3)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          const double x = mesh.positions[v + a];
+          if (std::isfinite(x))
+          {
+            box[2 * a] = std::min(box[2 * a], x);
+            box[2 * a + 1] = std::max(box[2 * a + 1], x);
+          }
+        }
+      }
+    }
+    in.Made[map] = box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5];
+    double groupDiagonal = 0.0;
+    for (int a = 0; a < 3 && in.Made[map]; ++a)
+    {
+      in.Centre[map][a] = 0.5 * (box[2 * a] + box[2 * a + 1]);
+      groupDiagonal += (box[2 * a + 1] - box[2 * a]) * (box[2 * a + 1] - box[2 * a]);
+    }
+    // A ray inside a refractor crosses at most the group's box; outside, the scene.
+    in.Reach[map] = map == REFRACTOR_SURFACE ? std::sqrt(groupDiagonal) : diagonal;
+  }
+  // One frustum for every map: from a thousandth of a millimetre-scale object to
+  // beyond the scene seen from any point in it.
+  for (int face = 0; face < Faces; ++face)
+  {
+    in.Rotation[face] = FaceRotation(face, 1e-5 * diagonal, 4.0 * diagonal);
+  }
+}
+
+bool vtkCausticsDistanceImpostors::RenderMap(
+  vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, int map)
+{
+  auto& in = *this->Internal;
+  const int r = this->Resolution;
+  for (int face = 0; face < Faces; ++face)
+  {
+    const std::array<float, 16> worldToClip = FaceWorldToClip(in.Rotation[face], in.Centre[map]);
+    if (!in.Face->Render(renWin, geometry, worldToClip.data(), r, r, MapRoles[map]))
+    {
+      return false;
+    }
+    const int layer = map * Faces + face;
+    glCopyImageSubData(in.Face->GetPositionTexture()->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0,
+      in.Position.Handle, GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, r, r, 1);
+    glCopyImageSubData(in.Face->GetNormalTexture()->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0,
+      in.Normal.Handle, GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, r, r, 1);
+  }
+  return true;
+}
+
+bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene)
+{
+  auto& in = *this->Internal;
+  vtkCausticsShaderProgram* p = in.Shade;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  constexpr int maxLights = 8; // MAX_LIGHTS of the shader
+  const int lights = std::min(static_cast<int>(scene.Lights.size()), maxLights);
+  if (static_cast<int>(scene.Lights.size()) > maxLights)
+  {
+    vtkWarningMacro(<< "distance impostors shade with the first " << maxLights << " of "
+                    << scene.Lights.size() << " lights");
+  }
+  {
+    caustics::ssp::TextureUnits units(renWin);
+    p->SetUniformi("impostorPosition", units.Bind(in.Position.Handle));
+    p->SetUniformi("impostorNormal", units.Bind(in.Normal.Handle));
+    for (int map = 0; map < NUMBER_OF_MAPS; ++map)
+    {
+      const double* c = in.Centre[map];
+      p->SetUniform3f(("impostorCentre[" + std::to_string(map) + "]").c_str(),
+        static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]));
+    }
+    p->SetUniformi("lightCount", lights);
+    for (int i = 0; i < lights; ++i)
+    {
+      const caustics::Light& light = scene.Lights[i];
+      const std::string index = "[" + std::to_string(i) + "]";
+      const auto set3 = [&](const char* name, const caustics::Vec3& v) {
+        p->SetUniform3f((name + index).c_str(), static_cast<float>(v[0]),
+          static_cast<float>(v[1]), static_cast<float>(v[2]));
+      };
+      p->SetUniformi(("lightType" + index).c_str(), static_cast<int>(light.type));
+      set3("lightPosition", light.position);
+      set3("lightDirection", light.direction);
+      set3("lightRadiometric", light.radiometric);
+      p->SetUniformf(("lightCosOuter" + index).c_str(), static_cast<float>(light.cosOuter));
+      p->SetUniformf(("lightCosInner" + index).c_str(), static_cast<float>(light.cosInner));
+    }
+    geometry->BindMaterials();
+    glBindImageTexture(0, in.Radiance.Handle, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    const unsigned int groups = static_cast<unsigned int>((this->Resolution + 7) / 8);
+    p->Dispatch(groups, groups, NUMBER_OF_MAPS * Faces);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  p->Unbind(renWin);
+  return true;
+}
+
+void vtkCausticsDistanceImpostors::SetUniforms(
+  vtkCausticsShaderProgram* program, caustics::ssp::TextureUnits& units)
+{
+  auto& in = *this->Internal;
+  if (!in.Position.Handle)
+  {
+    vtkErrorMacro(<< "SetUniforms() before Update(): the maps do not exist");
+    return;
+  }
+  program->SetUniformi("impostorPosition", units.Bind(in.Position.Handle));
+  program->SetUniformi("impostorNormal", units.Bind(in.Normal.Handle));
+  program->SetUniformi("impostorRadiance", units.Bind(in.Radiance.Handle));
+  program->SetUniformi("impostorResolution", this->Resolution);
+  program->SetUniformi("impostorLinearSteps", this->LinearSteps);
+  program->SetUniformi("impostorSecantSteps", this->SecantSteps);
+  for (int face = 0; face < Faces; ++face)
+  {
+    const std::string name = "impostorFaceRotation[" + std::to_string(face) + "]";
+    program->SetUniformMatrix4(name.c_str(), in.Rotation[face].data());
+  }
+  for (int map = 0; map < NUMBER_OF_MAPS; ++map)
+  {
+    const std::string index = "[" + std::to_string(map) + "]";
+    const double* c = in.Centre[map];
+    program->SetUniform3f(("impostorCentre" + index).c_str(), static_cast<float>(c[0]),
+      static_cast<float>(c[1]), static_cast<float>(c[2]));
+    program->SetUniformf(("impostorReach" + index).c_str(), static_cast<float>(in.Reach[map]));
+    program->SetUniformi(("impostorValid" + index).c_str(), in.Made[map] ? 1 : 0);
+  }
+}
+
+void vtkCausticsDistanceImpostors::SetAbsentUniforms(
+  vtkCausticsShaderProgram* program, int fallbackArrayUnit)
+{
+  program->SetUniformi("impostorPosition", fallbackArrayUnit);
+  program->SetUniformi("impostorNormal", fallbackArrayUnit);
+  program->SetUniformi("impostorRadiance", fallbackArrayUnit);
+  for (int map = 0; map < NUMBER_OF_MAPS; ++map)
+  {
+    program->SetUniformi(("impostorValid[" + std::to_string(map) + "]").c_str(), 0);
+  }
+}
+
+bool vtkCausticsDistanceImpostors::HasMap(int map) const
+{
+  return map >= 0 && map < NUMBER_OF_MAPS && this->Internal->Position.Handle &&
+    this->Internal->Made[map];
+}
+
+void vtkCausticsDistanceImpostors::GetReferencePoint(int map, double point[3]) const
+{
+  const int m = std::min(std::max(map, 0), NUMBER_OF_MAPS - 1);
+  std::copy(this->Internal->Centre[m], this->Internal->Centre[m] + 3, point);
+}
+
+void vtkCausticsDistanceImpostors::ReleaseGraphicsResources(vtkWindow* win)
+{
+  auto& in = *this->Internal;
+  in.Face->ReleaseGraphicsResources(win);
+  in.Position.Release();
+  in.Normal.Release();
+  in.Radiance.Release();
+  in.Shade->ReleaseGraphicsResources(win);
+  in.Key.clear();
+  std::fill(in.Made, in.Made + NUMBER_OF_MAPS, false);
+}
+
+void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "LinearSteps: " << this->LinearSteps << "\n";
+  os << indent << "SecantSteps: " << this->SecantSteps << "\n";
+  os << indent << "MapRenders: " << this->MapRenders << "\n";
+  for (int map = 0; map < NUMBER_OF_MAPS; ++map)
+  {
+    const double* c = this->Internal->Centre[map];
+    os << indent << "Map " << map << ": " << (this->HasMap(map) ? "made" : "absent")
+       << ", reference point (" << c[0] << ", " << c[1] << ", " << c[2] << ")\n";
+  }
+}

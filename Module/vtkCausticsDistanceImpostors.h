@@ -1,0 +1,148 @@
+/**
+ * @class   vtkCausticsDistanceImpostors
+ * @brief   Distance impostors: cube maps of what surrounds the specular objects.
+ *
+ * 004_4da4b323b51d1415.txt §3 (environment maps with distance impostors) and §4
+ * (refractor maps). One responsibility: the maps. Three cube maps, each from a
+ * reference point, each face a vtkCausticsGBuffer of the shared scene geometry
+ * rendered through a 90-degree frustum (world position + material index, normal
+ * as modelled + role):
+ * 1. REFRACTOR_ENVIRONMENT: from the centre of the refractors' bounding box, the
+ *    receivers and reflectors (everything but the refractors);
+ * 2. REFRACTOR_SURFACE: from the same point, the refractors themselves, nearest
+ *    surface per direction: the refractor map of §4 (exit point and normal);
+ * 3. REFLECTOR_ENVIRONMENT: from the centre of the reflectors' bounding box, the
+ *    receivers and refractors (everything but the reflectors).
+ * 4. each receiver texel's radiance for hits the camera does not see: albedo x
+ *    the direct irradiance of the scene's first 8 lights (physical falloff, no
+ *    shadows, no caustic; glsl/vtkCausticsImpostorShadeCS.glsl). Hits the camera
+ *    sees take the camera's colour (caustics and shadows included) instead.
+ * A map whose role group is empty is not made. The distance of a texel is
+ * |position - reference point|, computed in the lookup (so the maps hold exact
+ * world positions, not a depth); the shaders' Hit() search
+ * (glsl/vtkCausticsImpostorCommon.glsl) is a linear march of LinearSteps samples
+ * followed by SecantSteps steps of false position, as §2-3.
+ *
+ * Invalidation: the maps are rendered again only when a mesh's version, its
+ * material index or role, a light, an albedo or Resolution change
+ * (GetMapRenders() counts the renders). The other material parameters (IOR,
+ * metal n and k, absorption) do not invalidate them: the shaders read the
+ * material table live.
+ *
+ * Limits: maps are per role group, not per object, so a refractor does not see
+ * another refractor through the environment map and a mirror does not see
+ * another mirror (the screen-space march does, with the BOTH camera-view method);
+ * a reference point outside a non-convex object (a ring) still gives a map, but
+ * surfaces hidden from that point are missing from it (the paper's "view
+ * dependent occlusions").
+ */
+#ifndef vtkCausticsDistanceImpostors_h
+#define vtkCausticsDistanceImpostors_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCausticsModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+
+class vtkCausticsSceneGeometry;
+class vtkCausticsShaderProgram;
+class vtkOpenGLRenderWindow;
+class vtkWindow;
+#ifndef __VTK_WRAP__
+namespace caustics
+{
+struct SceneData;
+namespace ssp
+{
+class TextureUnits;
+}
+}
+#endif
+
+class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsDistanceImpostors : public vtkObject
+{
+public:
+  static vtkCausticsDistanceImpostors* New();
+  vtkTypeMacro(vtkCausticsDistanceImpostors, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /** The maps, in the order of their layers (6 faces each). */
+  enum Map
+  {
+    REFRACTOR_ENVIRONMENT = 0,
+    REFRACTOR_SURFACE = 1,
+    REFLECTOR_ENVIRONMENT = 2,
+    NUMBER_OF_MAPS = 3
+  };
+
+  ///@{
+  /** Texels along a cube face's edge, in [16, 2048]. Default 256. */
+  vtkSetClampMacro(Resolution, int, 16, 2048);
+  vtkGetMacro(Resolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * The Hit() search: samples of the linear march along a ray, in [1, 256]
+   * (default 32), then steps of false position between the last sample before the
+   * surface and the first beyond it, in [0, 32] (default 8).
+   */
+  vtkSetClampMacro(LinearSteps, int, 1, 256);
+  vtkGetMacro(LinearSteps, int);
+  vtkSetClampMacro(SecantSteps, int, 0, 32);
+  vtkGetMacro(SecantSteps, int);
+  ///@}
+
+  /** How many times the maps were rendered (once per change, see above). */
+  vtkGetMacro(MapRenders, int);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Renders the maps if the scene changed since the last call (see above).
+   * Returns false if a map could not be made (GL failure).
+   */
+  bool Update(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::SceneData& scene);
+
+  /**
+   * Sets the uniforms of glsl/vtkCausticsImpostorCommon.glsl on a bound program.
+   * Without maps (never updated, or released) every map reads as absent; the
+   * samplers are then bound to `fallbackArray`, a 2D array texture unit the
+   * program already uses (GL refuses two sampler types on one unit).
+   */
+  void SetUniforms(vtkCausticsShaderProgram* program, caustics::ssp::TextureUnits& units);
+  static void SetAbsentUniforms(vtkCausticsShaderProgram* program, int fallbackArrayUnit);
+#endif
+
+  /** Whether the last Update() made the given map (its role group is not empty). */
+  bool HasMap(int map) const;
+  /** The reference point of a map (world, m). */
+  void GetReferencePoint(int map, double point[3]) const;
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkCausticsDistanceImpostors();
+  ~vtkCausticsDistanceImpostors() override;
+
+  int Resolution = 256;
+  int LinearSteps = 32;
+  int SecantSteps = 8;
+  int MapRenders = 0;
+
+private:
+  vtkCausticsDistanceImpostors(const vtkCausticsDistanceImpostors&) = delete;
+  void operator=(const vtkCausticsDistanceImpostors&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+
+  // Steps of Update().
+  bool SceneChanged(const caustics::SceneData& scene);
+  void ChooseReferencePoints(const caustics::SceneData& scene);
+  bool RenderMap(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, int map);
+  bool ShadeMaps(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
+    const caustics::SceneData& scene);
+};
+
+#endif
