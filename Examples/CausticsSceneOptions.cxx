@@ -83,6 +83,10 @@ std::string QualityUsage()
                              sharp foci, see docs/accuracy.md)
   --denoise                  denoise the caustic irradiance over space and time
                              (SVGF, docs/denoising.md; default: the technique's)
+  --camera-view MODE         how glass and mirrors show the scene: screen-space,
+                             impostors (distance impostors, paper 004) or both
+                             (default: screen-space, impostors where rays leave
+                             the view; docs/technique-distance-impostors.md)
   --size W[xH]               image size in pixels (default 512x512)
 )";
 }
@@ -261,6 +265,9 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
   arguments.Flag("--denoise", [&options] { options.Denoise = true; });
+  arguments.Value("--camera-view",
+    [&options](const std::string& option, const std::string& value)
+    { options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" }); });
   arguments.Value("--size",
     [&options](const std::string& option, const std::string& value)
     {
@@ -648,6 +655,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   if (options.Denoise)
   {
     pass->DenoiseOn();
+  }
+  if (options.CameraView >= 0)
+  {
+    pass->SetCameraViewMethod(options.CameraView); // the same order as CameraViewMethods
   }
   if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))
   {

@@ -35,6 +35,8 @@ struct SceneOptions
   int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
   int Width = 512, Height = 512;
   bool Denoise = false; ///< --denoise: SVGF on the caustic irradiance (else the technique's)
+  /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
+  int CameraView = -1;
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };
   double LightIntensity = 1.0;
