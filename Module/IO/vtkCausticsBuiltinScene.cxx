@@ -530,7 +530,7 @@ double vtkCausticsBuiltinScene::IndexOfRefraction(double sceneDefault) const
   return this->RefractiveIndex > 0.0 ? this->RefractiveIndex : sceneDefault;
 }
 
-void vtkCausticsBuiltinScene::AddBallLens(vtkRenderer* renderer)
+void vtkCausticsBuiltinScene::AddGlassBallOverFloor(vtkRenderer* renderer)
 {
   auto floor = MakeActor(Floor(-6, 6, -6, 6, 0.0), "floor");
   MakeDiffuse(floor, 0.8, 0.8, 0.8);
@@ -546,6 +546,11 @@ void vtkCausticsBuiltinScene::AddBallLens(vtkRenderer* renderer)
   ball->GetProperty()->SetColor(1, 1, 1);
   vtkCausticsMaterial::MakeGlass(ball->GetProperty(), this->IndexOfRefraction(1.5));
   renderer->AddActor(ball);
+}
+
+void vtkCausticsBuiltinScene::AddBallLens(vtkRenderer* renderer)
+{
+  this->AddGlassBallOverFloor(renderer);
 
   const double down[3] = { 0, -1, 0 };
   renderer->AddLight(DirectionalLight(down, 1.0));
@@ -555,20 +560,7 @@ void vtkCausticsBuiltinScene::AddBallLens(vtkRenderer* renderer)
 
 void vtkCausticsBuiltinScene::AddSmokeLens(vtkRenderer* renderer)
 {
-  auto floor = MakeActor(Floor(-6, 6, -6, 6, 0.0), "floor");
-  MakeDiffuse(floor, 0.8, 0.8, 0.8);
-  renderer->AddActor(floor);
-
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(1.0);
-  sphere->SetCenter(0.0, 3.0, 0.0);
-  sphere->SetThetaResolution(static_cast<int>(128 * this->Tessellation));
-  sphere->SetPhiResolution(static_cast<int>(64 * this->Tessellation));
-  sphere->Update();
-  auto ball = MakeActor(sphere->GetOutput(), "glass ball");
-  ball->GetProperty()->SetColor(1, 1, 1);
-  vtkCausticsMaterial::MakeGlass(ball->GetProperty(), this->IndexOfRefraction(1.5));
-  renderer->AddActor(ball);
+  this->AddGlassBallOverFloor(renderer);
 
   // A spot 4 m above the ball's centre whose cone just covers the ball (asin(1/4) is
   // 14.5 degrees): 16 W/sr give 1 W/m^2 at the ball's top, as the ball lens's sun.

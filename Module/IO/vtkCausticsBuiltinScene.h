@@ -130,6 +130,8 @@ private:
   /** The scenes' actors, lights and camera. */
   void AddBallLens(vtkRenderer* renderer);
   void AddSmokeLens(vtkRenderer* renderer);
+  /** The glass ball (radius 1, 3 m up) over the white floor: ball lens and smoke lens. */
+  void AddGlassBallOverFloor(vtkRenderer* renderer);
   void AddPool(vtkRenderer* renderer);
   void AddRing(vtkRenderer* renderer);
   bool AddBunny(vtkRenderer* renderer);
