@@ -333,22 +333,31 @@ void AddCornellBox(vtkRenderer* renderer)
 }
 
 /** The Cornell box's ceiling spot: 2 W/sr, 50 degree cone, 40 degree inner cone. */
-void AddCeilingSpot(vtkRenderer* renderer)
+/**
+ * A spot light straight down from (0, height, 0): `intensity` W/sr, physical 1/r^2,
+ * glTF's falloff between `innerCone` and `cone` (degrees).
+ */
+vtkSmartPointer<vtkLight> DownwardSpot(double height, double cone, double innerCone, double intensity)
 {
   auto spot = vtkSmartPointer<vtkLight>::New();
   spot->SetLightTypeToSceneLight();
   spot->SetPositional(true);
-  spot->SetPosition(0.0, 1.95, 0.0);
+  spot->SetPosition(0.0, height, 0.0);
   spot->SetFocalPoint(0.0, 0.0, 0.0);
-  spot->SetConeAngle(50.0);
+  spot->SetConeAngle(cone);
   spot->SetExponent(1.0);
   spot->SetAttenuationValues(0.0, 0.0, 1.0); // physical 1/r^2
   spot->SetColor(1, 1, 1);
-  spot->SetIntensity(2.0); // W/sr
+  spot->SetIntensity(intensity); // W/sr
   vtkNew<vtkInformation> lightInfo;
-  lightInfo->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), 40.0);
+  lightInfo->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), innerCone);
   spot->SetInformation(lightInfo);
-  renderer->AddLight(spot);
+  return spot;
+}
+
+void AddCeilingSpot(vtkRenderer* renderer)
+{
+  renderer->AddLight(DownwardSpot(1.95, 50.0, 40.0, 2.0));
 }
 
 /**
@@ -564,20 +573,7 @@ void vtkCausticsBuiltinScene::AddSmokeLens(vtkRenderer* renderer)
 
   // A spot 4 m above the ball's centre whose cone just covers the ball (asin(1/4) is
   // 14.5 degrees): 16 W/sr give 1 W/m^2 at the ball's top, as the ball lens's sun.
-  auto spot = vtkSmartPointer<vtkLight>::New();
-  spot->SetLightTypeToSceneLight();
-  spot->SetPositional(true);
-  spot->SetPosition(0.0, 7.0, 0.0);
-  spot->SetFocalPoint(0.0, 0.0, 0.0);
-  spot->SetConeAngle(16.0);
-  spot->SetExponent(1.0);
-  spot->SetAttenuationValues(0.0, 0.0, 1.0); // physical 1/r^2
-  spot->SetColor(1, 1, 1);
-  spot->SetIntensity(16.0); // W/sr
-  vtkNew<vtkInformation> lightInfo;
-  lightInfo->Set(vtkCausticsSceneExtractor::INNER_CONE_ANGLE(), 15.0);
-  spot->SetInformation(lightInfo);
-  renderer->AddLight(spot);
+  renderer->AddLight(DownwardSpot(7.0, 16.0, 15.0, 16.0));
   AttachPlume(renderer);
 
   const double eye[3] = { 0.0, 4.5, 9.0 }, focal[3] = { 0.0, 1.3, 0.0 };
