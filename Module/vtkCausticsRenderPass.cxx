@@ -1429,6 +1429,13 @@ bool vtkCausticsRenderPass::ReadReceiverMask(const char* name, vtkImageData* out
 void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
 {
   auto& in = *this->Internal;
+  // GL names belong to one context: delete ours in the window's own, whichever
+  // context the caller left current (else another window's objects of the same
+  // names are deleted instead).
+  if (auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(w))
+  {
+    renWin->MakeCurrent();
+  }
   this->Superclass::ReleaseGraphicsResources(w);
   this->ReleaseTechniqueResources(w);
   in.LimitsWindow = nullptr; // a later window may reuse the address

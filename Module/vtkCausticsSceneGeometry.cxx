@@ -214,6 +214,10 @@ bool vtkCausticsSceneGeometry::Upload(
 {
   auto& in = *this->Internal;
   in.LastUploadBytes = 0;
+  // Judge only this upload's calls: an error someone else left pending is not ours.
+  for (int pending = 0; pending < 16 && glGetError() != GL_NO_ERROR; ++pending)
+  {
+  }
   this->CreateBuffers();
 
   // Layout: meshes sorted by role (stable), each a block of vertices and indices.

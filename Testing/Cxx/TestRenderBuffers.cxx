@@ -6,6 +6,7 @@
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsTimings.h"
+#include "TestTechniqueFrame.h"
 
 #include "vtkActor.h"
 #include "vtkDataArray.h"
@@ -257,4 +258,27 @@ TEST(RenderPass, ReadBufferRejectsUnknownNames)
   EXPECT_FALSE(f.Pass->ReadBuffer("LightFlux:x", image));
   EXPECT_TRUE(f.Pass->ReadBuffer("FinalColor", image));
   EXPECT_TRUE(f.Pass->ReadBuffer("ReceiverMask", image));
+}
+
+// Two windows, each with its own pass: releasing one pass's resources while the
+// other window's context is current must delete them in their own context, and
+// leave the other window's caustics as they were (before, the other pass's
+// programs of the same names were deleted and its next frame lost its caustics).
+TEST(RenderPass, ReleasingOneWindowKeepsTheOthersCaustics)
+{
+  auto flux = [](TechniqueFrame& frame)
+  {
+    frame.Pass->KeepBuffersOn();
+    vtkSmartPointer<vtkImageData> image = frame.Render("CausticIrradiance");
+    return image ? Sum(image, 0) : -1.0;
+  };
+  TechniqueFrame kept("caustic-maps", 64, 64);
+  const double before = flux(kept);
+  ASSERT_GT(before, 0.0);
+  {
+    TechniqueFrame released("caustic-maps", 64, 64);
+    ASSERT_GT(flux(released), 0.0);
+    kept.Window->MakeCurrent();
+  } // released here, with the kept window's context current
+  EXPECT_NEAR(flux(kept), before, 1e-6 * before);
 }
