@@ -74,8 +74,8 @@ std::vector<TemporalVariant> MakeTemporalVariants()
     { "caustic-maps", "default", [](vtkCausticsRenderPass*) {} },
     // Accumulates while nothing changes and restarts on any change: its lag after a cut.
     { "cpu-progressive", "default", [](vtkCausticsRenderPass*) {} },
-    // One estimate of LightBufferResolution^2 photons per frame, the same seed each
-    // frame: no accumulation, so no lag, and the noise of one frame while it moves.
+    // One estimate of LightBufferResolution^2 photons per frame, a new seed each
+    // frame: no accumulation, so no lag, and the noise of one frame, still or moving.
     { "cpu-progressive", "progressive=off",
       [](vtkCausticsRenderPass* pass)
       {

@@ -134,6 +134,7 @@ struct vtkCausticsProgressivePhotonPass::Internals
   caustics::SceneData Clean; // the snapshot without broken triangles, when it has some
   int Frames = 0;
   long long Photons = 0;
+  unsigned int Estimates = 0; // estimates traced since construction: never reset
   int Width = 0, Height = 0;
   RunningMean Caustic;
   RunningMean Volume;
@@ -237,7 +238,10 @@ bool vtkCausticsProgressivePhotonPass::Accumulate(const FrameInputs& in)
     return false; // refused before, with its reason: no caustics until it changes
   }
   this->StartStage("cpu photon tracing");
-  tracer->SetSeed(static_cast<unsigned int>(s.Frames + 1));
+  // A new seed for every estimate, so that frames are independent (not
+  // progressive, one estimate is shown per frame and a still scene must flicker
+  // as that estimate does) and an accumulation never reuses one.
+  tracer->SetSeed(++s.Estimates);
   tracer->SetScene(LeaveOutBrokenTriangles(scene, s.Clean) ? s.Clean : scene);
   tracer->SetImageSize(in.Width, in.Height);
   const bool traced = tracer->Update(); // on failure the tracer reports why, once

@@ -53,7 +53,7 @@ public:
   ///@{
   /**
    * Accumulate frames while nothing changes (default on). Off, every frame is one
-   * independent estimate of LightBufferResolution^2 photons with the same seed: what
+   * independent estimate of LightBufferResolution^2 photons with a new seed: what
    * one frame costs against the error it has, for the benchmark (k accumulated
    * frames are one estimate from k times the photons).
    */
