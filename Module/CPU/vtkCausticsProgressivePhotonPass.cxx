@@ -240,8 +240,11 @@ bool vtkCausticsProgressivePhotonPass::Accumulate(const FrameInputs& in)
   this->StartStage("cpu photon tracing");
   // A new seed for every estimate, so that frames are independent (not
   // progressive, one estimate is shown per frame and a still scene must flicker
-  // as that estimate does) and an accumulation never reuses one.
-  tracer->SetSeed(++s.Estimates);
+  // as that estimate does) and an accumulation never reuses one. The seeds start
+  // past the reference renderer's own (1 for ground truths, 2 for the benchmark's
+  // ladder), whose photons with the same index would otherwise be the same.
+  constexpr unsigned int FirstSeed = 1000;
+  tracer->SetSeed(FirstSeed + s.Estimates++);
   tracer->SetScene(LeaveOutBrokenTriangles(scene, s.Clean) ? s.Clean : scene);
   tracer->SetImageSize(in.Width, in.Height);
   const bool traced = tracer->Update(); // on failure the tracer reports why, once
