@@ -71,36 +71,28 @@ bool ValidCoefficients(double r, double g, double b)
 
 void vtkCausticsMedium::SetScatteringCoefficient(double r, double g, double b)
 {
-  if (!ValidCoefficients(r, g, b))
-  {
-    vtkErrorMacro(<< "scattering coefficient (" << r << ", " << g << ", " << b
-                  << ") must be finite and >= 0 (1/m); keeping the previous value");
-    return;
-  }
-  if (r != this->ScatteringCoefficient[0] || g != this->ScatteringCoefficient[1] ||
-    b != this->ScatteringCoefficient[2])
-  {
-    this->ScatteringCoefficient[0] = r;
-    this->ScatteringCoefficient[1] = g;
-    this->ScatteringCoefficient[2] = b;
-    this->Modified();
-  }
+  this->SetCoefficient("scattering", this->ScatteringCoefficient, r, g, b);
 }
 
 void vtkCausticsMedium::SetAbsorptionCoefficient(double r, double g, double b)
 {
+  this->SetCoefficient("absorption", this->AbsorptionCoefficient, r, g, b);
+}
+
+void vtkCausticsMedium::SetCoefficient(
+  const char* what, double (&coefficient)[3], double r, double g, double b)
+{
   if (!ValidCoefficients(r, g, b))
   {
-    vtkErrorMacro(<< "absorption coefficient (" << r << ", " << g << ", " << b
+    vtkErrorMacro(<< what << " coefficient (" << r << ", " << g << ", " << b
                   << ") must be finite and >= 0 (1/m); keeping the previous value");
     return;
   }
-  if (r != this->AbsorptionCoefficient[0] || g != this->AbsorptionCoefficient[1] ||
-    b != this->AbsorptionCoefficient[2])
+  if (r != coefficient[0] || g != coefficient[1] || b != coefficient[2])
   {
-    this->AbsorptionCoefficient[0] = r;
-    this->AbsorptionCoefficient[1] = g;
-    this->AbsorptionCoefficient[2] = b;
+    coefficient[0] = r;
+    coefficient[1] = g;
+    coefficient[2] = b;
     this->Modified();
   }
 }

@@ -165,6 +165,9 @@ protected:
   std::string LastError;
 
 private:
+  /** Sets one of the per-channel coefficients (1/m) after checking it. */
+  void SetCoefficient(const char* what, double (&coefficient)[3], double r, double g, double b);
+
   vtkCausticsMedium(const vtkCausticsMedium&) = delete;
   void operator=(const vtkCausticsMedium&) = delete;
 };
