@@ -23,7 +23,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
+#include <iostream>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -538,5 +541,77 @@ TEST(DensityGrid, MeanDensityStagesWarnOncePerMediumChange)
     frame.Pass->AddObserver(vtkCommand::WarningEvent, observer);
     frame.Window->Render();
     EXPECT_EQ(warnings().find("mean density"), std::string::npos) << technique;
+  }
+}
+
+// Issue 14's large-grid stress case: 216^3 (about 10^7) active voxels of varying
+// density, so that every leaf is stored (a constant fill would become tiles). It is
+// loaded through the user's path (.vdb file), converted to NanoVDB, uploaded and
+// rendered by two techniques with no NaN and no hang; memory and times are printed
+// (on the GPU the NanoVDB bytes, against a dense copy of the same bounds).
+TEST(DensityGrid, TenMillionActiveVoxelsRender)
+{
+  constexpr int n = 216;
+  TechniqueFrame probe("caustic-maps", 64, 64);
+  double bounds[6];
+  probe.Renderer->ComputeVisiblePropBounds(bounds);
+  const double size = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  auto transform = openvdb::math::Transform::createLinearTransform(size / n);
+  transform->postTranslate(openvdb::Vec3d(bounds[0], bounds[2], bounds[4]));
+  grid->setTransform(transform);
+  {
+    auto accessor = grid->getAccessor();
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < n; ++k)
+          accessor.setValue(openvdb::Coord(i, j, k),
+            static_cast<float>(0.5 + 0.4 * std::sin(0.3 * i) * std::cos(0.2 * j + 0.1 * k)));
+  }
+  ASSERT_GE(grid->activeVoxelCount(), 10000000u);
+  const std::string file = Write("ten-million.vdb", { grid });
+  grid.reset();
+
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(0.02, 0.02, 0.02);
+  medium->SetAbsorptionCoefficient(0.01, 0.01, 0.01);
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_TRUE(medium->LoadDensity(file.c_str()));
+  const double loadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto density = medium->GetDensity();
+  ASSERT_TRUE(density);
+  EXPECT_GE(density->GetActiveVoxelCount(), 10000000);
+  std::cout << "10^7-voxel grid: " << density->GetActiveVoxelCount() << " active voxels, NanoVDB "
+            << density->GetNanoVDBBytes() / 1048576.0 << " MiB on the GPU (dense "
+            << density->GetDenseBytes() / 1048576.0 << " MiB), load + conversion " << loadSeconds
+            << " s\n";
+
+  for (const char* technique : { "caustic-maps", "screen-space" })
+  {
+    TechniqueFrame frame(technique, 64, 64);
+    frame.Pass->KeepBuffersOn();
+    vtkCausticsMedium::AttachTo(frame.Renderer, medium);
+    frame.Window->Render(); // the upload
+    const auto begin = std::chrono::steady_clock::now();
+    vtkSmartPointer<vtkImageData> image = frame.Render("FinalColor");
+    const double frameSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    ASSERT_TRUE(image) << technique;
+    vtkDataArray* colour = image->GetPointData()->GetArray(0);
+    double sum = 0.0;
+    for (vtkIdType p = 0; p < colour->GetNumberOfTuples(); ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double v = colour->GetComponent(p, c);
+        ASSERT_TRUE(std::isfinite(v)) << technique << " pixel " << p;
+        sum += v;
+      }
+    }
+    EXPECT_GT(sum, 0.0) << technique << ": not a black image";
+    std::cout << technique << " frame with the 10^7-voxel grid at 64^2: " << frameSeconds
+              << " s\n";
   }
 }
