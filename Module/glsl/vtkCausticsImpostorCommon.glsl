@@ -142,3 +142,19 @@ bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, o
   }
   return ImpostorOnSurface(map, o + t * d, texel);
 }
+
+// The first crossing of o + t d with the surface of impostor map `map` (Hit()), over
+// the part of the ray inside the box [boxMin, boxMax] grown by `tolerance` (m) and
+// within the map's reach, starting `tolerance` from o. Used by the camera view
+// (vtkCausticsScreenSpaceRefractionFS.glsl) and the photon trace
+// (vtkCausticsImpostorPhotonTraceCS.glsl).
+bool ImpostorSearch(int map, vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, float tolerance,
+  out float t, out ivec3 texel)
+{
+  float t0 = 0.0;
+  float t1 = impostorReach[map];
+  t = t1;
+  texel = ivec3(0);
+  return CausticsClipToBox(o, d, boxMin - vec3(tolerance), boxMax + vec3(tolerance), t0, t1) &&
+    ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
+}
