@@ -4,7 +4,8 @@
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsImpostorCommon.h"         // Hit() over the cube maps (shared)
-#include "vtkCausticsImpostorPhotonTraceCS.h" // The trace's compute shader
+#include "vtkCausticsImpostorPhotonSpreadCS.h" // Kernel radii from the landed grid
+#include "vtkCausticsImpostorPhotonTraceCS.h"  // The trace's compute shader
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsOptics.h" // Surface interaction (shared)
 #include "vtkCausticsPhotonBufferCommon.h" // AllFinite (shared)
@@ -18,6 +19,7 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -47,6 +49,7 @@ struct vtkCausticsImpostorPhotonPass::Internals
 {
   vtkNew<vtkCausticsPhotonEmitter> Emitter;   // 1. the first specular event (shared)
   vtkNew<vtkCausticsShaderProgram> Program;   // 3. the trace against the maps
+  vtkNew<vtkCausticsShaderProgram> Spread;    //    kernel radii from the landed neighbours
   vtkNew<vtkCausticsPhotonSplatter> Splatter; // 4. irradiance (shared)
   caustics::gl::PhotonPlanes Landed;          // the trace's output, with kernel radii
   caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
@@ -60,6 +63,8 @@ vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsImpostorCommon +
     vtkCausticsImpostorPhotonTraceCS;
   s.Program->SetComputeSource(source.c_str());
+  s.Spread->SetName("impostor photon spread");
+  s.Spread->SetComputeSource(vtkCausticsImpostorPhotonSpreadCS);
   s.Emitter->SetSplitFresnel(true); // both branches of the first event: no roulette there
   this->SetSpecularShadows(true);   // its photons replace the light the specular actors block
 }
@@ -71,6 +76,7 @@ void vtkCausticsImpostorPhotonPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MaximumEvents: " << this->Settings.MaximumEvents << "\n";
   os << indent << "KernelSpacings: " << this->Settings.KernelSpacings << "\n";
+  os << indent << "SpreadStretch: " << this->Settings.SpreadStretch << "\n";
   os << indent << "FrameIndex: " << this->FrameIndex << "\n";
   os << indent << "Splatter:\n";
   this->Internal->Splatter->PrintSelf(os, indent.GetNextIndent());
@@ -105,7 +111,7 @@ bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& i
     {
       continue;
     }
-    ok = this->Emit(in, light) && this->Trace(in, light) && this->Splat(in);
+    ok = this->Emit(in, light) && this->Trace(in, light) && this->Spread(in) && this->Splat(in);
   }
   ++this->FrameIndex; // the next frame is a fresh, independent estimate
   return ok;
@@ -193,6 +199,31 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
   return true;
 }
 
+bool vtkCausticsImpostorPhotonPass::Spread(const FrameInputs& in)
+{
+  auto& s = *this->Internal;
+  this->BeginStage("impostor spread");
+  if (!s.Spread->Bind(in.Window))
+  {
+    this->EndStage("impostor spread");
+    return false;
+  }
+  glBindImageTexture(0, s.Landed.Records().Position->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY,
+    GL_RGBA32F);
+  s.Landed.BindRadiusImage(3, GL_READ_WRITE);
+  s.Spread->SetUniform2i("photonGrid", s.Grid.Width, s.Grid.Height);
+  s.Spread->SetUniformi("branchRows", std::max(s.Grid.BranchRows, 1));
+  s.Spread->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+  s.Spread->SetUniformf("stretch", static_cast<float>(this->Settings.SpreadStretch));
+  s.Spread->DispatchCovering2D(s.Grid.Width, s.Grid.Height, 8, 8);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  s.Spread->Unbind(in.Window);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+  this->EndStage("impostor spread");
+  return true;
+}
+
 bool vtkCausticsImpostorPhotonPass::Splat(const FrameInputs& in)
 {
   auto& s = *this->Internal;
@@ -227,6 +258,7 @@ void vtkCausticsImpostorPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   auto& s = *this->Internal;
   s.Emitter->ReleaseGraphicsResources(w);
   s.Program->ReleaseGraphicsResources(w);
+  s.Spread->ReleaseGraphicsResources(w);
   s.Splatter->ReleaseGraphicsResources(w);
   s.Landed.Release(w);
 }

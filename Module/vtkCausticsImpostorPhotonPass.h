@@ -28,8 +28,10 @@
  *    whether the camera or the light sees it or not; mirrors reflect, refractors
  *    are entered, up to MaximumEvents; a participating medium attenuates every
  *    stretch in air; a receiver lit on the side the camera sees ends the photon;
- * 4. reconstruction (§5, "the photon hits are splatted"): the landed photons, in the
- *    shared photon record layout, go to the shared vtkCausticsPhotonSplatter
+ * 4. reconstruction (§5, "the photon hits are splatted"): each landed photon's kernel
+ *    radius grows to the spacing of its landed grid neighbours where the light
+ *    spreads out (SpreadStretch; the splats are energy-normalized, so only the
+ *    blur changes), then the landed photons, in the shared photon record layout, go to the shared vtkCausticsPhotonSplatter
  *    (energy-normalized splats or caustic triangles, GetSplatter()), W/m^2 at the
  *    receivers the camera sees.
  * Limits: one reference point per map, so surfaces hidden from it are missed
@@ -72,6 +74,17 @@ public:
 
   ///@{
   /**
+   * Kernel radii from the landed photons' grid neighbours: a photon's radius grows to
+   * KernelSpacings times the mean distance to its neighbours that landed within
+   * SpreadStretch unoccluded spacings (where the light spreads out, splats then
+   * touch); never below the unoccluded radius. In [1, 64]; 1 turns it off.
+   * Default 8.
+   */
+  vtkCausticsSettingClampMacro(Settings, SpreadStretch, double, 1.0, 64.0);
+  ///@}
+
+  ///@{
+  /**
    * Index of the next frame's Russian roulette seed; it advances by one every frame,
    * so successive frames are independent estimates. Set it to repeat a frame.
    * Default 0.
@@ -102,6 +115,7 @@ private:
   bool Emit(const FrameInputs& in, int light);
   bool UpdateMaps(const FrameInputs& in);
   bool Trace(const FrameInputs& in, int light);
+  bool Spread(const FrameInputs& in);
   bool Splat(const FrameInputs& in);
   void BeginStage(const char* name);
   void EndStage(const char* name);

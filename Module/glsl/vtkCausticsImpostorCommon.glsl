@@ -158,3 +158,33 @@ bool ImpostorSearch(int map, vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, float tol
   return CausticsClipToBox(o, d, boxMin - vec3(tolerance), boxMax + vec3(tolerance), t0, t1) &&
     ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
 }
+
+// The normal at h, a point on the surface that `texel` of `map` holds: bilinear
+// between the normals of the 2 x 2 texels around h's direction that show the same
+// material within 60 degrees of the texel's own normal (a smooth surface's normal is
+// continuous; one texel's normal alone is piecewise constant, and a photon refracted
+// by it is bent in steps, the caustic broken into bands). Unit; the texel's own where
+// no neighbour qualifies.
+vec3 ImpostorSmoothNormal(int map, vec3 h, ivec3 texel)
+{
+  int face = texel.z - 6 * map;
+  vec4 clip = impostorFaceRotation[face] * vec4(h - impostorCentre[map], 1.0);
+  vec2 c = (clip.xy / max(clip.w, 1e-30) * 0.5 + 0.5) * float(impostorResolution) - 0.5;
+  ivec2 base = ivec2(floor(c));
+  vec2 f = clamp(c - vec2(base), 0.0, 1.0);
+  vec3 own = normalize(texelFetch(impostorNormal, texel, 0).xyz);
+  float material = texelFetch(impostorPosition, texel, 0).w;
+  vec3 sum = vec3(0.0);
+  for (int k = 0; k < 4; ++k)
+  {
+    ivec3 corner = ivec3(clamp(base + ivec2(k & 1, k >> 1), ivec2(0),
+                           ivec2(impostorResolution - 1)),
+      texel.z);
+    vec3 n = texelFetch(impostorNormal, corner, 0).xyz;
+    float weight = ((k & 1) == 1 ? f.x : 1.0 - f.x) * ((k >> 1) == 1 ? f.y : 1.0 - f.y);
+    bool same = texelFetch(impostorPosition, corner, 0).w == material && dot(n, n) > 0.0 &&
+      dot(normalize(n), own) > 0.5;
+    sum += same ? weight * normalize(n) : vec3(0.0);
+  }
+  return dot(sum, sum) > 1e-12 ? normalize(sum) : own;
+}

@@ -2,9 +2,9 @@
 // 004_4da4b323b51d1415.txt §4-5). One thread per emitted photon (the shared
 // vtkCausticsPhotonEmitter's grid: the first specular event, both Fresnel branches):
 // 1. inside a refractor: Hit() against its refractor map (§4: the exit point and
-//    normal seen from the map's reference point) and against the environment map,
-//    the nearer wins (an open refractor, a water sheet, has no exit below: the
-//    photon meets the pool's floor); Beer-Lambert over the chord;
+//    normal seen from the map's reference point); where it has no surface ahead,
+//    against the environment map (an open refractor, a water sheet, has no exit
+//    below: the photon meets the pool's floor); Beer-Lambert over the chord;
 // 2. in air: Hit() against the environment map of what the photon left (§3: the
 //    refractors' map holds receivers and mirrors, the mirrors' map receivers and
 //    refractors); a participating medium attenuates the stretch;
@@ -98,25 +98,22 @@ void Scatter(vec3 n, int material, int role, inout vec3 d, inout vec3 flux, inou
   }
 }
 
-// The next surface along o + t d: inside a refractor, its own map or the
-// environment's, the nearer; in air, the environment map of what the photon left.
+// The next surface along o + t d: in air, the environment map of what the photon
+// left; inside a refractor, its own map (the exit, §4), or, where that map has no
+// surface ahead (an open refractor such as a water sheet has no exit below), the
+// environment's. A closed refractor resting on a floor meets the floor exactly where
+// it leaves, and the environment map there is not consulted: a photon at its
+// bottom face leaves it (or is reflected back in) as physics says.
 bool NextSurface(vec3 o, vec3 d, bool inside, int leftRole, out float t, out ivec3 texel)
 {
+  if (inside &&
+    ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, t, texel))
+  {
+    return true;
+  }
   int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
                                                    : IMPOSTOR_REFRACTOR_ENVIRONMENT;
-  bool found = ImpostorSearch(map, o, d, boundsMin, boundsMax, tolerance, t, texel);
-  float tExit;
-  ivec3 exitTexel;
-  if (inside &&
-    ImpostorSearch(
-      IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, tExit, exitTexel) &&
-    (!found || tExit < t))
-  {
-    found = true;
-    t = tExit;
-    texel = exitTexel;
-  }
-  return found;
+  return ImpostorSearch(map, o, d, boundsMin, boundsMax, tolerance, t, texel);
 }
 
 void main()
@@ -166,7 +163,7 @@ void main()
     {
       break;
     }
-    vec3 n = normalize(normalRole.xyz);
+    vec3 n = ImpostorSmoothNormal(texel.z / 6, h, texel);
     if (inside)
     {
       // Beer-Lambert over the chord, with the refractor's own absorption (the
