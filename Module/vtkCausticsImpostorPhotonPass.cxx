@@ -1,5 +1,6 @@
 #include "vtkCausticsImpostorPhotonPass.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE
 #include "vtkCausticsDistanceImpostors.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
@@ -67,6 +68,7 @@ vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
   s.Spread->SetComputeSource(vtkCausticsImpostorPhotonSpreadCS);
   s.Emitter->SetSplitFresnel(true); // both branches of the first event: no roulette there
   this->SetSpecularShadows(true);   // its photons replace the light the specular actors block
+  this->SetRefractionTracing(true); // the base pass's camera view of glass and mirrors
 }
 
 vtkCausticsImpostorPhotonPass::~vtkCausticsImpostorPhotonPass() = default;
@@ -97,21 +99,35 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsImpostorPhotonPass::GetCausticNee
 vtkCausticsRenderPass::PhotonStorage vtkCausticsImpostorPhotonPass::GetPhotonStorage()
 {
   // Per emitter slot: the landed records and radii (52 B). Beside the grid: the
-  // three cube maps of the distance impostors (18 layers of 16 + 8 + 16 B texels).
+  // three cube maps of the distance impostors (18 layers of 16 + 8 + 16 B texels)
+  // and their caustic store (3 x 4 B per texel).
   const double r = this->GetDistanceImpostors()->GetResolution();
-  return { 52.0, 0.0, 18.0 * r * r * 40.0, false };
+  return { 52.0, 0.0, 18.0 * r * r * 52.0, false };
 }
 
 bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
 {
   bool ok = this->UpdateMaps(in);
+  bool stored = false; // the caustic store was cleared for this frame
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
     if (!in.LightBuffers->GetView(light).valid)
     {
       continue;
     }
-    ok = this->Emit(in, light) && this->Trace(in, light) && this->Spread(in) && this->Splat(in);
+    ok = this->Emit(in, light);
+    if (ok && !stored)
+    {
+      // Fixed point of the store: 1/4096 of the first light's largest photon.
+      const double unit = this->Internal->Emitter->GetGrid().MaximumPhotonFlux / 3.0 / 4096.0;
+      this->GetDistanceImpostors()->BeginCaustic(unit);
+      stored = true;
+    }
+    ok = ok && this->Trace(in, light) && this->Spread(in) && this->Splat(in);
+  }
+  if (!stored && ok)
+  {
+    this->GetDistanceImpostors()->BeginCaustic(0.0); // no photons: no stale caustic
   }
   ++this->FrameIndex; // the next frame is a fresh, independent estimate
   return ok;
@@ -160,8 +176,10 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
     s.Program->SetUniformi("emitPosition", units.Bind(emitted.Emitted.Position));
     s.Program->SetUniformi("emitDirection", units.Bind(emitted.Emitted.Direction));
     s.Program->SetUniformi("emitFlux", units.Bind(emitted.Emitted.Flux));
-    s.Program->SetUniformi(
-      "lightNormal", units.Bind(in.LightBuffers->GetGBuffer(light)->GetNormalTexture()));
+    vtkCausticsGBuffer* seen = in.LightBuffers->GetGBuffer(light);
+    s.Program->SetUniformi("lightPosition", units.Bind(seen->GetPositionTexture()));
+    s.Program->SetUniformi("lightNormal", units.Bind(seen->GetNormalTexture()));
+    s.Program->SetUniformi("lightFlux", units.Bind(in.LightBuffers->GetFluxTexture(light)));
     this->GetDistanceImpostors()->SetUniforms(s.Program, units);
     in.Geometry->BindMaterials();
     s.Landed.BindImages(0, GL_WRITE_ONLY);
@@ -195,6 +213,7 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
   {
     glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   }
+  glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
   this->EndStage("impostor trace");
   return true;
 }

@@ -13,6 +13,12 @@ uniform int impostorValid[3];         // 1: the map exists
 uniform int impostorResolution;
 uniform int impostorLinearSteps;
 uniform int impostorSecantSteps;
+// The caustic store (vtkCausticsDistanceImpostors::BeginCaustic): per environment-map
+// texel and channel (layer 18 channel + 6 map + face), the caustic flux that landed on
+// the receiver the texel shows, less the direct light the specular objects block
+// there, in counts of impostorCausticUnit W (0: no store this frame).
+layout(r32i, binding = CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE) uniform iimage2DArray impostorCaustic;
+uniform float impostorCausticUnit;
 
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
@@ -187,4 +193,70 @@ vec3 ImpostorSmoothNormal(int map, vec3 h, ivec3 texel)
     sum += same ? weight * normalize(n) : vec3(0.0);
   }
   return dot(sum, sum) > 1e-12 ? normalize(sum) : own;
+}
+
+// The area (m^2) of the surface that `texel` of `map` shows: the texel's solid angle
+// from the reference point ((2 / resolution)^2 cos^3 of the angle to the face's axis)
+// times distance^2 over the cosine at which the surface is seen (floored as in
+// ImpostorOnSurface).
+float ImpostorTexelArea(int map, ivec3 texel)
+{
+  vec3 s = texelFetch(impostorPosition, texel, 0).xyz;
+  vec3 n = texelFetch(impostorNormal, texel, 0).xyz;
+  vec3 toCentre = impostorCentre[map] - s;
+  float r2 = max(dot(toCentre, toCentre), 1e-30);
+  vec3 a = abs(toCentre);
+  float axis = max(a.x, max(a.y, a.z)) * inversesqrt(r2);
+  float side = 2.0 / float(impostorResolution);
+  float cosine = abs(dot(toCentre, n)) * inversesqrt(max(r2 * dot(n, n), 1e-30));
+  return side * side * axis * axis * axis * r2 / max(cosine, 0.02);
+}
+
+// The caustic irradiance (W/m^2, net of the direct light the specular objects block;
+// may be negative in a shadow) at the receiver that `texel` of an environment map
+// shows, from the caustic store; zero without one.
+vec3 ImpostorCausticIrradiance(ivec3 texel)
+{
+  if (!(impostorCausticUnit > 0.0))
+  {
+    return vec3(0.0);
+  }
+  const int layers = 18; // 3 maps x 6 faces per channel
+  vec3 counts = vec3(float(imageLoad(impostorCaustic, texel).x),
+    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, layers)).x),
+    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, 2 * layers)).x));
+  return counts * impostorCausticUnit / ImpostorTexelArea(texel.z / 6, texel);
+}
+
+// Adds `flux` (W per channel, negative for blocked light) landed at h on a receiver
+// to the caustic store of each environment map whose texel in h's direction shows
+// that receiver at h.
+void ImpostorDepositCaustic(vec3 h, vec3 flux)
+{
+  if (!(impostorCausticUnit > 0.0) || !all(lessThan(abs(flux), vec3(1e30))))
+  {
+    return;
+  }
+  const int layers = 18;
+  ivec3 counts = ivec3(round(flux / impostorCausticUnit));
+  for (int map = IMPOSTOR_REFRACTOR_ENVIRONMENT; map <= IMPOSTOR_REFLECTOR_ENVIRONMENT; map += 2)
+  {
+    if (impostorValid[map] == 0)
+    {
+      continue;
+    }
+    ivec3 texel = ImpostorTexel(map, h - impostorCentre[map]);
+    if (int(texelFetch(impostorNormal, texel, 0).w + 0.5) != ROLE_RECEIVER ||
+      !ImpostorOnSurface(map, h, texel))
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (counts[c] != 0)
+      {
+        imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, c * layers), counts[c]);
+      }
+    }
+  }
 }

@@ -384,7 +384,11 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
     vec3 h = o + t * d;
     float texelSize = 4.0 * distance(h, impostorCentre[texel.z / 6]) / float(impostorResolution);
     m.pixel = CameraPixel(h, texelSize);
-    m.radiance = texelFetch(impostorRadiance, texel, 0).rgb;
+    // The map's direct light, and the caustic a photon technique stored there (net
+    // of the light the specular objects block: no shadow otherwise).
+    m.radiance = max(texelFetch(impostorRadiance, texel, 0).rgb +
+        causticsMaterials[m.material].albedoRole.rgb * ImpostorCausticIrradiance(texel),
+      vec3(0.0));
   }
   return m;
 }
