@@ -33,12 +33,20 @@
  *    spreads out (SpreadStretch; the splats are energy-normalized, so only the
  *    blur changes), then the landed photons, in the shared photon record layout, go to the shared vtkCausticsPhotonSplatter
  *    (energy-normalized splats or caustic triangles, GetSplatter()), W/m^2 at the
- *    receivers the camera sees.
+ *    receivers the camera sees;
+ * 5. receivers the camera sees only in a mirror or through glass (E-S-D-S-L paths):
+ *    each landed photon's flux also goes to the environment-map texel that shows
+ *    where it landed, and the light each specular texel of the light's view blocks
+ *    comes off the texel where it would have landed (the caustic store,
+ *    vtkCausticsDistanceImpostors::BeginCaustic); the shared camera view shades
+ *    such hits with albedo x (the map's direct irradiance + that net caustic
+ *    irradiance, flux over the texel's area on the surface).
  * Limits: one reference point per map, so surfaces hidden from it are missed
- * (vtkCausticsDistanceImpostors); a photon that leaves a refractor does not meet that
- * refractor again (its environment map does not hold it), nor a mirror the mirror it
- * left; caustics on receivers that the camera sees only in a mirror or through glass
- * are not stored (no caustic cube map): the camera view shows them without caustic.
+ * (vtkCausticsDistanceImpostors), as are the insides of non-convex refractors; a
+ * photon that leaves a refractor does not meet that refractor again (its environment
+ * map does not hold it), nor a mirror the mirror it left; the caustic store is a
+ * histogram of one cube-map texel's resolution and counts in 1/4096 of the first
+ * light's largest photon flux.
  */
 #ifndef vtkCausticsImpostorPhotonPass_h
 #define vtkCausticsImpostorPhotonPass_h
