@@ -25,6 +25,7 @@
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsImageIO.h"
+#include "vtkCausticsImpostorPhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
@@ -251,6 +252,14 @@ std::vector<Configuration> MakeConfigurations()
   std::vector<Configuration> table;
   AddScreenSpaceConfigurations(table);
   AddCausticMapConfigurations(table);
+  // Caustics via distance impostors (docs/technique-distance-impostors.md): one photon
+  // per light-buffer texel and Fresnel branch, traced against the cube maps.
+  for (int grid : { 128, 256, 512 })
+  {
+    table.push_back({ "impostors", "grid=" + std::to_string(grid),
+      Set<vtkCausticsImpostorPhotonPass>(
+        [grid](vtkCausticsImpostorPhotonPass* pass) { pass->SetLightBufferResolution(grid); }) });
+  }
   // The CPU technique, one independent estimate per frame (its accumulated frames are
   // one estimate from that many times the photons): its cost against its error.
   for (int grid : { 128, 256, 512, 1024 })

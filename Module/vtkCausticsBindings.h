@@ -50,4 +50,8 @@
 #define CAUSTICS_HIERARCHY_WORK_BINDING 4
 #define CAUSTICS_HIERARCHY_SPLATS_BINDING 5
 
+// Image units (a namespace of their own): the distance impostors' caustic store
+// (vtkCausticsDistanceImpostors::BeginCaustic, glsl/vtkCausticsImpostorCommon.glsl).
+#define CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE 7
+
 #endif

@@ -1,5 +1,6 @@
 #include "vtkCausticsDistanceImpostors.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -91,6 +92,7 @@ struct vtkCausticsDistanceImpostors::Internals
   caustics::ssp::Texture Position; // RGBA32F, layer 6 map + face: world xyz, w = material
   caustics::ssp::Texture Normal;   // RGBA16F: normal as modelled, w = role
   caustics::ssp::Texture Radiance; // RGBA32F: receivers' albedo x direct irradiance
+  caustics::ssp::Texture Caustic;  // R32I, 3 x 18 layers: caustic flux per texel, fixed point
   vtkNew<vtkCausticsShaderProgram> Shade;
   std::array<std::array<float, 16>, Faces> Rotation{};
   double Centre[NUMBER_OF_MAPS][3] = {};
@@ -131,6 +133,12 @@ bool vtkCausticsDistanceImpostors::Update(
   in.Position.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
   in.Normal.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA16F);
   in.Radiance.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
+  if (in.Caustic.Ensure(r, r, 3 * NUMBER_OF_MAPS * Faces, GL_R32I))
+  {
+    const int zero = 0;
+    glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
+  }
+  this->CausticUnit = 0.0; // the store was made for other maps
   bool ok = true;
   for (int map = 0; map < NUMBER_OF_MAPS && ok; ++map)
   {
@@ -315,6 +323,11 @@ void vtkCausticsDistanceImpostors::SetUniforms(
   program->SetUniformi("impostorNormal", units.Bind(in.Normal.Handle));
   program->SetUniformi("impostorRadiance", units.Bind(in.Radiance.Handle));
   program->SetUniformi("impostorResolution", this->Resolution);
+  program->SetUniformf("impostorCausticUnit", static_cast<float>(this->CausticUnit));
+  if (this->CausticUnit > 0.0)
+  {
+    this->BindCausticImage();
+  }
   program->SetUniformi("impostorLinearSteps", this->LinearSteps);
   program->SetUniformi("impostorSecantSteps", this->SecantSteps);
   for (int face = 0; face < Faces; ++face)
@@ -339,10 +352,30 @@ void vtkCausticsDistanceImpostors::SetAbsentUniforms(
   program->SetUniformi("impostorPosition", fallbackArrayUnit);
   program->SetUniformi("impostorNormal", fallbackArrayUnit);
   program->SetUniformi("impostorRadiance", fallbackArrayUnit);
+  program->SetUniformf("impostorCausticUnit", 0.0f);
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {
     program->SetUniformi(("impostorValid[" + std::to_string(map) + "]").c_str(), 0);
   }
+}
+
+void vtkCausticsDistanceImpostors::BeginCaustic(double unit)
+{
+  auto& in = *this->Internal;
+  if (!in.Caustic.Handle)
+  {
+    vtkErrorMacro(<< "BeginCaustic() before Update(): the maps do not exist");
+    return;
+  }
+  const int zero = 0;
+  glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
+  this->CausticUnit = unit > 0.0 && std::isfinite(unit) ? unit : 0.0;
+}
+
+void vtkCausticsDistanceImpostors::BindCausticImage() const
+{
+  glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, this->Internal->Caustic.Handle, 0, GL_TRUE,
+    0, GL_READ_WRITE, GL_R32I);
 }
 
 bool vtkCausticsDistanceImpostors::HasMap(int map) const
@@ -364,6 +397,8 @@ void vtkCausticsDistanceImpostors::ReleaseGraphicsResources(vtkWindow* win)
   in.Position.Release();
   in.Normal.Release();
   in.Radiance.Release();
+  in.Caustic.Release();
+  this->CausticUnit = 0.0;
   in.Shade->ReleaseGraphicsResources(win);
   in.Key.clear();
   std::fill(in.Made, in.Made + NUMBER_OF_MAPS, false);
@@ -376,6 +411,7 @@ void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LinearSteps: " << this->LinearSteps << "\n";
   os << indent << "SecantSteps: " << this->SecantSteps << "\n";
   os << indent << "MapRenders: " << this->MapRenders << "\n";
+  os << indent << "CausticUnit: " << this->CausticUnit << " W per count\n";
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {
     const double* c = this->Internal->Centre[map];

@@ -15,8 +15,10 @@
  *    receivers and refractors (everything but the reflectors).
  * 4. each receiver texel's radiance for hits the camera does not see: albedo x
  *    the direct irradiance of the scene's first 8 lights (physical falloff, no
- *    shadows, no caustic; glsl/vtkCausticsImpostorShadeCS.glsl). Hits the camera
- *    sees take the camera's colour (caustics and shadows included) instead.
+ *    shadows; glsl/vtkCausticsImpostorShadeCS.glsl), plus, where a photon technique
+ *    filled the caustic store this frame (BeginCaustic()), albedo x the caustic
+ *    irradiance less the direct irradiance the specular objects block. Hits the
+ *    camera sees take the camera's colour (caustics and shadows included) instead.
  * A map whose role group is empty is not made. The distance of a texel is
  * |position - reference point|, computed in the lookup (so the maps hold exact
  * world positions, not a depth); the shaders' Hit() search
@@ -112,6 +114,21 @@ public:
    */
   void SetUniforms(vtkCausticsShaderProgram* program, caustics::ssp::TextureUnits& units);
   static void SetAbsentUniforms(vtkCausticsShaderProgram* program, int fallbackArrayUnit);
+
+  /**
+   * The caustic store: per texel of the environment maps, the caustic flux that
+   * landed on the receiver the texel shows, in fixed point (`unit` W per count, per
+   * channel; R32I, layer 18 channel + 6 map + face), so that a camera-view hit the
+   * camera does not see (in a mirror, through glass, outside the frame) is shaded
+   * with albedo x (its caustic irradiance) besides the map's direct light: the flux
+   * over the texel's area on the surface (ImpostorCausticIrradiance() in
+   * glsl/vtkCausticsImpostorCommon.glsl). A photon technique that fills it
+   * (vtkCausticsImpostorPhotonPass) calls BeginCaustic() once per frame, before its
+   * photons, and binds it with BindCausticImage(); without BeginCaustic() in a
+   * frame the store reads as zero. Call after Update().
+   */
+  void BeginCaustic(double unit);
+  void BindCausticImage() const;
 #endif
 
   /** Whether the last Update() made the given map (its role group is not empty). */
@@ -129,6 +146,7 @@ protected:
   int LinearSteps = 32;
   int SecantSteps = 8;
   int MapRenders = 0;
+  double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
 
 private:
   vtkCausticsDistanceImpostors(const vtkCausticsDistanceImpostors&) = delete;

@@ -3,6 +3,7 @@
 #include "vtkCausticsCascadedPhotonPass.h"
 #include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
+#include "vtkCausticsImpostorPhotonPass.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
@@ -46,6 +47,10 @@ std::vector<Entry>& Entries()
       "photons sampled from the light buffers, marched in the light's view, then the camera's "
       "(Meenrattanakorn and Lambers, docs/technique-cascaded.md)",
       [] { return vtkSmartPointer<vtkCausticsCascadedPhotonPass>::New(); } },
+    { "impostors",
+      "photons traced against distance impostors, cube maps of the specular objects and their "
+      "surroundings (Szirmay-Kalos et al. 2005, docs/technique-distance-impostors.md)",
+      [] { return vtkSmartPointer<vtkCausticsImpostorPhotonPass>::New(); } },
   };
   return entries;
 }

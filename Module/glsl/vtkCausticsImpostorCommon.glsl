@@ -13,6 +13,12 @@ uniform int impostorValid[3];         // 1: the map exists
 uniform int impostorResolution;
 uniform int impostorLinearSteps;
 uniform int impostorSecantSteps;
+// The caustic store (vtkCausticsDistanceImpostors::BeginCaustic): per environment-map
+// texel and channel (layer 18 channel + 6 map + face), the caustic flux that landed on
+// the receiver the texel shows, less the direct light the specular objects block
+// there, in counts of impostorCausticUnit W (0: no store this frame).
+layout(r32i, binding = CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE) uniform iimage2DArray impostorCaustic;
+uniform float impostorCausticUnit;
 
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
@@ -141,4 +147,116 @@ bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, o
     texel = own;
   }
   return ImpostorOnSurface(map, o + t * d, texel);
+}
+
+// The first crossing of o + t d with the surface of impostor map `map` (Hit()), over
+// the part of the ray inside the box [boxMin, boxMax] grown by `tolerance` (m) and
+// within the map's reach, starting `tolerance` from o. Used by the camera view
+// (vtkCausticsScreenSpaceRefractionFS.glsl) and the photon trace
+// (vtkCausticsImpostorPhotonTraceCS.glsl).
+bool ImpostorSearch(int map, vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, float tolerance,
+  out float t, out ivec3 texel)
+{
+  float t0 = 0.0;
+  float t1 = impostorReach[map];
+  t = t1;
+  texel = ivec3(0);
+  return CausticsClipToBox(o, d, boxMin - vec3(tolerance), boxMax + vec3(tolerance), t0, t1) &&
+    ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
+}
+
+// The normal at h, a point on the surface that `texel` of `map` holds: bilinear
+// between the normals of the 2 x 2 texels around h's direction that show the same
+// material within 60 degrees of the texel's own normal (a smooth surface's normal is
+// continuous; one texel's normal alone is piecewise constant, and a photon refracted
+// by it is bent in steps, the caustic broken into bands). Unit; the texel's own where
+// no neighbour qualifies.
+vec3 ImpostorSmoothNormal(int map, vec3 h, ivec3 texel)
+{
+  int face = texel.z - 6 * map;
+  vec4 clip = impostorFaceRotation[face] * vec4(h - impostorCentre[map], 1.0);
+  vec2 c = (clip.xy / max(clip.w, 1e-30) * 0.5 + 0.5) * float(impostorResolution) - 0.5;
+  ivec2 base = ivec2(floor(c));
+  vec2 f = clamp(c - vec2(base), 0.0, 1.0);
+  vec3 own = normalize(texelFetch(impostorNormal, texel, 0).xyz);
+  float material = texelFetch(impostorPosition, texel, 0).w;
+  vec3 sum = vec3(0.0);
+  for (int k = 0; k < 4; ++k)
+  {
+    ivec3 corner = ivec3(clamp(base + ivec2(k & 1, k >> 1), ivec2(0),
+                           ivec2(impostorResolution - 1)),
+      texel.z);
+    vec3 n = texelFetch(impostorNormal, corner, 0).xyz;
+    float weight = ((k & 1) == 1 ? f.x : 1.0 - f.x) * ((k >> 1) == 1 ? f.y : 1.0 - f.y);
+    bool same = texelFetch(impostorPosition, corner, 0).w == material && dot(n, n) > 0.0 &&
+      dot(normalize(n), own) > 0.5;
+    sum += same ? weight * normalize(n) : vec3(0.0);
+  }
+  return dot(sum, sum) > 1e-12 ? normalize(sum) : own;
+}
+
+// The area (m^2) of the surface that `texel` of `map` shows: the texel's solid angle
+// from the reference point ((2 / resolution)^2 cos^3 of the angle to the face's axis)
+// times distance^2 over the cosine at which the surface is seen (floored as in
+// ImpostorOnSurface).
+float ImpostorTexelArea(int map, ivec3 texel)
+{
+  vec3 s = texelFetch(impostorPosition, texel, 0).xyz;
+  vec3 n = texelFetch(impostorNormal, texel, 0).xyz;
+  vec3 toCentre = impostorCentre[map] - s;
+  float r2 = max(dot(toCentre, toCentre), 1e-30);
+  vec3 a = abs(toCentre);
+  float axis = max(a.x, max(a.y, a.z)) * inversesqrt(r2);
+  float side = 2.0 / float(impostorResolution);
+  float cosine = abs(dot(toCentre, n)) * inversesqrt(max(r2 * dot(n, n), 1e-30));
+  return side * side * axis * axis * axis * r2 / max(cosine, 0.02);
+}
+
+// The caustic irradiance (W/m^2, net of the direct light the specular objects block;
+// may be negative in a shadow) at the receiver that `texel` of an environment map
+// shows, from the caustic store; zero without one.
+vec3 ImpostorCausticIrradiance(ivec3 texel)
+{
+  if (!(impostorCausticUnit > 0.0))
+  {
+    return vec3(0.0);
+  }
+  const int layers = 18; // 3 maps x 6 faces per channel
+  vec3 counts = vec3(float(imageLoad(impostorCaustic, texel).x),
+    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, layers)).x),
+    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, 2 * layers)).x));
+  return counts * impostorCausticUnit / ImpostorTexelArea(texel.z / 6, texel);
+}
+
+// Adds `flux` (W per channel, negative for blocked light) landed at h on a receiver
+// to the caustic store of each environment map whose texel in h's direction shows
+// that receiver at h.
+void ImpostorDepositCaustic(vec3 h, vec3 flux)
+{
+  if (!(impostorCausticUnit > 0.0) || !all(lessThan(abs(flux), vec3(1e30))))
+  {
+    return;
+  }
+  const int layers = 18;
+  ivec3 counts = ivec3(round(flux / impostorCausticUnit));
+  for (int map = IMPOSTOR_REFRACTOR_ENVIRONMENT; map <= IMPOSTOR_REFLECTOR_ENVIRONMENT; map += 2)
+  {
+    if (impostorValid[map] == 0)
+    {
+      continue;
+    }
+    ivec3 texel = ImpostorTexel(map, h - impostorCentre[map]);
+    if (int(texelFetch(impostorNormal, texel, 0).w + 0.5) != ROLE_RECEIVER ||
+      !ImpostorOnSurface(map, h, texel))
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (counts[c] != 0)
+      {
+        imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, c * layers), counts[c]);
+      }
+    }
+  }
 }

@@ -335,18 +335,6 @@ ivec2 CameraPixel(vec3 h, float slack)
   return same ? q : ivec2(-1);
 }
 
-// The first crossing of o + t d with the surface of impostor map `map` (Hit()),
-// over the part of the ray inside the scene's bounds (and the map's reach).
-bool ImpostorSearch(int map, vec3 o, vec3 d, out float t, out ivec3 texel)
-{
-  float t0 = 0.0;
-  float t1 = impostorReach[map];
-  t = t1;
-  texel = ivec3(0);
-  return CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1) &&
-    ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
-}
-
 // o + t d traced against the distance impostors (004 §2-4): outside, against the
 // map of what surrounds the kind of object the ray left (`leftRole`); inside a
 // refractor, against its own map (the exit point and its normal, §4) and the
@@ -369,10 +357,11 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
                                                    : IMPOSTOR_REFRACTOR_ENVIRONMENT;
   float t;
   ivec3 texel;
-  bool found = ImpostorSearch(map, o, d, t, texel);
+  bool found = ImpostorSearch(map, o, d, boundsMin, boundsMax, tolerance, t, texel);
   float tExit;
   ivec3 exitTexel;
-  if (inside && ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, tExit, exitTexel) &&
+  if (inside && ImpostorSearch(
+                  IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, tExit, exitTexel) &&
     (!found || tExit < t))
   {
     found = true;
@@ -395,7 +384,11 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
     vec3 h = o + t * d;
     float texelSize = 4.0 * distance(h, impostorCentre[texel.z / 6]) / float(impostorResolution);
     m.pixel = CameraPixel(h, texelSize);
-    m.radiance = texelFetch(impostorRadiance, texel, 0).rgb;
+    // The map's direct light, and the caustic a photon technique stored there (net
+    // of the light the specular objects block: no shadow otherwise).
+    m.radiance = max(texelFetch(impostorRadiance, texel, 0).rgb +
+        causticsMaterials[m.material].albedoRole.rgb * ImpostorCausticIrradiance(texel),
+      vec3(0.0));
   }
   return m;
 }

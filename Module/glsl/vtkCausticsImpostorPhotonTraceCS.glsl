@@ -1,0 +1,244 @@
+// Caustics via distance impostors (vtkCausticsImpostorPhotonPass,
+// 004_4da4b323b51d1415.txt §4-5). One thread per emitted photon (the shared
+// vtkCausticsPhotonEmitter's grid: the first specular event, both Fresnel branches):
+// 1. inside a refractor: Hit() against its refractor map (§4: the exit point and
+//    normal seen from the map's reference point); where it has no surface ahead,
+//    against the environment map (an open refractor, a water sheet, has no exit
+//    below: the photon meets the pool's floor); Beer-Lambert over the chord;
+// 2. in air: Hit() against the environment map of what the photon left (§3: the
+//    refractors' map holds receivers and mirrors, the mirrors' map receivers and
+//    refractors); a participating medium attenuates the stretch;
+// 3. at a mirror or a refractor, the shared CausticsSurfaceInteraction: one branch
+//    by Russian roulette on the exact Fresnel weights, the flux divided by its
+//    probability (unbiased; total internal reflection stays inside); at most
+//    maximumEvents events;
+// 4. at a receiver lit on the side the camera sees: the landed record (photon
+//    record layout, vtkCausticsCommon.glsl) and its kernel radius, for
+//    vtkCausticsPhotonSplatter (§5: the hits are splatted). The maps hold world
+//    positions, so the receiver need not be in the camera's or the light's view;
+// 5. the caustic store (vtkCausticsDistanceImpostors::BeginCaustic): every landed
+//    photon's flux goes to the environment-map texel that shows where it landed,
+//    and the direct light the specular object blocks (the texel's flux, continued
+//    along the light's ray past it) comes off the texel where it would have landed,
+//    so that the camera view shades a receiver it sees only in a mirror or through
+//    glass with its caustic and its shadow (E-S-D-S-L paths).
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2D emitPosition;  // xyz, w = 0 none, 1 in air, 2 inside a refractor
+uniform sampler2D emitDirection; // xyz unit, w = texel measure
+uniform sampler2D emitFlux;      // rgb W
+uniform sampler2D lightPosition; // the light's G-buffer: the first surface (w < 0: none)
+uniform sampler2D lightNormal;   // w = role of the first surface
+uniform sampler2D lightFlux;     // rgb: W through the texel
+uniform int emitResolution;      // N: rows of one branch
+uniform ivec2 photonGrid;        // the emitter's grid (= the output grid)
+uniform uint frameSeed;          // seed of the Russian roulette
+uniform int lightType;           // 0 directional, 1 point, 2 spot
+uniform vec3 lightOrigin;        // point and spot lights
+uniform vec3 lightEye;           // the light's view: a directional light's eye plane
+uniform vec3 lightAxis;
+uniform vec3 cameraPosition;
+uniform vec3 cameraDirection; // towards the focal point
+uniform int cameraParallel;
+uniform vec3 boundsMin; // the scene's box (m): searches stay inside it
+uniform vec3 boundsMax;
+uniform float tolerance; // m: a search starts this far from its surface
+uniform int maximumEvents;
+uniform float spacings; // kernel radius in photon spacings
+
+layout(rgba32f, binding = 0) uniform writeonly image2D outPosition;
+layout(rgba32f, binding = 1) uniform writeonly image2D outNormal;
+layout(rgba32f, binding = 2) uniform writeonly image2D outFlux;
+layout(r32f, binding = 3) uniform writeonly image2D outRadius;
+
+uint Hash(uint x)
+{
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+float Random(inout uint state)
+{
+  state = Hash(state + 0x9e3779b9u);
+  return float(state >> 8) * (1.0 / 16777216.0);
+}
+
+float Luminance(vec3 c)
+{
+  return dot(c, vec3(1.0));
+}
+
+void NoPhoton(ivec2 g)
+{
+  imageStore(outPosition, g, vec4(0.0));
+  imageStore(outNormal, g, vec4(0.0));
+  imageStore(outFlux, g, vec4(0.0));
+  imageStore(outRadius, g, vec4(0.0));
+}
+
+// A specular event at a surface with normal n (as modelled) of `material`: one
+// branch, chosen with its share of the exact Fresnel weights; the flux is divided
+// by that probability. `inside` follows the refractor's side.
+void Scatter(vec3 n, int material, int role, inout vec3 d, inout vec3 flux, inout bool inside,
+  inout uint rng)
+{
+  CausticsInteraction s =
+    CausticsSurfaceInteraction(d, n, causticsMaterials[material], role, 1.0);
+  float reflected = Luminance(s.reflectedWeight);
+  float refracted = s.transmits && role == ROLE_REFRACTOR ? Luminance(s.refractedWeight) : 0.0;
+  float total = reflected + refracted;
+  if (!(total > 0.0))
+  {
+    flux = vec3(0.0);
+    return;
+  }
+  bool reflect = Random(rng) * total < reflected;
+  float probability = (reflect ? reflected : refracted) / total;
+  flux *= (reflect ? s.reflectedWeight : s.refractedWeight) / probability;
+  d = reflect ? s.reflected : s.refracted;
+  if (role == ROLE_REFRACTOR)
+  {
+    inside = reflect ? inside : s.entering;
+  }
+}
+
+// The next surface along o + t d: in air, the environment map of what the photon
+// left; inside a refractor, its own map (the exit, §4), or, where that map has no
+// surface ahead (an open refractor such as a water sheet has no exit below), the
+// environment's. A closed refractor resting on a floor meets the floor exactly where
+// it leaves, and the environment map there is not consulted: a photon at its
+// bottom face leaves it (or is reflected back in) as physics says.
+bool NextSurface(vec3 o, vec3 d, bool inside, int leftRole, out float t, out ivec3 texel)
+{
+  if (inside &&
+    ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, t, texel))
+  {
+    return true;
+  }
+  int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
+                                                   : IMPOSTOR_REFRACTOR_ENVIRONMENT;
+  return ImpostorSearch(map, o, d, boundsMin, boundsMax, tolerance, t, texel);
+}
+
+// 5. The light that texel `t` of the light's view would have brought past the
+// specular surface it meets, taken off where it would have landed.
+void DepositShadow(ivec2 t)
+{
+  vec4 first = texelFetch(lightPosition, t, 0);
+  int role = int(texelFetch(lightNormal, t, 0).w + 0.5);
+  if (first.w < 0.0 || (role != ROLE_REFLECTOR && role != ROLE_REFRACTOR))
+  {
+    return;
+  }
+  vec3 d = lightType == 0 ? normalize(lightAxis) : normalize(first.xyz - lightOrigin);
+  float t1;
+  ivec3 texel;
+  int map = role == ROLE_REFLECTOR ? IMPOSTOR_REFLECTOR_ENVIRONMENT : IMPOSTOR_REFRACTOR_ENVIRONMENT;
+  if (ImpostorSearch(map, first.xyz, d, boundsMin, boundsMax, tolerance, t1, texel) &&
+    int(texelFetch(impostorNormal, texel, 0).w + 0.5) == ROLE_RECEIVER)
+  {
+    ImpostorDepositCaustic(first.xyz + t1 * d, -texelFetch(lightFlux, t, 0).rgb);
+  }
+}
+
+void main()
+{
+  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(g, photonGrid)))
+  {
+    return;
+  }
+  if (g.y < emitResolution)
+  {
+    DepositShadow(g);
+  }
+  vec4 p = texelFetch(emitPosition, g, 0);
+  vec4 e = texelFetch(emitDirection, g, 0);
+  vec3 flux = texelFetch(emitFlux, g, 0).rgb;
+  if (!(p.w > 0.5) || !(Luminance(flux) > 0.0) || !AllFinite(p.xyz) || !AllFinite(e.xyz))
+  {
+    NoPhoton(g);
+    return;
+  }
+  ivec2 lightTexel = ivec2(g.x, g.y % emitResolution);
+  vec3 o = p.xyz;
+  vec3 d = e.xyz;
+  float measure = e.w; // the beam one photon stands for (m^2 or sr)
+  bool inside = p.w > 1.5;
+  // What the photon left: the first surface the light sees there.
+  int leftRole = int(texelFetch(lightNormal, lightTexel, 0).w + 0.5);
+  int insideMaterial = -1;
+  float path = lightType == 0 ? dot(o - lightEye, lightAxis) : length(o - lightOrigin);
+  // The participating medium between the light and the first specular surface.
+  vec3 towardsLight = lightType == 0 ? -lightAxis : normalize(lightOrigin - o);
+  float reach = lightType == 0 ? 3.0e38 : distance(o, lightOrigin);
+  flux *= CausticsMediumTransmittance(o, towardsLight, 0.0, reach);
+  uint rng = Hash(uint(g.x + g.y * photonGrid.x) ^ Hash(frameSeed));
+
+  for (int event = 0; event < maximumEvents && Luminance(flux) > 0.0; ++event)
+  {
+    float t;
+    ivec3 texel;
+    if (!NextSurface(o, d, inside, leftRole, t, texel))
+    {
+      break;
+    }
+    vec3 h = o + t * d;
+    vec4 surface = texelFetch(impostorPosition, texel, 0);
+    vec4 normalRole = texelFetch(impostorNormal, texel, 0);
+    int material = int(surface.w + 0.5);
+    int role = int(normalRole.w + 0.5);
+    if (!(dot(normalRole.xyz, normalRole.xyz) > 0.0))
+    {
+      break;
+    }
+    vec3 n = ImpostorSmoothNormal(texel.z / 6, h, texel);
+    if (inside)
+    {
+      // Beer-Lambert over the chord, with the refractor's own absorption (the
+      // material of the exit face, or, towards an open refractor's floor, of the
+      // face the photon entered by).
+      int absorbing = role == ROLE_REFRACTOR ? material : insideMaterial;
+      flux *= absorbing >= 0 ? CausticsTransmittance(causticsMaterials[absorbing].attenuation.rgb, t)
+                             : vec3(1.0);
+    }
+    else
+    {
+      flux *= CausticsMediumTransmittance(o, d, 0.0, t);
+    }
+    path += t;
+    if (role == ROLE_REFLECTOR || role == ROLE_REFRACTOR)
+    {
+      bool wasInside = inside;
+      Scatter(n, material, role, d, flux, inside, rng);
+      insideMaterial = inside && !wasInside ? material : insideMaterial;
+      leftRole = role;
+      o = h;
+      continue;
+    }
+    // The normal check: light arrives on the side of the receiver the camera sees.
+    vec3 towardsCamera = cameraParallel != 0 ? -normalize(cameraDirection)
+                                             : normalize(cameraPosition - h);
+    vec3 facing = dot(n, towardsCamera) >= 0.0 ? n : -n;
+    float cosine = dot(-d, facing);
+    if (role != ROLE_RECEIVER || !(cosine >= 0.0) || !AllFinite(flux) || !AllFinite(h))
+    {
+      break;
+    }
+    // The landed record; the radius spans `spacings` photon spacings of the
+    // unoccluded beam one photon stands for.
+    float distance = lightType == 0 ? 1.0 : path;
+    float radius = spacings * distance * sqrt(measure / max(cosine, 1e-3));
+    imageStore(outPosition, g, vec4(h, max(path, 1e-6)));
+    imageStore(outNormal, g, vec4(n, abs(dot(n, d))));
+    imageStore(outFlux, g, vec4(flux, measure));
+    imageStore(outRadius, g, vec4(radius));
+    ImpostorDepositCaustic(h, flux);
+    return;
+  }
+  NoPhoton(g);
+}

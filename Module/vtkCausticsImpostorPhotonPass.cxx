@@ -1,0 +1,283 @@
+#include "vtkCausticsImpostorPhotonPass.h"
+
+#include "vtkCausticsBindings.h" // CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE
+#include "vtkCausticsDistanceImpostors.h"
+#include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsImpostorCommon.h"         // Hit() over the cube maps (shared)
+#include "vtkCausticsImpostorPhotonSpreadCS.h" // Kernel radii from the landed grid
+#include "vtkCausticsImpostorPhotonTraceCS.h"  // The trace's compute shader
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsOptics.h" // Surface interaction (shared)
+#include "vtkCausticsPhotonBufferCommon.h" // AllFinite (shared)
+#include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonSplatter.h"
+#include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsScreenSpaceUtilities.h" // TextureUnits
+#include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsTimings.h"
+#include "vtkObjectFactory.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+vtkStandardNewMacro(vtkCausticsImpostorPhotonPass);
+
+namespace
+{
+/** A well-mixed 32-bit hash (the frame's roulette seed). */
+unsigned int Mix(unsigned int x)
+{
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+void SetVector(vtkCausticsShaderProgram* p, const char* name, const double v[3])
+{
+  p->SetUniform3f(
+    name, static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+}
+}
+
+struct vtkCausticsImpostorPhotonPass::Internals
+{
+  vtkNew<vtkCausticsPhotonEmitter> Emitter;   // 1. the first specular event (shared)
+  vtkNew<vtkCausticsShaderProgram> Program;   // 3. the trace against the maps
+  vtkNew<vtkCausticsShaderProgram> Spread;    //    kernel radii from the landed neighbours
+  vtkNew<vtkCausticsPhotonSplatter> Splatter; // 4. irradiance (shared)
+  caustics::gl::PhotonPlanes Landed;          // the trace's output, with kernel radii
+  caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
+};
+
+vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
+  : Internal(new Internals)
+{
+  auto& s = *this->Internal;
+  s.Program->SetName("impostor photon trace");
+  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsImpostorCommon +
+    vtkCausticsImpostorPhotonTraceCS;
+  s.Program->SetComputeSource(source.c_str());
+  s.Spread->SetName("impostor photon spread");
+  s.Spread->SetComputeSource(vtkCausticsImpostorPhotonSpreadCS);
+  s.Emitter->SetSplitFresnel(true); // both branches of the first event: no roulette there
+  this->SetSpecularShadows(true);   // its photons replace the light the specular actors block
+  this->SetRefractionTracing(true); // the base pass's camera view of glass and mirrors
+}
+
+vtkCausticsImpostorPhotonPass::~vtkCausticsImpostorPhotonPass() = default;
+
+void vtkCausticsImpostorPhotonPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MaximumEvents: " << this->Settings.MaximumEvents << "\n";
+  os << indent << "KernelSpacings: " << this->Settings.KernelSpacings << "\n";
+  os << indent << "SpreadStretch: " << this->Settings.SpreadStretch << "\n";
+  os << indent << "FrameIndex: " << this->FrameIndex << "\n";
+  os << indent << "Splatter:\n";
+  this->Internal->Splatter->PrintSelf(os, indent.GetNextIndent());
+}
+
+vtkCausticsPhotonSplatter* vtkCausticsImpostorPhotonPass::GetSplatter()
+{
+  return this->Internal->Splatter;
+}
+
+vtkCausticsRenderPass::CausticNeeds vtkCausticsImpostorPhotonPass::GetCausticNeeds()
+{
+  CausticNeeds needs;
+  needs.LitSpecular = true; // a light must reach a specular actor
+  return needs;
+}
+
+vtkCausticsRenderPass::PhotonStorage vtkCausticsImpostorPhotonPass::GetPhotonStorage()
+{
+  // Per emitter slot: the landed records and radii (52 B). Beside the grid: the
+  // three cube maps of the distance impostors (18 layers of 16 + 8 + 16 B texels)
+  // and their caustic store (3 x 4 B per texel).
+  const double r = this->GetDistanceImpostors()->GetResolution();
+  return { 52.0, 0.0, 18.0 * r * r * 52.0, false };
+}
+
+bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
+{
+  bool ok = this->UpdateMaps(in);
+  bool stored = false; // the caustic store was cleared for this frame
+  for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
+  {
+    if (!in.LightBuffers->GetView(light).valid)
+    {
+      continue;
+    }
+    ok = this->Emit(in, light);
+    if (ok && !stored)
+    {
+      // Fixed point of the store: 1/4096 of the first light's largest photon.
+      const double unit = this->Internal->Emitter->GetGrid().MaximumPhotonFlux / 3.0 / 4096.0;
+      this->GetDistanceImpostors()->BeginCaustic(unit);
+      stored = true;
+    }
+    ok = ok && this->Trace(in, light) && this->Spread(in) && this->Splat(in);
+  }
+  if (!stored && ok)
+  {
+    this->GetDistanceImpostors()->BeginCaustic(0.0); // no photons: no stale caustic
+  }
+  ++this->FrameIndex; // the next frame is a fresh, independent estimate
+  return ok;
+}
+
+bool vtkCausticsImpostorPhotonPass::UpdateMaps(const FrameInputs& in)
+{
+  this->BeginStage("distance impostors");
+  const bool ok = this->GetDistanceImpostors()->Update(in.Window, in.Geometry, *in.Scene);
+  this->EndStage("distance impostors");
+  return ok;
+}
+
+bool vtkCausticsImpostorPhotonPass::Emit(const FrameInputs& in, int light)
+{
+  this->BeginStage("impostor emit");
+  const bool ok =
+    this->Internal->Emitter->Emit(in.Window, in.LightBuffers, light, in.Geometry, *in.Scene);
+  this->EndStage("impostor emit");
+  return ok;
+}
+
+bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
+{
+  auto& s = *this->Internal;
+  const caustics::PhotonGrid& emitted = s.Emitter->GetGrid();
+  const caustics::LightView& view = in.LightBuffers->GetView(light);
+  const caustics::Light& source = in.Scene->Lights[light];
+  const caustics::Camera& camera = in.Scene->View;
+
+  // One landed photon per emitted one: the same grid (caustic triangles join the
+  // same neighbours), its records the trace's.
+  s.Grid = emitted;
+  s.Landed.EnsureWithRadius(in.Window, emitted.Width, emitted.Height); // on a change only
+  s.Grid.Emitted = s.Landed.Records();
+
+  this->BeginStage("impostor trace");
+  caustics::gl::SetMediumDefine(s.Program, in.MediumGrid); // recompiles only when it changes
+  if (!s.Program->Bind(in.Window))
+  {
+    this->EndStage("impostor trace");
+    return false;
+  }
+  {
+    caustics::ssp::TextureUnits units(in.Window);
+    s.Program->SetUniformi("emitPosition", units.Bind(emitted.Emitted.Position));
+    s.Program->SetUniformi("emitDirection", units.Bind(emitted.Emitted.Direction));
+    s.Program->SetUniformi("emitFlux", units.Bind(emitted.Emitted.Flux));
+    vtkCausticsGBuffer* seen = in.LightBuffers->GetGBuffer(light);
+    s.Program->SetUniformi("lightPosition", units.Bind(seen->GetPositionTexture()));
+    s.Program->SetUniformi("lightNormal", units.Bind(seen->GetNormalTexture()));
+    s.Program->SetUniformi("lightFlux", units.Bind(in.LightBuffers->GetFluxTexture(light)));
+    this->GetDistanceImpostors()->SetUniforms(s.Program, units);
+    in.Geometry->BindMaterials();
+    s.Landed.BindImages(0, GL_WRITE_ONLY);
+    s.Landed.BindRadiusImage(3, GL_WRITE_ONLY);
+
+    s.Program->SetUniformi("emitResolution", emitted.BranchRows);
+    s.Program->SetUniform2i("photonGrid", emitted.Width, emitted.Height);
+    s.Program->SetUniformu("frameSeed", Mix(this->FrameIndex ^ 0x5bd1e995u));
+    s.Program->SetUniformi("lightType", static_cast<int>(source.type));
+    SetVector(s.Program, "lightOrigin", source.position.data());
+    SetVector(s.Program, "lightEye", view.eye.data());
+    SetVector(s.Program, "lightAxis", view.axis.data());
+    SetVector(s.Program, "cameraPosition", camera.position.data());
+    const double towards[3] = { camera.focalPoint[0] - camera.position[0],
+      camera.focalPoint[1] - camera.position[1], camera.focalPoint[2] - camera.position[2] };
+    SetVector(s.Program, "cameraDirection", towards);
+    s.Program->SetUniformi("cameraParallel", camera.parallel ? 1 : 0);
+    const double* b = in.Scene->Bounds;
+    const double low[3] = { b[0], b[2], b[4] }, high[3] = { b[1], b[3], b[5] };
+    SetVector(s.Program, "boundsMin", low);
+    SetVector(s.Program, "boundsMax", high);
+    s.Program->SetUniformf("tolerance", static_cast<float>(1e-5 * in.Scene->Scale()));
+    s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
+    s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+    caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
+    s.Program->DispatchCovering2D(emitted.Width, emitted.Height, 8, 8);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  s.Program->Unbind(in.Window);
+  for (unsigned int i = 0; i < 4; ++i)
+  {
+    glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  }
+  glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+  this->EndStage("impostor trace");
+  return true;
+}
+
+bool vtkCausticsImpostorPhotonPass::Spread(const FrameInputs& in)
+{
+  auto& s = *this->Internal;
+  this->BeginStage("impostor spread");
+  if (!s.Spread->Bind(in.Window))
+  {
+    this->EndStage("impostor spread");
+    return false;
+  }
+  glBindImageTexture(0, s.Landed.Records().Position->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY,
+    GL_RGBA32F);
+  s.Landed.BindRadiusImage(3, GL_READ_WRITE);
+  s.Spread->SetUniform2i("photonGrid", s.Grid.Width, s.Grid.Height);
+  s.Spread->SetUniformi("branchRows", std::max(s.Grid.BranchRows, 1));
+  s.Spread->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+  s.Spread->SetUniformf("stretch", static_cast<float>(this->Settings.SpreadStretch));
+  s.Spread->DispatchCovering2D(s.Grid.Width, s.Grid.Height, 8, 8);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  s.Spread->Unbind(in.Window);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+  this->EndStage("impostor spread");
+  return true;
+}
+
+bool vtkCausticsImpostorPhotonPass::Splat(const FrameInputs& in)
+{
+  auto& s = *this->Internal;
+  this->BeginStage("impostor splat");
+  const bool ok = s.Splatter->Splat(in.Window, s.Grid, s.Landed.Records(), s.Landed.KernelRadius(),
+    in.CameraGBuffer, in.WorldToClip);
+  this->EndStage("impostor splat");
+  return ok;
+}
+
+void vtkCausticsImpostorPhotonPass::BeginStage(const char* name)
+{
+  // With synchronous timings (benchmarks, tests) a stage's time is its GPU work.
+  if (this->GetTimings()->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StartStage(name);
+}
+
+void vtkCausticsImpostorPhotonPass::EndStage(const char* name)
+{
+  if (this->GetTimings()->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StopStage(name);
+}
+
+void vtkCausticsImpostorPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
+{
+  auto& s = *this->Internal;
+  s.Emitter->ReleaseGraphicsResources(w);
+  s.Program->ReleaseGraphicsResources(w);
+  s.Spread->ReleaseGraphicsResources(w);
+  s.Splatter->ReleaseGraphicsResources(w);
+  s.Landed.Release(w);
+}
