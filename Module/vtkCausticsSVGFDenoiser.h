@@ -108,6 +108,9 @@ public:
     const caustics::Camera* Camera = nullptr; ///< this frame's camera (world-to-clip, eye)
     int Width = 0;
     int Height = 0;
+    /** Whether what lights the receivers (meshes, their matrices and materials, lights,
+     * medium) changed since the last frame; the camera does not count. */
+    bool LightChanged = true;
   };
 
   /**
@@ -153,10 +156,13 @@ private:
   bool Accumulate(const Inputs& in);
   bool EstimateVariance(const Inputs& in);
   bool FilterAtrous(const Inputs& in);
+  bool AtrousStage(
+    const Inputs& in, int stage, int iteration, vtkTextureObject* source, vtkTextureObject* output);
   void KeepForNextFrame(const Inputs& in);
 #endif
 
   int FramesSinceReset = 0;
+  int FramesSinceLightChanged = 0; // the light field has been still this long
   bool HasHistory = false;
 
   struct Internals;
