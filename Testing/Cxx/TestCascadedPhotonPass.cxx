@@ -17,7 +17,6 @@
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsTechniques.h"
-#include "vtkCausticsTimings.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -31,11 +30,8 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <functional>
 #include <iostream>
 #include <string>
-#include <vector>
 
 namespace
 {
@@ -340,57 +336,5 @@ TEST(CascadedPhotonPass, DISABLED_KernelSpacingsAndFrames)
         ASSERT_TRUE(c.Compare(what.c_str(), std::string(scene) == "pool"));
       }
     }
-  }
-}
-
-namespace
-{
-/** Wall time (ms) of a stage of the last frame: its CPU time in synchronous mode. */
-double Wall(vtkCausticsTimings* timings, const char* name)
-{
-  for (int i = 0; i < timings->GetNumberOfStages(); ++i)
-  {
-    if (std::string(timings->GetStageName(i)) == name && timings->GetStageRan(i))
-    {
-      return timings->GetStageCPUMilliseconds(i);
-    }
-  }
-  return -1.0;
-}
-}
-
-// Table 1 of the paper for this implementation: the pool (water over a floor, as the
-// paper's flooded scenes) at 256^2 pixels from a 1024^2 light buffer, 0.5, 1 and 2 M
-// photons; each stage's wall time, the larger of the second and third synchronous
-// frames' (the first compiles the programs) (not run by default:
-// --gtest_also_run_disabled_tests; figures in docs/technique-cascaded.md).
-TEST(CascadedPhotonPass, DISABLED_Table1)
-{
-  for (int photons : { 524288, 1048576, 2097152 })
-  {
-    Comparison c;
-    ASSERT_TRUE(c.Populate("pool"));
-    c.Pass->SetLightBufferResolution(1024);
-    c.Pass->SetNumberOfPhotons(photons);
-    c.Pass->GetTimings()->SynchronousOn();
-    const char* stages[] = { "cascaded emit", "cascaded light layers", "cascaded trace",
-      "cascaded splat" };
-    std::vector<std::vector<double>> times(4);
-    for (int frame = 0; frame < 3; ++frame)
-    {
-      c.Window->Render();
-      ASSERT_TRUE(c.Pass->GetLastFrameHadCaustics());
-      for (int s = 0; frame > 0 && s < 4; ++s) // the first frame compiles the programs
-      {
-        times[s].push_back(Wall(c.Pass->GetTimings(), stages[s]));
-      }
-    }
-    std::cout << "photons " << photons;
-    for (int s = 0; s < 4; ++s)
-    {
-      std::sort(times[s].begin(), times[s].end());
-      std::cout << ", " << stages[s] << " " << times[s][times[s].size() / 2] << " ms";
-    }
-    std::cout << "\n";
   }
 }
