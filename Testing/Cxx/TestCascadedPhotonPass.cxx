@@ -5,8 +5,9 @@
 // texels). The estimator is jittered: each frame is a fresh estimate, so the
 // caustic irradiance of Frames consecutive frames is averaged first (what a temporal
 // filter would do). The denoiser (on by default) is off in these comparisons: the
-// figures are the raw estimate's; the Denoised* tests measure what a user sees. Each bound is the figure reached (printed, and in
-// docs/technique-cascaded.md) plus a small margin for the reference's noise.
+// figures are the raw estimate's; the Denoised* tests measure what a user sees. Each
+// bound is the figure reached (printed, and in docs/technique-cascaded.md) plus a
+// small margin for the reference's noise.
 #include "TestReferenceUtilities.h"
 
 #include "vtkCausticsBuiltinScene.h"
