@@ -99,6 +99,10 @@ std::vector<TemporalVariant> MakeTemporalVariants()
         }
         p->DenoiseOn();
       } },
+    // Cascaded photon tracing (paper 002) is denoised by default (its section 3.3);
+    // raw, each frame is a fresh jittered estimate.
+    { "cascaded", "default (denoised)", [](vtkCausticsRenderPass*) {} },
+    { "cascaded", "denoise=off", [](vtkCausticsRenderPass* p) { p->DenoiseOff(); } },
   };
 }
 

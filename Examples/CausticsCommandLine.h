@@ -129,10 +129,39 @@ public:
       [handler](const std::string&, const std::string&) { handler(); });
   }
 
+  /**
+   * An option whose value may be left out: --name VALUE with VALUE one of `choices`,
+   * or --name alone, which means `bare` (e.g. --denoise [on|off]).
+   */
+  void OptionalChoice(
+    const char* name, std::vector<std::string> choices, const char* bare, ValueHandler handler)
+  {
+    this->OptionalChoices.push_back({ name, std::move(choices), bare, std::move(handler) });
+  }
+
   /** Parses argv[1..]; throws UsageError on the first bad argument. */
   std::vector<std::string> Parse(int argc, char* argv[])
   {
-    this->Parser.Initialize(argc, argv);
+    // The options with an optional value first (vtksys has no such kind).
+    std::vector<const char*> rest;
+    for (int i = 0; i < argc; ++i)
+    {
+      const OptionalOption* option = nullptr;
+      for (const OptionalOption& o : this->OptionalChoices)
+      {
+        option = i > 0 && o.Name == argv[i] ? &o : option;
+      }
+      if (!option)
+      {
+        rest.push_back(argv[i]);
+        continue;
+      }
+      const bool given = i + 1 < argc &&
+        std::find(option->Choices.begin(), option->Choices.end(), argv[i + 1]) !=
+          option->Choices.end();
+      option->Handler(option->Name, given ? argv[++i] : option->Bare);
+    }
+    this->Parser.Initialize(static_cast<int>(rest.size()), rest.data());
     this->Parser.StoreUnusedArguments(true);
     if (!this->Parser.Parse())
     {
@@ -143,8 +172,7 @@ public:
       // vtksys fails silently only for an option at the end without its value.
       const unsigned int failed = this->Parser.GetLastArgument() + 1;
       throw UsageError(
-        std::string(failed < static_cast<unsigned int>(argc) ? argv[failed] : "an option") +
-        " needs a value");
+        std::string(failed < rest.size() ? rest[failed] : "an option") + " needs a value");
     }
     int count = 0;
     char** unused = nullptr;
@@ -162,6 +190,15 @@ public:
   }
 
 private:
+  struct OptionalOption
+  {
+    std::string Name;
+    std::vector<std::string> Choices;
+    std::string Bare;
+    ValueHandler Handler;
+  };
+  std::vector<OptionalOption> OptionalChoices;
+
   struct Option
   {
     Arguments* Owner;

@@ -5,8 +5,8 @@
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLTFImporter.h"
-#include "vtkCausticsMaterial.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
 #include "vtkCausticsRenderPass.h"
@@ -81,8 +81,9 @@ std::string QualityUsage()
                              become irradiance: splats (default) or triangles
                              (caustic triangles between neighbouring photons;
                              sharp foci, see docs/accuracy.md)
-  --denoise                  denoise the caustic irradiance over space and time
-                             (SVGF, docs/denoising.md; default: the technique's)
+  --denoise [on|off]         denoise the caustic irradiance over space and time
+                             (SVGF, docs/denoising.md) or not; --denoise alone
+                             is on (default: the technique's; cascaded: on)
   --camera-view MODE         how glass and mirrors show the scene: screen-space,
                              impostors (distance impostors, paper 004) or both
                              (default: screen-space, impostors where rays leave
@@ -256,18 +257,22 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
 {
   arguments.Value("--technique", Text(options.Technique));
   arguments.Value("--trace-view",
-    [&options](const std::string& option, const std::string& value)
-    { options.TraceView = ParseChoice(option, value, { "automatic", "camera", "fitted" }); });
+    [&options](const std::string& option, const std::string& value) {
+      options.TraceView = ParseChoice(option, value, { "automatic", "camera", "fitted" });
+    });
   arguments.Value("--reconstruction",
-    [&options](const std::string& option, const std::string& value)
-    { options.Reconstruction = ParseChoice(option, value, { "splats", "triangles" }); });
+    [&options](const std::string& option, const std::string& value) {
+      options.Reconstruction = ParseChoice(option, value, { "splats", "triangles" });
+    });
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
-  arguments.Flag("--denoise", [&options] { options.Denoise = true; });
+  arguments.OptionalChoice("--denoise", { "on", "off" }, "on",
+    [&options](const std::string&, const std::string& value) { options.Denoise = value == "on"; });
   arguments.Value("--camera-view",
-    [&options](const std::string& option, const std::string& value)
-    { options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" }); });
+    [&options](const std::string& option, const std::string& value) {
+      options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" });
+    });
   arguments.Value("--size",
     [&options](const std::string& option, const std::string& value)
     {
@@ -652,9 +657,9 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   {
     pass->SetLightBufferResolution(options.Photons);
   }
-  if (options.Denoise)
+  if (options.Denoise >= 0)
   {
-    pass->DenoiseOn();
+    pass->SetDenoise(options.Denoise == 1); // else the technique's default
   }
   if (options.CameraView >= 0)
   {

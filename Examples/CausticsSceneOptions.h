@@ -30,11 +30,12 @@ struct SceneOptions
   double Time = 0.0;
   double IOR = 0.0;
   int CameraIndex = 0;
-  int Photons = 0; ///< light-buffer side; 0: the technique's default
-  int TraceView = 0; ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
+  int Photons = 0;        ///< light-buffer side; 0: the technique's default
+  int TraceView = 0;      ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
   int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
   int Width = 512, Height = 512;
-  bool Denoise = false; ///< --denoise: SVGF on the caustic irradiance (else the technique's)
+  int Denoise =
+    -1; ///< --denoise [on|off]: 1 SVGF on the caustic irradiance, 0 off, -1 the technique's
   /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
   int CameraView = -1;
   bool HasLightDirection = false, HasLightIntensity = false;

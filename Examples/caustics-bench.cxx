@@ -17,15 +17,16 @@
 //
 // Every error is one line on stderr naming the problem, and a non-zero exit:
 // 2 for bad arguments, 3 when no OpenGL window can be made, 1 for anything else.
+#include "CausticsBenchTable1.h"
 #include "CausticsBenchTemporal.h"
 #include "CausticsCommandLine.h"
 
-#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsImageIO.h"
 #include "vtkCausticsImpostorPhotonPass.h"
+#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
@@ -264,14 +265,15 @@ std::vector<Configuration> MakeConfigurations()
   // one estimate from that many times the photons): its cost against its error.
   for (int grid : { 128, 256, 512, 1024 })
   {
-    table.push_back({ "cpu-progressive", "grid=" + std::to_string(grid) + " kernel=1 progressive=off",
-      Set<vtkCausticsProgressivePhotonPass>(
-        [grid](vtkCausticsProgressivePhotonPass* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetKernelRadiusPixels(1.0);
-          pass->ProgressiveOff();
-        }) });
+    table.push_back(
+      { "cpu-progressive", "grid=" + std::to_string(grid) + " kernel=1 progressive=off",
+        Set<vtkCausticsProgressivePhotonPass>(
+          [grid](vtkCausticsProgressivePhotonPass* pass)
+          {
+            pass->SetLightBufferResolution(grid);
+            pass->SetKernelRadiusPixels(1.0);
+            pass->ProgressiveOff();
+          }) });
   }
   // "none": the shared stages (snapshot, VTK delegate, G-buffers, light buffers,
   // composite) with no technique. Its cost at each photon-grid size the techniques
@@ -357,6 +359,15 @@ Temporal stability:
                              every frame (cached) with --reference-photons (default
                              here 2e6); --warmup untimed frames come first
   --sequences A,B,...        animated sequences (default: pool-waves,moving-ball,light-sweep)
+
+Table 1 of paper 002 (cascaded photon tracing):
+  --table1                   instead of the sweep: time the cascaded technique's
+                             tracing, storing (splat) and denoising at 0.5, 1 and
+                             2 M photons on the first --scenes scene (default
+                             pool) at --size, light buffer 1024 x 1024, medians of
+                             3 timed frames after 1 warm-up (--smoke: 64 x 64,
+                             light buffer 64, 1024 to 4096 photons, 1 frame);
+                             writes table1.md (docs/technique-cascaded.md)
   --help                     this text
 )";
 
@@ -388,7 +399,9 @@ struct Options
   bool List = false;
   bool Help = false;
   std::string CommandLine;
-  int Animate = 0; // --animate N: frames per sequence; 0: the sweep
+  int Animate = 0;     // --animate N: frames per sequence; 0: the sweep
+  bool Table1 = false; // --table1: paper 002's Table 1 instead of the sweep
+  bool ScenesGiven = false;
   std::vector<std::string> Sequences = caustics_bench::GetSequenceNames();
   bool SequencesGiven = false;
   bool TechniquesGiven = false;
@@ -475,12 +488,13 @@ void DeclareSelectionOptions(caustics_cli::Arguments& arguments, Options& option
 {
   arguments.Flag("--list", [&options] { options.List = true; });
   arguments.Flag("--defaults", [&options] { options.Defaults = true; });
-  arguments.Value("--knobs",
-    [&options](const std::string&, const std::string& value) { options.Knobs = value; });
+  arguments.Value(
+    "--knobs", [&options](const std::string&, const std::string& value) { options.Knobs = value; });
   arguments.Value("--scenes",
     [&options](const std::string& option, const std::string& value)
     {
       options.Scenes = SplitList(option, value);
+      options.ScenesGiven = true;
       for (const auto& scene : options.Scenes)
       {
         if (!vtkCausticsBuiltinScene::IsSceneName(scene))
@@ -566,6 +580,7 @@ void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
 void DeclareTemporalOptions(caustics_cli::Arguments& arguments, Options& options)
 {
   arguments.Value("--animate", Count(options.Animate, 4, 1000));
+  arguments.Flag("--table1", [&options] { options.Table1 = true; });
   arguments.Value("--sequences",
     [&options](const std::string& option, const std::string& value)
     {
@@ -692,6 +707,11 @@ Options Parse(int argc, char* argv[])
   for (const auto& positional : arguments.Parse(argc, argv))
   {
     throw UsageError("unknown option '" + positional + "' (see --help)");
+  }
+  if (options.Table1 && (options.Animate > 0 || options.UpdateDocs))
+  {
+    throw UsageError(std::string(options.Animate > 0 ? "--animate" : "--update-docs") +
+      " does not apply to --table1");
   }
   if (options.Smoke)
   {
@@ -1388,8 +1408,8 @@ void WriteDocsHeader(std::ostream& md, const Options& options, const Machine& ma
 {
   std::string cwd = vtksys::SystemTools::GetCurrentWorkingDirectory();
   // The repository root holds docs/benchmarks.md.
-  const std::string root = vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::GetFilenamePath(
-    vtksys::SystemTools::CollapseFullPath(options.Docs)));
+  const std::string root = vtksys::SystemTools::GetFilenamePath(
+    vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(options.Docs)));
   std::string relative = vtksys::SystemTools::RelativePath(
     vtksys::SystemTools::GetRealPath(root), vtksys::SystemTools::GetRealPath(cwd));
   md << "Command (from " << (relative.empty() ? "the repository root" : "`" + relative + "`")
@@ -1536,8 +1556,10 @@ struct Markers
   const char* Begin;
   const char* End;
 };
-const Markers SweepMarkers = { "<!-- BEGIN caustics-bench --update-docs: generated, do not edit -->",
-  "<!-- END caustics-bench --update-docs -->" };
+const Markers SweepMarkers = {
+  "<!-- BEGIN caustics-bench --update-docs: generated, do not edit -->",
+  "<!-- END caustics-bench --update-docs -->"
+};
 const Markers TemporalMarkers = { "<!-- BEGIN caustics-bench --animate: generated, do not edit -->",
   "<!-- END caustics-bench --animate -->" };
 
@@ -1828,8 +1850,7 @@ std::string MakeTemporalDocsSection(const Options& options, const Machine& machi
   md << "| OpenGL | " << machine.GLRenderer << "; " << machine.GLVersion << " |\n";
   md << "| image | " << options.Size << " x " << options.Size << " pixels |\n";
   md << "| frames | " << options.Animate << " per sequence after " << options.Warmup
-     << " untimed warm-up frames at frame 0's pose; cut at frame " << options.Animate / 2
-     << " |\n";
+     << " untimed warm-up frames at frame 0's pose; cut at frame " << options.Animate / 2 << " |\n";
   md << "| reference | every frame, " << static_cast<long long>(options.ReferencePhotons)
      << " photons per light, seed 1, kernel radius " << Fixed(options.ReferenceKernel, 2)
      << " pixel footprints, cached |\n";
@@ -1856,27 +1877,27 @@ int RunTemporal(const Options& options, OneLineOutputWindow* messages)
             << ", " << machine.CPU << " (" << machine.Threads << " threads)" << std::endl;
   std::vector<caustics_bench::TemporalTruth> truths;
   int failed = 0;
-  const auto rows = caustics_bench::RunTemporal(TemporalSettingsOf(options), window, messages,
-    truths,
-    [&](const caustics_bench::TemporalRow& row)
-    {
-      if (machine.GLRenderer == "unknown")
+  const auto rows =
+    caustics_bench::RunTemporal(TemporalSettingsOf(options), window, messages, truths,
+      [&](const caustics_bench::TemporalRow& row)
       {
-        DescribeGL(window, machine);
-      }
-      failed += row.Status == "ok" ? 0 : 1;
-      std::cout << "  " << std::left << std::setw(13) << row.Sequence << std::setw(17)
-                << row.Technique << std::setw(17) << row.Variant << std::right << " "
-                << FormatTime(row.MeanMilliseconds) << "/frame  flicker "
-                << Number(row.Metrics.Flicker, 2) << "  moving err "
-                << Fixed(row.Metrics.MovingError, 4) << "  lag " << row.Metrics.Lag
-                << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
-    });
+        if (machine.GLRenderer == "unknown")
+        {
+          DescribeGL(window, machine);
+        }
+        failed += row.Status == "ok" ? 0 : 1;
+        std::cout << "  " << std::left << std::setw(13) << row.Sequence << std::setw(17)
+                  << row.Technique << std::setw(17) << row.Variant << std::right << " "
+                  << FormatTime(row.MeanMilliseconds) << "/frame  flicker "
+                  << Number(row.Metrics.Flicker, 2) << "  moving err "
+                  << Fixed(row.Metrics.MovingError, 4) << "  lag " << row.Metrics.Lag
+                  << (row.Status == "ok" ? "" : "  [" + row.Status + "]") << std::endl;
+      });
   const std::string table = caustics_bench::MakeTemporalTable(rows);
   const std::string csv = caustics_bench::WriteTemporalCSV(options.Output, rows);
   std::ofstream(options.Output + "/temporal.md") << table;
-  std::cout << "\n" << table << "\nwrote " << csv << ", temporal-frames.csv and temporal.md"
-            << std::endl;
+  std::cout << "\n"
+            << table << "\nwrote " << csv << ", temporal-frames.csv and temporal.md" << std::endl;
   if (options.UpdateDocs)
   {
     UpdateDocs(options.Docs,
@@ -1892,8 +1913,41 @@ int RunTemporal(const Options& options, OneLineOutputWindow* messages)
   return 0;
 }
 
+/** --table1: paper 002's Table 1 for the cascaded technique (CausticsBenchTable1.h). */
+int RunTable1(const Options& options)
+{
+  CheckOutputs(options);
+  Machine machine = DescribeMachine();
+  vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options, machine);
+  caustics_bench::Table1Settings settings;
+  settings.Scene = options.ScenesGiven ? options.Scenes.front() : "pool";
+  settings.Size = options.Size;
+  if (options.Smoke)
+  {
+    settings.LightBufferResolution = 64;
+    settings.Photons = { 1024, 2048, 4096 };
+    settings.Frames = 1;
+  }
+  std::cout << "caustics-bench --table1: " << settings.Scene << ", " << settings.Size << "x"
+            << settings.Size << ", " << machine.CPU << " (" << machine.Threads << " threads)"
+            << std::endl;
+  const auto rows = caustics_bench::RunTable1(settings, window);
+  DescribeGL(window, machine);
+  const std::string table = caustics_bench::MakeTable1Markdown(settings, rows) + "\n" +
+    machine.CPU + " (" + std::to_string(machine.Threads) + " threads), " + machine.GLRenderer +
+    ", load average " + machine.LoadAverage + " at the start; " + options.CommandLine + "\n";
+  const std::string path = options.Output + "/table1.md";
+  std::ofstream(path) << table;
+  std::cout << "\n" << table << "\nwrote " << path << std::endl;
+  return 0;
+}
+
 int Run(const Options& options, OneLineOutputWindow* messages)
 {
+  if (options.Table1)
+  {
+    return RunTable1(options);
+  }
   if (options.Animate > 0)
   {
     return RunTemporal(options, messages);

@@ -13,9 +13,9 @@
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
-#include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
@@ -59,6 +59,42 @@ vtkStandardNewMacro(vtkCausticsRenderPass);
 namespace
 {
 using Box = std::array<double, 6>;
+
+/**
+ * What the caustic irradiance on the receivers depends on, as numbers: every mesh's
+ * geometry version (vertices, actor matrix), every material's optics, every light,
+ * the medium's coefficients. The camera is not in it: irradiance does not depend on
+ * the view.
+ */
+std::vector<double> LightFieldSignature(const caustics::SceneData& scene)
+{
+  std::vector<double> s;
+  auto add = [&s](const caustics::Vec3& v) { s.insert(s.end(), v.begin(), v.end()); };
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    s.insert(s.end(), { static_cast<double>(mesh.version), static_cast<double>(mesh.material) });
+  }
+  for (const caustics::Material& m : scene.Materials)
+  {
+    s.insert(s.end(), { static_cast<double>(m.role), m.ior, m.roughness });
+    add(m.metalN);
+    add(m.metalK);
+    add(m.attenuation);
+  }
+  for (const caustics::Light& light : scene.Lights)
+  {
+    s.push_back(static_cast<double>(light.type));
+    add(light.position);
+    add(light.direction);
+    add(light.radiometric);
+    s.insert(s.end(), { light.cosOuter, light.cosInner });
+  }
+  const caustics::Medium& medium = scene.Participating;
+  s.insert(s.end(), { medium.enabled ? 1.0 : 0.0, medium.g });
+  add(medium.sigmaS);
+  add(medium.sigmaA);
+  return s;
+}
 
 /** Binds a framebuffer with one colour attachment and clears it to zero. */
 void BindAndClear(vtkOpenGLFramebufferObject* framebuffer,
@@ -253,11 +289,12 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkCausticsLayeredDepth> RefractorLayers;
   vtkNew<vtkCausticsScreenSpaceRefraction> Refraction;
   vtkNew<vtkCausticsDistanceImpostors> Impostors; // CameraViewMethod's cube maps
-  vtkNew<vtkTextureObject> CausticTexture;       // RGBA32F, W/m^2
+  vtkNew<vtkTextureObject> CausticTexture;        // RGBA32F, W/m^2
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkCausticsSVGFDenoiser> Denoiser; // denoises CausticTexture in place (Denoise)
   bool PreviousDenoised = false;            // whether the frame before this one was denoised
   std::array<std::size_t, 3> DenoisedStructure = { { 0, 0, 0 } }; // meshes, materials, lights
+  std::vector<double> DenoisedLightField; // LightFieldSignature of the last denoised frame
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
   vtkNew<vtkTextureObject> LostShadingTexture;
@@ -849,7 +886,10 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
     in.Denoiser->ResetHistory();
   }
   in.DenoisedStructure = structure;
+  std::vector<double> lightField = LightFieldSignature(*f.Scene);
   vtkCausticsSVGFDenoiser::Inputs inputs;
+  inputs.LightChanged = lightField != in.DenoisedLightField;
+  in.DenoisedLightField = std::move(lightField);
   inputs.Window = f.Window;
   inputs.Irradiance = in.CausticTexture;
   inputs.GBuffer = f.CameraGBuffer;
@@ -1082,8 +1122,8 @@ bool vtkCausticsRenderPass::RenderDirectIrradiance()
   vtkOpenGLState* state = f.Window->GetState();
   bool resized =
     caustics::gl::EnsureTexture(in.DirectTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
-  resized |= caustics::gl::EnsureTexture(
-    in.LostShadingTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
+  resized |=
+    caustics::gl::EnsureTexture(in.LostShadingTexture, f.Window, f.Width, f.Height, GL_RGBA32F);
   state->PushFramebufferBindings();
   BindAndClear(
     in.DirectFramebuffer, { in.DirectTexture, in.LostShadingTexture }, f.Window, resized);
@@ -1305,8 +1345,7 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
       caustics },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
-    { "LostShading", 3, false,
-      [](Pass* p, int) { return p->Internal->LostShadingTexture.Get(); },
+    { "LostShading", 3, false, [](Pass* p, int) { return p->Internal->LostShadingTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
     { "VolumeRadiance", 3, false, [](Pass* p, int) { return p->Internal->VolumeTexture.Get(); },
       [](Pass* p) { return p->Result.Caustics && p->Result.Volume; } },
@@ -1450,8 +1489,9 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.Refraction->ReleaseGraphicsResources(w);
   in.Denoiser->ReleaseGraphicsResources(w);
   in.Impostors->ReleaseGraphicsResources(w);
-  vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture,
-    in.LostShadingTexture, in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture, in.TechniqueColorTexture };
+  vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture, in.LostShadingTexture,
+    in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture,
+    in.TechniqueColorTexture };
   for (vtkTextureObject* texture : textures)
   {
     texture->ReleaseGraphicsResources(w);

@@ -29,8 +29,11 @@ enum Program
   REPROJECT = 0, // history at this frame's pixels
   TEMPORAL = 1,  // colour and moments accumulated
   VARIANCE = 2,  // luminance variance
-  ATROUS = 3,    // one wavelet iteration
-  PROGRAMS = 4
+  DEVIATION = 3, // a-trous: blurred deviation of luminance
+  NORMALIZE = 4, // a-trous: first Sinkhorn step of the weights' balance
+  BALANCE = 5,   // a-trous: second Sinkhorn step
+  ATROUS = 6,    // a-trous: one wavelet iteration with the balanced weights
+  PROGRAMS = 7
 };
 
 constexpr unsigned int LocalSize = 16; // the shaders' local_size_x/y
@@ -63,6 +66,8 @@ struct vtkCausticsSVGFDenoiser::Internals
   vtkNew<vtkTextureObject> ReprojectedColor;   // the history at this frame's pixels
   vtkNew<vtkTextureObject> ReprojectedMoments; //
   vtkNew<vtkTextureObject> Filter[2];          // rgb W/m^2, a: variance (ping-pong)
+  vtkNew<vtkTextureObject> Deviation;          // R32F: blurred deviation of luminance
+  vtkNew<vtkTextureObject> Balance[2];         // R32F: the a-trous weights' balance
   vtkNew<vtkTextureObject> PreviousPosition;   // the last frame's G-buffer
   vtkNew<vtkTextureObject> PreviousNormal;     //
   vtkNew<vtkTextureObject> Counts;             // R32UI 2 x 1: receivers, reprojected
@@ -74,15 +79,20 @@ vtkCausticsSVGFDenoiser::vtkCausticsSVGFDenoiser()
   : Internal(new Internals)
 {
   const char* names[PROGRAMS] = { "SVGF reproject", "SVGF temporal", "SVGF variance",
-    "SVGF a-trous" };
+    "SVGF a-trous deviation", "SVGF a-trous normalize", "SVGF a-trous balance", "SVGF a-trous" };
   const char* sources[PROGRAMS] = { vtkCausticsSVGFReprojectCS, vtkCausticsSVGFTemporalCS,
-    vtkCausticsSVGFVarianceCS, vtkCausticsSVGFAtrousCS };
+    vtkCausticsSVGFVarianceCS, vtkCausticsSVGFAtrousCS, vtkCausticsSVGFAtrousCS,
+    vtkCausticsSVGFAtrousCS, vtkCausticsSVGFAtrousCS };
   for (int i = 0; i < PROGRAMS; ++i)
   {
     auto& program = this->Internal->Programs[i];
     program->SetName(names[i]);
     program->SetComputeSource((std::string(vtkCausticsSVGFCommon) + sources[i]).c_str());
     program->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+    if (i >= DEVIATION)
+    {
+      program->SetDefine("SVGF_ATROUS_STAGE", i - DEVIATION); // the shader's stages, in order
+    }
   }
 }
 
@@ -116,6 +126,10 @@ bool vtkCausticsSVGFDenoiser::Denoise(const Inputs& in)
     this->HasHistory = false; // a new size: nothing of the last frame lines up
   }
   this->FramesSinceReset = this->HasHistory ? this->FramesSinceReset : 0;
+  // Without a history nothing lit otherwise can linger: the light field counts as still.
+  const int still = 1 << 30;
+  const int sinceChange = in.LightChanged ? 0 : std::min(this->FramesSinceLightChanged + 1, still);
+  this->FramesSinceLightChanged = this->HasHistory ? sinceChange : still;
   CopyTexture(in.Irradiance, this->Internal->Raw, in.Width, in.Height);
   const bool ok = this->Reproject(in) && this->Accumulate(in) && this->EstimateVariance(in) &&
     this->FilterAtrous(in);
@@ -142,6 +156,10 @@ bool vtkCausticsSVGFDenoiser::EnsureTextures(const Inputs& in)
     resized |= caustics::gl::EnsureTexture(texture, in.Window, w, h, GL_RGBA32F);
   }
   resized |= caustics::gl::EnsureTexture(s.PreviousNormal, in.Window, w, h, GL_RGBA16F);
+  for (vtkTextureObject* texture : { s.Deviation.Get(), s.Balance[0].Get(), s.Balance[1].Get() })
+  {
+    resized |= caustics::gl::EnsureTexture(texture, in.Window, w, h, GL_R32F);
+  }
   caustics::gl::EnsureTexture(s.Counts, in.Window, 2, 1, GL_R32UI);
   return resized;
 }
@@ -211,7 +229,12 @@ bool vtkCausticsSVGFDenoiser::Accumulate(const Inputs& in)
   program->SetUniformf("temporalAlpha", static_cast<float>(settings.TemporalAlpha));
   program->SetUniformf("momentsAlpha", static_cast<float>(settings.MomentsAlpha));
   program->SetUniformf("maximumFrames", static_cast<float>(settings.MaximumHistoryLength));
-  program->SetUniformf("rejectSigmas", static_cast<float>(settings.HistoryRejectionSigmas));
+  // Light moves over the receivers only while what lights them changes; a still light
+  // field is left alone (the rejection would bias it, see the shader), once a history
+  // from before the last change has had MaximumHistoryLength frames to fade.
+  const bool lightStill = this->FramesSinceLightChanged > settings.MaximumHistoryLength;
+  program->SetUniformf(
+    "rejectSigmas", lightStill ? 0.0f : static_cast<float>(settings.HistoryRejectionSigmas));
   program->SetUniformf("minimumFraction", static_cast<float>(settings.MinimumReprojectedFraction));
   program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
   Barrier();
@@ -252,28 +275,44 @@ bool vtkCausticsSVGFDenoiser::FilterAtrous(const Inputs& in)
     Barrier();
     return true;
   }
-  vtkCausticsShaderProgram* program = s.Programs[ATROUS];
-  if (!program->Bind(in.Window))
-  {
-    return false;
-  }
-  this->SetCommonUniforms(in, ATROUS);
-  program->SetUniformf("sigmaLuminance", static_cast<float>(this->Settings.SigmaLuminance));
   for (int i = 0; i < iterations; ++i)
   {
     // The last iteration writes the result where the input was.
     vtkTextureObject* source = s.Filter[i % 2];
     vtkTextureObject* destination = i + 1 == iterations ? in.Irradiance : s.Filter[(i + 1) % 2];
-    BindImage(2, source, GL_READ_ONLY);
-    BindImage(3, destination, GL_WRITE_ONLY);
-    program->SetUniformi("stepSize", 1 << i);
-    program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
-    Barrier();
+    if (!this->AtrousStage(in, DEVIATION, i, source, s.Deviation) ||
+      !this->AtrousStage(in, NORMALIZE, i, source, s.Balance[0]) ||
+      !this->AtrousStage(in, BALANCE, i, source, s.Balance[1]) ||
+      !this->AtrousStage(in, ATROUS, i, source, destination))
+    {
+      return false;
+    }
     if (i + 1 == keep)
     {
       CopyTexture(destination, s.HistoryColor, in.Width, in.Height);
     }
   }
+  return true;
+}
+
+bool vtkCausticsSVGFDenoiser::AtrousStage(
+  const Inputs& in, int stage, int iteration, vtkTextureObject* source, vtkTextureObject* output)
+{
+  auto& s = *this->Internal;
+  vtkCausticsShaderProgram* program = s.Programs[stage];
+  if (!program->Bind(in.Window))
+  {
+    return false;
+  }
+  this->SetCommonUniforms(in, stage);
+  program->SetUniformf("sigmaLuminance", static_cast<float>(this->Settings.SigmaLuminance));
+  program->SetUniformi("stepSize", 1 << iteration);
+  BindImage(2, source, GL_READ_ONLY);
+  BindImage(3, output, GL_WRITE_ONLY, stage == ATROUS ? GL_RGBA32F : GL_R32F);
+  BindImage(4, s.Deviation, GL_READ_ONLY, GL_R32F);
+  BindImage(5, s.Balance[stage == ATROUS ? 1 : 0], GL_READ_ONLY, GL_R32F); // the last step's
+  program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
+  Barrier();
   program->Unbind(in.Window);
   return true;
 }
@@ -297,8 +336,8 @@ void vtkCausticsSVGFDenoiser::ReleaseGraphicsResources(vtkWindow* w)
     program->ReleaseGraphicsResources(w);
   }
   vtkTextureObject* textures[] = { s.Raw, s.HistoryColor, s.HistoryMoments, s.ReprojectedColor,
-    s.ReprojectedMoments, s.Filter[0], s.Filter[1], s.PreviousPosition, s.PreviousNormal,
-    s.Counts };
+    s.ReprojectedMoments, s.Filter[0], s.Filter[1], s.Deviation, s.Balance[0], s.Balance[1],
+    s.PreviousPosition, s.PreviousNormal, s.Counts };
   for (vtkTextureObject* texture : textures)
   {
     texture->ReleaseGraphicsResources(w);
@@ -327,4 +366,5 @@ void vtkCausticsSVGFDenoiser::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumReprojectedFraction: " << s.MinimumReprojectedFraction << "\n";
   os << indent << "HasHistory: " << this->HasHistory << "\n";
   os << indent << "FramesSinceReset: " << this->FramesSinceReset << "\n";
+  os << indent << "FramesSinceLightChanged: " << this->FramesSinceLightChanged << "\n";
 }

@@ -13,19 +13,23 @@
  *    followed exactly; a moving receiver is rejected where it moved (no per-actor
  *    motion vectors).
  * 2. Accumulate: colour and the first two moments of luminance, blended with
- *    max(alpha, 1/frames); a history outside this frame's neighbourhood
- *    (HistoryRejectionSigmas) is dropped as a disoccluded one is, so light that
- *    moves over a still receiver (a moving ball's caustic) does not ghost. When
+ *    max(alpha, 1/frames); while what lights the receivers changed within the last
+ *    MaximumHistoryLength frames (Inputs::LightChanged), a history outside this
+ *    frame's neighbourhood (HistoryRejectionSigmas) is dropped as a disoccluded one
+ *    is, so light that moves over a still receiver (a moving ball's caustic) does
+ *    not ghost; on a still light field that test would bias sparse photons low. When
  *    fewer than MinimumReprojectedFraction of the receiver pixels reproject (a
  *    camera cut), no history is used.
  * 3. Variance of luminance from the moments (spatially from 7x7 neighbours while a
  *    history is shorter than SpatialVarianceFrames).
  * 4. A-trous: AtrousIterations wavelet iterations guided by depth, normal and
- *    luminance; the last output is the denoised irradiance, written back into the
- *    input texture. The colour history is the unfiltered accumulated colour
+ *    luminance, with symmetric weights balanced by two Sinkhorn steps so that rows
+ *    and columns sum to one (a constant and the flux are both kept; SVGF's
+ *    row-normalized weights lost flux on photon noise); the last output is the
+ *    denoised irradiance, written back into the input texture. The colour history is the unfiltered accumulated colour
  *    (HistoryIteration 0; SVGF keeps the first iteration's output, which feeds its
  *    blur back frame after frame).
- * The filter's weights are normalized and it filters irradiance itself (already
+ * The filter's weights are balanced and it filters irradiance itself (already
  * free of albedo: nothing to demodulate), so W/m^2 stay W/m^2. A non-finite input
  * texel is rejected (its history carries on; zero without one), never spread; a
  * negative one counts as zero. Textures are allocated on first use and on resize
@@ -108,6 +112,9 @@ public:
     const caustics::Camera* Camera = nullptr; ///< this frame's camera (world-to-clip, eye)
     int Width = 0;
     int Height = 0;
+    /** Whether what lights the receivers (meshes, their matrices and materials, lights,
+     * medium) changed since the last frame; the camera does not count. */
+    bool LightChanged = true;
   };
 
   /**
@@ -153,10 +160,13 @@ private:
   bool Accumulate(const Inputs& in);
   bool EstimateVariance(const Inputs& in);
   bool FilterAtrous(const Inputs& in);
+  bool AtrousStage(
+    const Inputs& in, int stage, int iteration, vtkTextureObject* source, vtkTextureObject* output);
   void KeepForNextFrame(const Inputs& in);
 #endif
 
   int FramesSinceReset = 0;
+  int FramesSinceLightChanged = 0; // the light field has been still this long
   bool HasHistory = false;
 
   struct Internals;

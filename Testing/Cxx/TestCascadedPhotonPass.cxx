@@ -5,9 +5,9 @@
 // texels). The estimator is jittered: each frame is a fresh estimate, so the
 // caustic irradiance of Frames consecutive frames is averaged first (what a temporal
 // filter would do). The denoiser (on by default) is off in these comparisons: the
-// figures are the raw estimate's; DenoisedBallLensMatchesReference measures what a
-// user sees. Each bound is the figure reached (printed, and in
-// docs/technique-cascaded.md) plus a small margin for the reference's noise.
+// figures are the raw estimate's; the Denoised* tests measure what a user sees. Each
+// bound is the figure reached (printed, and in docs/technique-cascaded.md) plus a
+// small margin for the reference's noise.
 #include "TestReferenceUtilities.h"
 
 #include "vtkCausticsBuiltinScene.h"
@@ -16,8 +16,8 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsTechniques.h"
-#include "vtkCausticsTimings.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -31,11 +31,8 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <functional>
 #include <iostream>
 #include <string>
-#include <vector>
 
 namespace
 {
@@ -53,7 +50,7 @@ struct Comparison
 
   Comparison()
   {
-    this->Pass->DenoiseOff(); // the raw estimate (see DenoisedBallLensMatchesReference)
+    this->Pass->DenoiseOff(); // the raw estimate (see CompareDenoised)
     this->Renderer->SetPass(this->Pass);
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
@@ -148,23 +145,61 @@ TEST(CascadedPhotonPass, BallLensMatchesReference)
   EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.25);
 }
 
-// What a user sees: the pass's default, SVGF on (docs/denoising.md), after Frames
-// frames of a still view; the last frame alone, not an average. The issue asks for
-// flux within 3 % and relative L2 at most 10 %. Reached: relative L2 0.063 (met), flux
-// ratio 0.934 (not met: the denoiser loses 6.6 % of the noisy caustic's flux, where the
-// raw estimate keeps it within 0.3 %; its history clamp and luminance edge-stopping
-// cut the peaks). Bounds just past what is reached.
+namespace
+{
+/** The pass's default, SVGF on (docs/denoising.md), after Frames frames of a still
+ * view: the last frame alone, not an average, against the reference. */
+void CompareDenoised(Comparison& c, const char* scene, const char* what, bool throughRefractors)
+{
+  c.Pass->DenoiseOn();
+  ASSERT_TRUE(c.Populate(scene));
+  ASSERT_TRUE(c.RenderFrames(Frames - 1));
+  ASSERT_TRUE(c.RenderFrames(1));
+  ASSERT_TRUE(c.Compare(what, throughRefractors));
+  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
+}
+}
+
+// What a user sees. The issue asks for flux within 3 % and relative L2 at most 10 %.
+// Reached: flux ratio 1.0028, relative L2 0.0558 (the raw average of the same four
+// frames: 1.0033, 0.230). Bounds: the issue's 3 %, L2 just past the reached.
 TEST(CascadedPhotonPass, DenoisedBallLensMatchesReference)
 {
   Comparison c;
-  c.Pass->DenoiseOn();
-  ASSERT_TRUE(c.Populate("ball-lens"));
-  ASSERT_TRUE(c.RenderFrames(Frames - 1));
-  ASSERT_TRUE(c.RenderFrames(1));
-  ASSERT_TRUE(c.Compare("ball lens, denoised", false));
-  EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 0.934, 0.015);
-  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.07);
+  CompareDenoised(c, "ball-lens", "ball lens, denoised", false);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.06);
+}
+
+// The pool's sharp caustic network after denoising: the spatial filter must not blur
+// it (KernelSpacings 4 did: 0.134). Reached: flux ratio 0.9983, relative L2 0.0473
+// (the raw average of four frames: 0.9986, 0.045; the reference's own noise is about
+// 0.04). Bounds: the issue's 3 %, L2 just past the reached.
+TEST(CascadedPhotonPass, DenoisedPoolFloorMatchesReference)
+{
+  Comparison c;
+  CompareDenoised(c, "pool", "pool, denoised", true);
+  EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.05);
+}
+
+// Where the denoiser's flux goes on the still ball lens: the whole denoiser, its
+// temporal part alone (no a-trous), and the raw last frame (not run by default:
+// --gtest_also_run_disabled_tests; figures in docs/denoising.md).
+TEST(CascadedPhotonPass, DISABLED_DenoiserFluxByPart)
+{
+  const char* names[] = { "denoised", "denoised without a-trous (temporal only)",
+    "raw, the last frame" };
+  for (int part = 0; part < 3; ++part)
+  {
+    Comparison c;
+    c.Pass->SetDenoise(part < 2);
+    c.Pass->GetDenoiser()->SetAtrousIterations(part == 0 ? 5 : 0);
+    ASSERT_TRUE(c.Populate("ball-lens"));
+    ASSERT_TRUE(c.RenderFrames(Frames - 1));
+    ASSERT_TRUE(c.RenderFrames(1));
+    ASSERT_TRUE(c.Compare(names[part], false));
+  }
 }
 
 TEST(CascadedPhotonPass, PoolFloorMatchesReference)
@@ -302,57 +337,5 @@ TEST(CascadedPhotonPass, DISABLED_KernelSpacingsAndFrames)
         ASSERT_TRUE(c.Compare(what.c_str(), std::string(scene) == "pool"));
       }
     }
-  }
-}
-
-namespace
-{
-/** Wall time (ms) of a stage of the last frame: its CPU time in synchronous mode. */
-double Wall(vtkCausticsTimings* timings, const char* name)
-{
-  for (int i = 0; i < timings->GetNumberOfStages(); ++i)
-  {
-    if (std::string(timings->GetStageName(i)) == name && timings->GetStageRan(i))
-    {
-      return timings->GetStageCPUMilliseconds(i);
-    }
-  }
-  return -1.0;
-}
-}
-
-// Table 1 of the paper for this implementation: the pool (water over a floor, as the
-// paper's flooded scenes) at 256^2 pixels from a 1024^2 light buffer, 0.5, 1 and 2 M
-// photons; each stage's wall time, the larger of the second and third synchronous
-// frames' (the first compiles the programs) (not run by default:
-// --gtest_also_run_disabled_tests; figures in docs/technique-cascaded.md).
-TEST(CascadedPhotonPass, DISABLED_Table1)
-{
-  for (int photons : { 524288, 1048576, 2097152 })
-  {
-    Comparison c;
-    ASSERT_TRUE(c.Populate("pool"));
-    c.Pass->SetLightBufferResolution(1024);
-    c.Pass->SetNumberOfPhotons(photons);
-    c.Pass->GetTimings()->SynchronousOn();
-    const char* stages[] = { "cascaded emit", "cascaded light layers", "cascaded trace",
-      "cascaded splat" };
-    std::vector<std::vector<double>> times(4);
-    for (int frame = 0; frame < 3; ++frame)
-    {
-      c.Window->Render();
-      ASSERT_TRUE(c.Pass->GetLastFrameHadCaustics());
-      for (int s = 0; frame > 0 && s < 4; ++s) // the first frame compiles the programs
-      {
-        times[s].push_back(Wall(c.Pass->GetTimings(), stages[s]));
-      }
-    }
-    std::cout << "photons " << photons;
-    for (int s = 0; s < 4; ++s)
-    {
-      std::sort(times[s].begin(), times[s].end());
-      std::cout << ", " << stages[s] << " " << times[s][times[s].size() / 2] << " ms";
-    }
-    std::cout << "\n";
   }
 }

@@ -38,14 +38,14 @@
 namespace
 {
 // Bounds just past the figures reached (in the comments; docs/denoising.md).
-constexpr double FLICKER_BALL = 7.0;  // 7.58x less flicker than the raw estimate
-constexpr double L2_BALL = 0.25;      // 0.214 of the raw estimate's relative L2
-constexpr double FLICKER_RING = 7.5;  // 8.07x
-constexpr double L2_RING = 0.6;       // 0.528
-constexpr double HISTORY_GAIN = 0.65; // 0.581 of SVGF's own choice's L2 (0.115 against 0.198)
+constexpr double FLICKER_BALL = 8.5;  // 8.62x less flicker than the raw estimate
+constexpr double L2_BALL = 0.21;      // 0.199 of the raw estimate's relative L2
+constexpr double FLICKER_RING = 8.5;  // 8.72x
+constexpr double L2_RING = 0.46;      // 0.444
+constexpr double HISTORY_GAIN = 0.55; // 0.521 of SVGF's own choice's L2 (0.0966 against 0.185)
 constexpr std::size_t STEP_LAG = 1;   // 0 frames to settle after the step
-constexpr double STEP_AFTER = 0.9;    // at most 0.867 of the raw estimate's error after it
-constexpr double MOVING = 0.95;       // at most 0.904 of the raw estimate's error, moving
+constexpr double STEP_AFTER = 0.76;   // at most 0.737 of the raw estimate's error after it
+constexpr double MOVING = 0.88;       // at most 0.860 of the raw estimate's error, moving
 constexpr double FLUX = 1e-4;         // denoised over raw flux: 0.999997
 }
 
