@@ -81,6 +81,9 @@ std::string QualityUsage()
                              become irradiance: splats (default) or triangles
                              (caustic triangles between neighbouring photons;
                              sharp foci, see docs/accuracy.md)
+  --volume-sub-segments N    screen-space god-rays in a density grid: pieces each
+                             photon segment is split into (0..64, default 8; 0:
+                             march the density per fragment, the slow former way)
   --denoise                  denoise the caustic irradiance over space and time
                              (SVGF, docs/denoising.md; default: the technique's)
   --camera-view MODE         how glass and mirrors show the scene: screen-space,
@@ -261,6 +264,9 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.Value("--reconstruction",
     [&options](const std::string& option, const std::string& value)
     { options.Reconstruction = ParseChoice(option, value, { "splats", "triangles" }); });
+  arguments.Value("--volume-sub-segments",
+    [&options](const std::string& option, const std::string& value)
+    { options.VolumeSubSegments = ParseInteger(option, value, 0, 64); });
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
@@ -664,6 +670,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   {
     screenSpace->SetTraceView(options.TraceView);
     screenSpace->SetReconstruction(options.Reconstruction);
+    if (options.VolumeSubSegments >= 0)
+    {
+      screenSpace->SetVolumeSubSegments(options.VolumeSubSegments);
+    }
   }
   if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))
   {
