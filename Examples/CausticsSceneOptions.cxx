@@ -81,6 +81,8 @@ std::string QualityUsage()
                              become irradiance: splats (default) or triangles
                              (caustic triangles between neighbouring photons;
                              sharp foci, see docs/accuracy.md)
+  --god-ray-blur PIXELS      screen-space god-rays: standard deviation of their
+                             screen-space Gaussian, 0..16 (default 1.5)
   --volume-sub-segments N    screen-space god-rays in a density grid: pieces each
                              photon segment is split into (0..64, default 8; 0:
                              march the density per fragment, the slow former way)
@@ -267,6 +269,15 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.Value("--volume-sub-segments",
     [&options](const std::string& option, const std::string& value)
     { options.VolumeSubSegments = ParseInteger(option, value, 0, 64); });
+  arguments.Value("--god-ray-blur",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.GodRayBlurPixels = ParseNumber(option, value);
+      if (!(options.GodRayBlurPixels >= 0.0 && options.GodRayBlurPixels <= 16.0))
+      {
+        throw UsageError("--god-ray-blur must lie in [0, 16] pixels");
+      }
+    });
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
@@ -673,6 +684,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
     if (options.VolumeSubSegments >= 0)
     {
       screenSpace->SetVolumeSubSegments(options.VolumeSubSegments);
+    }
+    if (options.GodRayBlurPixels >= 0.0)
+    {
+      screenSpace->SetGodRayBlurPixels(options.GodRayBlurPixels);
     }
   }
   if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))

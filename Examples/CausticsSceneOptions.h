@@ -34,6 +34,7 @@ struct SceneOptions
   int TraceView = 0; ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
   int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
   int VolumeSubSegments = -1; ///< screen-space god-rays' pieces (0: march); -1: the default
+  double GodRayBlurPixels = -1.0; ///< screen-space god-rays' Gaussian (pixels); < 0: the default
   int Width = 512, Height = 512;
   bool Denoise = false; ///< --denoise: SVGF on the caustic irradiance (else the technique's)
   /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
