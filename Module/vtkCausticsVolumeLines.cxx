@@ -30,7 +30,7 @@ struct vtkCausticsVolumeLines::Internals
   caustics::ssp::Texture Blurred;      // RGBA32F, after the horizontal pass
   caustics::ssp::Framebuffer Framebuffer;
   caustics::gl::StorageBuffer Depths;    // (pieces + 1) floats per segment
-  caustics::gl::StorageBuffer Arguments; // the pieces' indirect draw
+  caustics::gl::StorageBuffer Arguments; // the lines' indirect draw
   unsigned int EmptyVertexArray = 0;
   vtkNew<vtkCausticsShaderProgram> ResampleProgram;
   vtkNew<vtkCausticsShaderProgram> LineProgram;

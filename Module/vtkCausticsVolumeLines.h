@@ -15,15 +15,16 @@
  *       integrated ONCE per segment, cumulatively, and stored at every piece's
  *       vertex (a heterogeneous medium's NanoVDB density is marched; a homogeneous
  *       medium needs one piece and the closed form); the same pass writes the
- *       indirect draw of the pieces;
- *    b. light-ray blending (§5.2, Eq. 3): every piece is drawn as a line with
- *       additive blending. Each fragment stands for the length dl of segment that
- *       projects to one step of its line and adds
+ *       indirect draw of the lines;
+ *    b. light-ray blending (§5.2, Eq. 3): every segment is drawn whole as a line
+ *       with additive blending (pieces shorter than a pixel would be lost to the
+ *       rasterization rules). Each fragment stands for the length dl of segment
+ *       that projects to one step of its line and adds
  *       L = sigma_s(x) p(theta) flux exp(-sigma_t tau_light) T_camera dl / A in
  *       W/(m^2 sr): p the Henyey-Greenstein phase function, tau_light interpolated
- *       between the piece's vertices, T_camera one fetch of the camera optical-depth
- *       volume (vtkCausticsCameraOpticalDepth; without it the march to the camera),
- *       A the pixel's footprint at the fragment. Fragments behind the visible
+ *       between the vertices of the fragment's piece, T_camera one fetch of the
+ *       camera optical-depth volume (vtkCausticsCameraOpticalDepth; without it,
+ *       the march to the camera), A the pixel's footprint at the fragment. Fragments behind the visible
  *       surface are dropped (§5.3);
  * 3. Finish() filters the image with a normalized separable Gaussian of
  *    `blurPixels` standard deviation into the frame's volume texture: the paper's

@@ -18,7 +18,8 @@ struct CausticsVolumeSegment
 // grid, m without), at the subSegments + 1 vertices of its pieces.
 #define CAUSTICS_VOLUME_DEPTHS(access) layout(std430, binding = CAUSTICS_VOLUME_DEPTH_BINDING) access buffer CausticsVolumeDepths { float volumeDepths[]; }
 
-// The drawn part of segment's piece k of n: t at its two ends.
+// The drawn part of segment's piece k of n: t at its two ends (the same split as the
+// fragments' in vtkCausticsVolumeLinesFS.glsl).
 vec2 CausticsVolumePiece(CausticsVolumeSegment s, int k, int n)
 {
   float h = (s.direction.w - s.origin.w) / float(n);

@@ -1,20 +1,21 @@
-// In-scattered radiance of one fragment of a photon segment's piece (003 Eq. 3 with
+// In-scattered radiance of one fragment of a photon segment (003 Eq. 3 with
 // physical units). The fragment stands for the length dl of the segment that projects
 // to one step along its line's major axis; single scattering towards the camera gives
 // the intensity sigma_s(x) p(theta) flux T_light dl (W/sr), and the camera receives it
 // through T_camera as radiance over the pixel's footprint A (m^2, perpendicular to
 // the view): L = sigma_s p flux T_light T_camera dl / A, W/(m^2 sr). T_light comes
 // from the optical depth the re-sampling integrated once per segment, interpolated
-// along the piece; T_camera from the camera optical-depth volume (one fetch) or, in a
-// homogeneous medium, the closed form. Summed over the image this conserves the
+// within the fragment's piece; T_camera from the camera optical-depth volume (one
+// fetch) or, in a homogeneous medium, the closed form. Summed over the image this conserves the
 // scattered power; the Gaussian of Finish() spreads it.
 flat in int segmentIndex;
-flat in vec4 piece;
-flat in vec2 pieceDepths;
+flat in vec4 segment;
 flat in float majorPixels;
 noperspective in float lineParameter;
 
 CAUSTICS_VOLUME_SEGMENTS(readonly);
+CAUSTICS_VOLUME_DEPTHS(readonly);
+uniform int pieces;
 
 uniform sampler2D opaqueDepth;     // window depth of receivers and reflectors
 uniform sampler2D refractiveDepth; // window depth of refractors
@@ -47,10 +48,10 @@ void main()
   vec3 d = s.direction.xyz;
   // Perspective-correct ray parameter and its rate along the screen line.
   float u = clamp(lineParameter, 0.0, 1.0);
-  float a = (1.0 - u) * piece.z;
-  float b = u * piece.w;
-  float t = (a * piece.x + b * piece.y) / (a + b);
-  float dtdu = (piece.y - piece.x) * piece.z * piece.w / ((a + b) * (a + b));
+  float a = (1.0 - u) * segment.z;
+  float b = u * segment.w;
+  float t = (a * segment.x + b * segment.y) / (a + b);
+  float dtdu = (segment.y - segment.x) * segment.z * segment.w / ((a + b) * (a + b));
   float dl = abs(dtdu) / max(majorPixels, 1.0);
   vec3 x = o + t * d;
 #if defined(CAUSTICS_VOLUME_LINES_MARCH) && defined(CAUSTICS_MEDIUM_GRID)
@@ -61,8 +62,12 @@ void main()
     ? CausticsMediumOpticalDepth(o, d, m0, m1)
     : 0.0;
 #else
-  float along = mix(pieceDepths.x, pieceDepths.y,
-    clamp((t - piece.x) / max(piece.y - piece.x, 1e-30), 0.0, 1.0));
+  // The optical depth along the photon, linear within the fragment's piece.
+  float h = (segment.y - segment.x) / float(pieces);
+  float f = clamp((t - segment.x) / max(h, 1e-30), 0.0, float(pieces));
+  int k = min(int(f), pieces - 1);
+  int base = segmentIndex * (pieces + 1) + k;
+  float along = mix(volumeDepths[base], volumeDepths[base + 1], f - float(k));
 #endif
 
   vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - x : -viewOrigin.xyz * 1.0e6;

@@ -2,7 +2,7 @@
 // thread per segment integrates the optical depth along its photon from the origin to
 // the start of the drawn part, then piece after piece, and stores it at every vertex;
 // so the density is marched once per segment (a homogeneous medium: closed form),
-// never per fragment. Thread 0 writes the indirect draw of the pieces' lines.
+// never per fragment. Thread 0 writes the indirect draw of the segments' lines.
 layout(local_size_x = 64) in;
 
 CAUSTICS_VOLUME_SEGMENTS(readonly);
@@ -41,7 +41,7 @@ void main()
   uint i = gl_GlobalInvocationID.x;
   if (i == 0u)
   {
-    drawArguments[0] = 2u * uint(pieces) * count;
+    drawArguments[0] = 2u * count;
     drawArguments[1] = 1u;
     drawArguments[2] = 0u;
     drawArguments[3] = 0u;
