@@ -1,12 +1,11 @@
 // Line-based volume caustics (vtkCausticsVolumeLines, 003_653219b45420e98f.txt §4-5)
 // fed by the screen-space technique, on the two built-in media scenes (smoke-lens: a
-// heterogeneous smoke grid lit through a glass ball; underwater: a homogeneous
-// medium under a water surface), against the reference renderer's volume caustic
+// smoke density grid lit through a glass ball; underwater: a plankton density grid
+// under the pool's water surface), against the reference renderer's volume caustic
 // (photon beams with an exact beam radiance estimate, VolumeCausticRadiance, not the
-// airlight). One render per scene serves every assertion:
-// - the volume caustic's total (the mean radiance ratio) and its relative L2;
-// - the re-sampled optical depth (sub-segments) against the per-fragment march it
-//   replaces, and the time of both.
+// airlight): the total (the mean radiance ratio) and the relative L2, one render per
+// scene; and the re-sampled optical depth (sub-segments) against the per-fragment
+// march it replaces, with the time of both.
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsReferenceRenderer.h"
@@ -43,7 +42,7 @@ const double MatchedBlurPixels = 1.5 / std::sqrt(6.0);
 struct VolumeFrame
 {
   vtkSmartPointer<vtkImageData> Volume;
-  double GodRayMilliseconds = 0.0; ///< the god-ray stages of the second frame (CPU wall, ms)
+  double GodRayMilliseconds = 0.0; ///< the god-ray stages of the second frame (GPU, ms)
 };
 
 VolumeFrame RenderVolume(
