@@ -35,7 +35,7 @@ double Median(std::vector<double> values)
 /** One frame configuration's medians and the last frame's volume radiance. */
 struct VolumeRun
 {
-  double FrameMilliseconds = 0.0; ///< wall, Render + wait for the GPU
+  double FrameMilliseconds = 0.0;  ///< wall, Render + wait for the GPU
   double VolumeMilliseconds = 0.0; ///< GPU time of the god-ray stages
   vtkSmartPointer<vtkImageData> Volume;
 };
@@ -193,8 +193,8 @@ std::string RunVolumeTables(
     {
       const VolumeRun run = Render(settings, window, renderer, grid, 8, size);
       md << " " << Fixed(run.FrameMilliseconds, 0) << " |";
-      progress << "table 2: " << grid << "² photons, " << size << "²: "
-               << Fixed(run.FrameMilliseconds, 0) << " ms" << std::endl;
+      progress << "table 2: " << grid << "² photons, " << size
+               << "²: " << Fixed(run.FrameMilliseconds, 0) << " ms" << std::endl;
     }
     md << "\n";
   }

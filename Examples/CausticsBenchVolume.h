@@ -30,8 +30,8 @@ struct VolumeSettings
  * Renders every row and returns the Markdown (two tables and the settings); the
  * reference is cached like the sweep's. `progress` gets one line per row.
  */
-std::string RunVolumeTables(const VolumeSettings& settings, vtkRenderWindow* window,
-  std::ostream& progress);
+std::string RunVolumeTables(
+  const VolumeSettings& settings, vtkRenderWindow* window, std::ostream& progress);
 }
 
 #endif

@@ -80,8 +80,8 @@ bool vtkCausticsVolumeLines::Begin(vtkOpenGLRenderWindow*, int width, int height
   return true;
 }
 
-bool vtkCausticsVolumeLines::Draw(vtkOpenGLRenderWindow* renWin, const View& view,
-  const Segments& segments, int subSegments)
+bool vtkCausticsVolumeLines::Draw(
+  vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments, int subSegments)
 {
   auto& in = *this->Internal;
   if (!view.Medium || !view.WorldToClip || !view.ClipToWorld || !view.OpaqueDepth ||

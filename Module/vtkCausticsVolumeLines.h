@@ -24,8 +24,8 @@
  *       W/(m^2 sr): p the Henyey-Greenstein phase function, tau_light interpolated
  *       between the vertices of the fragment's piece, T_camera one fetch of the
  *       camera optical-depth volume (vtkCausticsCameraOpticalDepth; without it,
- *       the march to the camera), A the pixel's footprint at the fragment. Fragments behind the visible
- *       surface are dropped (§5.3);
+ *       the march to the camera), A the pixel's footprint at the fragment.
+ *       Fragments behind the visible surface are dropped (§5.3);
  * 3. Finish() filters the image with a normalized separable Gaussian of
  *    `blurPixels` standard deviation into the frame's volume texture: the paper's
  *    normalized Gaussian re-distribution of the irregular line samples (Fig. 5),
@@ -109,8 +109,8 @@ public:
    * draws one (its optical depth is linear along the segment). 0: a comparison mode
    * (the former god-rays) that marches the density per fragment instead.
    */
-  bool Draw(vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments,
-    int subSegments);
+  bool Draw(
+    vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments, int subSegments);
 
   /**
    * Filters the accumulated radiance into `volume` (made RGBA32F of the view's size)
@@ -129,10 +129,10 @@ private:
   vtkCausticsVolumeLines(const vtkCausticsVolumeLines&) = delete;
   void operator=(const vtkCausticsVolumeLines&) = delete;
 
-  bool Resample(vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments,
-    int pieces);
-  bool DrawLines(vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments,
-    int pieces);
+  bool Resample(
+    vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments, int pieces);
+  bool DrawLines(
+    vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments, int pieces);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

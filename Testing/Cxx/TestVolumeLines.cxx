@@ -146,10 +146,10 @@ vtkCausticsErrorMetrics::Result CompareWithReference(const char* sceneName)
   metrics->SetArrayName("VolumeRadiance");
   EXPECT_TRUE(metrics->Compute(lines.Volume, target));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << sceneName;
-  std::cout << sceneName << " volume caustic at " << ImageSize << "^2, "
-            << LightBufferResolution << "^2 photons, 8 sub-segments, blur "
-            << MatchedBlurPixels << " px: " << metrics->GetSummary()
-            << "; god-ray stages " << lines.GodRayMilliseconds << " ms\n  total ratio per channel:";
+  std::cout << sceneName << " volume caustic at " << ImageSize << "^2, " << LightBufferResolution
+            << "^2 photons, 8 sub-segments, blur " << MatchedBlurPixels
+            << " px: " << metrics->GetSummary() << "; god-ray stages " << lines.GodRayMilliseconds
+            << " ms\n  total ratio per channel:";
   for (int c = 0; c < 3; ++c)
   {
     double sum[2] = { 0.0, 0.0 };
