@@ -81,6 +81,11 @@ std::string QualityUsage()
                              become irradiance: splats (default) or triangles
                              (caustic triangles between neighbouring photons;
                              sharp foci, see docs/accuracy.md)
+  --god-ray-blur PIXELS      screen-space god-rays: standard deviation of their
+                             screen-space Gaussian, 0..16 (default 1.5)
+  --volume-sub-segments N    screen-space god-rays in a density grid: pieces each
+                             photon segment is split into (0..64, default 8; 0:
+                             march the density per fragment, the slow former way)
   --denoise [on|off]         denoise the caustic irradiance over space and time
                              (SVGF, docs/denoising.md) or not; --denoise alone
                              is on (default: the technique's; cascaded: on)
@@ -261,8 +266,19 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
       options.TraceView = ParseChoice(option, value, { "automatic", "camera", "fitted" });
     });
   arguments.Value("--reconstruction",
-    [&options](const std::string& option, const std::string& value) {
-      options.Reconstruction = ParseChoice(option, value, { "splats", "triangles" });
+    [&options](const std::string& option, const std::string& value)
+    { options.Reconstruction = ParseChoice(option, value, { "splats", "triangles" }); });
+  arguments.Value("--volume-sub-segments",
+    [&options](const std::string& option, const std::string& value)
+    { options.VolumeSubSegments = ParseInteger(option, value, 0, 64); });
+  arguments.Value("--god-ray-blur",
+    [&options](const std::string& option, const std::string& value)
+    {
+      options.GodRayBlurPixels = ParseNumber(option, value);
+      if (!(options.GodRayBlurPixels >= 0.0 && options.GodRayBlurPixels <= 16.0))
+      {
+        throw UsageError("--god-ray-blur must lie in [0, 16] pixels");
+      }
     });
   arguments.Value("--photons",
     [&options](const std::string& option, const std::string& value)
@@ -669,6 +685,14 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   {
     screenSpace->SetTraceView(options.TraceView);
     screenSpace->SetReconstruction(options.Reconstruction);
+    if (options.VolumeSubSegments >= 0)
+    {
+      screenSpace->SetVolumeSubSegments(options.VolumeSubSegments);
+    }
+    if (options.GodRayBlurPixels >= 0.0)
+    {
+      screenSpace->SetGodRayBlurPixels(options.GodRayBlurPixels);
+    }
   }
   if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))
   {

@@ -33,6 +33,8 @@ struct SceneOptions
   int Photons = 0;        ///< light-buffer side; 0: the technique's default
   int TraceView = 0;      ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
   int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
+  int VolumeSubSegments = -1; ///< screen-space god-rays' pieces (0: march); -1: the default
+  double GodRayBlurPixels = -1.0; ///< screen-space god-rays' Gaussian (pixels); < 0: the default
   int Width = 512, Height = 512;
   int Denoise =
     -1; ///< --denoise [on|off]: 1 SVGF on the caustic irradiance, 0 off, -1 the technique's

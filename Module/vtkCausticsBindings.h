@@ -42,6 +42,13 @@
 // (caustics::gl::MediumBuffer; PNanoVDB.h reads it, vtkCausticsShaderProgram).
 #define CAUSTICS_MEDIUM_GRID_BINDING 14
 
+// Line-based volume caustics (vtkCausticsVolumeLines, glsl/vtkCausticsVolumeLinesCommon.glsl):
+// the techniques' segments, their optical depths, the segment count and the lines' draw.
+#define CAUSTICS_VOLUME_SEGMENT_BINDING 1
+#define CAUSTICS_VOLUME_DEPTH_BINDING 2
+#define CAUSTICS_VOLUME_COUNT_BINDING 3
+#define CAUSTICS_VOLUME_ARGUMENT_BINDING 4
+
 // Hierarchical caustic map (vtkCausticsPhotonBufferCommon.glsl).
 #define CAUSTICS_PHOTON_STATISTICS_BINDING 1
 #define CAUSTICS_HIERARCHY_NODES_BINDING 2

@@ -10,12 +10,12 @@
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
-#include "vtkCausticsScreenSpaceGodRays.h"
 #include "vtkCausticsScreenSpaceLineTracer.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
+#include "vtkCausticsVolumeLines.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -31,6 +31,8 @@
 #include "vtkCausticsScreenSpacePhotonPassRadiusCS.h"
 #include "vtkCausticsScreenSpacePhotonPassShadowCS.h"
 #include "vtkCausticsScreenSpacePhotonPassTransferCS.h"
+#include "vtkCausticsScreenSpaceVolumeSegmentsCS.h"
+#include "vtkCausticsVolumeLinesCommon.h"
 
 #include <algorithm>
 #include <cmath>
@@ -86,16 +88,18 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   vtkNew<vtkCausticsScreenSpaceLineTracer> Tracer;
   vtkNew<vtkCausticsPhotonEmitter> Emitter;
   vtkNew<vtkCausticsPhotonSplatter> Splatter;
-  vtkNew<vtkCausticsScreenSpaceGodRays> GodRays;
+  vtkNew<vtkCausticsVolumeLines> VolumeLines; // god-rays: line-based volume caustics (003)
   vtkNew<vtkCausticsShaderProgram> InitialProgram;
   vtkNew<vtkCausticsShaderProgram> TransferProgram;
   vtkNew<vtkCausticsShaderProgram> ShadowProgram;
   vtkNew<vtkCausticsShaderProgram> RadiusProgram;
+  vtkNew<vtkCausticsShaderProgram> SegmentProgram; // rays -> volume line segments
 
   // Transfer maps (photon lists) and their counters, ping-ponged between bounces.
   caustics::gl::StorageBuffer Rays[2];
   caustics::gl::StorageBuffer Payloads[2];
   caustics::gl::StorageBuffer Counters[2];
+  caustics::gl::StorageBuffer VolumeSegments; // CausticsVolumeSegment per ray
   int Current = 0;
   int Capacity = 0;
   // Splat records of the photons that ended on receivers this bounce.
@@ -147,6 +151,10 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   in.ShadowProgram->SetName("ssp shadow rays");
   in.ShadowProgram->SetComputeSource((common + vtkCausticsScreenSpacePhotonPassShadowCS).c_str());
   in.ShadowProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  in.SegmentProgram->SetName("ssp volume segments");
+  in.SegmentProgram->SetComputeSource(
+    (common + vtkCausticsVolumeLinesCommon + vtkCausticsScreenSpaceVolumeSegmentsCS).c_str());
+  in.SegmentProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   for (float& v : in.ClipToWorld)
   {
     v = 0.0f;
@@ -374,7 +382,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const caustics::SceneData& scene = *f.Scene;
-  vtkCausticsScreenSpaceGodRays::View view;
+  vtkCausticsVolumeLines::View view;
   view.WorldToClip = f.WorldToClip;
   view.ClipToWorld = in.ClipToWorld;
   view.Width = f.Width;
@@ -387,8 +395,40 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
   view.RefractiveDepth = f.RefractiveGBuffer->GetDepthTexture();
   const int c = in.Current;
-  return in.GodRays->Draw(renWin, view, in.Rays[c].Handle(), in.Payloads[c].Handle(),
-    in.Tracer->GetLineBuffer(), in.Tracer->GetHitBuffer(), in.Tracer->GetArgumentBuffer());
+  return this->WriteVolumeSegments(renWin) &&
+    in.VolumeLines->Draw(renWin, view,
+      { in.VolumeSegments.Handle(), in.Tracer->GetArgumentBuffer(), 3, in.Capacity },
+      this->Settings.VolumeSubSegments);
+}
+
+bool vtkCausticsScreenSpacePhotonPass::WriteVolumeSegments(vtkOpenGLRenderWindow* renWin)
+{
+  // This bounce's traced rays, lines and hits in the volume lines' neutral layout; the
+  // ray count stays on the GPU (word 3 of the tracer's arguments).
+  auto& in = *this->Internal;
+  in.VolumeSegments.Allocate(static_cast<std::size_t>(vtkCausticsVolumeLines::SegmentBytes) *
+      static_cast<std::size_t>(in.Capacity),
+    caustics::gl::StorageBuffer::Usage::Copy);
+  vtkCausticsShaderProgram* p = in.SegmentProgram;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  const int c = in.Current;
+  in.Rays[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING);
+  in.Payloads[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_PAYLOAD_BINDING);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_LINE_BINDING, in.Tracer->GetLineBuffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_HIT_BINDING, in.Tracer->GetHitBuffer());
+  glBindBufferBase(
+    GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_ARGUMENT_BINDING, in.Tracer->GetArgumentBuffer());
+  in.VolumeSegments.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_VOLUME_SEGMENT_BINDING);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Tracer->GetArgumentBuffer());
+  glDispatchComputeIndirect(0);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  p->Unbind(renWin);
+  return true;
 }
 
 void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
@@ -460,7 +500,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
     (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
   if (in.GodRaysOn)
   {
-    in.GodRays->Begin(f.Window, f.Width, f.Height);
+    in.VolumeLines->Begin(f.Window, f.Width, f.Height);
   }
 
   // 2-6. Per light: emit, then trace, transfer and splat bounce after bounce.
@@ -485,7 +525,8 @@ bool vtkCausticsScreenSpacePhotonPass::RenderVolumeRadiance(
     return false;
   }
   this->StartStage("ssp god-ray blur");
-  const bool ok = this->Internal->GodRays->Finish(f.Window, this->Settings, target);
+  const bool ok =
+    this->Internal->VolumeLines->Finish(f.Window, this->Settings.GodRayBlurPixels, target);
   this->StopStage("ssp god-ray blur");
   return ok;
 }
@@ -564,7 +605,9 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   in.Tracer->ReleaseGraphicsResources(w);
   in.Emitter->ReleaseGraphicsResources(w);
   in.Splatter->ReleaseGraphicsResources(w);
-  in.GodRays->ReleaseGraphicsResources(w);
+  in.VolumeLines->ReleaseGraphicsResources(w);
+  in.SegmentProgram->ReleaseGraphicsResources(w);
+  in.VolumeSegments.Release();
   in.InitialProgram->ReleaseGraphicsResources(w);
   in.TransferProgram->ReleaseGraphicsResources(w);
   in.ShadowProgram->ReleaseGraphicsResources(w);
@@ -602,6 +645,7 @@ void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
      << (this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES ? "triangles" : "splats") << "\n";
   os << indent << "GodRays: " << this->Settings.GodRays << "\n";
   os << indent << "GodRayBlurPixels: " << this->Settings.GodRayBlurPixels << "\n";
+  os << indent << "VolumeSubSegments: " << this->Settings.VolumeSubSegments << "\n";
   os << indent << "SkipOffscreenSpecular: " << this->Settings.SkipOffscreenSpecular << "\n";
   os << indent << "Photon capacity (last frame): " << this->Internal->Capacity << "\n";
 }

@@ -24,7 +24,7 @@
  *    deposits exactly its flux, so the result is irradiance in W/m^2;
  * 6. god-rays (§3.2): with a vtkCausticsMedium on the renderer, every photon
  *    segment in the medium is drawn as a line of in-scattered radiance, W/(m^2 sr)
- *    (vtkCausticsScreenSpaceGodRays), Gaussian-blurred, into VolumeTexture;
+ *    (vtkCausticsVolumeLines, 003 §4-5), Gaussian-blurred, into VolumeTexture;
  * 7. screen-space refraction (§4, after the direct irradiance): pixels that see a
  *    refractor are traced through its own layers, refracted at the exit and looked
  *    up in the scene (vtkCausticsScreenSpaceRefraction); the composite shows that
@@ -51,7 +51,6 @@
 class vtkCausticsLayeredDepth;
 class vtkCausticsPhotonEmitter;
 class vtkCausticsPhotonSplatter;
-class vtkCausticsScreenSpaceGodRays;
 class vtkCausticsScreenSpaceLineTracer;
 class vtkImageData;
 class vtkTextureObject;
@@ -158,6 +157,17 @@ public:
   vtkCausticsSettingClampMacro(Settings, GodRayBlurPixels, double, 0.0, 16.0);
   ///@}
 
+  ///@{
+  /**
+   * Pieces each god-ray segment is split into in a heterogeneous medium
+   * (vtkCausticsVolumeLines, 003 §5.2): the light-side optical depth is marched once
+   * per segment and interpolated linearly within a piece. A homogeneous medium draws
+   * one piece (exact). 0: march the density per fragment instead (the former
+   * god-rays, many times slower; for comparison). Default 8.
+   */
+  vtkCausticsSettingClampMacro(Settings, VolumeSubSegments, int, 0, 64);
+  ///@}
+
 
   ///@{
   /**
@@ -247,6 +257,7 @@ protected:
   bool TransferPhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);
   bool SplatPhotons(vtkOpenGLRenderWindow* renWin, int light, int bounce);
   bool DrawGodRays(vtkOpenGLRenderWindow* renWin, int light, int bounce);
+  bool WriteVolumeSegments(vtkOpenGLRenderWindow* renWin);
 
   caustics::ScreenSpaceSettings Settings;
   double LastTolerance = 0.0;

@@ -5,7 +5,7 @@
  * vtkCausticsScreenSpacePhotonPass owns one ScreenSpaceSettings; its Set/Get
  * methods (documented, with their ranges, on the pass) write into it, and the
  * stages that need a knob take the value by const reference when they run
- * (vtkCausticsScreenSpaceLineTracer, vtkCausticsScreenSpaceGodRays), so nothing is
+ * (vtkCausticsScreenSpaceLineTracer, vtkCausticsVolumeLines), so nothing is
  * copied into them per frame. Section numbers are those of 000_54cf099eeccf42d9.txt
  * (Krüger, Bürger and Westermann 2006).
  */
@@ -31,6 +31,7 @@ struct ScreenSpaceSettings
   int Reconstruction = 0; ///< vtkCausticsPhotonSplatter::Reconstructions: 0 splats, 1 triangles
   bool GodRays = true;                         ///< volume caustics in a medium (§3.2)
   double GodRayBlurPixels = 1.5;               ///< Gaussian standard deviation, pixels, [0, 16]
+  int VolumeSubSegments = 8; ///< god-ray pieces in a heterogeneous medium (003 §5.2), [0, 64]; 0 marches per fragment
   bool SkipOffscreenSpecular = false;          ///< plain VTK when no specular actor is in view
   int TraceView = 0; ///< caustics::TraceViewMode: 0 automatic, 1 camera, 2 fitted
 

@@ -47,6 +47,14 @@ vec3 CausticsTransmittance(vec3 sigma, float distance)
   return exp(-sigma * distance);
 }
 
+// Henyey-Greenstein phase function (1/sr), cosTheta between the propagation
+// directions before and after scattering (as caustics::HenyeyGreenstein).
+float CausticsHenyeyGreenstein(float cosTheta, float g)
+{
+  float denominator = 1.0 + g * g - 2.0 * g * cosTheta;
+  return (1.0 - g * g) / (4.0 * CAUSTICS_PI * denominator * sqrt(max(denominator, 1e-12)));
+}
+
 // Clips o + t d, t in [t0, t1], to an axis-aligned box; false if it misses.
 bool CausticsClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0, inout float t1)
 {

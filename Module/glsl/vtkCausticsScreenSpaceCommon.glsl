@@ -99,14 +99,6 @@ bool SspClipToFrustum(mat4 worldToClip, vec3 o, vec3 d, inout float t0, inout fl
   return t0 < t1;
 }
 
-// Henyey-Greenstein phase function (1/sr), cosTheta between the propagation
-// directions before and after scattering (as caustics::HenyeyGreenstein).
-float SspHenyeyGreenstein(float cosTheta, float g)
-{
-  float denominator = 1.0 + g * g - 2.0 * g * cosTheta;
-  return (1.0 - g * g) / (4.0 * CAUSTICS_PI * denominator * sqrt(max(denominator, 1e-12)));
-}
-
 // What a photon carries besides its ray: flux.rgb (W), flux.a = specular events
 // so far; info.x = a stable photon id (its emitter texel: deterministic Russian
 // roulette, neighbours for the radius rule), info.y = its path length from the

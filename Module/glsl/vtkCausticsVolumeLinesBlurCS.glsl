@@ -1,6 +1,7 @@
-// Separable Gaussian blur of the god-ray image (§3.2: "blurred with a Gaussian
-// filter" of constant screen-space support). The weights sum to 1, so the blur
-// moves radiance between pixels without changing its sum.
+// Separable Gaussian of the volume lines' image: the normalized Gaussian that
+// re-distributes the lines' irregular samples (003 §5.2, Fig. 5; 000 §3.2 "blurred with
+// a Gaussian filter"), of constant screen-space support. The weights sum to 1, so the
+// blur moves radiance between pixels without changing its sum.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(rgba32f, binding = 0) uniform readonly image2D source;
