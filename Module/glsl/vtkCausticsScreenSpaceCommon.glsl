@@ -103,8 +103,7 @@ bool SspClipToFrustum(mat4 worldToClip, vec3 o, vec3 d, inout float t0, inout fl
 // directions before and after scattering (as caustics::HenyeyGreenstein).
 float SspHenyeyGreenstein(float cosTheta, float g)
 {
-  float denominator = 1.0 + g * g - 2.0 * g * cosTheta;
-  return (1.0 - g * g) / (4.0 * CAUSTICS_PI * denominator * sqrt(max(denominator, 1e-12)));
+  return CausticsHenyeyGreenstein(cosTheta, g);
 }
 
 // What a photon carries besides its ray: flux.rgb (W), flux.a = specular events
