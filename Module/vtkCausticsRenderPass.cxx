@@ -1240,6 +1240,9 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   const bool hasTechniqueColor = hasCaustics && this->Result.TechniqueColor;
   const bool hasLostShading = hasCaustics && this->CorrectsVTKShading() && this->Result.Direct;
   const bool hasMedium = hasCaustics && f.Scene->Participating.enabled;
+  // An unused sampler would keep the unit it had in an earlier frame, which a sampler of
+  // another type (the camera optical-depth volume) may hold now, and GL refuses the draw:
+  // unused ones point at VTK's colour, always bound (they are not read).
   for (int i = 0; i < 9; ++i)
   {
     const bool used = i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6) ||
@@ -1247,8 +1250,8 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
     if (used)
     {
       textures[i]->Activate();
-      program->SetUniformi(names[i], textures[i]->GetTextureUnit());
     }
+    program->SetUniformi(names[i], textures[used ? i : 0]->GetTextureUnit());
   }
   program->SetUniformi("hasCaustics", hasCaustics ? 1 : 0);
   program->SetUniformi("hasVolume", hasVolume ? 1 : 0);
