@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -44,6 +45,7 @@ struct Frame
 {
   vtkSmartPointer<vtkImageData> Volume, Final;
   bool AirlightRan = false;
+  double AirlightMilliseconds = 0.0; ///< the stage's GPU time
   double Milliseconds = 0.0; ///< wall time of a second frame (programs compiled)
 };
 
@@ -59,6 +61,15 @@ public:
   {
     this->Pass->SetLightBufferResolution(64);
     this->Pass->KeepBuffersOn();
+    // A sweep of the march's knobs (docs/airlight.md): the bounds hold for the defaults.
+    if (const char* steps = std::getenv("AIRLIGHT_STEPS"))
+    {
+      this->Pass->GetAirlight()->SetSteps(std::atoi(steps));
+    }
+    if (const char* steps = std::getenv("AIRLIGHT_LIGHT_STEPS"))
+    {
+      this->Pass->GetAirlight()->SetLightSteps(std::atoi(steps));
+    }
     this->Renderer->SetPass(this->Pass);
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
@@ -102,6 +113,7 @@ public:
       if (std::string(timings->GetStageName(i)) == "airlight" && timings->GetStageRan(i))
       {
         frame.AirlightRan = true;
+        frame.AirlightMilliseconds = timings->GetStageGPUMilliseconds(i);
       }
     }
     return frame;
@@ -208,14 +220,17 @@ void PositionalLight(vtkRenderer* renderer, const double position[3], double con
   renderer->AddLight(light);
 }
 
-void ExpectMatch(Session& session, const char* name, double l2Bound, double totalBound)
+Frame ExpectMatch(Session& session, const char* name, double l2Bound, double totalBound)
 {
   vtkRenderer* renderer = session.GetRenderer();
   const Frame frame = session.Render();
-  ASSERT_TRUE(frame.AirlightRan) << name;
-  ASSERT_TRUE(frame.Volume) << name;
+  EXPECT_TRUE(frame.AirlightRan) << name;
   vtkSmartPointer<vtkDataArray> reference = ReferenceAirlight(renderer, Size);
-  ASSERT_TRUE(reference) << name;
+  if (!frame.Volume || !reference)
+  {
+    ADD_FAILURE() << name << ": no volume layer or no reference";
+    return frame;
+  }
   const Comparison c = Compare(frame.Volume, reference);
   std::cout << name << ": airlight relative L2 " << c.RelativeL2 << ", total GPU / reference "
             << c.TotalRatio << " (" << Size << "^2; GPU total " << Sum(frame.Volume) << ")\n";
@@ -226,10 +241,12 @@ void ExpectMatch(Session& session, const char* name, double l2Bound, double tota
     // No direct light reaches the medium: both must be dark.
     EXPECT_EQ(Sum(frame.Volume), 0.0) << name;
     EXPECT_EQ(c.TotalRatio, 0.0) << name;
-    return;
+    return frame;
   }
   EXPECT_LT(c.RelativeL2, l2Bound) << name;
   EXPECT_NEAR(c.TotalRatio, 1.0, totalBound) << name;
+  return frame;
+}
 }
 
 // A homogeneous fog around the ball lens (closed-form transmittances), under three
@@ -262,11 +279,10 @@ TEST(Airlight, HomogeneousFogMatchesReference)
 TEST(Airlight, MediaScenesMatchReference)
 {
   vtkNew<vtkCausticsBuiltinScene> scene;
+  Session session("none", Size);
   for (const char* name : { "underwater", "smoke-lens", "smoke-lens, slanted spot" })
   {
-    // A session each: after a first frame, a pass may skip the caustics of a scene
-    // repopulated or relit in its renderer (docs/airlight.md, limits).
-    Session session("none", Size);
+    session.GetPass()->GetCameraOpticalDepth()->EnabledOn();
     scene->SetSceneName(std::string(name).substr(0, std::string(name).find(',')).c_str());
     ASSERT_TRUE(scene->Populate(session.GetRenderer())) << scene->GetLastError();
     if (std::string(name).find("slanted") != std::string::npos)
@@ -280,7 +296,21 @@ TEST(Airlight, MediaScenesMatchReference)
     const std::string which = name;
     const double l2 = which == "underwater" ? 0.17 : which == "smoke-lens" ? 0.0 : 0.105;
     const double total = which == "underwater" ? 0.003 : 0.001;
-    ExpectMatch(session, name, l2, total);
+    const Frame looked = ExpectMatch(session, name, l2, total);
+    if (l2 > 0.0)
+    {
+      // T_cam by the march along each ray instead of the camera optical-depth volume.
+      session.GetPass()->GetCameraOpticalDepth()->EnabledOff();
+      const Frame marched = session.Render();
+      ASSERT_TRUE(marched.Volume && looked.Volume);
+      vtkDataArray* m = marched.Volume->GetPointData()->GetArray(0);
+      const double fromMarch = Compare(looked.Volume, m).RelativeL2;
+      std::cout << name << ": T_cam from the optical-depth volume vs the march: relative L2 "
+                << fromMarch << "; airlight stage " << looked.AirlightMilliseconds << " ms vs "
+                << marched.AirlightMilliseconds << " ms (GPU, first frames)\n";
+      // Reached: 0.00109 (underwater), 0.00128 (slanted spot).
+      EXPECT_LT(fromMarch, which == "underwater" ? 0.0012 : 0.0014) << name;
+    }
   }
 }
 
