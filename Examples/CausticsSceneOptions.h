@@ -37,6 +37,7 @@ struct SceneOptions
   bool Denoise = false; ///< --denoise: SVGF on the caustic irradiance (else the technique's)
   /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
   int CameraView = -1;
+  bool Airlight = true; ///< --airlight off: no airlight stage (vtkCausticsAirlight)
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };
   double LightIntensity = 1.0;
