@@ -100,7 +100,8 @@ bool vtkCausticsAirlight::Render(const Inputs& in, vtkTextureObject* target, boo
   program->SetUniformi("gRefractivePosition", in.RefractorPositions->GetTextureUnit());
   glBindImageTexture(0, target->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   bool wrote = false;
-  const int lights = std::min(in.Shadows->GetNumberOfLights(), static_cast<int>(scene.Lights.size()));
+  const int lights =
+    std::min(in.Shadows->GetNumberOfLights(), static_cast<int>(scene.Lights.size()));
   for (int i = 0; i < lights; ++i)
   {
     const caustics::LightView& view = in.Shadows->GetView(i);

@@ -90,11 +90,11 @@ public:
     int Width = 0; ///< the viewport's pixels
     int Height = 0;
     const caustics::SceneData* Scene = nullptr;
-    const caustics::gl::MediumBuffer* Grid = nullptr;      ///< the density grid on the GPU
+    const caustics::gl::MediumBuffer* Grid = nullptr;            ///< the density grid on the GPU
     vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr; ///< used when valid
-    vtkTextureObject* SurfacePositions = nullptr; ///< camera G-buffer of opaque surfaces
+    vtkTextureObject* SurfacePositions = nullptr;   ///< camera G-buffer of opaque surfaces
     vtkTextureObject* RefractorPositions = nullptr; ///< camera G-buffer of refractors
-    vtkCausticsLightBuffers* Shadows = nullptr;    ///< shadow maps aimed at the scene
+    vtkCausticsLightBuffers* Shadows = nullptr;     ///< shadow maps aimed at the scene
     int ShadowMapResolution = 1;
   };
 

@@ -19,19 +19,16 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
-#include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
-#include "vtk_glew.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -46,7 +43,6 @@ struct Frame
   vtkSmartPointer<vtkImageData> Volume, Final;
   bool AirlightRan = false;
   double AirlightMilliseconds = 0.0; ///< the stage's GPU time
-  double Milliseconds = 0.0; ///< wall time of a second frame (programs compiled)
 };
 
 /**
@@ -84,19 +80,10 @@ public:
   vtkCausticsRenderPass* GetPass() { return this->Pass; }
   vtkRenderer* GetRenderer() { return this->Renderer; }
 
-  Frame Render(bool timeSecondFrame = false)
+  Frame Render()
   {
     this->Window->Render();
     Frame frame;
-    if (timeSecondFrame)
-    {
-      const auto start = std::chrono::steady_clock::now();
-      this->Window->Render();
-      glFinish();
-      frame.Milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-          .count();
-    }
     vtkCausticsRenderPass* pass = this->Pass;
     frame.Final = vtkSmartPointer<vtkImageData>::New();
     EXPECT_TRUE(pass->ReadBuffer("FinalColor", frame.Final));
