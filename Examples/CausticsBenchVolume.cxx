@@ -3,6 +3,7 @@
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTimings.h"
 
@@ -46,6 +47,9 @@ VolumeRun Render(const VolumeSettings& settings, vtkRenderWindow* window,
   vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
   pass->SetLightBufferResolution(grid);
   pass->SetVolumeSubSegments(subSegments);
+  // The volume caustic alone, as the reference's VolumeCausticRadiance it is compared
+  // with (the airlight, a separate stage: docs/airlight.md).
+  pass->GetAirlight()->EnabledOff();
   pass->KeepBuffersOn();
   renderer->SetPass(pass);
   window->SetSize(size, size);

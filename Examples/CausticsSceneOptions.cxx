@@ -2,6 +2,7 @@
 // share (CausticsSceneOptions.h).
 #include "CausticsSceneOptions.h"
 
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLTFImporter.h"
@@ -93,6 +94,8 @@ std::string QualityUsage()
                              impostors (distance impostors, paper 004) or both
                              (default: screen-space, impostors where rays leave
                              the view; docs/technique-distance-impostors.md)
+  --airlight on|off          a medium's airlight and volume shadows of the direct
+                             light (default on; docs/airlight.md)
   --size W[xH]               image size in pixels (default 512x512)
 )";
 }
@@ -286,9 +289,11 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.OptionalChoice("--denoise", { "on", "off" }, "on",
     [&options](const std::string&, const std::string& value) { options.Denoise = value == "on"; });
   arguments.Value("--camera-view",
-    [&options](const std::string& option, const std::string& value) {
-      options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" });
-    });
+    [&options](const std::string& option, const std::string& value)
+    { options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" }); });
+  arguments.Value("--airlight",
+    [&options](const std::string& option, const std::string& value)
+    { options.Airlight = ParseChoice(option, value, { "off", "on" }) == 1; });
   arguments.Value("--size",
     [&options](const std::string& option, const std::string& value)
     {
@@ -681,6 +686,7 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   {
     pass->SetCameraViewMethod(options.CameraView); // the same order as CameraViewMethods
   }
+  pass->GetAirlight()->SetEnabled(options.Airlight);
   if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))
   {
     screenSpace->SetTraceView(options.TraceView);

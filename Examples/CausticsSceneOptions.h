@@ -40,6 +40,7 @@ struct SceneOptions
     -1; ///< --denoise [on|off]: 1 SVGF on the caustic irradiance, 0 off, -1 the technique's
   /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
   int CameraView = -1;
+  bool Airlight = true; ///< --airlight off: no airlight stage (vtkCausticsAirlight)
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };
   double LightIntensity = 1.0;

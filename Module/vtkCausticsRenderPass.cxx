@@ -4,6 +4,7 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsDeviceLimits.h"
@@ -322,6 +323,7 @@ struct vtkCausticsRenderPass::Internals
   std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
   caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
   vtkNew<vtkCausticsCameraOpticalDepth> CameraOpticalDepth; // its optical depth from the camera
+  vtkNew<vtkCausticsAirlight> Airlight; // single scattering of the direct light (volume layer)
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -972,6 +974,15 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   {
     this->EnsureDirectIrradiance("direct irradiance");
   }
+  // The medium's own glow: airlight and volume shadows of the direct light, added to
+  // the technique's volume caustic (003 §3: the composition is a sum).
+  if (this->Result.Caustics && this->Result.Direct &&
+    this->Internal->Airlight->IsNeeded(*f.Scene))
+  {
+    this->StartStage("airlight");
+    this->Result.Volume = this->RenderAirlight() || this->Result.Volume;
+    this->StopStage("airlight");
+  }
   if (this->Result.Caustics)
   {
     this->Result.TechniqueColor =
@@ -1080,6 +1091,30 @@ void vtkCausticsRenderPass::CheckMediumDensity()
 vtkCausticsCameraOpticalDepth* vtkCausticsRenderPass::GetCameraOpticalDepth()
 {
   return this->Internal->CameraOpticalDepth;
+}
+
+vtkCausticsAirlight* vtkCausticsRenderPass::GetAirlight()
+{
+  return this->Internal->Airlight;
+}
+
+bool vtkCausticsRenderPass::RenderAirlight()
+{
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  vtkCausticsAirlight::Inputs inputs;
+  inputs.Window = f.Window;
+  inputs.Width = f.Width;
+  inputs.Height = f.Height;
+  inputs.Scene = f.Scene;
+  inputs.Grid = f.MediumGrid;
+  inputs.CameraOpticalDepth = f.CameraOpticalDepth;
+  inputs.SurfacePositions = f.CameraGBuffer->GetPositionTexture();
+  inputs.RefractorPositions = f.RefractiveGBuffer->GetPositionTexture();
+  inputs.Shadows = in.ShadowBuffers;
+  inputs.ShadowMapResolution = this->ShadowMapResolution;
+  // Added to the technique's volume caustic when it wrote one this frame.
+  return in.Airlight->Render(inputs, in.VolumeTexture, this->Result.Volume);
 }
 
 vtkIdType vtkCausticsRenderPass::GetMediumGridBytes() const
@@ -1245,6 +1280,9 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
   const bool hasTechniqueColor = hasCaustics && this->Result.TechniqueColor;
   const bool hasLostShading = hasCaustics && this->CorrectsVTKShading() && this->Result.Direct;
   const bool hasMedium = hasCaustics && f.Scene->Participating.enabled;
+  // An unused sampler would keep the unit it had in an earlier frame, which a sampler of
+  // another type (the camera optical-depth volume) may hold now, and GL refuses the draw:
+  // unused ones point at VTK's colour, always bound (they are not read).
   for (int i = 0; i < 9; ++i)
   {
     const bool used = i < 2 || (hasCaustics && i < 6) || (hasVolume && i == 6) ||
@@ -1252,8 +1290,8 @@ void vtkCausticsRenderPass::Composite(bool toFinalTexture)
     if (used)
     {
       textures[i]->Activate();
-      program->SetUniformi(names[i], textures[i]->GetTextureUnit());
     }
+    program->SetUniformi(names[i], textures[used ? i : 0]->GetTextureUnit());
   }
   program->SetUniformi("hasCaustics", hasCaustics ? 1 : 0);
   program->SetUniformi("hasVolume", hasVolume ? 1 : 0);
@@ -1481,6 +1519,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.Geometry->ReleaseGraphicsResources(w);
   in.MediumGrid.Release();
   in.CameraOpticalDepth->ReleaseGraphicsResources(w);
+  in.Airlight->ReleaseGraphicsResources(w);
   in.CameraGBuffer->ReleaseGraphicsResources(w);
   in.RefractiveGBuffer->ReleaseGraphicsResources(w);
   in.LightBuffers->ReleaseGraphicsResources(w);
@@ -1526,6 +1565,8 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Denoiser:\n";
   this->Internal->Denoiser->PrintSelf(os, indent.GetNextIndent());
   os << indent << "CameraViewMethod: " << this->CameraViewMethod << "\n";
+  os << indent << "Airlight:\n";
+  this->Internal->Airlight->PrintSelf(os, indent.GetNextIndent());
   os << indent << "LastFrameHadCaustics: " << this->Result.Caustics << "\n";
   os << indent << "Size: " << this->Frame.Width << " x " << this->Frame.Height << "\n";
   os << indent << "MediumGridBytes: " << this->GetMediumGridBytes() << " (dense "

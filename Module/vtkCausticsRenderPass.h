@@ -34,6 +34,9 @@
  *    with caustics, or a technique asking with EnsureDirectIrradiance): direct
  *    irradiance, W/m^2, with shadow maps aimed at the whole scene, and the part of
  *    VTK's shading that reflectors and refractors block.
+ *    With a scattering medium, vtkCausticsAirlight then adds the airlight and volume
+ *    shadows of the direct light (003_653219b45420e98f.txt §3) to the volume layer,
+ *    whatever the technique (stage "airlight").
  * 8. RenderTechniqueColor hook (after a frame with caustics): an optional display
  *    colour per pixel; where its alpha is 1 it replaces VTK's colour (e.g.
  *    refraction traced through glass).
@@ -68,6 +71,7 @@
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
+class vtkCausticsAirlight;
 class vtkCausticsCameraOpticalDepth;
 class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
@@ -272,6 +276,15 @@ public:
    * once per frame (its knobs: Enabled, PixelsPerColumn, Slices).
    */
   vtkCausticsCameraOpticalDepth* GetCameraOpticalDepth();
+
+  /**
+   * The airlight and volume shadows of the direct light (003_653219b45420e98f.txt §3,
+   * vtkCausticsAirlight), shared by every technique: in a frame with caustics and a
+   * scattering medium it adds W/(m^2 sr) to the volume layer (ReadBuffer
+   * ("VolumeRadiance"), beside the technique's volume caustic), timed as "airlight";
+   * without a medium it does not run. Its knobs: Enabled, Steps, LightSteps.
+   */
+  vtkCausticsAirlight* GetAirlight();
 
   ///@{
   /**
@@ -507,6 +520,7 @@ private:
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
   void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
+  bool RenderAirlight(); // the medium's single scattering of direct light, into the volume layer
   bool UpdateImpostors(const FrameInputs& f); // CameraViewMethod's maps, timed
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);

@@ -76,6 +76,11 @@ bool CausticsClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0,
   return t0 < t1;
 }
 
+// March of the optical depth: this step (voxels) inside leaves, at most this many steps
+// per ray so that a frame cannot hang (longer rays take longer steps).
+#define CAUSTICS_MEDIUM_STEP_VOXELS 0.5
+#define CAUSTICS_MEDIUM_MAX_STEPS 256
+
 // The participating medium (caustics::Medium): homogeneous, filling the scene's
 // bounding box but not the refractors, as in the reference renderer. Set from the
 // host by caustics::gl::SetMediumUniforms.
@@ -92,10 +97,6 @@ uniform vec3 causticsMediumHigh;
 uniform mat4 causticsWorldToIndex; // world -> index space, voxel centres at integers
 uniform float causticsDensityScale;
 
-// March of the optical depth: this step (voxels) inside leaves, at most this many steps
-// per ray so that a frame cannot hang (longer rays take longer steps).
-#define CAUSTICS_MEDIUM_STEP_VOXELS 0.5
-#define CAUSTICS_MEDIUM_MAX_STEPS 256
 
 pnanovdb_readaccessor_t CausticsGridAccessor()
 {
@@ -142,20 +143,21 @@ float CausticsMediumDensity(vec3 world)
 // empty node (dim > 1) is crossed in one step with its constant value, a leaf (dim 1) is
 // marched at CAUSTICS_MEDIUM_STEP_VOXELS with trilinear samples at the steps' midpoints.
 // Nodes are the boxes of their voxels' nearest-voxel cells, so the field is exact
-// inside them and linear over the last half voxel at a tile's edge.
-float CausticsMediumOpticalDepth(vec3 o, vec3 d, float t0, float t1)
+// inside them and linear over the last half voxel at a tile's edge. At most maxSteps
+// steps (a coarse march for many short rays, e.g. vtkCausticsAirlight's towards the light).
+float CausticsMediumOpticalDepthSteps(vec3 o, vec3 d, float t0, float t1, int maxSteps)
 {
   pnanovdb_readaccessor_t acc = CausticsGridAccessor();
   pnanovdb_buf_t buf;
   vec3 io = (causticsWorldToIndex * vec4(o, 1.0)).xyz;
   vec3 id = mat3(causticsWorldToIndex) * d;
   float voxelT = 1.0 / max(length(id), 1e-30); // t per voxel along the ray
-  float h = max(CAUSTICS_MEDIUM_STEP_VOXELS * voxelT, (t1 - t0) / float(CAUSTICS_MEDIUM_MAX_STEPS));
+  float h = max(CAUSTICS_MEDIUM_STEP_VOXELS * voxelT, (t1 - t0) / float(maxSteps));
   bvec3 crosses = greaterThan(abs(id), vec3(1e-30)); // axes along which the ray moves
   float sum = 0.0;
   float density = 0.0;
   float t = t0;
-  for (int step = 0; step < CAUSTICS_MEDIUM_MAX_STEPS && t < t1; ++step)
+  for (int step = 0; step < maxSteps && t < t1; ++step)
   {
     vec3 index = io + t * id;
     ivec3 ijk = ivec3(floor(index + 0.5));
@@ -182,6 +184,11 @@ float CausticsMediumOpticalDepth(vec3 o, vec3 d, float t0, float t1)
   return causticsDensityScale * sum * length(d);
 }
 
+float CausticsMediumOpticalDepth(vec3 o, vec3 d, float t0, float t1)
+{
+  return CausticsMediumOpticalDepthSteps(o, d, t0, t1, CAUSTICS_MEDIUM_MAX_STEPS);
+}
+
 #ifdef CAUSTICS_CAMERA_OPTICAL_DEPTH
 // vtkCausticsCameraOpticalDepth: the optical depth from the near plane along the viewing
 // rays, a volume over the camera's frustum built once per frame.
@@ -194,8 +201,9 @@ uniform vec2 causticsCameraDepthRange; // m from the near plane: first and last 
 
 
 // The medium's transmittance along o + t d, t in [t0, t1] (d need not be unit: the
-// distance is (t1 - t0) |d|); 1 without a medium or outside its box.
-vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
+// distance is (t1 - t0) |d|); 1 without a medium or outside its box. A density grid is
+// marched in at most maxSteps steps; a homogeneous medium is in closed form.
+vec3 CausticsMediumTransmittanceSteps(vec3 o, vec3 d, float t0, float t1, int maxSteps)
 {
   if (causticsMediumOn == 0 ||
     !CausticsClipToBox(o, d, causticsMediumLow, causticsMediumHigh, t0, t1))
@@ -203,10 +211,66 @@ vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
     return vec3(1.0);
   }
 #ifdef CAUSTICS_MEDIUM_GRID
-  return CausticsTransmittance(causticsSigmaT, CausticsMediumOpticalDepth(o, d, t0, t1));
+  return CausticsTransmittance(
+    causticsSigmaT, CausticsMediumOpticalDepthSteps(o, d, t0, t1, maxSteps));
 #else
   return CausticsTransmittance(causticsSigmaT, (t1 - t0) * length(d));
 #endif
+}
+
+vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
+{
+  return CausticsMediumTransmittanceSteps(o, d, t0, t1, CAUSTICS_MEDIUM_MAX_STEPS);
+}
+
+// Distance of p from a light along its rays: from the light (point, spot: lightType 1,
+// 2), or along the axis from its view's eye plane (directional, lightType 0).
+float CausticsLightDistance(vec3 p, int lightType, vec3 origin, vec3 axis)
+{
+  return lightType == 0 ? dot(p - origin, axis) : length(p - origin);
+}
+
+// A light's shadow map (vtkCausticsLightBuffers aimed at the scene: world positions seen
+// from the light, w = material, -1: none; normals with w = role) at a point `clip` in the
+// light's clip space, `distance` from it (CausticsLightDistance): the lit fraction by 2x2
+// bilinear percentage-closer filtering, an occluder counting when it is nearer the light
+// than distance - bias (m); `specular` gets the weight of the occluders that are
+// reflectors or refractors. Outside the map's frustum (it holds the whole scene) nothing
+// occludes.
+float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal, vec4 clip,
+  float distance, float bias, int lightType, vec3 origin, vec3 axis, out float specular)
+{
+  specular = 0.0;
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  if (!(clip.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)))))
+  {
+    return 1.0;
+  }
+  float visibility = 0.0;
+  vec2 size = vec2(textureSize(shadowPosition, 0));
+  vec2 st = uv * size - 0.5;
+  vec2 base = floor(st);
+  vec2 f = st - base;
+  for (int j = 0; j < 2; ++j)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      ivec2 texelIndex = clamp(ivec2(base) + ivec2(i, j), ivec2(0), ivec2(size) - 1);
+      vec4 occluder = texelFetch(shadowPosition, texelIndex, 0);
+      float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      if (occluder.w < 0.0 ||
+        CausticsLightDistance(occluder.xyz, lightType, origin, axis) >= distance - bias)
+      {
+        visibility += weight;
+      }
+      else
+      {
+        int role = int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
+        specular += role == ROLE_REFLECTOR || role == ROLE_REFRACTOR ? weight : 0.0;
+      }
+    }
+  }
+  return visibility;
 }
 
 // The medium's transmittance between p and the camera: with CAUSTICS_CAMERA_OPTICAL_DEPTH

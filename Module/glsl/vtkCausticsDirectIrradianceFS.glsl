@@ -41,12 +41,6 @@ float SpotFactor(vec3 direction)
   return lightType != 2 ? 1.0 : CausticsSpotFactor(dot(direction, lightDirection), cosOuter, cosInner);
 }
 
-// Distance from the light along its ray (directional: along the axis).
-float LightDistance(vec3 p)
-{
-  return lightType == 0 ? dot(p - lightPosition, lightDirection) : length(p - lightPosition);
-}
-
 // VTK's Phong falloff (vtkOpenGLPolyDataMapper): 1 / (a0 + a1 d + a2 d^2) for
 // positional lights, times cos^exponent inside a spot cone under 90 degrees.
 float ShadingFalloff(vec3 p)
@@ -67,12 +61,6 @@ float ShadingFalloff(vec3 p)
       : 0.0;
   }
   return falloff;
-}
-
-bool IsSpecular(ivec2 texelIndex)
-{
-  int role = int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
-  return role == ROLE_REFLECTOR || role == ROLE_REFRACTOR;
 }
 
 void main()
@@ -113,44 +101,15 @@ void main()
     return;
   }
 
-  vec4 clip = lightWorldToClip * vec4(p, 1.0);
-  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-  float visibility = 0.0;
-  float specularShadow = 0.0; // the part of the light that a reflector or refractor blocks
-  if (clip.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))
-  {
-    float distance = LightDistance(p);
-    // Bias: two texels of lateral size, tilted by the surface, plus float noise.
-    float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
-    float tangent = sqrt(max(1.0 - cosine * cosine, 0.0)) / max(cosine, 0.05);
-    float bias = 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
-    vec2 size = vec2(textureSize(shadowPosition, 0));
-    vec2 st = uv * size - 0.5;
-    vec2 base = floor(st);
-    vec2 f = st - base;
-    for (int j = 0; j < 2; ++j)
-    {
-      for (int i = 0; i < 2; ++i)
-      {
-        ivec2 texelIndex = clamp(ivec2(base) + ivec2(i, j), ivec2(0), ivec2(size) - 1);
-        vec4 occluder = texelFetch(shadowPosition, texelIndex, 0);
-        float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
-        if (occluder.w < 0.0 || LightDistance(occluder.xyz) >= distance - bias)
-        {
-          visibility += weight;
-        }
-        else if (IsSpecular(texelIndex))
-        {
-          specularShadow += weight;
-        }
-      }
-    }
-  }
-  else
-  {
-    // Outside the shadow map's frustum (it holds the whole scene): nothing occludes.
-    visibility = 1.0;
-  }
+  // Bias: two texels of lateral size, tilted by the surface, plus float noise.
+  float distance = CausticsLightDistance(p, lightType, lightPosition, lightDirection);
+  float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
+  float tangent = sqrt(max(1.0 - cosine * cosine, 0.0)) / max(cosine, 0.05);
+  float bias = 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
+  float specularShadow; // the part of the light that a reflector or refractor blocks
+  float visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
+    lightWorldToClip * vec4(p, 1.0), distance, bias, lightType, lightPosition, lightDirection,
+    specularShadow);
   // A medium attenuates the light on its way to the surface (inside its box; as
   // the reference's DirectIrradiance): to the light, or out of the box for a sun.
   vec3 transmitted = lightType == 0 ? CausticsMediumTransmittance(p, toLight, 0.0, 3.0e38)

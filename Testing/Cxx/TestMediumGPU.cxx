@@ -3,6 +3,7 @@
 // CausticsMediumTransmittance() in vtkCausticsCommon.glsl. Every .vdb is written here
 // with OpenVDB (no binary files in the repository). The ball lens of
 // vtkCausticsBuiltinScene, 128^2 images and 128^2 photons.
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsDensityGrid.h"
@@ -109,6 +110,7 @@ Frame Render(vtkCausticsMedium* medium, vtkCausticsReferenceRenderer* reference 
   vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
   pass->SetLightBufferResolution(128);
   pass->KeepBuffersOn();
+  pass->GetAirlight()->EnabledOff(); // the volume caustic alone (the airlight: TestAirlight)
   pass->ComputeDirectIrradianceOn();
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;
@@ -416,6 +418,7 @@ MediaFrame RenderMediaScene(const char* sceneName, const char* technique, bool o
   vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
   pass->SetLightBufferResolution(16);
   pass->KeepBuffersOn();
+  pass->GetAirlight()->EnabledOff(); // the god-rays alone (the airlight: TestAirlight)
   pass->GetCameraOpticalDepth()->SetEnabled(opticalDepthVolume);
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;

@@ -5,6 +5,7 @@
 // a homogeneous medium (sigma_s 0.05/m, sigma_a 0.01/m, isotropic). Compared over
 // every pixel, without areas (radiance: the flux ratio is the ratio of the mean
 // radiances, i.e. of the light scattered towards the camera).
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
@@ -35,6 +36,7 @@ TEST(ScreenSpaceGodRays, MatchReferenceVolumeCaustic)
   medium->SetAbsorptionCoefficient(0.01, 0.01, 0.01);
   vtkCausticsMedium::AttachTo(renderer, medium);
   vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  pass->GetAirlight()->EnabledOff(); // the volume caustic alone (the airlight: TestAirlight)
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);

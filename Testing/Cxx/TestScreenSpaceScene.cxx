@@ -18,6 +18,7 @@
 // of the GPU's atomic appends (photon lists), which changes float sums in their
 // last bits; the margin absorbs rasterization differences between Mesa versions
 // and GPUs at silhouettes and splat edges.
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
@@ -71,8 +72,13 @@ int TestScreenSpaceScene(int argc, char* argv[])
   std::string output = "caustic";
   double exposure = 1.0;
   double scattering = 0.0;
+  bool airlight = false; // the volume image is the god-rays' unless -airlight on
   for (int i = 1; i + 1 < argc; ++i)
   {
+    if (std::strcmp(argv[i], "-airlight") == 0)
+    {
+      airlight = std::strcmp(argv[i + 1], "on") == 0;
+    }
     if (std::strcmp(argv[i], "-scene") == 0)
     {
       sceneName = argv[i + 1];
@@ -105,6 +111,7 @@ int TestScreenSpaceScene(int argc, char* argv[])
     vtkCausticsMedium::AttachTo(renderer, medium);
   }
   vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  pass->GetAirlight()->SetEnabled(airlight);
   renderer->SetPass(pass);
 
   vtkNew<vtkRenderWindow> window;

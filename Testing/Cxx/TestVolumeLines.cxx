@@ -8,6 +8,7 @@
 // march it replaces, with the time of both.
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTimings.h"
@@ -53,6 +54,7 @@ VolumeFrame RenderVolume(
   pass->SetLightBufferResolution(photons);
   pass->SetVolumeSubSegments(subSegments);
   pass->SetGodRayBlurPixels(blur);
+  pass->GetAirlight()->EnabledOff(); // the volume caustic alone (the airlight: TestAirlight)
   pass->KeepBuffersOn();
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;
