@@ -1,9 +1,9 @@
 #include "CausticsBenchVolume.h"
 
+#include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsReferenceRenderer.h"
-#include "vtkCausticsAirlight.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTimings.h"
 
