@@ -418,7 +418,6 @@ struct Options
   std::vector<std::string> Sequences = caustics_bench::GetSequenceNames();
   bool SequencesGiven = false;
   bool TechniquesGiven = false;
-  bool ScenesGiven = false;
   bool Volume = false; // --volume: the volume caustics' tables instead of the sweep
   caustics_bench::VolumeSettings VolumeTables;
 };
