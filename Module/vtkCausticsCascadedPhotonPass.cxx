@@ -232,25 +232,6 @@ bool vtkCausticsCascadedPhotonPass::Splat(const FrameInputs& in)
   return ok;
 }
 
-void vtkCausticsCascadedPhotonPass::BeginStage(const char* name)
-{
-  // With synchronous timings (benchmarks, tests) a stage's time is its GPU work.
-  if (this->GetTimings()->GetSynchronous())
-  {
-    glFinish();
-  }
-  this->StartStage(name);
-}
-
-void vtkCausticsCascadedPhotonPass::EndStage(const char* name)
-{
-  if (this->GetTimings()->GetSynchronous())
-  {
-    glFinish();
-  }
-  this->StopStage(name);
-}
-
 void vtkCausticsCascadedPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
 {
   auto& s = *this->Internal;

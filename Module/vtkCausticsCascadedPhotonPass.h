@@ -115,8 +115,6 @@ private:
   bool RenderLightLayers(const FrameInputs& in, int light);
   bool Trace(const FrameInputs& in, int light);
   bool Splat(const FrameInputs& in);
-  void BeginStage(const char* name);
-  void EndStage(const char* name);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

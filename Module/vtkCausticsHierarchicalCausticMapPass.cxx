@@ -104,28 +104,6 @@ vtkCausticsCausticMap* vtkCausticsHierarchicalCausticMapPass::GetCausticMap(int 
                                                  : nullptr;
 }
 
-void vtkCausticsHierarchicalCausticMapPass::BeginStage(const char* name)
-{
-  // With synchronous timings (benchmarks, tests) every stage starts on an idle GPU
-  // and ends when its work is done, so that the CPU time of the stage is its wall
-  // time on any implementation (Mesa's llvmpipe runs compute dispatches at once
-  // but timestamps them only when it flushes its rasterizer).
-  if (this->GetTimings()->GetSynchronous())
-  {
-    glFinish();
-  }
-  this->StartStage(name);
-}
-
-void vtkCausticsHierarchicalCausticMapPass::EndStage(const char* name)
-{
-  if (this->GetTimings()->GetSynchronous())
-  {
-    glFinish();
-  }
-  this->StopStage(name);
-}
-
 vtkCausticsRenderPass::PhotonStorage vtkCausticsHierarchicalCausticMapPass::GetPhotonStorage()
 {
   // Per photon slot: the landed records and radius (52 B), the trace's work lists

@@ -353,8 +353,6 @@ protected:
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   /** StartStage/StopStage that wait for the GPU when the timings are synchronous. */
-  void BeginStage(const char* name);
-  void EndStage(const char* name);
 
   // The frame's steps (see the class description).
   void PrepareLights(vtkOpenGLRenderWindow* renWin);

@@ -253,25 +253,6 @@ bool vtkCausticsImpostorPhotonPass::Splat(const FrameInputs& in)
   return ok;
 }
 
-void vtkCausticsImpostorPhotonPass::BeginStage(const char* name)
-{
-  // With synchronous timings (benchmarks, tests) a stage's time is its GPU work.
-  if (this->GetTimings()->GetSynchronous())
-  {
-    glFinish();
-  }
-  this->StartStage(name);
-}
-
-void vtkCausticsImpostorPhotonPass::EndStage(const char* name)
-{
-  if (this->GetTimings()->GetSynchronous())
-  {
-    glFinish();
-  }
-  this->StopStage(name);
-}
-
 void vtkCausticsImpostorPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
 {
   auto& s = *this->Internal;

@@ -125,8 +125,6 @@ private:
   bool Trace(const FrameInputs& in, int light);
   bool Spread(const FrameInputs& in);
   bool Splat(const FrameInputs& in);
-  void BeginStage(const char* name);
-  void EndStage(const char* name);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

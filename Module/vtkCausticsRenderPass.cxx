@@ -465,6 +465,24 @@ void vtkCausticsRenderPass::StopStage(const char* name)
   this->Internal->Timings->StopStage(name);
 }
 
+void vtkCausticsRenderPass::BeginStage(const char* name)
+{
+  if (this->Internal->Timings->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StartStage(name);
+}
+
+void vtkCausticsRenderPass::EndStage(const char* name)
+{
+  if (this->Internal->Timings->GetSynchronous())
+  {
+    glFinish();
+  }
+  this->StopStage(name);
+}
+
 vtkCausticsRenderPass::CausticNeeds vtkCausticsRenderPass::GetCausticNeeds()
 {
   return CausticNeeds(); // a specular actor, a receiver and a light with power

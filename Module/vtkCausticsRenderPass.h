@@ -497,6 +497,15 @@ protected:
   // Timed stage helpers.
   void StartStage(const char* name);
   void StopStage(const char* name);
+  /**
+   * StartStage/StopStage that, with synchronous timings (benchmarks, tests), also
+   * wait for the GPU: the stage starts on an idle GPU and ends when its work is
+   * done, so its CPU time is its wall time on any implementation (Mesa's llvmpipe
+   * runs compute dispatches at once but timestamps them only when it flushes its
+   * rasterizer). For the techniques' compute stages.
+   */
+  void BeginStage(const char* name);
+  void EndStage(const char* name);
 
 private:
   vtkCausticsRenderPass(const vtkCausticsRenderPass&) = delete;
