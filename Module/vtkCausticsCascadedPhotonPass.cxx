@@ -69,7 +69,8 @@ vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
   s.Program->SetComputeSource(source.c_str());
   s.Emitter->SetSplitFresnel(true); // both branches: the trace chooses one by roulette
   s.Back->KeepFarthestOn();
-  this->SetSpecularShadows(true); // its photons replace the light the specular actors block
+  this->SetSpecularShadows(true);   // its photons replace the light the specular actors block
+  this->SetRefractionTracing(true); // the base pass's camera view of glass and mirrors
   // Paper 002, section 3.3: the jittered estimate is denoised with SVGF (the shared stage).
   this->DenoiseOn();
 }
