@@ -68,27 +68,6 @@ int hitMaterial;
 int hitRole;
 vec3 lastPoint;
 
-uint Hash(uint x)
-{
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
-float Random(inout uint state)
-{
-  state = Hash(state + 0x9e3779b9u);
-  return float(state >> 8) * (1.0 / 16777216.0);
-}
-
-float Luminance(vec3 c)
-{
-  return dot(c, vec3(1.0));
-}
-
 // The part [t0, t1] of o + t d, t in [0, tMax], inside view v's clip volume; false if none.
 bool ClipToView(CausticsView v, vec3 o, vec3 d, float tMax, out float t0, out float t1)
 {
@@ -372,30 +351,6 @@ void NoPhoton(ivec2 g)
   imageStore(outRadius, g, vec4(0.0));
 }
 
-// A specular event at hitPoint: the photon follows one branch, chosen with its share
-// of the exact Fresnel weights; the flux is divided by that probability.
-void Scatter(inout vec3 d, inout vec3 flux, inout bool inside, int role, inout uint rng)
-{
-  CausticsMaterial material = causticsMaterials[hitMaterial];
-  CausticsInteraction s = CausticsSurfaceInteraction(d, hitNormal, material, role, 1.0);
-  float reflected = Luminance(s.reflectedWeight);
-  float refracted = s.transmits && role == ROLE_REFRACTOR ? Luminance(s.refractedWeight) : 0.0;
-  float total = reflected + refracted;
-  if (!(total > 0.0))
-  {
-    flux = vec3(0.0);
-    return;
-  }
-  bool reflect = Random(rng) * total < reflected;
-  float probability = (reflect ? reflected : refracted) / total;
-  flux *= (reflect ? s.reflectedWeight : s.refractedWeight) / probability;
-  d = reflect ? s.reflected : s.refracted;
-  if (role == ROLE_REFRACTOR)
-  {
-    inside = reflect ? inside : s.entering;
-  }
-}
-
 void main()
 {
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
@@ -413,11 +368,11 @@ void main()
   uvec2 fixedPoint = uvec2(index * 0xc13fa9a9u, index * 0x91e10da6u) + uvec2(frameOffsetX, frameOffsetY);
   vec2 u = vec2(fixedPoint >> 8u) * (1.0 / 16777216.0);
   vec2 c = u * float(emitResolution);
-  uint rng = Hash(index ^ Hash(frameSeed));
+  uint rng = CausticsHash(index ^ CausticsHash(frameSeed));
   Emitted e0 = EmittedAt(c, 0);
   Emitted e1 = emitBranches > 1 ? EmittedAt(c, 1) : Emitted(vec4(0.0), vec4(0.0), vec3(0.0));
-  float w0 = e0.position.w > 0.0 ? Luminance(e0.flux) : 0.0;
-  float w1 = e1.position.w > 0.0 ? Luminance(e1.flux) : 0.0;
+  float w0 = e0.position.w > 0.0 ? CausticsChannelSum(e0.flux) : 0.0;
+  float w1 = e1.position.w > 0.0 ? CausticsChannelSum(e1.flux) : 0.0;
   if (!(w0 + w1 > 0.0))
   {
     NoPhoton(g);
@@ -425,7 +380,7 @@ void main()
   }
   // The branches hold F and 1 - F of the texel's flux: choosing one with that
   // probability and dividing by it gives the texel's flux to the branch followed.
-  bool second = Random(rng) * (w0 + w1) >= w0;
+  bool second = CausticsRandom(rng) * (w0 + w1) >= w0;
   Emitted e = second ? e1 : e0;
   vec4 p = e.position;
   float measure = e.direction.w * fluxScale; // the beam one photon stands for
@@ -439,7 +394,7 @@ void main()
   flux *= CausticsMediumTransmittance(o, -ViewAway(lightView, o), 0.0, reach);
   float nudge = 1e-5 * airLength;
 
-  for (int event = 0; event < maximumEvents && Luminance(flux) > 0.0; ++event)
+  for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
     if (inside && OpenRefractor(o))
     {
@@ -456,7 +411,7 @@ void main()
       float chord = length(hitPoint - o);
       flux *= CausticsTransmittance(sigma, chord);
       path += chord;
-      Scatter(d, flux, inside, ROLE_REFRACTOR, rng);
+      CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
       o = hitPoint + nudge * d;
       continue;
     }
@@ -473,7 +428,7 @@ void main()
         hitRole == ROLE_REFRACTOR)
       {
         Travel(o, hitPoint, flux, path);
-        Scatter(d, flux, inside, ROLE_REFRACTOR, rng);
+        CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
         o = hitPoint + nudge * d;
         continue;
       }
@@ -497,7 +452,7 @@ void main()
     Travel(o, hitPoint, flux, path);
     if (hitRole == ROLE_REFLECTOR)
     {
-      Scatter(d, flux, inside, ROLE_REFLECTOR, rng);
+      CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFLECTOR, d, flux, inside, rng);
       o = hitPoint + nudge * d;
       continue;
     }

@@ -47,6 +47,30 @@ vec3 CausticsTransmittance(vec3 sigma, float distance)
   return exp(-sigma * distance);
 }
 
+// A 32-bit integer hash (lowbias32) and a uniform number in [0, 1) drawn from a
+// per-photon state, for the photon traces' Russian roulette.
+uint CausticsHash(uint x)
+{
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+float CausticsRandom(inout uint state)
+{
+  state = CausticsHash(state + 0x9e3779b9u);
+  return float(state >> 8) * (1.0 / 16777216.0);
+}
+
+// The sum of a flux's channels: what Russian roulette weighs paths by.
+float CausticsChannelSum(vec3 c)
+{
+  return dot(c, vec3(1.0));
+}
+
 // Henyey-Greenstein phase function (1/sr), cosTheta between the propagation
 // directions before and after scattering (as caustics::HenyeyGreenstein).
 float CausticsHenyeyGreenstein(float cosTheta, float g)

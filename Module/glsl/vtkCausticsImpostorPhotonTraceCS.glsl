@@ -51,59 +51,12 @@ layout(rgba32f, binding = 1) uniform writeonly image2D outNormal;
 layout(rgba32f, binding = 2) uniform writeonly image2D outFlux;
 layout(r32f, binding = 3) uniform writeonly image2D outRadius;
 
-uint Hash(uint x)
-{
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
-float Random(inout uint state)
-{
-  state = Hash(state + 0x9e3779b9u);
-  return float(state >> 8) * (1.0 / 16777216.0);
-}
-
-float Luminance(vec3 c)
-{
-  return dot(c, vec3(1.0));
-}
-
 void NoPhoton(ivec2 g)
 {
   imageStore(outPosition, g, vec4(0.0));
   imageStore(outNormal, g, vec4(0.0));
   imageStore(outFlux, g, vec4(0.0));
   imageStore(outRadius, g, vec4(0.0));
-}
-
-// A specular event at a surface with normal n (as modelled) of `material`: one
-// branch, chosen with its share of the exact Fresnel weights; the flux is divided
-// by that probability. `inside` follows the refractor's side.
-void Scatter(vec3 n, int material, int role, inout vec3 d, inout vec3 flux, inout bool inside,
-  inout uint rng)
-{
-  CausticsInteraction s =
-    CausticsSurfaceInteraction(d, n, causticsMaterials[material], role, 1.0);
-  float reflected = Luminance(s.reflectedWeight);
-  float refracted = s.transmits && role == ROLE_REFRACTOR ? Luminance(s.refractedWeight) : 0.0;
-  float total = reflected + refracted;
-  if (!(total > 0.0))
-  {
-    flux = vec3(0.0);
-    return;
-  }
-  bool reflect = Random(rng) * total < reflected;
-  float probability = (reflect ? reflected : refracted) / total;
-  flux *= (reflect ? s.reflectedWeight : s.refractedWeight) / probability;
-  d = reflect ? s.reflected : s.refracted;
-  if (role == ROLE_REFRACTOR)
-  {
-    inside = reflect ? inside : s.entering;
-  }
 }
 
 // The next surface along o + t d: in air, the environment map of what the photon
@@ -159,7 +112,7 @@ void main()
   vec4 p = texelFetch(emitPosition, g, 0);
   vec4 e = texelFetch(emitDirection, g, 0);
   vec3 flux = texelFetch(emitFlux, g, 0).rgb;
-  if (!(p.w > 0.5) || !(Luminance(flux) > 0.0) || !AllFinite(p.xyz) || !AllFinite(e.xyz))
+  if (!(p.w > 0.5) || !(CausticsChannelSum(flux) > 0.0) || !AllFinite(p.xyz) || !AllFinite(e.xyz))
   {
     NoPhoton(g);
     return;
@@ -177,9 +130,9 @@ void main()
   vec3 towardsLight = lightType == 0 ? -lightAxis : normalize(lightOrigin - o);
   float reach = lightType == 0 ? 3.0e38 : distance(o, lightOrigin);
   flux *= CausticsMediumTransmittance(o, towardsLight, 0.0, reach);
-  uint rng = Hash(uint(g.x + g.y * photonGrid.x) ^ Hash(frameSeed));
+  uint rng = CausticsHash(uint(g.x + g.y * photonGrid.x) ^ CausticsHash(frameSeed));
 
-  for (int event = 0; event < maximumEvents && Luminance(flux) > 0.0; ++event)
+  for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
     float t;
     ivec3 texel;
@@ -214,7 +167,7 @@ void main()
     if (role == ROLE_REFLECTOR || role == ROLE_REFRACTOR)
     {
       bool wasInside = inside;
-      Scatter(n, material, role, d, flux, inside, rng);
+      CausticsScatterOneBranch(n, causticsMaterials[material], role, d, flux, inside, rng);
       insideMaterial = inside && !wasInside ? material : insideMaterial;
       leftRole = role;
       o = h;

@@ -112,3 +112,30 @@ CausticsInteraction CausticsSurfaceInteraction(
   s.refractedWeight = vec3(1.0 - reflectance);
   return s;
 }
+
+// A photon's specular event followed as one branch (Russian roulette): reflection
+// or refraction, chosen with its share of the exact Fresnel weights, the flux
+// divided by that probability so that the estimate stays unbiased. `inside` follows
+// the refractor's side; a surface that passes nothing leaves the flux at 0.
+void CausticsScatterOneBranch(vec3 n, CausticsMaterial material, int role, inout vec3 d,
+  inout vec3 flux, inout bool inside, inout uint rng)
+{
+  CausticsInteraction s = CausticsSurfaceInteraction(d, n, material, role, 1.0);
+  float reflected = CausticsChannelSum(s.reflectedWeight);
+  float refracted =
+    s.transmits && role == ROLE_REFRACTOR ? CausticsChannelSum(s.refractedWeight) : 0.0;
+  float total = reflected + refracted;
+  if (!(total > 0.0))
+  {
+    flux = vec3(0.0);
+    return;
+  }
+  bool reflect = CausticsRandom(rng) * total < reflected;
+  float probability = (reflect ? reflected : refracted) / total;
+  flux *= (reflect ? s.reflectedWeight : s.refractedWeight) / probability;
+  d = reflect ? s.reflected : s.refracted;
+  if (role == ROLE_REFRACTOR)
+  {
+    inside = reflect ? inside : s.entering;
+  }
+}
