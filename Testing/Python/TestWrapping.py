@@ -98,6 +98,9 @@ def check_registry_factory_and_io():
             return "NewPass(%r) leaks a reference" % name
     if techniques.NewPass("magic") is not None:
         return "an unknown technique made a pass"
+    problem = check_paraview_technique_list(techniques.GetNames())
+    if problem:
+        return problem
 
     factory = vtkcaustics.vtkCausticsWindowFactory()
     window = factory.NewWindow(True)
@@ -106,6 +109,28 @@ def check_registry_factory_and_io():
 
     with tempfile.TemporaryDirectory() as folder:
         return check_image_io(folder)
+
+
+def check_paraview_technique_list(registered):
+    """The ParaView plugin's technique menu (CausticsParaView.xml) offers every
+    technique of VTK::RenderingCaustics and nothing unknown. It is plain XML that
+    no build reads, so a new technique is easily forgotten there (cascaded was)."""
+    import xml.etree.ElementTree as ElementTree
+
+    xml = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                       "ParaView", "Plugin", "CausticsParaView.xml")
+    menu = ElementTree.parse(xml).find(
+        ".//StringVectorProperty[@name='CausticsTechnique']/StringListDomain")
+    if menu is None:
+        return "CausticsParaView.xml has no CausticsTechnique list"
+    offered = {entry.get("value") for entry in menu.findall("String")}
+    # cpu-progressive is registered by VTK::CausticsCPU, which the plugin does not link.
+    other_modules = {"cpu-progressive"}
+    missing = [name for name in registered if name not in offered | other_modules]
+    unknown = sorted(offered - set(registered) - {"best", "off"})
+    if missing or unknown:
+        return "the ParaView plugin's technique list: missing %s, unknown %s" % (missing, unknown)
+    return None
 
 
 def check_image_io(folder):
