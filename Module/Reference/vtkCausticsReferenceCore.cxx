@@ -1999,7 +1999,7 @@ struct ReferenceTracer::Internals
       this->Stage(0.45, 0.35));
     PhotonGrid grid;
     double cell = 0.0;
-    if (!this->Photons.empty() && MedianPositive(radii, cell))
+    if (!this->Photons.empty() && GridCell(radii, cell))
     {
       grid.Build(this->Photons, cell);
     }
@@ -2296,6 +2296,22 @@ struct ReferenceTracer::Internals
   }
 
   /** Median of the positive finite values; false when there is none. */
+  /**
+   * The photon grid's cell: the median kernel radius of the receivers the camera sees,
+   * or, when it sees none (a view filled by a mirror or glass), of the specular pixels'
+   * camera paths (stored negated), whose caustic would otherwise be lost.
+   */
+  static bool GridCell(const std::vector<double>& radii, double& cell)
+  {
+    if (MedianPositive(radii, cell))
+    {
+      return true;
+    }
+    std::vector<double> specular(radii.size());
+    std::transform(radii.begin(), radii.end(), specular.begin(), [](double r) { return -r; });
+    return MedianPositive(specular, cell);
+  }
+
   static bool MedianPositive(const std::vector<double>& values, double& median)
   {
     std::vector<double> positive;
