@@ -567,6 +567,7 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
     caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
   std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, inputs.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
+  std::copy(scene.SpecularBounds, scene.SpecularBounds + 6, inputs.SpecularBounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
   inputs.Tolerance = this->GetViewTolerance(caustics::VisibleScale(scene));
   inputs.Method = impostors ? this->CameraViewMethod : SCREEN_SPACE;
