@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Compares the per-stage times of two caustics-render builds under the same load.
+
+Runs `caustics-render --timings --frames F` of build A and build B alternately, R
+rounds each (A, B, A, B, ...), parses their tables and prints per stage the median
+over the rounds of each run's median (wall-clock CPU column: the CLI's timings are
+synchronous, so a stage's CPU time is its wall time), and B/A. Extra arguments go to
+both renders (e.g. --size 256 or a scene). Under load, read the ratios.
+
+  scripts/frame-ab.py /work/main/build/bin/caustics-render build/bin/caustics-render \
+      --rounds 3 --frames 5
+"""
+import argparse
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+
+def run(binary, frames, extra, prefix):
+    out = subprocess.run([binary, "--timings", "--frames", str(frames), "--output", prefix] + extra,
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if out.returncode != 0:
+        sys.exit(f"{binary} failed ({out.returncode}):\n{out.stdout[-2000:]}")
+    table, stages = False, {}
+    for line in out.stdout.splitlines():
+        if line.startswith("per-stage time"):
+            table = True
+            continue
+        m = re.match(r"^\s{2}(\S.*?)\s{2,}(\S+)\s+(\S+)\s*$", line) if table else None
+        if m and m.group(1) != "stage":
+            stages[m.group(1)] = float(m.group(3))
+    if not stages:
+        sys.exit(f"{binary}: no timing table in its output:\n{out.stdout[-2000:]}")
+    return stages
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("a")
+    parser.add_argument("b")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--frames", type=int, default=5)
+    args, extra = parser.parse_known_args()
+    runs = {"a": [], "b": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(args.rounds):
+            for key in ("a", "b"):
+                binary = getattr(args, key)
+                runs[key].append(run(binary, args.frames, extra, os.path.join(tmp, key)))
+                wall = runs[key][-1].get("whole frame (wall clock)", float("nan"))
+                print(f"round {r + 1}: {key.upper()} whole frame {wall:.1f} ms", flush=True)
+    order = list(runs["a"][0]) + [s for s in runs["b"][0] if s not in runs["a"][0]]
+    width = max(len(s) for s in order)
+    print(f"median over {args.rounds} rounds of each run's median of {args.frames} frames "
+          f"(ms, wall):\n  {'stage':<{width}}  {'A':>9}  {'B':>9}  {'B/A':>6}")
+    for stage in order:
+        med = {}
+        for key in ("a", "b"):
+            values = [r[stage] for r in runs[key] if stage in r]
+            med[key] = statistics.median(values) if values else None
+        fmt = lambda v: f"{v:9.1f}" if v is not None else f"{'-':>9}"
+        ratio = (f"{med['b'] / med['a']:6.2f}" if med["a"] and med["b"] is not None
+                 else f"{'-':>6}")
+        print(f"  {stage:<{width}}  {fmt(med['a'])}  {fmt(med['b'])}  {ratio}")
+
+
+if __name__ == "__main__":
+    main()
