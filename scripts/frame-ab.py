@@ -5,10 +5,14 @@ Runs `caustics-render --timings --frames F` of build A and build B alternately, 
 rounds each (A, B, A, B, ...), parses their tables and prints per stage the median
 over the rounds of each run's median (wall-clock CPU column: the CLI's timings are
 synchronous, so a stage's CPU time is its wall time), and B/A. Extra arguments go to
-both renders (e.g. --size 256 or a scene). Under load, read the ratios.
+both renders (e.g. --size 256 or a scene). Under load, read the ratios. Then it
+compares the two builds' last images (PREFIX.exr, every layer): the largest absolute
+difference per layer and the relative L2 of the final colour (needs OpenImageIO's
+Python module, as /usr/bin/python3 has). scripts/compare-builds.py does the same
+for caustics-bench's configurations and their errors.
 
-  scripts/frame-ab.py /work/main/build/bin/caustics-render build/bin/caustics-render \
-      --rounds 3 --frames 5
+  /usr/bin/python3 scripts/frame-ab.py /work/main/build/bin/caustics-render \
+      build/bin/caustics-render --rounds 3 --frames 5
 """
 import argparse
 import os
@@ -37,22 +41,18 @@ def run(binary, frames, extra, prefix):
     return stages
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("a")
-    parser.add_argument("b")
-    parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--frames", type=int, default=5)
-    args, extra = parser.parse_known_args()
+def alternate(args, extra, tmp):
+    """Runs A, B, A, B, ...; returns each build's timing tables, one per round."""
     runs = {"a": [], "b": []}
-    with tempfile.TemporaryDirectory() as tmp:
-        for r in range(args.rounds):
-            for key in ("a", "b"):
-                binary = getattr(args, key)
-                runs[key].append(run(binary, args.frames, extra, os.path.join(tmp, key)))
-                wall = runs[key][-1].get("whole frame (wall clock)", float("nan"))
-                print(f"round {r + 1}: {key.upper()} whole frame {wall:.1f} ms", flush=True)
+    for r in range(args.rounds):
+        for key in ("a", "b"):
+            runs[key].append(run(getattr(args, key), args.frames, extra, os.path.join(tmp, key)))
+            wall = runs[key][-1].get("whole frame (wall clock)", float("nan"))
+            print(f"round {r + 1}: {key.upper()} whole frame {wall:.1f} ms", flush=True)
+    return runs
+
+
+def print_table(args, runs):
     order = list(runs["a"][0]) + [s for s in runs["b"][0] if s not in runs["a"][0]]
     width = max(len(s) for s in order)
     print(f"median over {args.rounds} rounds of each run's median of {args.frames} frames "
@@ -66,6 +66,45 @@ def main():
         ratio = (f"{med['b'] / med['a']:6.2f}" if med["a"] and med["b"] is not None
                  else f"{'-':>6}")
         print(f"  {stage:<{width}}  {fmt(med['a'])}  {fmt(med['b'])}  {ratio}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("a")
+    parser.add_argument("b")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--frames", type=int, default=5)
+    args, extra = parser.parse_known_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        print_table(args, alternate(args, extra, tmp))
+        compare_images(os.path.join(tmp, "a.exr"), os.path.join(tmp, "b.exr"))
+
+
+def compare_images(a, b):
+    try:
+        import numpy
+        import OpenImageIO
+    except ImportError:
+        print("images not compared: no OpenImageIO Python module (use /usr/bin/python3)")
+        return
+    def load(path):
+        image = OpenImageIO.ImageInput.open(path)
+        names, pixels = list(image.spec().channelnames), image.read_image(format="float")
+        image.close()
+        return names, numpy.asarray(pixels, dtype=numpy.float64)
+    (names_a, pixels_a), (names_b, pixels_b) = load(a), load(b)
+    if names_a != names_b or pixels_a.shape != pixels_b.shape:
+        print(f"images differ in layout: {names_a} {pixels_a.shape} / {names_b} {pixels_b.shape}")
+        return
+    print("last images, B against A: largest absolute difference per layer (largest value)")
+    for k, name in enumerate(names_a):
+        difference = numpy.abs(pixels_b[..., k] - pixels_a[..., k]).max()
+        print(f"  {name:<12} {difference:.3g} ({numpy.abs(pixels_a[..., k]).max():.3g})")
+    rgb = [names_a.index(c) for c in ("R", "G", "B") if c in names_a]
+    if rgb:
+        d, n = pixels_b[..., rgb] - pixels_a[..., rgb], pixels_a[..., rgb]
+        print(f"  final colour relative L2: {numpy.sqrt((d * d).sum() / max((n * n).sum(), 1e-300)):.3g}")
 
 
 if __name__ == "__main__":
