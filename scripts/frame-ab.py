@@ -4,7 +4,9 @@
 Runs `caustics-render --timings --frames F` of build A and build B alternately, R
 rounds each (A, B, A, B, ...), parses their tables and prints per stage the median
 over the rounds of each run's median (wall-clock CPU column: the CLI's timings are
-synchronous, so a stage's CPU time is its wall time), and B/A. Extra arguments go to
+synchronous, so a stage's CPU time is its wall time), and B/A; with --cpu also each
+build's process CPU time per frame after the first (from a second run of one frame),
+a figure the machine's load stretches far less. Extra arguments go to
 both renders (e.g. --size 256 or a scene). Under load, read the ratios. Then it
 compares the two builds' last images (PREFIX.exr, every layer): the largest absolute
 difference per layer and the relative L2 of the final colour (needs OpenImageIO's
@@ -17,13 +19,21 @@ for caustics-bench's configurations and their errors.
 import argparse
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
 import tempfile
 
 
+def children_cpu():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def run(binary, frames, extra, prefix):
+    """The run's timing table, with its process's CPU seconds as "process cpu (s)"."""
+    start = children_cpu()
     out = subprocess.run([binary, "--timings", "--frames", str(frames), "--output", prefix] + extra,
                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if out.returncode != 0:
@@ -38,6 +48,7 @@ def run(binary, frames, extra, prefix):
             stages[m.group(1)] = float(m.group(3))
     if not stages:
         sys.exit(f"{binary}: no timing table in its output:\n{out.stdout[-2000:]}")
+    stages["process cpu (s)"] = children_cpu() - start
     return stages
 
 
@@ -46,8 +57,16 @@ def alternate(args, extra, tmp):
     runs = {"a": [], "b": []}
     for r in range(args.rounds):
         for key in ("a", "b"):
-            runs[key].append(run(getattr(args, key), args.frames, extra, os.path.join(tmp, key)))
-            wall = runs[key][-1].get("whole frame (wall clock)", float("nan"))
+            table = run(getattr(args, key), args.frames, extra, os.path.join(tmp, key))
+            if args.cpu:
+                # CPU time of the frames after the first (the same process with one
+                # frame less): llvmpipe's work, which the load stretches far less than
+                # the wall time.
+                one = run(getattr(args, key), 1, extra, os.path.join(tmp, key + "1"))
+                table["cpu per later frame (ms)"] = (
+                    1000.0 * (table["process cpu (s)"] - one["process cpu (s)"]) / (args.frames - 1))
+            runs[key].append(table)
+            wall = table.get("whole frame (wall clock)", float("nan"))
             print(f"round {r + 1}: {key.upper()} whole frame {wall:.1f} ms", flush=True)
     return runs
 
@@ -75,6 +94,8 @@ def main():
     parser.add_argument("b")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--frames", type=int, default=5)
+    parser.add_argument("--cpu", action="store_true",
+                        help="also run each build with one frame: CPU ms per later frame")
     args, extra = parser.parse_known_args()
     with tempfile.TemporaryDirectory() as tmp:
         print_table(args, alternate(args, extra, tmp))
