@@ -269,8 +269,8 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     // The receivers the caustic map sees, and the refractors' faces from the light
     // (kept while the views and the meshes are unchanged: nothing else draws there).
     this->BeginStage("hcm light layers");
-    std::string layersKey = LayersKey(
-      scene, photonView, light.MapView, grid.Width, this->Settings, this->GetGeometry());
+    std::string layersKey =
+      LayersKey(scene, photonView, light.MapView, grid.Width, this->Settings, this->GetGeometry());
     light.Traced = light.Traced &&
       (layersKey == light.LayersKey ||
         (light.Map->RenderReceivers(renWin, this->Settings, this->GetGeometry(), light.MapView) &&

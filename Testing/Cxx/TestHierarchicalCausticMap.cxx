@@ -605,8 +605,8 @@ TEST(Pass, RedrawsTheLightsLayersWhenAnythingTheyShowChanges)
         const double perMetre[3] = { 0.5, 0.2, 0.1 };
         vtkCausticsMaterial::SetAttenuation(FindActor(r, "glass ball")->GetProperty(), perMetre);
       } },
-    { "the refractor's index", [](vtkRenderer* r)
-      { FindActor(r, "glass ball")->GetProperty()->SetBaseIOR(1.33); } },
+    { "the refractor's index",
+      [](vtkRenderer* r) { FindActor(r, "glass ball")->GetProperty()->SetBaseIOR(1.33); } },
   };
   std::vector<std::unique_ptr<Frame>> fresh;
   for (const Change& change : changes)

@@ -222,7 +222,8 @@ TEST(LayeredDepth, KeepsUnchangedLayersAndRedrawsOnAnyChange)
   f.Pixel(0.0, 3.0, 0.0, i, j); // the ball's centre
   // A mark in layer 0 tells whether a frame drew the layers again.
   const float mark[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
-  auto markLayers = [&]() {
+  auto markLayers = [&]()
+  {
     glClearTexSubImage(
       f.Layers->GetPositionTexture(), 0, 0, 0, 0, f.Size, f.Size, 1, GL_RGBA, GL_FLOAT, mark);
   };
@@ -263,15 +264,15 @@ TEST(LayeredDepth, KeepsUnchangedLayersAndRedrawsOnAnyChange)
     markLayers();
     change.Apply();
     f.Window->Render(); // a new snapshot of the scene, uploaded
-    ASSERT_TRUE(f.Layers->Render(
-      f.GL(), f.Pass->GetGeometry(), f.SceneData(), f.WorldToClip, size, size));
+    ASSERT_TRUE(
+      f.Layers->Render(f.GL(), f.Pass->GetGeometry(), f.SceneData(), f.WorldToClip, size, size));
     EXPECT_FALSE(f.Layers->GetLastRenderReused()) << change.What;
     if (size == f.Size)
     {
       EXPECT_TRUE(drawn()) << change.What;
     }
-    ASSERT_TRUE(f.Layers->Render(
-      f.GL(), f.Pass->GetGeometry(), f.SceneData(), f.WorldToClip, size, size));
+    ASSERT_TRUE(
+      f.Layers->Render(f.GL(), f.Pass->GetGeometry(), f.SceneData(), f.WorldToClip, size, size));
     EXPECT_TRUE(f.Layers->GetLastRenderReused()) << "after " << change.What;
   }
   // What the layers hold now is the moved ball (a unit sphere about (0, 3.25, 0), not
@@ -294,9 +295,8 @@ TEST(LayeredDepth, KeepsUnchangedLayersAndRedrawsOnAnyChange)
       continue; // nothing, or the floor
     }
     ++ballPixels;
-    auto radius = [&](double centreY) {
-      return std::sqrt(p[0] * p[0] + (p[1] - centreY) * (p[1] - centreY) + p[2] * p[2]);
-    };
+    auto radius = [&](double centreY)
+    { return std::sqrt(p[0] * p[0] + (p[1] - centreY) * (p[1] - centreY) + p[2] * p[2]); };
     worstMoved = std::max(worstMoved, std::abs(radius(3.25) - 1.0));
     farthestOld = std::max(farthestOld, std::abs(radius(3.0) - 1.0));
     EXPECT_EQ(std::lround(normal->GetPointData()->GetArray(0)->GetComponent(t, 3)), 1)
