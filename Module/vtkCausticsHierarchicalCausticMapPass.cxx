@@ -46,6 +46,9 @@ struct PerLight
   // was found for (the light and the meshes' versions).
   caustics::ReceiverIncidence Incidence;
   std::string IncidenceKey;
+  // What the receivers and refractor faces seen from the light were drawn for
+  // (LayersKey()); empty: not drawn.
+  std::string LayersKey;
 
   void Release(vtkWindow* w)
   {
@@ -55,6 +58,7 @@ struct PerLight
     this->Map->ReleaseGraphicsResources(w);
     this->Traced = false;
     this->IncidenceKey.clear();
+    this->LayersKey.clear();
   }
 };
 
@@ -147,6 +151,50 @@ std::string IncidenceKey(const caustics::SceneData& scene, int index)
 }
 }
 
+namespace
+{
+/**
+ * What the map's receiver G-buffers and the refractors' faces from the light are a
+ * function of: the two views, the sizes, and per mesh its version (renewed when its
+ * triangles or matrix change) and material.
+ */
+std::string LayersKey(const caustics::SceneData& scene, const caustics::LightView& photonView,
+  const caustics::LightView& mapView, int gridWidth, const caustics::CausticMapSettings& settings,
+  const void* geometry)
+{
+  std::ostringstream key;
+  key.precision(17);
+  key << geometry << ' ' << gridWidth << ' ' << settings.CausticMapResolution << ' '
+      << settings.NumberOfLevels();
+  for (const caustics::LightView* view : { &photonView, &mapView })
+  {
+    key << " | " << view->light << ' ' << view->perspective << ' ' << view->valid << ' '
+        << view->clamped << ' ' << view->halfExtent << ' ' << view->nearPlane << ' '
+        << view->farPlane;
+    for (const caustics::Vec3* v : { &view->eye, &view->axis, &view->right, &view->up })
+    {
+      key << ' ' << (*v)[0] << ' ' << (*v)[1] << ' ' << (*v)[2];
+    }
+    for (double m : view->worldToClip)
+    {
+      key << ' ' << m;
+    }
+  }
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    // The whole material: a G-buffer may hold more of it than the role.
+    const caustics::Material& m = scene.Materials[mesh.material];
+    key << " | " << mesh.version << ' ' << mesh.material << ' ' << static_cast<int>(m.role) << ' '
+        << m.ior << ' ' << m.roughness;
+    for (const caustics::Vec3* v : { &m.albedo, &m.metalN, &m.metalK, &m.attenuation })
+    {
+      key << ' ' << (*v)[0] << ' ' << (*v)[1] << ' ' << (*v)[2];
+    }
+  }
+  return key.str();
+}
+}
+
 void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow* renWin)
 {
   const caustics::SceneData& scene = *this->GetFrameInputs().Scene;
@@ -218,11 +266,16 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
       light.Emitter->Emit(renWin, this->GetLightBuffers(), index, this->GetGeometry(), scene);
     this->EndStage("hcm emit");
     const caustics::PhotonGrid& grid = light.Emitter->GetGrid();
-    // The receivers the caustic map sees, and the refractors' faces from the light.
+    // The receivers the caustic map sees, and the refractors' faces from the light
+    // (kept while the views and the meshes are unchanged: nothing else draws there).
     this->BeginStage("hcm light layers");
+    std::string layersKey =
+      LayersKey(scene, photonView, light.MapView, grid.Width, this->Settings, this->GetGeometry());
     light.Traced = light.Traced &&
-      light.Map->RenderReceivers(renWin, this->Settings, this->GetGeometry(), light.MapView) &&
-      light.Photons->RenderLayers(renWin, this->GetGeometry(), photonView, grid);
+      (layersKey == light.LayersKey ||
+        (light.Map->RenderReceivers(renWin, this->Settings, this->GetGeometry(), light.MapView) &&
+          light.Photons->RenderLayers(renWin, this->GetGeometry(), photonView, grid)));
+    light.LayersKey = light.Traced ? std::move(layersKey) : std::string();
     this->EndStage("hcm light layers");
     // Where each photon lands.
     this->BeginStage("hcm trace");

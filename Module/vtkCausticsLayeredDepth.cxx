@@ -172,6 +172,35 @@ std::vector<std::uint32_t> LayoutSignature(
   return signature;
 }
 
+/**
+ * Everything the LDI is a function of: the view, the size, the settings, and per
+ * mesh what vtkCausticsSceneGeometry draws from it (its version, globally unique and
+ * renewed whenever its triangles or its actor's matrix change, its material slot and
+ * role) and the geometry object itself. Equal keys give equal layers.
+ */
+std::vector<std::uint64_t> ContentKey(const caustics::SceneData& scene,
+  const vtkCausticsSceneGeometry* geometry, const float worldToClip[16], int width, int height,
+  const std::vector<std::uint64_t>& settings)
+{
+  std::vector<std::uint64_t> key = settings;
+  key.push_back(reinterpret_cast<std::uintptr_t>(geometry));
+  key.push_back(static_cast<std::uint64_t>(width) << 32 | static_cast<std::uint32_t>(height));
+  for (int i = 0; i < 16; ++i)
+  {
+    std::uint32_t bits;
+    std::memcpy(&bits, worldToClip + i, sizeof(bits));
+    key.push_back(bits);
+  }
+  key.push_back(scene.Meshes.size());
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    key.push_back(mesh.version);
+    key.push_back(static_cast<std::uint64_t>(mesh.material));
+    key.push_back(static_cast<std::uint64_t>(scene.Materials[mesh.material].role));
+  }
+  return key;
+}
+
 /** One full-screen-triangle command (gated by the finalize pass) per layer. */
 std::vector<std::uint32_t> ClearCommandList(int layers)
 {
@@ -228,6 +257,8 @@ struct vtkCausticsLayeredDepth::Internals
   int Layers = 0; // cap used for the allocation
   int Commands = 0;
   int Width = 0, Height = 0;
+  std::vector<std::uint64_t> Key; // ContentKey() of the layers held; empty: none
+  bool Reused = false;            // the last Render() kept the layers held
 
   vtkCausticsTimings* Timings = nullptr;
   std::string StagePrefix;
@@ -550,6 +581,17 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
     return false;
   }
   auto& in = *this->Internal;
+  // Nothing the layers depend on changed: they are still right (no GL work at all).
+  std::vector<std::uint64_t> key = ContentKey(scene, geometry, worldToClip, width, height,
+    { static_cast<std::uint64_t>(this->MaximumNumberOfLayers),
+      static_cast<std::uint64_t>(this->RoleMask), static_cast<std::uint64_t>(this->PerObject),
+      static_cast<std::uint64_t>(this->MaximumNumberOfObjects) });
+  in.Reused = this->ReuseUnchanged && key == in.Key;
+  if (in.Reused)
+  {
+    return true;
+  }
+  in.Key.clear(); // until this Render() succeeds
   const ObjectLayout layout =
     AssignObjects(scene, ranges, this->RoleMask, this->PerObject, this->MaximumNumberOfObjects);
   in.UpdateCommands(layout, this->MaximumNumberOfLayers, scene);
@@ -587,6 +629,10 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   if (!ok)
   {
     vtkErrorMacro(<< "layered depth image: a program failed to build");
+  }
+  else
+  {
+    in.Key = std::move(key);
   }
   return ok;
 }
@@ -677,6 +723,11 @@ int vtkCausticsLayeredDepth::GetNumberOfAllocatedLayers() const
 {
   return this->Internal->Objects * this->Internal->Layers;
 }
+bool vtkCausticsLayeredDepth::GetLastRenderReused() const
+{
+  return this->Internal->Reused;
+}
+
 int vtkCausticsLayeredDepth::GetWidth() const
 {
   return this->Internal->Width;
@@ -795,6 +846,8 @@ void vtkCausticsLayeredDepth::ReleaseGraphicsResources(vtkWindow* win)
     program->ReleaseGraphicsResources(win);
   }
   in.StaticSignature.clear();
+  in.Key.clear();
+  in.Reused = false;
   in.Objects = in.Layers = in.Commands = 0;
 }
 
@@ -805,6 +858,8 @@ void vtkCausticsLayeredDepth::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RoleMask: " << this->RoleMask << "\n";
   os << indent << "PerObject: " << this->PerObject << "\n";
   os << indent << "MaximumNumberOfObjects: " << this->MaximumNumberOfObjects << "\n";
+  os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
+  os << indent << "LastRenderReused: " << this->Internal->Reused << "\n";
   os << indent << "Objects: " << this->Internal->Objects << "\n";
   os << indent << "Size: " << this->Internal->Width << " x " << this->Internal->Height << "\n";
   os << indent << "AllocatedLayers: " << this->GetNumberOfAllocatedLayers() << "\n";

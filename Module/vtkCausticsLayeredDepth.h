@@ -31,7 +31,10 @@
  *                 (valid), z the object's depth complexity, w 0.
  * Layers of an object at or beyond its y are stale and must not be read.
  * All GL objects are made on first use and when the size, cap or object count
- * changes; programs compile once.
+ * changes; programs compile once. A Render() whose inputs are those of the layers
+ * held (the same view matrix, size and settings, and the same meshes: versions,
+ * material slots and roles) keeps them and draws nothing (ReuseUnchanged): a still
+ * camera over a still scene pays for its layers once.
  */
 #ifndef vtkCausticsLayeredDepth_h
 #define vtkCausticsLayeredDepth_h
@@ -94,6 +97,23 @@ public:
   vtkGetMacro(MaximumNumberOfObjects, int);
   ///@}
 
+  ///@{
+  /**
+   * Keep the layers of the last Render() when its inputs are unchanged: the
+   * world-to-clip matrix, the size, the settings above and, per mesh, its version
+   * (renewed by vtkCausticsSceneExtractor when its triangles or its actor's matrix
+   * change), material slot and role. What the layers hold depends on nothing else
+   * (material properties such as the index of refraction are read by the
+   * consumers from the material table). Default on.
+   */
+  vtkSetMacro(ReuseUnchanged, bool);
+  vtkGetMacro(ReuseUnchanged, bool);
+  vtkBooleanMacro(ReuseUnchanged, bool);
+  ///@}
+
+  /** Whether the last Render() kept the layers it already held (nothing changed). */
+  bool GetLastRenderReused() const;
+
   /**
    * Timings to report the stages to ("<StagePrefix>depth complexity" and
    * "<StagePrefix>depth peeling"), or nullptr. Not owned.
@@ -155,6 +175,7 @@ protected:
   int RoleMask = 2 | 4 | 8;
   bool PerObject = false;
   int MaximumNumberOfObjects = 16;
+  bool ReuseUnchanged = true;
 
 private:
   vtkCausticsLayeredDepth(const vtkCausticsLayeredDepth&) = delete;

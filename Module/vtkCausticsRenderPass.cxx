@@ -531,13 +531,13 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   // 1. The refractors' layered depth image in the camera's view (front and back
   //    faces, every layer a viewing ray may cross; none without refractors: then
   //    only mirrors are traced).
-  this->StartStage("refractor layers");
+  this->BeginStage("refractor layers");
   in.RefractorLayers->SetRoleMask(vtkCausticsSceneGeometry::RoleBit(3));
   in.RefractorLayers->SetMaximumNumberOfLayers(std::min(16, 2 * this->RefractionEvents));
   in.RefractorLayers->SetTimings(this->GetTimings(), "refractor layers ");
   const bool layers =
     in.RefractorLayers->Render(f.Window, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
-  this->StopStage("refractor layers");
+  this->EndStage("refractor layers");
   if (!layers)
   {
     return false;
@@ -547,7 +547,7 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   const bool impostors = this->CameraViewMethod != SCREEN_SPACE && this->UpdateImpostors(f);
   // 3. Surfaces seen only through a refractor are shaded from their irradiance.
   const bool direct = this->EnsureDirectIrradiance("direct irradiance for refraction");
-  this->StartStage("refraction tracing");
+  this->BeginStage("refraction tracing");
   vtkCausticsScreenSpaceRefraction::Inputs inputs;
   inputs.RefractorLayers = in.RefractorLayers;
   inputs.Opaque = f.CameraGBuffer;
@@ -567,21 +567,22 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
     caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
   std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, inputs.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
+  std::copy(scene.SpecularBounds, scene.SpecularBounds + 6, inputs.SpecularBounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
   inputs.Tolerance = this->GetViewTolerance(caustics::VisibleScale(scene));
   inputs.Method = impostors ? this->CameraViewMethod : SCREEN_SPACE;
   inputs.Impostors = impostors ? in.Impostors.GetPointer() : nullptr;
   in.Refraction->SetMaximumEvents(this->RefractionEvents);
   const bool ok = in.Refraction->Render(f.Window, inputs, target);
-  this->StopStage("refraction tracing");
+  this->EndStage("refraction tracing");
   return ok;
 }
 
 bool vtkCausticsRenderPass::UpdateImpostors(const FrameInputs& f)
 {
-  this->StartStage("distance impostors");
+  this->BeginStage("distance impostors");
   const bool ok = this->Internal->Impostors->Update(f.Window, f.Geometry, *f.Scene);
-  this->StopStage("distance impostors");
+  this->EndStage("distance impostors");
   return ok;
 }
 
@@ -820,7 +821,7 @@ void vtkCausticsRenderPass::RenderPlainVTK(const vtkRenderState* s)
   this->Internal->Timings->StartStage("vtk delegate", false);
   this->DelegatePass->Render(s);
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-  this->StopStage("vtk delegate");
+  this->EndStage("vtk delegate");
   this->Internal->Timings->EndFrame();
 }
 
@@ -928,9 +929,9 @@ bool vtkCausticsRenderPass::EnsureDirectIrradiance(const char* stage)
 {
   if (!this->Result.Direct)
   {
-    this->StartStage(stage);
+    this->BeginStage(stage);
     this->Result.Direct = this->RenderDirectIrradiance();
-    this->StopStage(stage);
+    this->EndStage(stage);
   }
   return this->Result.Direct;
 }
@@ -942,25 +943,25 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
 
-  this->StartStage("vtk delegate");
+  this->BeginStage("vtk delegate");
   this->RenderDelegate(s);
-  this->StopStage("vtk delegate");
+  this->EndStage("vtk delegate");
 
-  this->StartStage("geometry upload");
+  this->BeginStage("geometry upload");
   bool ok = f.Geometry->Upload(*f.Scene, f.Window);
-  this->StopStage("geometry upload");
+  this->EndStage("geometry upload");
 
-  this->StartStage("camera g-buffers");
+  this->BeginStage("camera g-buffers");
   ok = this->RenderCameraGBuffers() && ok;
-  this->StopStage("camera g-buffers");
+  this->EndStage("camera g-buffers");
   this->Result.Buffers = true;
 
   // A density grid dims everything the camera sees: integrate it once for the frame.
   if (caustics && ok && f.MediumGrid->HasGrid())
   {
-    this->StartStage("camera optical depth");
+    this->BeginStage("camera optical depth");
     f.CameraOpticalDepth->Build(f.Window, f.Width, f.Height, *f.Scene, f.MediumGrid);
-    this->StopStage("camera optical depth");
+    this->EndStage("camera optical depth");
   }
   else
   {
@@ -971,19 +972,19 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   {
     if (this->GetCausticNeeds().LightBuffers)
     {
-      this->StartStage("light buffers");
+      this->BeginStage("light buffers");
       ok = this->RenderLightBuffers();
-      this->StopStage("light buffers");
+      this->EndStage("light buffers");
     }
-    this->StartStage("caustic irradiance");
+    this->BeginStage("caustic irradiance");
     ok = ok && this->RenderCaustics();
-    this->StopStage("caustic irradiance");
+    this->EndStage("caustic irradiance");
     this->Result.Caustics = ok;
     if (ok && this->Denoise)
     {
-      this->StartStage("denoise");
+      this->BeginStage("denoise");
       this->Result.Denoised = this->DenoiseCaustics();
-      this->StopStage("denoise");
+      this->EndStage("denoise");
     }
   }
   // The light that reflectors and refractors pass on is the caustic: VTK's direct
@@ -997,9 +998,9 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   if (this->Result.Caustics && this->Result.Direct &&
     this->Internal->Airlight->IsNeeded(*f.Scene))
   {
-    this->StartStage("airlight");
+    this->BeginStage("airlight");
     this->Result.Volume = this->RenderAirlight() || this->Result.Volume;
-    this->StopStage("airlight");
+    this->EndStage("airlight");
   }
   if (this->Result.Caustics)
   {
@@ -1007,7 +1008,7 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
       this->RenderTechniqueColor(f, this->Internal->TechniqueColorTexture);
   }
 
-  this->StartStage("composite");
+  this->BeginStage("composite");
   state->vtkglViewport(f.Origin[0], f.Origin[1], f.Width, f.Height);
   state->vtkglScissor(f.Origin[0], f.Origin[1], f.Width, f.Height);
   this->Composite(false);
@@ -1015,7 +1016,7 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   {
     this->Composite(true);
   }
-  this->StopStage("composite");
+  this->EndStage("composite");
   this->Internal->Timings->EndFrame();
 }
 

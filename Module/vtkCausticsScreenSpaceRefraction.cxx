@@ -20,6 +20,8 @@
 #include "vtkCausticsScreenSpaceCommon.h"
 #include "vtkCausticsScreenSpaceRefractionFS.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkCausticsScreenSpaceRefraction);
@@ -49,6 +51,56 @@ vtkCausticsScreenSpaceRefraction::~vtkCausticsScreenSpaceRefraction()
   }
 }
 
+void vtkCausticsScreenSpaceRefraction::ScreenRectangle(
+  const float worldToClip[16], const double bounds[6], int width, int height, int rect[4])
+{
+  rect[0] = rect[1] = rect[2] = rect[3] = 0;
+  if (!(bounds[0] <= bounds[1] && bounds[2] <= bounds[3] && bounds[4] <= bounds[5]))
+  {
+    return; // empty (or NaN) box: no pixel
+  }
+  double lo[2] = { 1e300, 1e300 }, hi[2] = { -1e300, -1e300 };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double p[3] = { bounds[(corner & 1) ? 1 : 0], bounds[(corner & 2) ? 3 : 2],
+      bounds[(corner & 4) ? 5 : 4] };
+    double clip[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      clip[r] = worldToClip[12 + r];
+      for (int c = 0; c < 3; ++c)
+      {
+        clip[r] += worldToClip[4 * c + r] * p[c];
+      }
+    }
+    if (!(clip[3] > 1e-12 * (std::abs(clip[0]) + std::abs(clip[1]) + 1.0)))
+    {
+      rect[2] = width; // a corner at or behind the eye: its projection is unbounded
+      rect[3] = height;
+      return;
+    }
+    for (int a = 0; a < 2; ++a)
+    {
+      lo[a] = std::min(lo[a], clip[a] / clip[3]);
+      hi[a] = std::max(hi[a], clip[a] / clip[3]);
+    }
+  }
+  const int size[2] = { width, height };
+  int first[2], last[2];
+  for (int a = 0; a < 2; ++a)
+  {
+    // One pixel of margin on each side against rounding; clamped in double first.
+    const double from = std::floor((lo[a] * 0.5 + 0.5) * size[a]) - 1.0;
+    const double to = std::ceil((hi[a] * 0.5 + 0.5) * size[a]) + 1.0;
+    first[a] = static_cast<int>(std::max(0.0, std::min(from, static_cast<double>(size[a]))));
+    last[a] = static_cast<int>(std::max(0.0, std::min(to, static_cast<double>(size[a]))));
+  }
+  rect[0] = first[0];
+  rect[1] = first[1];
+  rect[2] = std::max(0, last[0] - first[0]);
+  rect[3] = std::max(0, last[1] - first[1]);
+}
+
 bool vtkCausticsScreenSpaceRefraction::Render(
   vtkOpenGLRenderWindow* renWin, const Inputs& inputs, vtkTextureObject* target)
 {
@@ -67,17 +119,24 @@ bool vtkCausticsScreenSpaceRefraction::Render(
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglScissor scissorBox(state);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_BLEND);
-  state->vtkglDisable(GL_SCISSOR_TEST);
   const GLuint framebuffer = in.Framebuffer.Get();
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target->GetHandle(), 0);
   glNamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
   state->vtkglBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   state->vtkglViewport(0, 0, inputs.Width, inputs.Height);
+  // Pixels outside the specular objects' rectangle show none of them: alpha 0.
+  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  glClearTexImage(target->GetHandle(), 0, GL_RGBA, GL_FLOAT, zero);
+  int rect[4];
+  ScreenRectangle(inputs.WorldToClip, inputs.SpecularBounds, inputs.Width, inputs.Height, rect);
+  state->vtkglEnable(GL_SCISSOR_TEST);
+  state->vtkglScissor(rect[0], rect[1], rect[2], rect[3]);
   vtkCausticsShaderProgram* p = in.Program;
-  const bool ok = p->Bind(renWin);
-  if (ok)
+  const bool ok = rect[2] == 0 || rect[3] == 0 || p->Bind(renWin);
+  if (ok && rect[2] > 0 && rect[3] > 0)
   {
     caustics::ssp::TextureUnits units(renWin);
     vtkCausticsLayeredDepth* layers = inputs.RefractorLayers;

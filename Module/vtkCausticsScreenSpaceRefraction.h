@@ -25,6 +25,9 @@
  * (Method 2); an impostor hit on a surface the camera does not show takes the
  * map's colour (albedo x unshadowed direct irradiance, no caustic).
  * The output colour has alpha 1 where it replaces VTK's colour, 0 elsewhere.
+ * Only the pixels of the screen rectangle the reflectors' and refractors' bounds
+ * (Inputs::SpecularBounds) project to are traced, the rest cleared: every pixel the
+ * pass writes shows a point inside those bounds.
  */
 #ifndef vtkCausticsScreenSpaceRefraction_h
 #define vtkCausticsScreenSpaceRefraction_h
@@ -73,6 +76,9 @@ public:
     int Width = 0, Height = 0;
     double ViewOrigin[4] = { 0, 0, 0, 1 }; ///< eye (w = 1) or view direction (w = 0)
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+    /** Reflectors' and refractors' bounds (SceneData::SpecularBounds): the pixels
+     * traced are those of their screen rectangle. */
+    double SpecularBounds[6] = { 0, 0, 0, 0, 0, 0 };
     double Background[3] = { 0, 0, 0 };
     double Tolerance = 0.0; ///< m
     /** Rays after the first surface: 0 screen-space march, 1 distance impostors, 2 the
@@ -83,6 +89,16 @@ public:
 
   /** Writes the colours into `target` (made RGBA32F, Width x Height). */
   bool Render(vtkOpenGLRenderWindow* renWin, const Inputs& inputs, vtkTextureObject* target);
+
+  /**
+   * The pixels (x, y, width, height) that the box `bounds` (xmin, xmax, ymin, ymax,
+   * zmin, zmax) covers through `worldToClip` (column-major) in a width x height
+   * image, with a pixel of margin, clamped to the image; the whole image when a
+   * corner is not in front of the eye, none (zero size) for an empty box or one
+   * beside the view.
+   */
+  static void ScreenRectangle(
+    const float worldToClip[16], const double bounds[6], int width, int height, int rect[4]);
 #endif
 
   void ReleaseGraphicsResources(vtkWindow* win);

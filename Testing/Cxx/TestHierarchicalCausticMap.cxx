@@ -29,6 +29,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <iostream>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -571,4 +574,67 @@ TEST(Pass, CountersParametersAndResources)
   f.Render();
   ASSERT_TRUE(f.Pass->GetCounters(0, c));
   EXPECT_GT(c.Valid, 0);
+}
+
+TEST(Pass, RedrawsTheLightsLayersWhenAnythingTheyShowChanges)
+{
+  // The receivers and refractor faces seen from the light are kept while nothing
+  // changes. After each change the kept pass must give what a new pass gives on the
+  // same scene, and something else than before the change (or the test says nothing).
+  Frame kept("ball-lens", 64, 64);
+  kept.Render();
+  kept.Render(); // the layers are kept from here on
+  struct Change
+  {
+    const char* What;
+    std::function<void(vtkRenderer*)> Apply;
+  };
+  const std::vector<Change> changes = {
+    { "a moved actor",
+      [](vtkRenderer* r) { FindActor(r, "glass ball")->AddPosition(0.2, 0.3, 0.0); } },
+    { "the light's direction",
+      [](vtkRenderer* r)
+      {
+        double p[3];
+        FirstLight(r)->GetPosition(p);
+        FirstLight(r)->SetPosition(p[0] + 0.3 * std::abs(p[1]), p[1], p[2]);
+      } },
+    { "the refractor's absorption",
+      [](vtkRenderer* r)
+      {
+        const double perMetre[3] = { 0.5, 0.2, 0.1 };
+        vtkCausticsMaterial::SetAttenuation(FindActor(r, "glass ball")->GetProperty(), perMetre);
+      } },
+    { "the refractor's index",
+      [](vtkRenderer* r) { FindActor(r, "glass ball")->GetProperty()->SetBaseIOR(1.33); } },
+  };
+  std::vector<std::unique_ptr<Frame>> fresh;
+  for (const Change& change : changes)
+  {
+    auto before = kept.Buffer("CausticIrradiance");
+    ASSERT_TRUE(before);
+    change.Apply(kept.Renderer);
+    kept.Render();
+    auto after = kept.Buffer("CausticIrradiance");
+    // A new pass on the scene as changed so far.
+    fresh.emplace_back(new Frame("ball-lens", 64, 64));
+    for (const auto& applied : changes)
+    {
+      applied.Apply(fresh.back()->Renderer);
+      if (&applied == &change)
+      {
+        break;
+      }
+    }
+    fresh.back()->Render();
+    auto reference = fresh.back()->Buffer("CausticIrradiance");
+    ASSERT_TRUE(after && reference);
+    const double changed = hcmtest::RelativeL2(Array(after), Array(before));
+    const double fromNew = hcmtest::RelativeL2(Array(after), Array(reference));
+    std::cout << change.What << ": relative L2 " << changed << " against the frame before, "
+              << fromNew << " against a new pass\n";
+    EXPECT_GT(changed, 1e-3) << change.What << " changed nothing";
+    EXPECT_LT(fromNew, 1e-6) << change.What;
+    fresh.back().reset(); // one GL context at a time
+  }
 }

@@ -1,9 +1,12 @@
 // The layered depth image (vtkCausticsLayeredDepth, 000_54cf099eeccf42d9.txt §2.2):
 // the depth complexity it counts, the layers it peels (and those it must not), the
-// order and content of the layers, per-object LDIs, a light's view, bad input.
+// order and content of the layers, per-object LDIs, a light's view, bad input, and
+// the layers kept while nothing they depend on changes.
+#include "vtkActor.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -19,8 +22,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
+#include <vector>
 
 namespace
 {
@@ -127,6 +133,7 @@ TEST(LayeredDepth, CountsBallLensDepthComplexityAndPeelsInOrder)
 TEST(LayeredDepth, NeverPeelsBeyondTheDepthComplexity)
 {
   Fixture f("ball-lens");
+  f.Layers->ReuseUnchangedOff(); // the second frame below must peel again
   ASSERT_TRUE(f.Render());
   // Mark layers 2..7 (beyond the complexity of 2): a later frame must not touch them.
   const float mark[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
@@ -206,6 +213,107 @@ TEST(LayeredDepth, SeesTheSceneFromALight)
   EXPECT_NEAR(f.At("Position", 2, c, c, 1), 0.0, 1e-5);
 }
 
+TEST(LayeredDepth, KeepsUnchangedLayersAndRedrawsOnAnyChange)
+{
+  Fixture f("ball-lens");
+  ASSERT_TRUE(f.Render());
+  EXPECT_FALSE(f.Layers->GetLastRenderReused()) << "a first frame draws";
+  int i, j;
+  f.Pixel(0.0, 3.0, 0.0, i, j); // the ball's centre
+  // A mark in layer 0 tells whether a frame drew the layers again.
+  const float mark[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
+  auto markLayers = [&]()
+  {
+    glClearTexSubImage(
+      f.Layers->GetPositionTexture(), 0, 0, 0, 0, f.Size, f.Size, 1, GL_RGBA, GL_FLOAT, mark);
+  };
+  auto drawn = [&]() { return f.At("Position", 0, i, j, 3) != 7.0; };
+
+  // Nothing changed: the layers are kept, untouched.
+  markLayers();
+  ASSERT_TRUE(f.Render());
+  EXPECT_TRUE(f.Layers->GetLastRenderReused());
+  EXPECT_FALSE(drawn());
+
+  // Each change redraws (and the frame after it keeps the new layers).
+  struct Change
+  {
+    const char* What;
+    std::function<void()> Apply;
+  };
+  vtkActor* ball = nullptr;
+  for (const caustics::Mesh& mesh : f.SceneData().Meshes)
+  {
+    if (f.SceneData().Materials[mesh.material].role == caustics::Role::Refractor)
+    {
+      ball = mesh.actor;
+    }
+  }
+  ASSERT_NE(ball, nullptr);
+  int size = f.Size;
+  const std::vector<Change> changes = {
+    { "a moved actor", [&]() { ball->AddPosition(0.0, 0.25, 0.0); } },
+    { "the camera", [&]() { f.WorldToClip[12] += 0.01f; } },
+    { "a resize", [&]() { size = f.Size / 2; } },
+    { "the layer cap", [&]() { f.Layers->SetMaximumNumberOfLayers(4); } },
+    { "a material's role",
+      [&]() { vtkCausticsMaterial::SetRole(ball, vtkCausticsMaterial::ROLE_RECEIVER); } },
+  };
+  for (const Change& change : changes)
+  {
+    markLayers();
+    change.Apply();
+    f.Window->Render(); // a new snapshot of the scene, uploaded
+    ASSERT_TRUE(
+      f.Layers->Render(f.GL(), f.Pass->GetGeometry(), f.SceneData(), f.WorldToClip, size, size));
+    EXPECT_FALSE(f.Layers->GetLastRenderReused()) << change.What;
+    if (size == f.Size)
+    {
+      EXPECT_TRUE(drawn()) << change.What;
+    }
+    ASSERT_TRUE(
+      f.Layers->Render(f.GL(), f.Pass->GetGeometry(), f.SceneData(), f.WorldToClip, size, size));
+    EXPECT_TRUE(f.Layers->GetLastRenderReused()) << "after " << change.What;
+  }
+  // What the layers hold now is the moved ball (a unit sphere about (0, 3.25, 0), not
+  // (0, 3, 0); facets sag < 1e-3 m), with the receiver role.
+  size = f.Size;
+  f.Layers->SetMaximumNumberOfLayers(8);
+  caustics::gl::ToColumnMajor(f.SceneData().View.worldToClip, f.WorldToClip);
+  ASSERT_TRUE(f.Render());
+  vtkNew<vtkImageData> position, normal;
+  ASSERT_TRUE(f.Layers->ReadLayer("Position", 0, position));
+  ASSERT_TRUE(f.Layers->ReadLayer("Normal", 0, normal));
+  int ballPixels = 0;
+  double worstMoved = 0.0, farthestOld = 0.0;
+  for (vtkIdType t = 0; t < position->GetNumberOfPoints(); ++t)
+  {
+    double p[4];
+    position->GetPointData()->GetArray(0)->GetTuple(t, p);
+    if (p[3] < 0.0 || p[1] < 0.5)
+    {
+      continue; // nothing, or the floor
+    }
+    ++ballPixels;
+    auto radius = [&](double centreY)
+    { return std::sqrt(p[0] * p[0] + (p[1] - centreY) * (p[1] - centreY) + p[2] * p[2]); };
+    worstMoved = std::max(worstMoved, std::abs(radius(3.25) - 1.0));
+    farthestOld = std::max(farthestOld, std::abs(radius(3.0) - 1.0));
+    EXPECT_EQ(std::lround(normal->GetPointData()->GetArray(0)->GetComponent(t, 3)), 1)
+      << "the ball is a receiver now";
+  }
+  EXPECT_GT(ballPixels, 1000);
+  EXPECT_LT(worstMoved, 2e-3) << "every pixel of the ball shows it where it is now";
+  EXPECT_GT(farthestOld, 0.1) << "and not where it was";
+
+  // Off: every frame draws.
+  f.Layers->ReuseUnchangedOff();
+  markLayers();
+  ASSERT_TRUE(f.Render());
+  EXPECT_FALSE(f.Layers->GetLastRenderReused());
+  EXPECT_TRUE(drawn());
+}
+
 TEST(LayeredDepth, RejectsBadSizesAndPrints)
 {
   Fixture f("ring", 64);
@@ -221,4 +329,5 @@ TEST(LayeredDepth, RejectsBadSizesAndPrints)
   std::ostringstream print;
   f.Layers->Print(print);
   EXPECT_NE(print.str().find("MaximumNumberOfLayers: 8"), std::string::npos);
+  EXPECT_NE(print.str().find("ReuseUnchanged: 1"), std::string::npos);
 }

@@ -10,6 +10,7 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsRenderPass.h"
+#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsTechniques.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -383,4 +384,45 @@ TEST_P(ScreenSpaceRefraction, FlatMirrorReflectsTheFloor)
   // A light tile (0.9) through silver (reflectance above 0.9 from 0 to 80 degrees);
   // measured 0.877.
   EXPECT_GT(lowestLight, 0.8);
+}
+
+TEST(ScreenSpaceRefractionRectangle, CoversTheProjectedBoxAndNoMore)
+{
+  // A perspective camera at the origin looking down -z (fovy 90 degrees, near 1, far
+  // 100), column-major: x_ndc = x / -z, y_ndc = y / -z.
+  const float n = 1.0f, f = 100.0f;
+  const float m[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -(f + n) / (f - n), -1, 0, 0,
+    -2.0f * f * n / (f - n), 0 };
+  int rect[4];
+  // x in [-1, 1], y in [0, 1] at depth 2 to 4: the widest at depth 2, x_ndc in
+  // [-0.5, 0.5], y_ndc in [0, 0.5]: pixels [50, 150) x [100, 150) of 200 x 200, plus
+  // a pixel of margin each side.
+  const double box[6] = { -1, 1, 0, 1, -4, -2 };
+  vtkCausticsScreenSpaceRefraction::ScreenRectangle(m, box, 200, 200, rect);
+  EXPECT_EQ(rect[0], 49);
+  EXPECT_EQ(rect[1], 99);
+  EXPECT_EQ(rect[2], 102);
+  EXPECT_EQ(rect[3], 52);
+  // Clamped to the image.
+  const double wide[6] = { -10, 10, -10, 10, -4, -2 };
+  vtkCausticsScreenSpaceRefraction::ScreenRectangle(m, wide, 200, 100, rect);
+  EXPECT_EQ(rect[0], 0);
+  EXPECT_EQ(rect[1], 0);
+  EXPECT_EQ(rect[2], 200);
+  EXPECT_EQ(rect[3], 100);
+  // A corner behind the eye: its projection is unbounded, so the whole image.
+  const double behind[6] = { -1, 1, -1, 1, -2, 2 };
+  vtkCausticsScreenSpaceRefraction::ScreenRectangle(m, behind, 200, 100, rect);
+  EXPECT_EQ(rect[2], 200);
+  EXPECT_EQ(rect[3], 100);
+  // Beside the view, empty or NaN: no pixel.
+  const double beside[6] = { 10, 11, 0, 1, -4, -2 };
+  vtkCausticsScreenSpaceRefraction::ScreenRectangle(m, beside, 200, 200, rect);
+  EXPECT_EQ(rect[2], 0);
+  const double empty[6] = { 1, -1, 0, 1, -4, -2 };
+  vtkCausticsScreenSpaceRefraction::ScreenRectangle(m, empty, 200, 200, rect);
+  EXPECT_EQ(rect[2] * rect[3], 0);
+  const double nan[6] = { std::nan(""), 1, 0, 1, -4, -2 };
+  vtkCausticsScreenSpaceRefraction::ScreenRectangle(m, nan, 200, 200, rect);
+  EXPECT_EQ(rect[2] * rect[3], 0);
 }
