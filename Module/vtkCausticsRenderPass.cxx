@@ -294,7 +294,7 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkCausticsSVGFDenoiser> Denoiser; // denoises CausticTexture in place (Denoise)
   bool PreviousDenoised = false;            // whether the frame before this one was denoised
-  std::array<std::size_t, 3> DenoisedStructure = { { 0, 0, 0 } }; // meshes, materials, lights
+  std::size_t DenoisedLights = 0;           // lights of the last denoised frame
   std::vector<double> DenoisedLightField; // LightFieldSignature of the last denoised frame
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
@@ -897,15 +897,14 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
 {
   auto& in = *this->Internal;
   const FrameInputs& f = this->Frame;
-  // No history across a frame without denoising or a change of the scene's structure
-  // (the denoiser itself drops it on a resize and, on the GPU, on a camera cut).
-  const std::array<std::size_t, 3> structure = { { f.Scene->Meshes.size(),
-    f.Scene->Materials.size(), f.Scene->Lights.size() } };
-  if (!in.PreviousDenoised || structure != in.DenoisedStructure)
+  // No history across a frame without denoising or a change of the number of lights
+  // (the denoiser itself drops it on a resize and, on the GPU, on a camera cut; it
+  // follows actors that move, appear or leave, and gives a new one no history).
+  if (!in.PreviousDenoised || f.Scene->Lights.size() != in.DenoisedLights)
   {
     in.Denoiser->ResetHistory();
   }
-  in.DenoisedStructure = structure;
+  in.DenoisedLights = f.Scene->Lights.size();
   std::vector<double> lightField = LightFieldSignature(*f.Scene);
   vtkCausticsSVGFDenoiser::Inputs inputs;
   inputs.LightChanged = lightField != in.DenoisedLightField;
@@ -914,6 +913,7 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
   inputs.Irradiance = in.CausticTexture;
   inputs.GBuffer = f.CameraGBuffer;
   inputs.Camera = &f.Scene->View;
+  inputs.Scene = f.Scene;
   inputs.Width = f.Width;
   inputs.Height = f.Height;
   return in.Denoiser->Denoise(inputs);

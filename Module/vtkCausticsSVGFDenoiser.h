@@ -55,6 +55,7 @@ class vtkWindow;
 namespace caustics
 {
 struct Camera;
+struct SceneData;
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsSVGFDenoiser : public vtkObject
@@ -110,6 +111,9 @@ public:
     vtkTextureObject* Irradiance = nullptr;   ///< RGBA32F, W/m^2; denoised in place
     vtkCausticsGBuffer* GBuffer = nullptr;    ///< this frame's camera G-buffer (opaque roles)
     const caustics::Camera* Camera = nullptr; ///< this frame's camera (world-to-clip, eye)
+    /** This frame's snapshot: its meshes' actors and matrices give the per-actor motion
+     * (null: every surface is taken as still and new). */
+    const caustics::SceneData* Scene = nullptr;
     int Width = 0;
     int Height = 0;
     /** Whether what lights the receivers (meshes, their matrices and materials, lights,
@@ -156,6 +160,7 @@ private:
   // Denoise() in steps (see the class description).
   bool EnsureTextures(const Inputs& in);
   void SetCommonUniforms(const Inputs& in, int program);
+  void FollowActors(const Inputs& in);
   bool Reproject(const Inputs& in);
   bool Accumulate(const Inputs& in);
   bool EstimateVariance(const Inputs& in);

@@ -4,11 +4,15 @@
 // reprojected (a camera cut: fewer than minimumFraction of the receivers).
 // Light that moves over a still receiver (the caustic of a moving ball) is no
 // disocclusion of a surface: a history outside this frame's 5x5 neighbourhood mean
-// +- rejectSigmas standard deviations is dropped, as a disoccluded one is. The
-// denoiser sets rejectSigmas to 0 while the light field is still: on sparse photons
-// a 5x5 neighbourhood where few photons landed this frame has a small spread, so the
-// test dropped good history in dim frames more often than in bright ones and took
-// 4.5 % off a still caustic's flux (TestCascadedPhotonPass). A
+// +- rejectSigmas standard deviations is dropped, as a disoccluded one is. Only a
+// history older than the last change of what lights the receivers (more frames than
+// framesSinceLightChanged) can hold light that is gone, so only such a history is
+// tested: one that restarted after the change is left to grow (the test would
+// restart it again and again: slow to settle after a change), and a still light
+// field is not tested at all. On sparse photons a 5x5 neighbourhood where few photons
+// landed this frame has a small spread, so testing every frame dropped good history
+// in dim frames more often than in bright ones and took 4.5 % off a still caustic's
+// flux (TestCascadedPhotonPass). A
 // non-finite input texel is rejected (the history stays as it was, or zero without
 // one); a negative one counts as zero.
 layout(rgba32f, binding = 2) uniform readonly image2D irradiance; // W/m^2, this frame
@@ -21,6 +25,7 @@ uniform float temporalAlpha;
 uniform float momentsAlpha;
 uniform float maximumFrames;
 uniform float rejectSigmas;
+uniform float framesSinceLightChanged; // 0: it changed in this frame
 uniform float minimumFraction;
 
 // This frame's irradiance at q as the filter takes it: finite, not negative.
@@ -88,7 +93,7 @@ void main()
     imageStore(historyMoments, p, vec4(historyM.rg, frames, 0.0));
     return;
   }
-  if (frames > 0.0 && rejectSigmas > 0.0 && !InNeighbourhood(p, history.rgb))
+  if (frames > framesSinceLightChanged && rejectSigmas > 0.0 && !InNeighbourhood(p, history.rgb))
   {
     frames = 0.0; // light moved here or away: a disocclusion of the light
   }
