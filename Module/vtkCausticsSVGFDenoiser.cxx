@@ -1,6 +1,7 @@
 #include "vtkCausticsSVGFDenoiser.h"
 
 #include "vtkActor.h"
+#include "vtkDataObject.h"
 #include "vtkCausticsBindings.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
@@ -8,6 +9,7 @@
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkTextureObject.h"
 #include "vtkWeakPointer.h"
@@ -83,6 +85,7 @@ struct Placement
   std::array<double, 16> Matrix;          // model to world, row-major
   std::array<std::array<double, 3>, 3> Samples; // world vertices: first, middle, last
   std::size_t Vertices = 0;
+  vtkMTimeType InputTime = 0; // of the mapper and its input: a change is a new shape
   int Index = -1;
 
   Placement() = default;
@@ -93,6 +96,11 @@ struct Placement
   {
     std::copy(mesh.actor->GetMatrix()->GetData(), mesh.actor->GetMatrix()->GetData() + 16,
       this->Matrix.begin());
+    if (vtkMapper* mapper = mesh.actor->GetMapper())
+    {
+      vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+      this->InputTime = std::max(mapper->GetMTime(), input ? input->GetMTime() : 0);
+    }
     const std::size_t at[3] = { 0, this->Vertices / 2, this->Vertices - 1 };
     for (int i = 0; i < 3; ++i)
     {
@@ -132,14 +140,15 @@ bool Near(const double a[3], const double b[3], double scale)
 
 /**
  * The motion of a mesh from the last frame to this one: previous x inverse(current)
- * of the actor's matrices. False when the matrix cannot be inverted or the motion
- * does not take this frame's sample vertices to the last frame's: then the mesh moved
- * otherwise (deformed, or with an assembly).
+ * of the actor's matrices. False when the mapper or its input changed (a new shape),
+ * the matrix cannot be inverted or the motion does not take this frame's sample
+ * vertices to the last frame's: then the mesh moved otherwise (deformed, or with an
+ * assembly).
  */
 bool MeshMotionOf(const Placement& previous, const Placement& current, Motion& motion)
 {
   double inverse[16];
-  if (previous.Vertices != current.Vertices ||
+  if (previous.Vertices != current.Vertices || previous.InputTime != current.InputTime ||
     !(std::abs(vtkMatrix4x4::Determinant(current.Matrix.data())) > 1e-300))
   {
     return false;
@@ -280,12 +289,15 @@ bool vtkCausticsSVGFDenoiser::Denoise(const Inputs& in)
     this->HasHistory = false; // a new size: nothing of the last frame lines up
   }
   this->FramesSinceReset = this->HasHistory ? this->FramesSinceReset : 0;
-  // Without a history nothing lit otherwise can linger: the light field counts as still.
+  // The light on the receivers changed unless nothing did or the whole scene, lights
+  // included, made one rigid motion (which the reprojection follows). Without a history
+  // nothing lit otherwise can linger: the light field counts as still.
+  const bool rigid = this->FollowActors(in);
+  const bool changed = in.OpticsChanged || (in.LightChanged && !rigid);
   const int still = 1 << 30;
-  const int sinceChange = in.LightChanged ? 0 : std::min(this->FramesSinceLightChanged + 1, still);
+  const int sinceChange = changed ? 0 : std::min(this->FramesSinceLightChanged + 1, still);
   this->FramesSinceLightChanged = this->HasHistory ? sinceChange : still;
   CopyTexture(in.Irradiance, this->Internal->Raw, in.Width, in.Height);
-  this->FollowActors(in);
   const bool ok = this->Reproject(in) && this->Accumulate(in) && this->EstimateVariance(in) &&
     this->FilterAtrous(in);
   if (!ok)
@@ -337,7 +349,7 @@ void vtkCausticsSVGFDenoiser::SetCommonUniforms(const Inputs& in, int index)
   BindImage(1, in.GBuffer->GetNormalTexture(), GL_READ_ONLY, GL_RGBA16F);
 }
 
-void vtkCausticsSVGFDenoiser::FollowActors(const Inputs& in)
+bool vtkCausticsSVGFDenoiser::FollowActors(const Inputs& in)
 {
   auto& s = *this->Internal;
   const std::size_t meshes = in.Scene ? in.Scene->Meshes.size() : 0;
@@ -381,6 +393,7 @@ void vtkCausticsSVGFDenoiser::FollowActors(const Inputs& in)
     }
   }
   lightMoved = lightMoved && !first && LightsMadeMotion(s.PreviousLights, in.Scene->Lights, light);
+  bool rigid = lightMoved; // every mesh, receivers too, made the lights' motion
   // A receiver follows its own motion where its light made the same one; otherwise its
   // caustic stays where it was in the world (or moves with the casters, which the
   // colour test of the accumulation sees), and the reprojection takes it as still.
@@ -388,6 +401,7 @@ void vtkCausticsSVGFDenoiser::FollowActors(const Inputs& in)
   for (std::size_t i = 0; i < s.MotionTable.size(); ++i)
   {
     const bool follow = i < meshes && known[i] && lightMoved && SameMotion(motions[i], light);
+    rigid = rigid && (i >= meshes || follow);
     caustics::gl::ToColumnMajor(
       follow ? motions[i].data() : Still.data(), s.MotionTable[i].PreviousFromCurrent);
     s.MotionTable[i].PreviousIndex[0] = i < meshes ? static_cast<float>(previousIndex[i]) : -1.0f;
@@ -396,6 +410,7 @@ void vtkCausticsSVGFDenoiser::FollowActors(const Inputs& in)
   const std::size_t bytes = s.MotionTable.size() * sizeof(MeshMotion);
   s.Motion.Allocate(bytes);
   s.Motion.Write(0, bytes, s.MotionTable.data());
+  return rigid;
 }
 
 bool vtkCausticsSVGFDenoiser::Reproject(const Inputs& in)
