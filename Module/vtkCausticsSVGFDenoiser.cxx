@@ -81,8 +81,8 @@ static_assert(sizeof(MeshMotion) == 80, "the shader's SVGFMotion");
  */
 struct Placement
 {
-  vtkWeakPointer<vtkActor> Actor;         // null once the actor is gone (its address may be reused)
-  std::array<double, 16> Matrix;          // model to world, row-major
+  vtkWeakPointer<vtkActor> Actor; // null once the actor is gone (its address may be reused)
+  std::array<double, 16> Matrix;  // model to world, row-major
   std::array<std::array<double, 3>, 3> Samples; // world vertices: first, middle, last
   std::size_t Vertices = 0;
   vtkMTimeType InputTime = 0; // of the mapper and its input: a change is a new shape
@@ -204,13 +204,38 @@ bool LightsMadeMotion(const std::vector<caustics::Light>& previous,
     const double scale =
       std::max({ std::abs(b.position[0]), std::abs(b.position[1]), std::abs(b.position[2]) });
     const bool positional = b.type != caustics::Light::Type::Directional;
-    if (a.type != b.type || !(norm > 0.0) || !Near(unit, a.direction.data(), 0.0) ||
+    const bool aimed = b.type != caustics::Light::Type::Point;
+    if (a.type != b.type || (aimed && (!(norm > 0.0) || !Near(unit, a.direction.data(), 0.0))) ||
       (positional && !Near(x, a.position.data(), scale)))
     {
       return false;
     }
   }
   return true;
+}
+
+/**
+ * The one rigid motion that what lights the receivers made (every reflector and
+ * refractor, with a known motion, and every light), in `light`; false if it made none.
+ */
+bool LightMotion(const caustics::SceneData& scene, const std::vector<Motion>& motions,
+  const std::vector<char>& known, const std::vector<caustics::Light>& previousLights,
+  Motion& light)
+{
+  bool first = true;
+  for (std::size_t i = 0; i < scene.Meshes.size(); ++i)
+  {
+    if (scene.Materials[scene.Meshes[i].material].role != caustics::Role::Receiver)
+    {
+      if (!known[i] || (!first && !SameMotion(motions[i], light)))
+      {
+        return false;
+      }
+      light = motions[i];
+      first = false;
+    }
+  }
+  return !first && LightsMadeMotion(previousLights, scene.Lights, light);
 }
 }
 
@@ -379,20 +404,10 @@ bool vtkCausticsSVGFDenoiser::FollowActors(const Inputs& in)
       known[i] = MeshMotionOf(previous->second, now, motions[i]);
     }
   }
-  // What lights the receivers (specular meshes and lights) moved as one rigid body?
-  bool lightMoved = meshes > 0;
+  // Did what lights the receivers (specular meshes and lights) move as one rigid body?
   Motion light = Still;
-  bool first = true;
-  for (std::size_t i = 0; i < meshes && lightMoved; ++i)
-  {
-    if (in.Scene->Materials[in.Scene->Meshes[i].material].role != caustics::Role::Receiver)
-    {
-      lightMoved = known[i] && (first || SameMotion(motions[i], light));
-      light = motions[i];
-      first = false;
-    }
-  }
-  lightMoved = lightMoved && !first && LightsMadeMotion(s.PreviousLights, in.Scene->Lights, light);
+  const bool lightMoved =
+    meshes > 0 && LightMotion(*in.Scene, motions, known, s.PreviousLights, light);
   bool rigid = lightMoved; // every mesh, receivers too, made the lights' motion
   // A receiver follows its own motion where its light made the same one; otherwise its
   // caustic stays where it was in the world (or moves with the casters, which the
@@ -465,7 +480,8 @@ bool vtkCausticsSVGFDenoiser::Accumulate(const Inputs& in)
   // Light moves over the receivers only when what lights them changes: only a history
   // older than the last change can hold light that is gone (see the shader).
   program->SetUniformf("rejectSigmas", static_cast<float>(settings.HistoryRejectionSigmas));
-  program->SetUniformf("framesSinceLightChanged", static_cast<float>(this->FramesSinceLightChanged));
+  program->SetUniformf(
+    "framesSinceLightChanged", static_cast<float>(this->FramesSinceLightChanged));
   program->SetUniformf("minimumFraction", static_cast<float>(settings.MinimumReprojectedFraction));
   program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
   Barrier();

@@ -168,6 +168,8 @@ private:
   // Denoise() in steps (see the class description).
   bool EnsureTextures(const Inputs& in);
   void SetCommonUniforms(const Inputs& in, int program);
+  // The per-actor motion table (step 1); true when the whole scene, lights included,
+  // made one rigid motion (the light on the receivers is then unchanged).
   bool FollowActors(const Inputs& in);
   bool Reproject(const Inputs& in);
   bool Accumulate(const Inputs& in);

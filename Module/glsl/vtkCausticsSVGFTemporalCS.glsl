@@ -99,7 +99,8 @@ void main()
     imageStore(historyMoments, p, vec4(historyM.rg, frames, 0.0));
     return;
   }
-  if (frames > framesSinceLightChanged && rejectSigmas > 0.0 && !InNeighbourhood(p, history.rgb, frames))
+  if (frames > framesSinceLightChanged && rejectSigmas > 0.0 &&
+    !InNeighbourhood(p, history.rgb, frames))
   {
     frames = 0.0; // light moved here or away: a disocclusion of the light
   }
