@@ -49,6 +49,10 @@
 #define CAUSTICS_VOLUME_COUNT_BINDING 3
 #define CAUSTICS_VOLUME_ARGUMENT_BINDING 4
 
+// SVGF denoiser's reprojection (vtkCausticsSVGFReprojectCS.glsl): per mesh, the motion
+// from this frame's world position to the last frame's and the mesh's last index.
+#define CAUSTICS_SVGF_MOTION_BINDING 1
+
 // Hierarchical caustic map (vtkCausticsPhotonBufferCommon.glsl).
 #define CAUSTICS_PHOTON_STATISTICS_BINDING 1
 #define CAUSTICS_HIERARCHY_NODES_BINDING 2

@@ -65,15 +65,17 @@ using Box = std::array<double, 6>;
  * What the caustic irradiance on the receivers depends on, as numbers: every mesh's
  * geometry version (vertices, actor matrix), every material's optics, every light,
  * the medium's coefficients. The camera is not in it: irradiance does not depend on
- * the view.
+ * the view. Without `placement`, only the optics: no mesh versions, no light
+ * positions or directions (what a rigid motion of the whole scene leaves alone).
  */
-std::vector<double> LightFieldSignature(const caustics::SceneData& scene)
+std::vector<double> LightFieldSignature(const caustics::SceneData& scene, bool placement = true)
 {
   std::vector<double> s;
   auto add = [&s](const caustics::Vec3& v) { s.insert(s.end(), v.begin(), v.end()); };
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
-    s.insert(s.end(), { static_cast<double>(mesh.version), static_cast<double>(mesh.material) });
+    s.insert(s.end(),
+      { placement ? static_cast<double>(mesh.version) : 0.0, static_cast<double>(mesh.material) });
   }
   for (const caustics::Material& m : scene.Materials)
   {
@@ -85,8 +87,11 @@ std::vector<double> LightFieldSignature(const caustics::SceneData& scene)
   for (const caustics::Light& light : scene.Lights)
   {
     s.push_back(static_cast<double>(light.type));
-    add(light.position);
-    add(light.direction);
+    if (placement)
+    {
+      add(light.position);
+      add(light.direction);
+    }
     add(light.radiometric);
     s.insert(s.end(), { light.cosOuter, light.cosInner });
   }
@@ -294,8 +299,9 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkOpenGLFramebufferObject> CausticFramebuffer;
   vtkNew<vtkCausticsSVGFDenoiser> Denoiser; // denoises CausticTexture in place (Denoise)
   bool PreviousDenoised = false;            // whether the frame before this one was denoised
-  std::array<std::size_t, 3> DenoisedStructure = { { 0, 0, 0 } }; // meshes, materials, lights
+  std::size_t DenoisedLights = 0;           // lights of the last denoised frame
   std::vector<double> DenoisedLightField; // LightFieldSignature of the last denoised frame
+  std::vector<double> DenoisedOptics;     // the same without placements
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
   vtkNew<vtkTextureObject> LostShadingTexture;
@@ -898,23 +904,26 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
 {
   auto& in = *this->Internal;
   const FrameInputs& f = this->Frame;
-  // No history across a frame without denoising or a change of the scene's structure
-  // (the denoiser itself drops it on a resize and, on the GPU, on a camera cut).
-  const std::array<std::size_t, 3> structure = { { f.Scene->Meshes.size(),
-    f.Scene->Materials.size(), f.Scene->Lights.size() } };
-  if (!in.PreviousDenoised || structure != in.DenoisedStructure)
+  // No history across a frame without denoising or a change of the number of lights
+  // (the denoiser itself drops it on a resize and, on the GPU, on a camera cut; it
+  // follows actors that move, appear or leave, and gives a new one no history).
+  if (!in.PreviousDenoised || f.Scene->Lights.size() != in.DenoisedLights)
   {
     in.Denoiser->ResetHistory();
   }
-  in.DenoisedStructure = structure;
+  in.DenoisedLights = f.Scene->Lights.size();
   std::vector<double> lightField = LightFieldSignature(*f.Scene);
   vtkCausticsSVGFDenoiser::Inputs inputs;
+  std::vector<double> optics = LightFieldSignature(*f.Scene, false);
   inputs.LightChanged = lightField != in.DenoisedLightField;
+  inputs.OpticsChanged = optics != in.DenoisedOptics;
   in.DenoisedLightField = std::move(lightField);
+  in.DenoisedOptics = std::move(optics);
   inputs.Window = f.Window;
   inputs.Irradiance = in.CausticTexture;
   inputs.GBuffer = f.CameraGBuffer;
   inputs.Camera = &f.Scene->View;
+  inputs.Scene = f.Scene;
   inputs.Width = f.Width;
   inputs.Height = f.Height;
   return in.Denoiser->Denoise(inputs);

@@ -7,19 +7,24 @@
  * irradiance of every technique (vtkCausticsRenderPass::SetDenoise()). Each frame,
  * on this frame's caustic irradiance (RGBA32F, W/m^2, before albedo) and camera
  * G-buffer (vtkCausticsGBuffer: world position, normal, material and role):
- * 1. Reproject: each receiver pixel's world position goes through the previous
- *    frame's world-to-clip; the history there counts where the previous G-buffer
- *    shows the same surface (material, tangent plane, normal). Camera motion is
- *    followed exactly; a moving receiver is rejected where it moved (no per-actor
- *    motion vectors).
+ * 1. Reproject: each receiver pixel's world position is taken to where its surface
+ *    point was in the last frame (per-actor motion vectors: a table of each mesh's
+ *    motion, last model matrix times the inverse of this one, and its last index,
+ *    with actors kept by weak pointer, so a new actor has no history), then through
+ *    the previous frame's world-to-clip; the history there counts where the previous
+ *    G-buffer shows the same surface (mesh, tangent plane, normal). Camera motion is
+ *    followed exactly. A receiver follows its own motion only when what lights it
+ *    (every reflector, refractor and light) made the same rigid motion, which leaves
+ *    its irradiance as it was; otherwise its caustic stays put in the world, and so
+ *    does the reprojection.
  * 2. Accumulate: colour and the first two moments of luminance, blended with
- *    max(alpha, 1/frames); while what lights the receivers changed within the last
- *    MaximumHistoryLength frames (Inputs::LightChanged), a history outside this
- *    frame's neighbourhood (HistoryRejectionSigmas) is dropped as a disoccluded one
- *    is, so light that moves over a still receiver (a moving ball's caustic) does
- *    not ghost; on a still light field that test would bias sparse photons low. When
- *    fewer than MinimumReprojectedFraction of the receiver pixels reproject (a
- *    camera cut), no history is used.
+ *    max(alpha, 1/frames); a history older than the last change of what lights the
+ *    receivers (Inputs::LightChanged) is dropped as a disoccluded one is when it lies
+ *    outside this frame's neighbourhood (HistoryRejectionSigmas), so light that moves
+ *    over a still receiver (a moving ball's caustic) does not ghost; a history begun
+ *    after the change, and any on a still light field, is not tested (the test would
+ *    bias sparse photons low). When fewer than MinimumReprojectedFraction of the
+ *    receiver pixels reproject (a camera cut), no history is used.
  * 3. Variance of luminance from the moments (spatially from 7x7 neighbours while a
  *    history is shorter than SpatialVarianceFrames).
  * 4. A-trous: AtrousIterations wavelet iterations guided by depth, normal and
@@ -55,6 +60,7 @@ class vtkWindow;
 namespace caustics
 {
 struct Camera;
+struct SceneData;
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsSVGFDenoiser : public vtkObject
@@ -110,11 +116,17 @@ public:
     vtkTextureObject* Irradiance = nullptr;   ///< RGBA32F, W/m^2; denoised in place
     vtkCausticsGBuffer* GBuffer = nullptr;    ///< this frame's camera G-buffer (opaque roles)
     const caustics::Camera* Camera = nullptr; ///< this frame's camera (world-to-clip, eye)
+    /** This frame's snapshot: its meshes' actors and matrices give the per-actor motion
+     * (null: every surface is taken as still and new). */
+    const caustics::SceneData* Scene = nullptr;
     int Width = 0;
     int Height = 0;
     /** Whether what lights the receivers (meshes, their matrices and materials, lights,
      * medium) changed since the last frame; the camera does not count. */
     bool LightChanged = true;
+    /** Whether the optics changed (materials, lights' power and cones, medium): what a
+     * rigid motion of the whole scene, lights included, leaves alone. */
+    bool OpticsChanged = true;
   };
 
   /**
@@ -156,6 +168,9 @@ private:
   // Denoise() in steps (see the class description).
   bool EnsureTextures(const Inputs& in);
   void SetCommonUniforms(const Inputs& in, int program);
+  // The per-actor motion table (step 1); true when the whole scene, lights included,
+  // made one rigid motion (the light on the receivers is then unchanged).
+  bool FollowActors(const Inputs& in);
   bool Reproject(const Inputs& in);
   bool Accumulate(const Inputs& in);
   bool EstimateVariance(const Inputs& in);

@@ -3,12 +3,19 @@
 // second moments of its luminance likewise. No history where almost nothing
 // reprojected (a camera cut: fewer than minimumFraction of the receivers).
 // Light that moves over a still receiver (the caustic of a moving ball) is no
-// disocclusion of a surface: a history outside this frame's 5x5 neighbourhood mean
-// +- rejectSigmas standard deviations is dropped, as a disoccluded one is. The
-// denoiser sets rejectSigmas to 0 while the light field is still: on sparse photons
-// a 5x5 neighbourhood where few photons landed this frame has a small spread, so the
-// test dropped good history in dim frames more often than in bright ones and took
-// 4.5 % off a still caustic's flux (TestCascadedPhotonPass). A
+// disocclusion of a surface: a history that differs from this frame's 5x5
+// neighbourhood mean by more than rejectSigmas standard errors of the difference of
+// the two means (sigma sqrt(1/N + 1/n): N pixels this frame, a history of n frames,
+// sigma the neighbourhood's spread) is dropped, as a disoccluded one is. (Against
+// mean +- 2 sigma, the spread of one pixel, a history of zero where sparse photons had
+// just arrived passed and faded in over some ten frames: the lag of a moving ball.)
+// Only a history older than the last change of what lights the receivers (more frames
+// than framesSinceLightChanged) can hold light that is gone, so only such a history is
+// tested: one that restarted after the change is left to grow, and a still light
+// field is not tested at all. On sparse photons a 5x5 neighbourhood where few photons
+// landed this frame has a small spread, so testing every frame dropped good history
+// in dim frames more often than in bright ones and took 4.5 % off a still caustic's
+// flux (TestCascadedPhotonPass). A
 // non-finite input texel is rejected (the history stays as it was, or zero without
 // one); a negative one counts as zero.
 layout(rgba32f, binding = 2) uniform readonly image2D irradiance; // W/m^2, this frame
@@ -21,6 +28,7 @@ uniform float temporalAlpha;
 uniform float momentsAlpha;
 uniform float maximumFrames;
 uniform float rejectSigmas;
+uniform float framesSinceLightChanged; // 0: it changed in this frame
 uniform float minimumFraction;
 
 // This frame's irradiance at q as the filter takes it: finite, not negative.
@@ -31,9 +39,10 @@ vec3 Sample(ivec2 q, out bool finite)
   return finite ? max(c.rgb, vec3(0.0)) : vec3(0.0);
 }
 
-// Whether the history lies within this frame's neighbourhood (finite receiver
-// texels): mean +- rejectSigmas standard deviations in every channel.
-bool InNeighbourhood(ivec2 p, vec3 history)
+// Whether the history (a mean of `frames` frames) agrees with this frame's neighbourhood
+// mean (finite receiver texels) within rejectSigmas standard errors, in every channel;
+// an exponential mean of weight alpha holds (2 - alpha) / alpha frames at most.
+bool InNeighbourhood(ivec2 p, vec3 history, float frames)
 {
   vec3 sum = vec3(0.0), sum2 = vec3(0.0);
   float count = 0.0;
@@ -58,7 +67,9 @@ bool InNeighbourhood(ivec2 p, vec3 history)
   }
   vec3 mean = sum / max(count, 1.0);
   vec3 deviation = sqrt(max(sum2 / max(count, 1.0) - mean * mean, vec3(0.0)));
-  return all(lessThanEqual(abs(history - mean), rejectSigmas * deviation));
+  float historyFrames = min(frames, (2.0 - temporalAlpha) / temporalAlpha);
+  float spread = sqrt(1.0 / max(count, 1.0) + 1.0 / max(historyFrames, 1.0));
+  return all(lessThanEqual(abs(history - mean), rejectSigmas * spread * deviation));
 }
 
 void main()
@@ -88,7 +99,8 @@ void main()
     imageStore(historyMoments, p, vec4(historyM.rg, frames, 0.0));
     return;
   }
-  if (frames > 0.0 && rejectSigmas > 0.0 && !InNeighbourhood(p, history.rgb))
+  if (frames > framesSinceLightChanged && rejectSigmas > 0.0 &&
+    !InNeighbourhood(p, history.rgb, frames))
   {
     frames = 0.0; // light moved here or away: a disocclusion of the light
   }

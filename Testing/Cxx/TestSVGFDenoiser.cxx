@@ -6,6 +6,7 @@
 // ghost, carries no history over a camera cut or a resize, keeps the flux of a still
 // input and never spreads a NaN. Figures: docs/denoising.md.
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsCascadedPhotonPass.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsReferenceRenderer.h"
@@ -16,15 +17,20 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkTextureObject.h"
+#include "vtkTransform.h"
 #include "vtk_glew.h"
 
 #include <gtest/gtest.h>
@@ -32,6 +38,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,9 +51,17 @@ constexpr double FLICKER_RING = 8.5;  // 8.72x
 constexpr double L2_RING = 0.46;      // 0.444
 constexpr double HISTORY_GAIN = 0.55; // 0.521 of SVGF's own choice's L2 (0.0966 against 0.185)
 constexpr std::size_t STEP_LAG = 1;   // 0 frames to settle after the step
-constexpr double STEP_AFTER = 0.76;   // at most 0.737 of the raw estimate's error after it
-constexpr double MOVING = 0.88;       // at most 0.860 of the raw estimate's error, moving
+constexpr double STEP_AFTER = 0.50;   // at most 0.483 of the raw estimate's error after it
+constexpr double MOVING = 0.56;       // at most 0.541 of the raw estimate's error, moving
 constexpr double FLUX = 1e-4;         // denoised over raw flux: 0.999997
+// Per-actor motion (FollowsActorsThatMove), against the still sequence's denoised figures;
+// in brackets what the same test gave without following the actors / following every
+// actor whatever lights it:
+constexpr double RIGID_FLICKER = 1.06; // moving with its light: flicker 1.038 of still's (1.97)
+constexpr double RIGID_L2 = 1.0;       // relative L2 0.993 of still's (4.87)
+constexpr double SLIDE_FLICKER = 1.65; // floor sliding under the caustic: 1.614 ((2.01))
+constexpr double APPEAR = 1.03; // an actor appears: 1.011x the error before (dropping all: 3.58x)
+constexpr double SLIDE_L2 = 1.58;      // worst frame's relative L2 1.553 of still's mean ((8.79))
 }
 
 namespace
@@ -197,12 +212,13 @@ struct Truth
   Image E;
   std::vector<double> Area; // m^2 of receiver per pixel (0 off receivers)
 
-  Truth(vtkRenderer* renderer, int size, vtkIdType photons = 1000000)
+  Truth(vtkRenderer* renderer, int size, vtkIdType photons = 1000000, double kernelPixels = 2.0)
   {
     vtkNew<vtkCausticsReferenceRenderer> reference;
     reference->SetInputRenderer(renderer);
     reference->SetImageSize(size, size);
     reference->SetPhotonsPerLight(photons);
+    reference->SetKernelRadiusPixels(kernelPixels);
     reference->CameraSeesRefractorsOff();
     EXPECT_TRUE(reference->Update()) << reference->GetLastError();
     vtkPointData* pd = reference->GetOutput()->GetPointData();
@@ -538,4 +554,301 @@ TEST(SVGFDenoiser, NeverSpreadsNaN)
     EXPECT_TRUE(AllFinite(denoised)) << "frame " << frame;
     EXPECT_TRUE(std::all_of(denoised.begin(), denoised.end(), [](double x) { return x >= 0.0; }));
   }
+}
+
+
+namespace
+{
+/**
+ * A rigid motion of a ball-lens frame, frame after frame: every actor (as its user
+ * matrix), and with `all` the light and the camera too; else only the receiver (the
+ * floor), under a still ball and light.
+ */
+struct RigidMotion
+{
+  Frame& F;
+  bool All;
+  double LightPosition[3], LightFocal[3];
+  double Eye[3], Focal[3], Up[3];
+
+  RigidMotion(Frame& f, bool all)
+    : F(f)
+    , All(all)
+  {
+    vtkLight* light = Light();
+    light->GetPosition(this->LightPosition);
+    light->GetFocalPoint(this->LightFocal);
+    vtkCamera* camera = f.Renderer->GetActiveCamera();
+    camera->GetPosition(this->Eye);
+    camera->GetFocalPoint(this->Focal);
+    camera->GetViewUp(this->Up);
+  }
+
+  vtkLight* Light()
+  {
+    vtkLightCollection* lights = this->F.Renderer->GetLights();
+    lights->InitTraversal();
+    return lights->GetNextItem();
+  }
+
+  /** Frame k: translated by k `step` (m) after turning k `degrees` about the vertical axis. */
+  void Place(int k, const double step[3], double degrees)
+  {
+    vtkNew<vtkTransform> motion;
+    motion->Translate(k * step[0], k * step[1], k * step[2]);
+    motion->RotateY(k * degrees);
+    vtkPropCollection* props = this->F.Renderer->GetViewProps();
+    props->InitTraversal();
+    while (vtkProp* prop = props->GetNextProp())
+    {
+      auto* actor = vtkActor::SafeDownCast(prop);
+      if (actor &&
+        (this->All ||
+          vtkCausticsMaterial::Classify(actor, 0.3) == vtkCausticsMaterial::ROLE_RECEIVER))
+      {
+        actor->SetUserMatrix(motion->GetMatrix());
+      }
+    }
+    if (!this->All)
+    {
+      return;
+    }
+    double x[3];
+    vtkLight* light = Light();
+    motion->TransformPoint(this->LightPosition, x);
+    light->SetPosition(x);
+    motion->TransformPoint(this->LightFocal, x);
+    light->SetFocalPoint(x);
+    vtkCamera* camera = this->F.Renderer->GetActiveCamera();
+    motion->TransformPoint(this->Eye, x);
+    camera->SetPosition(x);
+    motion->TransformPoint(this->Focal, x);
+    camera->SetFocalPoint(x);
+    motion->TransformVector(this->Up, x);
+    camera->SetViewUp(x);
+  }
+};
+
+/** Raw and denoised frames of a sequence and their figures against one truth. */
+struct Sequence
+{
+  std::vector<Image> Raw, Denoised;
+
+  /** Flicker (frames `from` on) and mean relative L2 (frames `from` on), raw or denoised. */
+  double FlickerOf(bool denoised, const Truth& truth, std::size_t from) const
+  {
+    const std::vector<Image>& frames = denoised ? this->Denoised : this->Raw;
+    return Flicker({ frames.begin() + from, frames.end() }, truth);
+  }
+  double L2Of(bool denoised, const Truth& truth, std::size_t from) const
+  {
+    const std::vector<Image>& frames = denoised ? this->Denoised : this->Raw;
+    double sum = 0.0;
+    for (std::size_t k = from; k < frames.size(); ++k)
+    {
+      sum += truth.RelativeL2(frames[k]) / (frames.size() - from);
+    }
+    return sum;
+  }
+  double WorstL2(const Truth& truth, std::size_t from) const
+  {
+    double worst = 0.0;
+    for (std::size_t k = from; k < this->Denoised.size(); ++k)
+    {
+      worst = std::max(worst, truth.RelativeL2(this->Denoised[k]));
+    }
+    return worst;
+  }
+};
+}
+
+// Per-actor motion vectors. Three sequences of 16 frames of the ball lens at 96^2,
+// with the same seeds, and one truth: the image's truth is the same in every frame of
+// each. (1) Still. (2) Everything (floor, ball, light, camera) moves as one rigid body,
+// 0.15 m up, 5 cm sideways and 3 degrees about the vertical a frame: the receiver
+// keeps its history (followed with its actor's matrices, since what lights it made
+// the same motion, which also tells the denoiser that the light on it is unchanged),
+// so the caustic flickers about as little as the still one and is as accurate;
+// without motion vectors the floor failed the same-surface test every frame (it rose
+// 0.15 m, past the 0.1 m tolerance) and kept no history. (3) The floor alone slides
+// 5 cm a frame under the still ball and light: its caustic stays where it is in the
+// world, and so does the reprojection (following the floor would drag the caustic's
+// history along with it): no smear. A moving receiver counts as a change of the light
+// (it may shadow others), so the colour test runs and costs some flicker there.
+TEST(SVGFDenoiser, FollowsActorsThatMove)
+{
+  const int size = 96, frames = 16, settled = 6;
+  const double up[3] = { 0.05, 0.15, 0.0 }, slide[3] = { 0.05, 0.0, 0.0 }, none[3] = { 0, 0, 0 };
+  Sequence sequences[3];
+  std::unique_ptr<Truth> truth;
+  for (int run = 0; run < 3; ++run)
+  {
+    Frame f(size);
+    RigidMotion motion(f, run != 2);
+    for (int k = 0; k < frames; ++k)
+    {
+      motion.Place(k, run == 0 ? none : run == 1 ? up : slide, run == 1 ? 3.0 : 0.0);
+      f.Window->Render();
+      ASSERT_TRUE(f.Pass->GetLastFrameHadCaustics());
+      sequences[run].Raw.push_back(f.Raw());
+      sequences[run].Denoised.push_back(f.Denoised());
+    }
+    if (run == 0)
+    {
+      truth.reset(new Truth(f.Renderer, size));
+    }
+  }
+  const char* names[3] = { "still", "moving with its light", "floor sliding under the caustic" };
+  double flicker[3], l2[3], rawL2[3];
+  for (int run = 0; run < 3; ++run)
+  {
+    const Sequence& s = sequences[run];
+    flicker[run] = s.FlickerOf(true, *truth, settled);
+    l2[run] = s.L2Of(true, *truth, settled);
+    rawL2[run] = s.L2Of(false, *truth, settled);
+    std::cout << names[run] << ": flicker raw " << s.FlickerOf(false, *truth, settled)
+              << ", denoised " << flicker[run] << "; relative L2 raw " << rawL2[run]
+              << ", denoised " << l2[run] << " (worst frame " << s.WorstL2(*truth, settled)
+              << ")\n";
+  }
+  std::cout << "against the still sequence: moving with its light, flicker "
+            << flicker[1] / flicker[0] << ", relative L2 " << l2[1] / l2[0]
+            << "; floor sliding, flicker " << flicker[2] / flicker[0] << ", worst frame "
+            << sequences[2].WorstL2(*truth, settled) / l2[0] << "\n";
+  EXPECT_LE(flicker[1], RIGID_FLICKER * flicker[0]);
+  EXPECT_LE(l2[1], RIGID_L2 * l2[0]);
+  EXPECT_LE(flicker[2], SLIDE_FLICKER * flicker[0]);
+  EXPECT_LE(sequences[2].WorstL2(*truth, settled), SLIDE_L2 * l2[0]);
+}
+
+// Where the denoiser's error on the pool and the ring comes from (docs/benchmarks.md,
+// "Reading the temporal results"): the cascaded technique at 128^2, 16 still frames,
+// the last one against a 2 M photon truth with the reference's kernel of 2 pixel
+// footprints (its default) and of 1 (the benchmark's): raw, the raw mean of the 16
+// frames (what a perfect temporal filter reaches), the denoiser, its temporal part
+// alone (no a-trous) and with 1 and 2 a-trous iterations; and each one's error after
+// 1, 2, 3, 4, 6, 8, 12 and 16 frames from a fresh start. Not run by default:
+// --gtest_also_run_disabled_tests --gtest_filter='*ErrorByPart*'.
+TEST(SVGFDenoiser, DISABLED_ErrorByPart)
+{
+  const int size = 128, frames = 16;
+  for (const char* scene : { "pool", "ring" })
+  {
+    std::unique_ptr<Truth> truth, sharp;
+    const int iterations[] = { -1, 5, 0, 1, 2 }; // -1: not denoised
+    for (int atrous : iterations)
+    {
+      vtkNew<vtkOpenGLRenderer> renderer;
+      vtkNew<vtkRenderWindow> window;
+      vtkNew<vtkCausticsBuiltinScene> builtin;
+      vtkNew<vtkCausticsCascadedPhotonPass> pass;
+      builtin->SetSceneName(scene);
+      ASSERT_TRUE(builtin->Populate(renderer));
+      pass->SetDenoise(atrous >= 0);
+      pass->GetDenoiser()->SetAtrousIterations(std::max(atrous, 0));
+      pass->KeepBuffersOn();
+      renderer->SetPass(pass);
+      window->SetOffScreenRendering(1);
+      window->SetMultiSamples(0);
+      window->SetSize(size, size);
+      window->AddRenderer(renderer);
+      Image mean, last;
+      std::vector<Image> all;
+      for (int k = 0; k < frames; ++k)
+      {
+        window->Render();
+        vtkNew<vtkImageData> image;
+        ASSERT_TRUE(pass->ReadBuffer("CausticIrradiance", image));
+        vtkDataArray* a = image->GetPointData()->GetArray(0);
+        last.assign(3 * a->GetNumberOfTuples(), 0.0);
+        mean.resize(last.size(), 0.0);
+        for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            last[3 * p + c] = a->GetComponent(p, c);
+            mean[3 * p + c] += last[3 * p + c] / frames;
+          }
+        }
+        all.push_back(last);
+      }
+      if (!truth)
+      {
+        truth.reset(new Truth(renderer, size, 2000000));
+        sharp.reset(new Truth(renderer, size, 2000000, 1.0));
+      }
+      auto report = [&](const std::string& what, const Image& image)
+      {
+        std::cout << scene << ", " << what << ": relative L2 " << truth->RelativeL2(image)
+                  << " (kernel 2 px), " << sharp->RelativeL2(image)
+                  << " (1 px); flux ratio " << truth->Flux(image) / truth->Flux(truth->E)
+                  << "\n";
+      };
+      if (atrous < 0)
+      {
+        report("raw, the last frame", last);
+        report("raw, the mean of 16 frames", mean);
+      }
+      else
+      {
+        report("denoised, " + std::to_string(atrous) + " a-trous iterations", last);
+      }
+      std::cout << "  frame by frame (1 px):";
+      for (int k : { 0, 1, 2, 3, 5, 7, 11, 15 })
+      {
+        std::cout << " " << k + 1 << ": " << sharp->RelativeL2(all[k]);
+      }
+      std::cout << "\n";
+      renderer->SetPass(nullptr);
+      pass->ReleaseGraphicsResources(window);
+    }
+  }
+}
+
+// An actor that appears (a diffuse box beside the caustic, out of its light) gets no
+// history, and the others keep theirs: the frame after it appears is about as close to
+// the truth as the one before, where dropping every history (what a change of the
+// scene's structure did before per-actor motion) makes it much worse.
+TEST(SVGFDenoiser, KeepsTheHistoryWhenAnActorAppears)
+{
+  const int size = 96;
+  double before[2], after[2];
+  std::unique_ptr<Truth> truth;
+  for (int run = 0; run < 2; ++run)
+  {
+    Frame f(size);
+    vtkNew<vtkCubeSource> cube;
+    cube->SetCenter(-2.0, 0.25, 2.0);
+    cube->SetXLength(0.5);
+    cube->SetYLength(0.5);
+    cube->SetZLength(0.5);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(cube->GetOutputPort());
+    vtkNew<vtkActor> box;
+    box->SetMapper(mapper);
+    std::vector<Image> denoised;
+    for (int k = 0; k < 9; ++k)
+    {
+      if (k == 8)
+      {
+        f.Renderer->AddActor(box);
+        if (run == 1)
+        {
+          f.Pass->ResetDenoiserHistory(); // as a change of structure did
+        }
+      }
+      f.Window->Render();
+      denoised.push_back(f.Denoised());
+    }
+    if (!truth)
+    {
+      truth.reset(new Truth(f.Renderer, size));
+    }
+    before[run] = truth->RelativeL2(denoised[7]);
+    after[run] = truth->RelativeL2(denoised[8]);
+  }
+  std::cout << "an actor appears: relative L2 " << before[0] << " before, " << after[0]
+            << " after (" << after[0] / before[0] << "x); dropping every history: "
+            << after[1] << " (" << after[1] / before[1] << "x)\n";
+  EXPECT_LE(after[0], APPEAR * before[0]);
 }
