@@ -347,7 +347,8 @@ void MirrorCupError(int view, int reflectorBounces, double& l2, double& flux)
   c.Pass->GetDistanceImpostors()->SetReflectorBounces(reflectorBounces);
   ASSERT_TRUE(c.RenderFrames());
   vtkNew<vtkCausticsErrorMetrics> metrics;
-  const std::string what = std::string(view == 0 ? "mirror cup from above" : "mirror cup obliquely") +
+  const std::string what =
+    std::string(view == 0 ? "mirror cup from above" : "mirror cup obliquely") +
     ", ReflectorBounces " + std::to_string(reflectorBounces);
   ASSERT_TRUE(c.Compare(what.c_str(), metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
