@@ -365,10 +365,12 @@ TEST(ImpostorPhotonPass, MirrorCupMatchesReference)
   // outer wall throws outside. Reached from above: flux ratio 1.0013, relative L2
   // 0.1251; without the mirrors' map (ReflectorBounces 0) 0.911 and 0.252, the
   // second reflections passing through the wall. Obliquely: 0.968 and 0.246 (0.599
-  // without): the 3 % and 10 % are not reached there; the rest is the
-  // outer wall's wedge on the floor outside, streaked where the reference is
-  // smooth (the first reflection, which the shared emitter makes, not the maps),
-  // and a rim along the wall's foot. Bounds just above what is reached.
+  // without): the 3 % and 10 % are not reached there. About a third of the
+  // squared error is the one-pixel bright line the reference has on the floor along
+  // the wall's foot, spread by the splats over a few pixels; about another third the
+  // outer wall's wedge on the floor outside, streaked where the reference is smooth
+  // (the first reflection, which the shared emitter makes, not the maps). Bounds
+  // just above what is reached.
   double l2 = 1.0, flux = 0.0, plainL2 = 0.0, plainFlux = 0.0;
   MirrorCupError(0, 4, l2, flux);
   EXPECT_NEAR(flux, 1.0, 0.01);
