@@ -111,10 +111,12 @@ public:
   ///@{
   /**
    * How many times in a row a ray that leaves a mirror may meet the mirrors again
-   * through the REFLECTOR_SURFACE map, in [0, 16] (default 4); past it the ray
-   * searches the environment map alone (the mirrors are then transparent to it).
-   * 0: mirrors never see themselves. The photon trace's MaximumEvents and the
-   * camera view's MaximumEvents bound the whole path besides.
+   * through the REFLECTOR_SURFACE map, in [0, 16] (default 8, the photon pass's
+   * default MaximumEvents; the ring's caustic reaches relative L2 9.8 % with 8,
+   * 10.0 % with 4, 12.3 % with 1, 21.3 % with 0). Past it the ray searches the
+   * environment map alone (the mirrors are then transparent to it); 0: mirrors never
+   * see themselves. The photon trace's and the camera view's MaximumEvents bound
+   * the whole path besides.
    */
   vtkSetClampMacro(ReflectorBounces, int, 0, 16);
   vtkGetMacro(ReflectorBounces, int);
@@ -182,7 +184,7 @@ protected:
   int Resolution = 256;
   int LinearSteps = 32;
   int SecantSteps = 8;
-  int ReflectorBounces = 4;
+  int ReflectorBounces = 8;
   int MapRenders = 0;
   double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
 
