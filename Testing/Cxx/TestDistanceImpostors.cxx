@@ -474,7 +474,8 @@ TEST(DistanceImpostors, MapsRenderOnlyOnChange)
 // themselves from their reference point: not for a flat mirror (its box is flat),
 // not for a closed mirror ball around it (winding number 1); for an open cup
 // around it (a cylinder 1 m tall, radius 1: winding number sin(atan(1/2)) = 0.447)
-// and for two mirrors facing each other (opposite orientations: 0).
+// and for two mirrors facing each other (opposite orientations: 0). It is counted
+// and invalidated as the other maps are.
 TEST(DistanceImpostors, ReflectorSurfaceOnlyWhereMirrorsSeeThemselves)
 {
   const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 };
@@ -491,7 +492,21 @@ TEST(DistanceImpostors, ReflectorSurfaceOnlyWhereMirrorsSeeThemselves)
     EXPECT_NE(f.Render("TechniqueColor"), nullptr);
     EXPECT_TRUE(f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_ENVIRONMENT));
     winding = f.Impostors()->GetReflectorWinding();
-    return f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_SURFACE);
+    const bool made = f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_SURFACE);
+    // The invalidation rules of the other maps: no render for an unchanged frame,
+    // one when ReflectorBounces turns the mirrors' own map off, none when it only
+    // changes its count.
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 1);
+    f.Render("TechniqueColor");
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 1) << "an unchanged frame";
+    f.Impostors()->SetReflectorBounces(2);
+    f.Render("TechniqueColor");
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 1) << "another bounce count";
+    f.Impostors()->SetReflectorBounces(0);
+    f.Render("TechniqueColor");
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 2) << "the mirrors' own map turned off";
+    EXPECT_FALSE(f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_SURFACE));
+    return made;
   };
   const auto plane = [](double z, double y0, double y1) {
     vtkNew<vtkPlaneSource> wall;
