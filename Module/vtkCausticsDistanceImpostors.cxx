@@ -6,6 +6,7 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
@@ -25,6 +26,9 @@ vtkStandardNewMacro(vtkCausticsDistanceImpostors);
 namespace
 {
 constexpr int Faces = 6;
+// The caustic store covers maps 0-2 (18 layers per channel, as the shaders index
+// it): photons land on receivers, which only the environment maps (0 and 2) show.
+constexpr int CausticMaps = 3;
 
 // Forward and up axes of the six faces (+x, -x, +y, -y, +z, -z), the GL cube order.
 constexpr double FaceAxes[Faces][2][3] = {
@@ -80,10 +84,19 @@ constexpr int MapRoles[vtkCausticsDistanceImpostors::NUMBER_OF_MAPS] = {
   vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(2),
   vtkCausticsSceneGeometry::RoleBit(3),
   vtkCausticsSceneGeometry::RoleBit(1) | vtkCausticsSceneGeometry::RoleBit(3),
+  vtkCausticsSceneGeometry::RoleBit(2),
 };
 constexpr caustics::Role MapGroup[vtkCausticsDistanceImpostors::NUMBER_OF_MAPS] = {
-  caustics::Role::Refractor, caustics::Role::Refractor, caustics::Role::Reflector
+  caustics::Role::Refractor, caustics::Role::Refractor, caustics::Role::Reflector,
+  caustics::Role::Reflector
 };
+
+/** Whether a mesh's material has the given role. */
+bool HasRole(const caustics::SceneData& scene, const caustics::Mesh& mesh, caustics::Role role)
+{
+  return mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size()) &&
+    scene.Materials[mesh.material].role == role;
+}
 }
 
 struct vtkCausticsDistanceImpostors::Internals
@@ -98,11 +111,13 @@ struct vtkCausticsDistanceImpostors::Internals
   double Centre[NUMBER_OF_MAPS][3] = {};
   double Reach[NUMBER_OF_MAPS] = {}; // longest ray segment a search needs, m
   bool Made[NUMBER_OF_MAPS] = {};
+  double ReflectorWinding = 0.0; // of the reflectors at their reference point
   // What the maps were made from: (version, material, role) per mesh, the lights'
   // parameters and the materials' albedos, and the resolution.
   std::vector<std::tuple<unsigned long, int, int>> Key;
   std::vector<double> LightKey;
   int KeyResolution = 0;
+  bool KeySelf = false; // ReflectorBounces > 0
 };
 
 vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
@@ -133,7 +148,7 @@ bool vtkCausticsDistanceImpostors::Update(
   in.Position.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
   in.Normal.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA16F);
   in.Radiance.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
-  if (in.Caustic.Ensure(r, r, 3 * NUMBER_OF_MAPS * Faces, GL_R32I))
+  if (in.Caustic.Ensure(r, r, 3 * CausticMaps * Faces, GL_R32I))
   {
     const int zero = 0;
     glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
@@ -181,14 +196,16 @@ bool vtkCausticsDistanceImpostors::SceneChanged(const caustics::SceneData& scene
   {
     lights.insert(lights.end(), material.albedo.begin(), material.albedo.end());
   }
+  const bool self = this->ReflectorBounces > 0;
   if (key == in.Key && lights == in.LightKey && this->Resolution == in.KeyResolution &&
-    in.Position.Handle)
+    self == in.KeySelf && in.Position.Handle)
   {
     return false;
   }
   in.Key = std::move(key);
   in.LightKey = std::move(lights);
   in.KeyResolution = this->Resolution;
+  in.KeySelf = self;
   return true;
 }
 
@@ -196,13 +213,13 @@ void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneDa
 {
   auto& in = *this->Internal;
   const double diagonal = std::max(scene.Scale(), 1e-6);
+  in.ReflectorWinding = 0.0;
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {
     double box[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
     for (const caustics::Mesh& mesh : scene.Meshes)
     {
-      if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.Materials.size()) ||
-        scene.Materials[mesh.material].role != MapGroup[map])
+      if (!HasRole(scene, mesh, MapGroup[map]))
       {
         continue;
       }
@@ -221,13 +238,25 @@ void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneDa
     }
     in.Made[map] = box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5];
     double groupDiagonal = 0.0;
+    double thinnest = 1e300;
     for (int a = 0; a < 3 && in.Made[map]; ++a)
     {
       in.Centre[map][a] = 0.5 * (box[2 * a] + box[2 * a + 1]);
       groupDiagonal += (box[2 * a + 1] - box[2 * a]) * (box[2 * a + 1] - box[2 * a]);
+      thinnest = std::min(thinnest, box[2 * a + 1] - box[2 * a]);
     }
-    // A ray inside a refractor crosses at most the group's box; outside, the scene.
-    in.Reach[map] = map == REFRACTOR_SURFACE ? std::sqrt(groupDiagonal) : diagonal;
+    groupDiagonal = std::sqrt(groupDiagonal);
+    // A ray inside a refractor, or from a mirror to a mirror, crosses at most the
+    // group's box; otherwise, the scene.
+    in.Reach[map] = map == REFRACTOR_SURFACE || map == REFLECTOR_SURFACE ? groupDiagonal : diagonal;
+    if (map == REFLECTOR_SURFACE && in.Made[map])
+    {
+      // The mirrors see themselves only from outside the mirror solid (winding
+      // number under 1/2) and only if they are not all in one plane.
+      in.ReflectorWinding = WindingNumber(scene, static_cast<int>(MapGroup[map]), in.Centre[map]);
+      in.Made[map] = this->ReflectorBounces > 0 && in.ReflectorWinding < 0.5 &&
+        thinnest > 1e-3 * groupDiagonal;
+    }
   }
   // One frustum for every map: from a thousandth of a millimetre-scale object to
   // beyond the scene seen from any point in it.
@@ -235,6 +264,53 @@ void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneDa
   {
     in.Rotation[face] = FaceRotation(face, 1e-5 * diagonal, 4.0 * diagonal);
   }
+}
+
+double vtkCausticsDistanceImpostors::WindingNumber(
+  const caustics::SceneData& scene, int role, const double point[3])
+{
+  // Van Oosterom and Strackee's signed solid angle of each triangle.
+  double sum = 0.0;
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    if (!HasRole(scene, mesh, static_cast<caustics::Role>(role)))
+    {
+      continue;
+    }
+    const std::size_t vertices = mesh.positions.size() / 3;
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+    {
+      double v[3][3];
+      double length[3];
+      bool ok = true;
+      for (int k = 0; k < 3 && ok; ++k)
+      {
+        const std::size_t index = mesh.indices[i + k];
+        ok = index < vertices;
+        for (int a = 0; a < 3 && ok; ++a)
+        {
+          v[k][a] = mesh.positions[3 * index + a] - point[a];
+          ok = std::isfinite(v[k][a]);
+        }
+        length[k] = ok ? std::sqrt(v[k][0] * v[k][0] + v[k][1] * v[k][1] + v[k][2] * v[k][2]) : 0;
+      }
+      if (!ok)
+      {
+        continue;
+      }
+      const auto dot = [](const double* x, const double* y) {
+        return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+      };
+      const double triple = v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
+        v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
+        v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]);
+      const double denominator = length[0] * length[1] * length[2] +
+        dot(v[0], v[1]) * length[2] + dot(v[0], v[2]) * length[1] +
+        dot(v[1], v[2]) * length[0];
+      sum += 2.0 * std::atan2(triple, denominator);
+    }
+  }
+  return sum / (4.0 * vtkMath::Pi());
 }
 
 bool vtkCausticsDistanceImpostors::RenderMap(
@@ -330,6 +406,7 @@ void vtkCausticsDistanceImpostors::SetUniforms(
   }
   program->SetUniformi("impostorLinearSteps", this->LinearSteps);
   program->SetUniformi("impostorSecantSteps", this->SecantSteps);
+  program->SetUniformi("impostorReflectorBounces", this->ReflectorBounces);
   for (int face = 0; face < Faces; ++face)
   {
     const std::string name = "impostorFaceRotation[" + std::to_string(face) + "]";
@@ -378,6 +455,11 @@ void vtkCausticsDistanceImpostors::BindCausticImage() const
     0, GL_READ_WRITE, GL_R32I);
 }
 
+double vtkCausticsDistanceImpostors::GetReflectorWinding() const
+{
+  return this->Internal->ReflectorWinding;
+}
+
 bool vtkCausticsDistanceImpostors::HasMap(int map) const
 {
   return map >= 0 && map < NUMBER_OF_MAPS && this->Internal->Position.Handle &&
@@ -410,7 +492,9 @@ void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "LinearSteps: " << this->LinearSteps << "\n";
   os << indent << "SecantSteps: " << this->SecantSteps << "\n";
+  os << indent << "ReflectorBounces: " << this->ReflectorBounces << "\n";
   os << indent << "MapRenders: " << this->MapRenders << "\n";
+  os << indent << "ReflectorWinding: " << this->Internal->ReflectorWinding << "\n";
   os << indent << "CausticUnit: " << this->CausticUnit << " W per count\n";
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {

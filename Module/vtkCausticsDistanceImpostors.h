@@ -12,8 +12,18 @@
  * 2. REFRACTOR_SURFACE: from the same point, the refractors themselves, nearest
  *    surface per direction: the refractor map of §4 (exit point and normal);
  * 3. REFLECTOR_ENVIRONMENT: from the centre of the reflectors' bounding box, the
- *    receivers and refractors (everything but the reflectors).
- * 4. each receiver texel's radiance for hits the camera does not see: albedo x
+ *    receivers and refractors (everything but the reflectors);
+ * 4. REFLECTOR_SURFACE: from the same point, the reflectors themselves, nearest
+ *    surface per direction, so that a concave mirror (a ring wall, a cup) sees
+ *    itself: a ray that leaves a mirror searches this map and the environment map
+ *    and takes the nearer hit; a hit here reflects again, at most
+ *    ReflectorBounces times in a row. Made only where the reflector group can see
+ *    itself from its reference point: the generalized winding number of the
+ *    reflector meshes there is under 1/2 (the point is outside the mirror solid, or
+ *    an open mirror does not wrap it: the centre of a ring or a cup, not of a
+ *    mirror ball) and the group's box is not flat (its thinnest side over 1e-3 of
+ *    its diagonal: a flat mirror cannot see itself).
+ * Then each receiver texel's radiance for hits the camera does not see: albedo x
  *    the direct irradiance of the scene's first 8 lights (physical falloff, no
  *    shadows; glsl/vtkCausticsImpostorShadeCS.glsl), plus, where a photon technique
  *    filled the caustic store this frame (BeginCaustic()), albedo x the caustic
@@ -32,8 +42,10 @@
  * material table live.
  *
  * Limits: maps are per role group, not per object, so a refractor does not see
- * another refractor through the environment map and a mirror does not see
- * another mirror (the screen-space march does, with the BOTH camera-view method);
+ * another refractor through the environment map, and a mirror sees the mirrors
+ * only through REFLECTOR_SURFACE, which holds the mirror surfaces nearest to the
+ * reference point (the screen-space march sees the others, with the BOTH
+ * camera-view method);
  * a reference point outside a non-convex object (a ring) still gives a map, but
  * surfaces hidden from that point are missing from it (the paper's "view
  * dependent occlusions").
@@ -74,7 +86,8 @@ public:
     REFRACTOR_ENVIRONMENT = 0,
     REFRACTOR_SURFACE = 1,
     REFLECTOR_ENVIRONMENT = 2,
-    NUMBER_OF_MAPS = 3
+    REFLECTOR_SURFACE = 3,
+    NUMBER_OF_MAPS = 4
   };
 
   ///@{
@@ -94,6 +107,30 @@ public:
   vtkSetClampMacro(SecantSteps, int, 0, 32);
   vtkGetMacro(SecantSteps, int);
   ///@}
+
+  ///@{
+  /**
+   * How many times in a row a ray that leaves a mirror may meet the mirrors again
+   * through the REFLECTOR_SURFACE map, in [0, 16] (default 8, the photon pass's
+   * default MaximumEvents; the ring's caustic reaches relative L2 9.8 % with 8,
+   * 10.0 % with 4, 12.3 % with 1, 21.3 % with 0). Past it the ray searches the
+   * environment map alone (the mirrors are then transparent to it); 0: mirrors never
+   * see themselves. The photon trace's and the camera view's MaximumEvents bound
+   * the whole path besides.
+   */
+  vtkSetClampMacro(ReflectorBounces, int, 0, 16);
+  vtkGetMacro(ReflectorBounces, int);
+  ///@}
+
+  /**
+   * The generalized winding number of the triangles of `meshes` (xyz per vertex,
+   * three indices per triangle) at `point`: the sum of their signed solid angles
+   * over 4 pi. 1 inside a closed mesh with outward normals, 0 outside, between
+   * for open meshes. Exposed for tests.
+   */
+#ifndef __VTK_WRAP__
+  static double WindingNumber(const caustics::SceneData& scene, int role, const double point[3]);
+#endif
 
   /** How many times the maps were rendered (once per change, see above). */
   vtkGetMacro(MapRenders, int);
@@ -133,6 +170,8 @@ public:
 
   /** Whether the last Update() made the given map (its role group is not empty). */
   bool HasMap(int map) const;
+  /** The generalized winding number of the reflectors at their reference point (last Update()). */
+  double GetReflectorWinding() const;
   /** The reference point of a map (world, m). */
   void GetReferencePoint(int map, double point[3]) const;
 
@@ -145,6 +184,7 @@ protected:
   int Resolution = 256;
   int LinearSteps = 32;
   int SecantSteps = 8;
+  int ReflectorBounces = 8;
   int MapRenders = 0;
   double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
 

@@ -7,12 +7,13 @@ uniform sampler2DArray impostorPosition;
 uniform sampler2DArray impostorNormal;
 uniform sampler2DArray impostorRadiance; // receivers: albedo x unshadowed direct irradiance
 uniform mat4 impostorFaceRotation[6]; // points relative to the reference point -> face clip
-uniform vec3 impostorCentre[3];       // reference points, m
-uniform float impostorReach[3];       // longest segment a search of the map needs, m
-uniform int impostorValid[3];         // 1: the map exists
+uniform vec3 impostorCentre[4];       // reference points, m
+uniform float impostorReach[4];       // longest segment a search of the map needs, m
+uniform int impostorValid[4];         // 1: the map exists
 uniform int impostorResolution;
 uniform int impostorLinearSteps;
 uniform int impostorSecantSteps;
+uniform int impostorReflectorBounces; // mirror-to-mirror reflections in a row, at most
 // The caustic store (vtkCausticsDistanceImpostors::BeginCaustic): per environment-map
 // texel and channel (layer 18 channel + 6 map + face), the caustic flux that landed on
 // the receiver the texel shows, less the direct light the specular objects block
@@ -23,6 +24,7 @@ uniform float impostorCausticUnit;
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
 const int IMPOSTOR_REFLECTOR_ENVIRONMENT = 2;
+const int IMPOSTOR_REFLECTOR_SURFACE = 3;
 
 // The texel of `map` in direction d from its reference point (the face of d's
 // major axis, through the same matrix the face was rendered with).
@@ -81,8 +83,12 @@ bool ImpostorOnSurface(int map, vec3 h, ivec3 texel)
 // A linear march of impostorLinearSteps samples finds the first sample beyond the
 // surface; false position (Illinois) between it and the sample before refines it
 // impostorSecantSteps times (the paper's iteration, §3, with its "undershooting /
-// overshooting" pair kept as a bracket so that it converges). Returns false when no
-// sample passes the surface; else t and the texel of the surface found.
+// overshooting" pair kept as a bracket so that it converges). A ray that starts on
+// or beyond the surface (a ray leaving a mirror wall the map holds: its own texel's
+// distance is its start; a surface hidden behind the map's) is not in front of it
+// yet: the march skips its samples until one is in front, so that the start itself
+// is never reported, and a ray that never comes in front finds nothing. Returns
+// false when no sample passes the surface; else t and the texel of the surface found.
 bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, out ivec3 texel)
 {
   t = tMax;
@@ -92,8 +98,10 @@ bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, o
     return false;
   }
   ivec3 unused;
+  float gStart = ImpostorGap(map, o + tMin * d, unused);
+  bool behind = gStart >= 0.0;
   float t0 = tMin;
-  float g0 = max(min(ImpostorGap(map, o + tMin * d, unused), 0.0), -(tMax - tMin));
+  float g0 = max(min(gStart, 0.0), -(tMax - tMin));
   float t1 = tMax;
   float g1 = -1.0;
   bool found = false;
@@ -101,14 +109,15 @@ bool ImpostorHit(int map, vec3 o, vec3 d, float tMin, float tMax, out float t, o
   {
     float ti = tMin + (tMax - tMin) * float(i) / float(impostorLinearSteps);
     float gi = ImpostorGap(map, o + ti * d, texel);
-    if (gi >= 0.0)
+    if (gi >= 0.0 && !behind)
     {
       t1 = ti;
       g1 = gi;
       found = true;
     }
-    else
+    else if (gi < 0.0)
     {
+      behind = false;
       t0 = ti;
       g0 = max(gi, -(tMax - tMin)); // a direction without surface counts as far before
     }
@@ -163,6 +172,34 @@ bool ImpostorSearch(int map, vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, float tol
   texel = ivec3(0);
   return CausticsClipToBox(o, d, boxMin - vec3(tolerance), boxMax + vec3(tolerance), t0, t1) &&
     ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
+}
+
+// The first surface along o + t d outside the refractors (ImpostorSearch), for a ray
+// that left a surface of role `leftRole` (a refractor's: pass ROLE_REFRACTOR from
+// inside one too): the environment map of that group (a mirror's: receivers and
+// refractors; any other: receivers and mirrors), and, leaving a mirror after
+// `bounces` mirror-to-mirror reflections in a row (fewer than
+// impostorReflectorBounces), also the mirrors' own map (REFLECTOR_SURFACE: a concave
+// mirror sees itself), the nearer hit of the two. The one search of the photon
+// trace (vtkCausticsImpostorPhotonTraceCS.glsl) and the camera view
+// (vtkCausticsScreenSpaceRefractionFS.glsl).
+bool ImpostorEnvironmentSearch(vec3 o, vec3 d, int leftRole, int bounces, vec3 boxMin,
+  vec3 boxMax, float tolerance, out float t, out ivec3 texel)
+{
+  bool mirror = leftRole == ROLE_REFLECTOR;
+  int map = mirror ? IMPOSTOR_REFLECTOR_ENVIRONMENT : IMPOSTOR_REFRACTOR_ENVIRONMENT;
+  bool found = ImpostorSearch(map, o, d, boxMin, boxMax, tolerance, t, texel);
+  float tSelf;
+  ivec3 selfTexel;
+  if (mirror && bounces < impostorReflectorBounces &&
+    ImpostorSearch(IMPOSTOR_REFLECTOR_SURFACE, o, d, boxMin, boxMax, tolerance, tSelf, selfTexel) &&
+    (!found || tSelf < t))
+  {
+    found = true;
+    t = tSelf;
+    texel = selfTexel;
+  }
+  return found;
 }
 
 // The normal at h, a point on the surface that `texel` of `map` holds: bilinear
@@ -222,6 +259,10 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
     return vec3(0.0);
   }
   const int layers = 18; // 3 maps x 6 faces per channel
+  if (texel.z >= layers)
+  {
+    return vec3(0.0); // REFLECTOR_SURFACE holds no receiver
+  }
   vec3 counts = vec3(float(imageLoad(impostorCaustic, texel).x),
     float(imageLoad(impostorCaustic, texel + ivec3(0, 0, layers)).x),
     float(imageLoad(impostorCaustic, texel + ivec3(0, 0, 2 * layers)).x));

@@ -7,11 +7,14 @@
 //    below: the photon meets the pool's floor); Beer-Lambert over the chord;
 // 2. in air: Hit() against the environment map of what the photon left (§3: the
 //    refractors' map holds receivers and mirrors, the mirrors' map receivers and
-//    refractors); a participating medium attenuates the stretch;
+//    refractors), and, leaving a mirror that sees itself, against the mirrors' own
+//    map too, the nearer hit (ImpostorEnvironmentSearch); a participating medium
+//    attenuates the stretch;
 // 3. at a mirror or a refractor, the shared CausticsSurfaceInteraction: one branch
 //    by Russian roulette on the exact Fresnel weights, the flux divided by its
 //    probability (unbiased; total internal reflection stays inside); at most
-//    maximumEvents events;
+//    maximumEvents events, of which at most impostorReflectorBounces mirror-to-mirror
+//    reflections in a row;
 // 4. at a receiver lit on the side the camera sees: the landed record (photon
 //    record layout, vtkCausticsCommon.glsl) and its kernel radius, for
 //    vtkCausticsPhotonSplatter (§5: the hits are splatted). The maps hold world
@@ -64,17 +67,18 @@ void NoPhoton(ivec2 g)
 // surface ahead (an open refractor such as a water sheet has no exit below), the
 // environment's. A closed refractor resting on a floor meets the floor exactly where
 // it leaves, and the environment map there is not consulted: a photon at its
-// bottom face leaves it (or is reflected back in) as physics says.
-bool NextSurface(vec3 o, vec3 d, bool inside, int leftRole, out float t, out ivec3 texel)
+// bottom face leaves it (or is reflected back in) as physics says. `bounces`: the
+// mirror-to-mirror reflections in a row so far.
+bool NextSurface(
+  vec3 o, vec3 d, bool inside, int leftRole, int bounces, out float t, out ivec3 texel)
 {
   if (inside &&
     ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, t, texel))
   {
     return true;
   }
-  int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
-                                                   : IMPOSTOR_REFRACTOR_ENVIRONMENT;
-  return ImpostorSearch(map, o, d, boundsMin, boundsMax, tolerance, t, texel);
+  return ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, bounces, boundsMin,
+    boundsMax, tolerance, t, texel);
 }
 
 // 5. The light that texel `t` of the light's view would have brought past the
@@ -131,12 +135,13 @@ void main()
   float reach = lightType == 0 ? 3.0e38 : distance(o, lightOrigin);
   flux *= CausticsMediumTransmittance(o, towardsLight, 0.0, reach);
   uint rng = CausticsHash(uint(g.x + g.y * photonGrid.x) ^ CausticsHash(frameSeed));
+  int bounces = 0; // mirror-to-mirror reflections in a row
 
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
     float t;
     ivec3 texel;
-    if (!NextSurface(o, d, inside, leftRole, t, texel))
+    if (!NextSurface(o, d, inside, leftRole, bounces, t, texel))
     {
       break;
     }
@@ -166,6 +171,7 @@ void main()
     path += t;
     if (role == ROLE_REFLECTOR || role == ROLE_REFRACTOR)
     {
+      bounces = role == ROLE_REFLECTOR && leftRole == ROLE_REFLECTOR ? bounces + 1 : 0;
       bool wasInside = inside;
       CausticsScatterOneBranch(n, causticsMaterials[material], role, d, flux, inside, rng);
       insideMaterial = inside && !wasInside ? material : insideMaterial;

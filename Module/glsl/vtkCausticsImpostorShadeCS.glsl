@@ -8,7 +8,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 uniform sampler2DArray impostorPosition;
 uniform sampler2DArray impostorNormal;
-uniform vec3 impostorCentre[3];
+uniform vec3 impostorCentre[4]; // vtkCausticsDistanceImpostors::NUMBER_OF_MAPS
 layout(rgba32f, binding = 0) uniform writeonly image2DArray impostorRadiance;
 
 const int MAX_LIGHTS = 8;

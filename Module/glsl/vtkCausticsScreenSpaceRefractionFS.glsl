@@ -336,12 +336,14 @@ ivec2 CameraPixel(vec3 h, float slack)
 }
 
 // o + t d traced against the distance impostors (004 §2-4): outside, against the
-// map of what surrounds the kind of object the ray left (`leftRole`); inside a
+// map of what surrounds the kind of object the ray left (`leftRole`), and, leaving a
+// mirror after `bounces` mirror-to-mirror reflections in a row, the mirrors' own
+// map (ImpostorEnvironmentSearch: a concave mirror sees itself); inside a
 // refractor, against its own map (the exit point and its normal, §4) and the
 // environment's, whichever is nearer (an open refractor such as a water surface
 // has no exit below: the ray meets the pool's floor). An opaque hit carries the
 // camera pixel that shows it (Shade()), or (-1, -1) and its map's colour.
-March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
+March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
 {
   March m;
   m.kind = MISS;
@@ -353,11 +355,10 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole)
   m.role = ROLE_NONE;
   m.radiance = vec3(0.0);
   m.leftView = false;
-  int map = leftRole == ROLE_REFLECTOR && !inside ? IMPOSTOR_REFLECTOR_ENVIRONMENT
-                                                   : IMPOSTOR_REFRACTOR_ENVIRONMENT;
   float t;
   ivec3 texel;
-  bool found = ImpostorSearch(map, o, d, boundsMin, boundsMax, tolerance, t, texel);
+  bool found = ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, bounces,
+    boundsMin, boundsMax, tolerance, t, texel);
   float tExit;
   ivec3 exitTexel;
   if (inside && ImpostorSearch(
@@ -407,6 +408,7 @@ vec3 TracePath(
 {
   vec3 throughput = vec3(1.0);
   bool impostor = viewMethod == METHOD_IMPOSTORS;
+  int bounces = 0; // mirror-to-mirror reflections in a row
   for (int event = 0; event < maxEvents; ++event)
   {
     March m;
@@ -417,7 +419,7 @@ vec3 TracePath(
     }
     if (impostor)
     {
-      m = ImpostorRay(o, d, inside, leftRole);
+      m = ImpostorRay(o, d, inside, leftRole, bounces);
     }
     CompleteHit(m);
     if (inside)
@@ -438,6 +440,7 @@ vec3 TracePath(
       CausticsMaterial mirror = causticsMaterials[m.material];
       vec3 n = m.normal;
       vec3 facing = dot(d, n) < 0.0 ? n : -n;
+      bounces = leftRole == ROLE_REFLECTOR ? bounces + 1 : 0;
       throughput *= FresnelConductor(
         clamp(-dot(d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
       d = reflect(d, facing);

@@ -6,6 +6,7 @@
 //   reaches; pixels whose floor point lies within one pixel footprint of a tile edge
 //   are not judged (the 1 px tolerance at 256 x 256);
 // - the maps are rendered only when the geometry, a light or an albedo changes;
+// - the mirrors' own map only where the mirrors can see themselves;
 // - glass of index 1 vanishes: the final image equals the scene without it;
 // - stress: reference point outside the glass, a non-convex refractor, the camera
 //   inside the glass, two mirrors facing each other: finite colours, no crash.
@@ -18,6 +19,7 @@
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsTechniques.h"
 #include "vtkCubeSource.h"
+#include "vtkCylinderSource.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -33,6 +35,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTriangleFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -465,6 +468,79 @@ TEST(DistanceImpostors, MapsRenderOnlyOnChange)
   glass->SetPosition(0.0, 0.0, 0.0);
   f.Render("TechniqueColor");
   EXPECT_EQ(f.Impostors()->GetMapRenders(), 3);
+}
+
+// The mirrors' own map (REFLECTOR_SURFACE) is made only where the mirrors can see
+// themselves from their reference point: not for a flat mirror (its box is flat),
+// not for a closed mirror ball around it (winding number 1); for an open cup
+// around it (a cylinder 1 m tall, radius 1: winding number sin(atan(1/2)) = 0.447)
+// and for two mirrors facing each other (opposite orientations: 0). It is counted
+// and invalidated as the other maps are.
+TEST(DistanceImpostors, ReflectorSurfaceOnlyWhereMirrorsSeeThemselves)
+{
+  const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 };
+  const double focal[3] = { 0.0, 0.5, 0.0 };
+  const auto frame = [&](std::initializer_list<vtkPolyData*> meshes, double& winding) {
+    ImpostorFrame f;
+    for (vtkPolyData* mesh : meshes)
+    {
+      auto mirror = MakeActor(mesh);
+      vtkCausticsMaterial::MakeMirror(mirror->GetProperty(), n, k);
+      f.Renderer->AddActor(mirror);
+    }
+    f.Look(Views[0], focal);
+    EXPECT_NE(f.Render("TechniqueColor"), nullptr);
+    EXPECT_TRUE(f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_ENVIRONMENT));
+    winding = f.Impostors()->GetReflectorWinding();
+    const bool made = f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_SURFACE);
+    // The invalidation rules of the other maps: no render for an unchanged frame,
+    // one when ReflectorBounces turns the mirrors' own map off, none when it only
+    // changes its count.
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 1);
+    f.Render("TechniqueColor");
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 1) << "an unchanged frame";
+    f.Impostors()->SetReflectorBounces(2);
+    f.Render("TechniqueColor");
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 1) << "another bounce count";
+    f.Impostors()->SetReflectorBounces(0);
+    f.Render("TechniqueColor");
+    EXPECT_EQ(f.Impostors()->GetMapRenders(), 2) << "the mirrors' own map turned off";
+    EXPECT_FALSE(f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_SURFACE));
+    return made;
+  };
+  const auto plane = [](double z, double y0, double y1) {
+    vtkNew<vtkPlaneSource> wall;
+    wall->SetOrigin(-1.0, y0, z);
+    wall->SetPoint1(1.0, y0, z);
+    wall->SetPoint2(-1.0, y1, z);
+    wall->Update();
+    return vtkSmartPointer<vtkPolyData>(wall->GetOutput());
+  };
+  double winding = -1.0;
+  auto flat = plane(0.0, 0.0, 1.0);
+  EXPECT_FALSE(frame({ flat }, winding)) << "a flat mirror";
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.0, 0.8, 0.0);
+  sphere->SetRadius(0.6);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(24);
+  sphere->Update();
+  EXPECT_FALSE(frame({ sphere->GetOutput() }, winding)) << "a mirror ball";
+  EXPECT_NEAR(winding, 1.0, 1e-6);
+  vtkNew<vtkCylinderSource> cylinder;
+  cylinder->SetRadius(1.0);
+  cylinder->SetHeight(1.0);
+  cylinder->SetCenter(0.0, 0.5, 0.0);
+  cylinder->SetResolution(128);
+  cylinder->CappingOff();
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(cylinder->GetOutputPort());
+  triangles->Update();
+  EXPECT_TRUE(frame({ triangles->GetOutput() }, winding)) << "a mirror cup";
+  EXPECT_NEAR(std::abs(winding), std::sin(std::atan(0.5)), 1e-3);
+  auto near = plane(-1.0, 0.0, 1.0), far = plane(1.0, 0.0, 1.0);
+  EXPECT_TRUE(frame({ near, far }, winding)) << "mirrors facing each other";
+  EXPECT_NEAR(winding, 0.0, 1e-6);
 }
 
 // Glass of index 1 bends nothing and reflects nothing: through it the camera sees

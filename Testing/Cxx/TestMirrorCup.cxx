@@ -5,42 +5,25 @@
 // floor outside. Each technique's caustic irradiance against the CPU reference of
 // the same frame, from above and from an oblique view, 128 x 128 pixels,
 // 256 x 256 photons (caustic maps: MaximumReflections 3, their default).
+#include "TestReferenceUtilities.h"
+
 #include "vtkCausticsErrorMetrics.h"
-#include "vtkCausticsMaterial.h"
 #include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsTechniques.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
-#include "vtkCylinderSource.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderer.h"
-#include "vtkPlaneSource.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
-#include "vtkTriangleFilter.h"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <iostream>
 #include <string>
 
 namespace
 {
-vtkSmartPointer<vtkActor> MakeActor(vtkAlgorithm* source)
-{
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  return actor;
-}
-
 struct MirrorCup
 {
   static constexpr int Size = 128;
@@ -51,43 +34,7 @@ struct MirrorCup
   /** From above (0) or obliquely (1). */
   explicit MirrorCup(int view)
   {
-    vtkNew<vtkPlaneSource> floor;
-    floor->SetOrigin(-2, 0, 2);
-    floor->SetPoint1(2, 0, 2);
-    floor->SetPoint2(-2, 0, -2);
-    this->Renderer->AddActor(MakeActor(floor));
-    vtkNew<vtkCylinderSource> wall;
-    wall->SetRadius(1.0);
-    wall->SetHeight(1.0);
-    wall->SetCenter(0, 0.5, 0);
-    wall->SetResolution(256);
-    wall->CappingOff();
-    vtkNew<vtkTriangleFilter> triangles;
-    triangles->SetInputConnection(wall->GetOutputPort());
-    auto cup = MakeActor(triangles);
-    const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 }; // silver-like
-    vtkCausticsMaterial::MakeMirror(cup->GetProperty(), n, k);
-    this->Renderer->AddActor(cup);
-    vtkNew<vtkLight> sun;
-    sun->SetLightTypeToSceneLight();
-    sun->SetPositional(false);
-    sun->SetFocalPoint(0, 0, 0);
-    sun->SetPosition(-std::cos(M_PI / 6.0), std::sin(M_PI / 6.0), 0);
-    sun->SetIntensity(1.0);
-    this->Renderer->AddLight(sun);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    if (view == 0)
-    {
-      camera->SetPosition(0, 4, 0.01);
-    }
-    else
-    {
-      camera->SetPosition(2.5, 3, 2.5);
-    }
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetViewUp(0, 0, -1);
-    camera->SetViewAngle(40);
-    this->Renderer->ResetCameraClippingRange();
+    reftest::MirrorCupScene(this->Renderer, view);
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
     this->Window->SetSize(Size, Size);

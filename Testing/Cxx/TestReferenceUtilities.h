@@ -11,6 +11,7 @@
 #include "vtkCamera.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsReferenceRenderer.h"
+#include "vtkCylinderSource.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -22,6 +23,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkTriangleFilter.h"
 
 #include <cmath>
 #include <string>
@@ -76,6 +78,62 @@ inline void SetCamera(vtkRenderer* renderer, const double position[3], const dou
   camera->SetViewAngle(angle);
   camera->OrthogonalizeViewUp();
   camera->SetClippingRange(0.1, 100.0);
+}
+
+/**
+ * The mirror cup (issue 13; TestMirrorCup, TestImpostorPhotonPass): an open silver
+ * cylinder (n 0.15, k 3.5), 1 m tall and 1 m in radius, 256 sides, no caps, on a
+ * 4 x 4 m floor (VTK's default white), under a sun 30 degrees above it (intensity 1),
+ * seen from above (view 0) or obliquely (view 1) through a 40-degree camera.
+ */
+inline void MirrorCupScene(vtkRenderer* renderer, int view)
+{
+  vtkNew<vtkPlaneSource> floor;
+  floor->SetOrigin(-2, 0, 2);
+  floor->SetPoint1(2, 0, 2);
+  floor->SetPoint2(-2, 0, -2);
+  floor->Update();
+  vtkNew<vtkPolyDataMapper> floorMapper;
+  floorMapper->SetInputData(floor->GetOutput());
+  vtkNew<vtkActor> floorActor;
+  floorActor->SetMapper(floorMapper);
+  renderer->AddActor(floorActor);
+  vtkNew<vtkCylinderSource> wall;
+  wall->SetRadius(1.0);
+  wall->SetHeight(1.0);
+  wall->SetCenter(0, 0.5, 0);
+  wall->SetResolution(256);
+  wall->CappingOff();
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(wall->GetOutputPort());
+  triangles->Update();
+  vtkNew<vtkPolyDataMapper> cupMapper;
+  cupMapper->SetInputData(triangles->GetOutput());
+  vtkNew<vtkActor> cup;
+  cup->SetMapper(cupMapper);
+  const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 }; // silver-like
+  vtkCausticsMaterial::MakeMirror(cup->GetProperty(), n, k);
+  renderer->AddActor(cup);
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetFocalPoint(0, 0, 0);
+  sun->SetPosition(-std::cos(Pi / 6.0), std::sin(Pi / 6.0), 0);
+  sun->SetIntensity(1.0);
+  renderer->AddLight(sun);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (view == 0)
+  {
+    camera->SetPosition(0, 4, 0.01);
+  }
+  else
+  {
+    camera->SetPosition(2.5, 3, 2.5);
+  }
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetViewUp(0, 0, -1);
+  camera->SetViewAngle(40);
+  renderer->ResetCameraClippingRange();
 }
 
 /** A renderer of the reference set up for tests: no cache, fixed seed, all cores. */

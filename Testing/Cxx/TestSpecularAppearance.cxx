@@ -115,7 +115,9 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 
 // The same with the distance impostors (paper 004, docs/technique-distance-impostors.md),
 // alone and behind the screen-space march (BOTH). Measured (relative L2):
-// DISTANCE_IMPOSTORS ball lens 11.5 %, ring 27.0 %, pool 28.4 %, bunny 58.0 %;
+// DISTANCE_IMPOSTORS ball lens 11.5 %, ring 25.2 % (27.0 % before the ring's wall saw
+// itself through REFLECTOR_SURFACE), pool 28.4 %, bunny 57.5 % (58.0 % before Hit()
+// skipped the start of rays starting behind the map's surface);
 // BOTH ball lens 13.6 %, ring 33.1 %, pool 30.4 %, bunny 72.1 %. Bounds just above.
 // The 10 % is not reached (the ball is closest; its reference is noisy at 64
 // paths per pixel): the ring's mirror seen from its centre, the pool's thin water
@@ -126,9 +128,9 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.12);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.14);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.28);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.26);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.34);
   EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.29);
   EXPECT_LT(SpecularError("pool", "screen-space", both), 0.31);
-  EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.59);
+  EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.58);
 }
