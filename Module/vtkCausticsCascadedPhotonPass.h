@@ -88,6 +88,18 @@ public:
 
   ///@{
   /**
+   * Volume caustics in a scattering medium (vtkCausticsVolumeLines, 003 §4-5, fed by
+   * this technique's photon pieces after their first specular event): the standard
+   * deviation of the Gaussian of the volume layer in pixels (0: none; default 1.5), and
+   * the pieces of a segment in a density grid (003 §5.2; 0 marches per fragment;
+   * default 8). Without a scattering medium no volume stage runs.
+   */
+  vtkCausticsSettingClampMacro(Settings, VolumeBlurPixels, double, 0.0, 16.0);
+  vtkCausticsSettingClampMacro(Settings, VolumeSubSegments, int, 0, 64);
+  ///@}
+
+  ///@{
+  /**
    * Index of the next frame's sample set (the R2 rotation and the roulette's seed);
    * it advances by one every frame. Set it to repeat a frame. Default 0.
    */
@@ -102,6 +114,8 @@ protected:
   CausticNeeds GetCausticNeeds() override;
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
+  /** The volume caustics of the photons' stretches in air (a scattering medium only). */
+  bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   caustics::CascadedSettings Settings;
@@ -115,6 +129,7 @@ private:
   bool RenderLightLayers(const FrameInputs& in, int light);
   bool Trace(const FrameInputs& in, int light);
   bool Splat(const FrameInputs& in);
+  bool DrawVolumeLines(const FrameInputs& in);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -227,6 +227,18 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Volume caustics in a scattering medium (vtkCausticsVolumeLines, 003 §4-5, fed by
+   * this technique's photon pieces after their first specular event): the standard
+   * deviation of the Gaussian of the volume layer in pixels (0: none; default 1.5), and
+   * the pieces of a segment in a density grid (003 §5.2; 0 marches per fragment;
+   * default 8). Without a scattering medium no volume stage runs.
+   */
+  vtkCausticsSettingClampMacro(Settings, VolumeBlurPixels, double, 0.0, 16.0);
+  vtkCausticsSettingClampMacro(Settings, VolumeSubSegments, int, 0, 64);
+  ///@}
+
+  ///@{
   /** Emit a refractor's Fresnel-reflected part as a second photon branch. Default on. */
   vtkCausticsSettingMacro(Settings, SplitFresnel, bool);
   vtkBooleanMacro(SplitFresnel, bool);
@@ -350,6 +362,8 @@ protected:
   CausticNeeds GetCausticNeeds() override;
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
+  /** The volume caustics of the photons' pieces in air (a scattering medium only). */
+  bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   /** StartStage/StopStage that wait for the GPU when the timings are synchronous. */
@@ -359,6 +373,7 @@ protected:
   bool RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin);
   bool GatherCausticMaps(vtkOpenGLRenderWindow* renWin);
   bool RenderFinal(vtkOpenGLRenderWindow* renWin);
+  bool DrawVolumeLines(const FrameInputs& in); // one light's traced pieces
 
   caustics::CausticMapSettings Settings;
 

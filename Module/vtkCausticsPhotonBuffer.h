@@ -71,6 +71,7 @@ struct SceneData;
 namespace gl
 {
 class MediumBuffer;
+class VolumeSegmentList;
 }
 }
 
@@ -103,8 +104,14 @@ public:
     vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
     const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
     const caustics::LightView& mapView, vtkCausticsGBuffer* receivers,
-    const caustics::gl::MediumBuffer* mediumGrid = nullptr);
+    const caustics::gl::MediumBuffer* mediumGrid = nullptr,
+    caustics::gl::VolumeSegmentList* volumeSegments = nullptr);
   ///@}
+  /**
+   * With `volumeSegments` on (a scattering medium), the trace appends every photon's
+   * straight pieces in air after its first specular event into it (reset here), for
+   * the line-based volume caustics: texels x (MaximumReflections + 1) at most.
+   */
 
   /** GPU counters of the last Render(); flux in W summed over RGB. */
   struct Statistics

@@ -16,6 +16,7 @@
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
 #include "vtkCausticsVolumeLines.h"
+#include "vtkCausticsVolumeSegmentList.h" // IsNeeded(): the volume stage's rule
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -495,9 +496,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
   {
     return false;
   }
-  const caustics::Medium& medium = scene.Participating;
-  in.GodRaysOn = this->Settings.GodRays && medium.enabled &&
-    (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
+  in.GodRaysOn = this->Settings.GodRays && caustics::gl::VolumeSegmentList::IsNeeded(scene);
   if (in.GodRaysOn)
   {
     in.VolumeLines->Begin(f.Window, f.Width, f.Height);

@@ -1,14 +1,18 @@
 // Line-based volume caustics (vtkCausticsVolumeLines, 003_653219b45420e98f.txt §4-5)
-// fed by the screen-space technique, on the two built-in media scenes (smoke-lens: a
+// fed by the screen-space, caustic-map and cascaded techniques, on the two built-in
+// media scenes (smoke-lens: a
 // smoke density grid lit through a glass ball; underwater: a plankton density grid
 // under the pool's water surface), against the reference renderer's volume caustic
 // (photon beams with an exact beam radiance estimate, VolumeCausticRadiance, not the
 // airlight): the total (the mean radiance ratio) and the relative L2, one render per
 // scene; and the re-sampled optical depth (sub-segments) against the per-fragment
-// march it replaces, with the time of both.
+// march it replaces, with the time of both; and no volume stage without a medium.
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsAirlight.h"
+#include "vtkCausticsCascadedPhotonPass.h"
+#include "vtkCausticsHierarchicalCausticMapPass.h"
+#include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTimings.h"
@@ -40,20 +44,21 @@ constexpr int LightBufferResolution = 128;
 // is 2.4 times wider: relative L2 0.219 instead of 0.096 on smoke-lens).
 const double MatchedBlurPixels = 1.5 / std::sqrt(6.0);
 
-/** A scene's volume radiance from the screen-space pass and the time of its god-ray stages. */
+/** A scene's volume radiance from a technique and the time of its volume stages. */
 struct VolumeFrame
 {
-  vtkSmartPointer<vtkImageData> Volume;
-  double GodRayMilliseconds = 0.0; ///< the god-ray stages of the second frame (GPU, ms)
+  vtkSmartPointer<vtkImageData> Volume; ///< null when the frame wrote no volume layer
+  double GodRayMilliseconds = 0.0; ///< the volume stages of the second frame (GPU, ms)
+  bool StageRan = false;           ///< a volume stage ran in the second frame
 };
 
-VolumeFrame RenderVolume(
-  vtkOpenGLRenderer* renderer, int subSegments, int size, int photons, double blur = 1.5)
+/**
+ * Renders two frames with `pass` (the first compiles the programs) and reads the
+ * volume layer; the stages whose name contains `stageWord` are the volume stages.
+ */
+VolumeFrame RenderPassVolume(
+  vtkOpenGLRenderer* renderer, vtkCausticsRenderPass* pass, int size, const char* stageWord)
 {
-  vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
-  pass->SetLightBufferResolution(photons);
-  pass->SetVolumeSubSegments(subSegments);
-  pass->SetGodRayBlurPixels(blur);
   pass->GetAirlight()->EnabledOff(); // the volume caustic alone (the airlight: TestAirlight)
   pass->KeepBuffersOn();
   renderer->SetPass(pass);
@@ -67,13 +72,19 @@ VolumeFrame RenderVolume(
   EXPECT_TRUE(pass->GetLastFrameHadCaustics());
   VolumeFrame frame;
   frame.Volume = vtkSmartPointer<vtkImageData>::New();
-  EXPECT_TRUE(pass->ReadBuffer("VolumeRadiance", frame.Volume));
+  pass->GlobalWarningDisplayOff(); // no volume layer without a medium
+  if (!pass->ReadBuffer("VolumeRadiance", frame.Volume))
+  {
+    frame.Volume = nullptr;
+  }
+  pass->GlobalWarningDisplayOn();
   vtkCausticsTimings* timings = pass->GetTimings();
   for (int i = 0; i < timings->GetNumberOfStages(); ++i)
   {
-    if (std::string(timings->GetStageName(i)).find("god-ray") != std::string::npos &&
+    if (std::string(timings->GetStageName(i)).find(stageWord) != std::string::npos &&
       timings->GetStageRan(i))
     {
+      frame.StageRan = true;
       frame.GodRayMilliseconds += timings->GetStageGPUMilliseconds(i);
     }
   }
@@ -83,12 +94,45 @@ VolumeFrame RenderVolume(
   return frame;
 }
 
+VolumeFrame RenderVolume(
+  vtkOpenGLRenderer* renderer, int subSegments, int size, int photons, double blur = 1.5)
+{
+  vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  pass->SetLightBufferResolution(photons);
+  pass->SetVolumeSubSegments(subSegments);
+  pass->SetGodRayBlurPixels(blur);
+  VolumeFrame frame = RenderPassVolume(renderer, pass, size, "god-ray");
+  EXPECT_NE(frame.Volume, nullptr);
+  return frame;
+}
+
+/** The caustic-map technique's volume layer (photon buffer of photons^2 texels). */
+VolumeFrame RenderCausticMapVolume(vtkOpenGLRenderer* renderer, int size, int photons, double blur)
+{
+  vtkNew<vtkCausticsHierarchicalCausticMapPass> pass;
+  pass->SetLightBufferResolution(photons);
+  pass->SetVolumeBlurPixels(blur);
+  return RenderPassVolume(renderer, pass, size, "hcm volume");
+}
+
+/** The cascaded technique's volume layer (photons^2 photons from a photons^2 emitter). */
+VolumeFrame RenderCascadedVolume(vtkOpenGLRenderer* renderer, int size, int photons, double blur)
+{
+  vtkNew<vtkCausticsCascadedPhotonPass> pass;
+  pass->SetLightBufferResolution(photons);
+  pass->SetNumberOfPhotons(photons * photons);
+  pass->SetVolumeBlurPixels(blur);
+  pass->DenoiseOff(); // the surface caustic's denoiser: not what is compared
+  return RenderPassVolume(renderer, pass, size, "cascaded volume");
+}
+
 /** The reference's volume caustic, renamed VolumeRadiance to compare with the pass's. */
-vtkSmartPointer<vtkImageData> ReferenceVolumeCaustic(vtkOpenGLRenderer* renderer)
+vtkSmartPointer<vtkImageData> ReferenceVolumeCaustic(
+  vtkOpenGLRenderer* renderer, int size = ImageSize)
 {
   vtkNew<vtkCausticsReferenceRenderer> reference;
   reference->SetInputRenderer(renderer);
-  reference->SetImageSize(ImageSize, ImageSize);
+  reference->SetImageSize(size, size);
   reference->SetPhotonsPerLight(10000); // surfaces: not compared here
   reference->SetVolumePhotonsPerLight(200000);
   EXPECT_TRUE(reference->Update()) << reference->GetLastError();
@@ -137,21 +181,42 @@ vtkSmartPointer<vtkOpenGLRenderer> MakeScene(const char* sceneName)
   return renderer;
 }
 
+/** Which technique feeds the volume stage. */
+enum class Technique
+{
+  ScreenSpace,
+  CausticMaps,
+  Cascaded
+};
+
 /** The volume caustic's mean radiance ratio and relative L2 against the reference. */
-vtkCausticsErrorMetrics::Result CompareWithReference(const char* sceneName)
+vtkCausticsErrorMetrics::Result CompareWithReference(const char* sceneName,
+  Technique technique = Technique::ScreenSpace, int size = ImageSize,
+  int photons = LightBufferResolution)
 {
   vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeScene(sceneName);
-  const VolumeFrame lines =
-    RenderVolume(renderer, 8, ImageSize, LightBufferResolution, MatchedBlurPixels);
-  vtkSmartPointer<vtkImageData> target = ReferenceVolumeCaustic(renderer);
+  const char* names[] = { "screen-space", "caustic maps", "cascaded" };
+  const VolumeFrame lines = technique == Technique::ScreenSpace
+    ? RenderVolume(renderer, 8, size, photons, MatchedBlurPixels)
+    : technique == Technique::CausticMaps
+    ? RenderCausticMapVolume(renderer, size, photons, MatchedBlurPixels)
+    : RenderCascadedVolume(renderer, size, photons, MatchedBlurPixels);
+  EXPECT_TRUE(lines.StageRan) << sceneName;
+  vtkSmartPointer<vtkImageData> target = ReferenceVolumeCaustic(renderer, size);
   vtkNew<vtkCausticsErrorMetrics> metrics;
   metrics->SetArrayName("VolumeRadiance");
+  if (!lines.Volume)
+  {
+    ADD_FAILURE() << sceneName << ", " << names[static_cast<int>(technique)]
+                  << ": no volume layer";
+    return metrics->GetResult();
+  }
   EXPECT_TRUE(metrics->Compute(lines.Volume, target));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << sceneName;
-  std::cout << sceneName << " volume caustic at " << ImageSize << "^2, " << LightBufferResolution
-            << "^2 photons, 8 sub-segments, blur " << MatchedBlurPixels
-            << " px: " << metrics->GetSummary() << "; god-ray stages " << lines.GodRayMilliseconds
-            << " ms\n  total ratio per channel:";
+  std::cout << sceneName << " volume caustic (" << names[static_cast<int>(technique)] << ") at "
+            << size << "^2, " << photons << "^2 photons, 8 sub-segments, blur "
+            << MatchedBlurPixels << " px: " << metrics->GetSummary() << "; volume stages "
+            << lines.GodRayMilliseconds << " ms\n  total ratio per channel:";
   for (int c = 0; c < 3; ++c)
   {
     double sum[2] = { 0.0, 0.0 };
@@ -205,4 +270,50 @@ TEST(VolumeLines, SubSegmentsMatchTheMarch)
             << 100 * difference << " %; god-ray stages " << marched.GodRayMilliseconds
             << " ms (march) -> " << lines.GodRayMilliseconds << " ms\n";
   EXPECT_LT(difference, 0.002);
+}
+
+// The caustic-map technique's photon pieces in air (vtkCausticsPhotonBuffer's trace
+// appends them) into the same stage, at 256^2 pixels and photons. Reached: BOUNDS.
+TEST(VolumeLines, CausticMapsSmokeLensMatchesReference)
+{
+  const auto result = CompareWithReference("smoke-lens", Technique::CausticMaps, 256, 256);
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.05);
+  EXPECT_LT(result.RelativeL2Error, 0.10);
+}
+
+TEST(VolumeLines, CausticMapsUnderwaterMatchesReference)
+{
+  const auto result = CompareWithReference("underwater", Technique::CausticMaps, 256, 256);
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.05);
+  EXPECT_LT(result.RelativeL2Error, 0.10);
+}
+
+// The cascaded technique's stretches in air (vtkCausticsCascadedTraceCS.glsl appends
+// them), 256^2 photons from a 256^2 emitter. Reached: BOUNDS.
+TEST(VolumeLines, CascadedSmokeLensMatchesReference)
+{
+  const auto result = CompareWithReference("smoke-lens", Technique::Cascaded, 256, 256);
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.05);
+  EXPECT_LT(result.RelativeL2Error, 0.10);
+}
+
+TEST(VolumeLines, CascadedUnderwaterMatchesReference)
+{
+  const auto result = CompareWithReference("underwater", Technique::Cascaded, 256, 256);
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.05);
+  EXPECT_LT(result.RelativeL2Error, 0.10);
+}
+
+// Without a medium neither technique runs a volume stage nor writes a volume layer
+// (issue 14, "Skipping"); the same scene with its medium runs them (the tests above).
+TEST(VolumeLines, NoMediumNoVolumeStage)
+{
+  vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeScene("smoke-lens");
+  vtkCausticsMedium::AttachTo(renderer, nullptr);
+  const VolumeFrame maps = RenderCausticMapVolume(renderer, 64, 64, 1.5);
+  EXPECT_FALSE(maps.StageRan);
+  EXPECT_EQ(maps.Volume, nullptr);
+  const VolumeFrame cascaded = RenderCascadedVolume(renderer, 64, 64, 1.5);
+  EXPECT_FALSE(cascaded.StageRan);
+  EXPECT_EQ(cascaded.Volume, nullptr);
 }
