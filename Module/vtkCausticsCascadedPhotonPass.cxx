@@ -12,7 +12,7 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
-#include "vtkCausticsVolumeLinesCommon.h"         // The volume caustics' segments (shared)
+#include "vtkCausticsVolumeLinesCommon.h" // The volume caustics' segments (shared)
 #include "vtkCausticsVolumeSegmentList.h"
 #include "vtkObjectFactory.h"
 #include "vtkTextureObject.h"
@@ -51,14 +51,14 @@ const char* const InputNames[NumberOfInputs] = { "emitPosition", "emitDirection"
 
 struct vtkCausticsCascadedPhotonPass::Internals
 {
-  vtkNew<vtkCausticsPhotonEmitter> Emitter;   // 1. the first specular event (shared)
-  vtkNew<vtkCausticsGBuffer> Opaque;          // 2. receivers and reflectors from the light
-  vtkNew<vtkCausticsGBuffer> Front;           //    refractors' nearest faces from the light
-  vtkNew<vtkCausticsGBuffer> Back;            //    refractors' farthest faces from the light
-  vtkNew<vtkCausticsShaderProgram> Program;   // 3-4. sampling and the cascade
-  vtkNew<vtkCausticsPhotonSplatter> Splatter; // 5. irradiance (shared)
-  caustics::gl::PhotonPlanes Landed;          // the cascade's output, with kernel radii
-  caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
+  vtkNew<vtkCausticsPhotonEmitter> Emitter;       // 1. the first specular event (shared)
+  vtkNew<vtkCausticsGBuffer> Opaque;              // 2. receivers and reflectors from the light
+  vtkNew<vtkCausticsGBuffer> Front;               //    refractors' nearest faces from the light
+  vtkNew<vtkCausticsGBuffer> Back;                //    refractors' farthest faces from the light
+  vtkNew<vtkCausticsShaderProgram> Program;       // 3-4. sampling and the cascade
+  vtkNew<vtkCausticsPhotonSplatter> Splatter;     // 5. irradiance (shared)
+  caustics::gl::PhotonPlanes Landed;              // the cascade's output, with kernel radii
+  caustics::PhotonGrid Grid;                      // the landed photons' grid, for the splatter
   caustics::gl::VolumeSegmentList VolumeSegments; // stretches in air -> volume caustics
 };
 
@@ -67,9 +67,8 @@ vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
 {
   auto& s = *this->Internal;
   s.Program->SetName("cascaded photon trace");
-  const std::string source =
-    std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsVolumeLinesCommon +
-    vtkCausticsCascadedTraceCS;
+  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
+    vtkCausticsVolumeLinesCommon + vtkCausticsCascadedTraceCS;
   s.Program->SetComputeSource(source.c_str());
   s.Emitter->SetSplitFresnel(true); // both branches: the trace chooses one by roulette
   s.Back->KeepFarthestOn();

@@ -7,8 +7,8 @@
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
-#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsPhotonGrid.h"
+#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -68,7 +68,7 @@ struct PerLight
 struct vtkCausticsHierarchicalCausticMapPass::Internals
 {
   std::vector<std::unique_ptr<PerLight>> Lights;
-  vtkNew<vtkCausticsPhotonSplatter> Triangles; // RECONSTRUCTION_TRIANGLES (shared stage)
+  vtkNew<vtkCausticsPhotonSplatter> Triangles;    // RECONSTRUCTION_TRIANGLES (shared stage)
   caustics::gl::VolumeSegmentList VolumeSegments; // photon pieces in air -> volume caustics
 };
 
@@ -142,8 +142,8 @@ std::string IncidenceKey(const caustics::SceneData& scene, int index)
   const caustics::Light& light = scene.Lights[index];
   std::ostringstream key;
   key.precision(17);
-  key << static_cast<int>(light.type) << ' ' << light.position[0] << ' ' << light.position[1]
-      << ' ' << light.position[2] << ' ' << light.direction[0] << ' ' << light.direction[1] << ' '
+  key << static_cast<int>(light.type) << ' ' << light.position[0] << ' ' << light.position[1] << ' '
+      << light.position[2] << ' ' << light.direction[0] << ' ' << light.direction[1] << ' '
       << light.direction[2];
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
@@ -237,14 +237,13 @@ double vtkCausticsHierarchicalCausticMapPass::GetReceiverIncidence(int i) const
 {
   const auto& lights = this->Internal->Lights;
   return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? lights[i]->Incidence.angle
-                                                                      : 90.0;
+                                                                    : 90.0;
 }
 
 const caustics::LightView* vtkCausticsHierarchicalCausticMapPass::GetMapView(int i) const
 {
   const auto& lights = this->Internal->Lights;
-  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? &lights[i]->MapView
-                                                                      : nullptr;
+  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? &lights[i]->MapView : nullptr;
 }
 
 bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin)

@@ -52,7 +52,7 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   double ChordLength = 0.0, AirLength = 0.0, FluxUnit = 1.0;
   double ReceiverLow[3] = { 0, 0, 0 }, ReceiverHigh[3] = { 0, 0, 0 };
   bool Reflectors = false; // the reflector layer holds the scene's mirrors
-  const caustics::gl::MediumBuffer* MediumGrid = nullptr; // the medium's density, if any
+  const caustics::gl::MediumBuffer* MediumGrid = nullptr;    // the medium's density, if any
   caustics::gl::VolumeSegmentList* VolumeSegments = nullptr; // phase 2 appends, when on
   vtkTextureObject* Inputs[11] = { nullptr };
 };
@@ -162,9 +162,8 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   : Internal(new Internals)
 {
   this->BackLayer->KeepFarthestOn();
-  const std::string source =
-    std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsVolumeLinesCommon +
-    vtkCausticsPhotonBufferTraceCS;
+  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
+    vtkCausticsVolumeLinesCommon + vtkCausticsPhotonBufferTraceCS;
   this->SortProgram->SetName("photon buffer: sort");
   this->SortProgram->SetDefine("PHASE", 0);
   this->SortProgram->SetComputeSource(source.c_str());
@@ -254,8 +253,8 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
     float mapMatrix[16];
     caustics::gl::ToColumnMajor(mapView.worldToClip, mapMatrix);
     const int* size = receivers->GetSize();
-    if (!this->ReflectorLayer->Render(renWin, geometry, mapMatrix, size[0], size[1],
-          vtkCausticsSceneGeometry::RoleBit(2)))
+    if (!this->ReflectorLayer->Render(
+          renWin, geometry, mapMatrix, size[0], size[1], vtkCausticsSceneGeometry::RoleBit(2)))
     {
       return false;
     }

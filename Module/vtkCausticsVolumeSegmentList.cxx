@@ -19,7 +19,8 @@ VolumeSegmentList::~VolumeSegmentList() = default; // StorageBuffer reports what
 bool VolumeSegmentList::IsNeeded(const SceneData& scene)
 {
   const Medium& medium = scene.Participating;
-  return medium.enabled && (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
+  return medium.enabled &&
+    (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
 }
 
 bool VolumeSegmentList::Begin(
