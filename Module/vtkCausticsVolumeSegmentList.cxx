@@ -78,21 +78,29 @@ bool VolumeSegmentList::Draw(vtkOpenGLRenderWindow* renWin, const Frame& frame, 
   {
     return false;
   }
-  vtkCausticsVolumeLines::View view;
-  view.WorldToClip = frame.WorldToClip;
-  view.ClipToWorld = this->Camera.ClipToWorld;
-  view.Width = this->Width;
-  view.Height = this->Height;
-  std::copy(this->Camera.ViewOrigin, this->Camera.ViewOrigin + 4, view.ViewOrigin);
-  std::copy(this->Scene->Bounds, this->Scene->Bounds + 6, view.Bounds);
-  view.Medium = &this->Scene->Participating;
-  view.MediumGrid = frame.MediumGrid;
-  view.CameraOpticalDepth = frame.CameraOpticalDepth;
-  view.OpaqueDepth = frame.Camera->GetDepthTexture();
-  view.RefractiveDepth = frame.Refractive->GetDepthTexture();
   // The tracer's appends before the stage reads them.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  return this->Lines->Draw(renWin, view, this->GetSegments(), subSegments);
+  return this->Lines->Draw(renWin,
+    MakeView(*this->Scene, this->Camera, this->Width, this->Height, frame), this->GetSegments(),
+    subSegments);
+}
+
+vtkCausticsVolumeLines::View VolumeSegmentList::MakeView(
+  const SceneData& scene, const TraceView& camera, int width, int height, const Frame& frame)
+{
+  vtkCausticsVolumeLines::View view;
+  view.WorldToClip = frame.WorldToClip;
+  view.ClipToWorld = camera.ClipToWorld;
+  view.Width = width;
+  view.Height = height;
+  std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, view.ViewOrigin);
+  std::copy(scene.Bounds, scene.Bounds + 6, view.Bounds);
+  view.Medium = &scene.Participating;
+  view.MediumGrid = frame.MediumGrid;
+  view.CameraOpticalDepth = frame.CameraOpticalDepth;
+  view.OpaqueDepth = frame.Camera ? frame.Camera->GetDepthTexture() : nullptr;
+  view.RefractiveDepth = frame.Refractive ? frame.Refractive->GetDepthTexture() : nullptr;
+  return view;
 }
 
 bool VolumeSegmentList::Finish(

@@ -65,6 +65,14 @@ public:
   /** True when `scene`'s medium scatters light: the stage has something to draw. */
   static bool IsNeeded(const SceneData& scene);
 
+  /**
+   * The stage's view of a frame: `camera` (ChooseTraceView of the camera, width x
+   * height) holds the inverse matrix and the eye; it and `frame` must outlive the view.
+   * Every technique that draws volume lines builds its view here.
+   */
+  static vtkCausticsVolumeLines::View MakeView(
+    const SceneData& scene, const TraceView& camera, int width, int height, const Frame& frame);
+
   /** Starts the frame (step 1); returns IsOn(). */
   bool Begin(vtkOpenGLRenderWindow* renWin, const SceneData& scene, int width, int height);
   /** Whether this frame draws volume caustics. */
