@@ -25,9 +25,13 @@
  *    the march goes on there against the camera's depth (Fig. 5); hits pass the
  *    normal check; mirrors reflect, up to MaximumEvents specular events; a
  *    participating medium (homogeneous, or a density grid) attenuates every stretch
- *    in air;
+ *    in air (not in the water under an open sheet, as in the reference);
  * 5. irradiance (Eq. 3): the landed photons, in the shared photon record layout, go
- *    to vtkCausticsPhotonSplatter, whose energy-normalized splats give W/m^2.
+ *    to vtkCausticsPhotonSplatter, whose energy-normalized splats give W/m^2;
+ * 6. volume caustics, with a scattering medium only: the stretches in air of step 4
+ *    are appended as they are travelled and drawn by the shared line-based stage
+ *    (caustics::gl::VolumeSegmentList, vtkCausticsVolumeLines, 003 §4-5) into the
+ *    volume layer (stages "cascaded volume lines" and "cascaded volume blur").
  * CameraStage off keeps step 4 in the light's view (photons leaving it are lost).
  * Not done: the paper's roughness and luminance cut-offs (every surface is either
  * perfectly specular or diffuse here, and a luminance cut-off would bias the

@@ -26,10 +26,16 @@
  * 4. Final render: each light's map is projected onto the camera's receivers like
  *    a shadow map, with a visibility test against the map's own receivers, and the
  *    levels summed (Eq. 3); the lights add up in CausticFramebuffer.
- * Stages are timed as "hcm photon buffer" (with "hcm emit", "hcm light layers" and
- * "hcm trace" inside), "hcm gather" (with "hcm traversal" and "hcm splat" inside)
- * and "hcm final render"; with synchronous timings each stage ends with glFinish,
- * so that its CPU time is its wall time. GPU counters (photons processed per
+ * 5. Volume caustics, with a scattering medium only: the photon buffer's trace appends
+ *    each photon's pieces in air (mirror to mirror to receiver) and the shared
+ *    line-based stage (caustics::gl::VolumeSegmentList, vtkCausticsVolumeLines,
+ *    003 §4-5) draws them, light after light, into the volume layer. Under an open
+ *    water sheet the medium is left out, as in the reference.
+ * Stages are timed as "hcm photon buffer" (with "hcm emit", "hcm light layers",
+ * "hcm trace" and, with a scattering medium, "hcm volume lines" inside), "hcm gather"
+ * (with "hcm traversal" and "hcm splat" inside), "hcm final render" and, with a
+ * scattering medium, "hcm volume blur"; with synchronous timings each stage ends with
+ * glFinish, so that its CPU time is its wall time. GPU counters (photons processed per
  * level, valid photons, clusters, splats per level, flux of the splats needing
  * level 4+) are read only on request (GetCounters). See docs/technique-caustic-maps.md.
  */
