@@ -97,7 +97,12 @@ public:
     const caustics::gl::MediumBuffer* mediumGrid = nullptr);
 
   ///@{
-  /** Render() in its two steps: the refractor layers (N x N), then the trace. */
+  /**
+   * Render() in its two steps: the refractor layers (N x N), then the trace. With
+   * `volumeSegments` on (a scattering medium), the trace appends every photon's straight
+   * pieces in air after its first specular event into it (reset here), for the
+   * line-based volume caustics: texels x (MaximumReflections + 1) at most.
+   */
   bool RenderLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
     const caustics::LightView& photonView, const caustics::PhotonGrid& grid);
   bool Trace(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
@@ -107,11 +112,6 @@ public:
     const caustics::gl::MediumBuffer* mediumGrid = nullptr,
     caustics::gl::VolumeSegmentList* volumeSegments = nullptr);
   ///@}
-  /**
-   * With `volumeSegments` on (a scattering medium), the trace appends every photon's
-   * straight pieces in air after its first specular event into it (reset here), for
-   * the line-based volume caustics: texels x (MaximumReflections + 1) at most.
-   */
 
   /** GPU counters of the last Render(); flux in W summed over RGB. */
   struct Statistics
