@@ -48,6 +48,10 @@
 #define CAUSTICS_VOLUME_DEPTH_BINDING 2
 #define CAUSTICS_VOLUME_COUNT_BINDING 3
 #define CAUSTICS_VOLUME_ARGUMENT_BINDING 4
+// A tracer appending its segments (CausticsAppendVolumeSegment, vtkCausticsVolumeSegmentList):
+// past every binding the tracers use themselves.
+#define CAUSTICS_VOLUME_APPEND_SEGMENT_BINDING 16
+#define CAUSTICS_VOLUME_APPEND_COUNT_BINDING 17
 
 // SVGF denoiser's reprojection (vtkCausticsSVGFReprojectCS.glsl): per mesh, the motion
 // from this frame's world position to the last frame's and the mesh's last index.

@@ -12,6 +12,8 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
+#include "vtkCausticsVolumeLinesCommon.h" // The volume caustics' segments (shared)
+#include "vtkCausticsVolumeSegmentList.h"
 #include "vtkObjectFactory.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
@@ -49,14 +51,15 @@ const char* const InputNames[NumberOfInputs] = { "emitPosition", "emitDirection"
 
 struct vtkCausticsCascadedPhotonPass::Internals
 {
-  vtkNew<vtkCausticsPhotonEmitter> Emitter;   // 1. the first specular event (shared)
-  vtkNew<vtkCausticsGBuffer> Opaque;          // 2. receivers and reflectors from the light
-  vtkNew<vtkCausticsGBuffer> Front;           //    refractors' nearest faces from the light
-  vtkNew<vtkCausticsGBuffer> Back;            //    refractors' farthest faces from the light
-  vtkNew<vtkCausticsShaderProgram> Program;   // 3-4. sampling and the cascade
-  vtkNew<vtkCausticsPhotonSplatter> Splatter; // 5. irradiance (shared)
-  caustics::gl::PhotonPlanes Landed;          // the cascade's output, with kernel radii
-  caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
+  vtkNew<vtkCausticsPhotonEmitter> Emitter;       // 1. the first specular event (shared)
+  vtkNew<vtkCausticsGBuffer> Opaque;              // 2. receivers and reflectors from the light
+  vtkNew<vtkCausticsGBuffer> Front;               //    refractors' nearest faces from the light
+  vtkNew<vtkCausticsGBuffer> Back;                //    refractors' farthest faces from the light
+  vtkNew<vtkCausticsShaderProgram> Program;       // 3-4. sampling and the cascade
+  vtkNew<vtkCausticsPhotonSplatter> Splatter;     // 5. irradiance (shared)
+  caustics::gl::PhotonPlanes Landed;              // the cascade's output, with kernel radii
+  caustics::PhotonGrid Grid;                      // the landed photons' grid, for the splatter
+  caustics::gl::VolumeSegmentList VolumeSegments; // stretches in air -> volume caustics
 };
 
 vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
@@ -64,8 +67,8 @@ vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
 {
   auto& s = *this->Internal;
   s.Program->SetName("cascaded photon trace");
-  const std::string source =
-    std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsCascadedTraceCS;
+  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
+    vtkCausticsVolumeLinesCommon + vtkCausticsCascadedTraceCS;
   s.Program->SetComputeSource(source.c_str());
   s.Emitter->SetSplitFresnel(true); // both branches: the trace chooses one by roulette
   s.Back->KeepFarthestOn();
@@ -86,6 +89,8 @@ void vtkCausticsCascadedPhotonPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MarchSteps: " << knobs.MarchSteps << "\n";
   os << indent << "MaximumEvents: " << knobs.MaximumEvents << "\n";
   os << indent << "KernelSpacings: " << knobs.KernelSpacings << "\n";
+  os << indent << "VolumeBlurPixels: " << knobs.VolumeBlurPixels << " px\n";
+  os << indent << "VolumeSubSegments: " << knobs.VolumeSubSegments << "\n";
   os << indent << "FrameIndex: " << this->FrameIndex << "\n";
   os << indent << "Sampling: R2 sequence, per-frame Cranley-Patterson rotation\n";
 }
@@ -107,6 +112,8 @@ vtkCausticsRenderPass::PhotonStorage vtkCausticsCascadedPhotonPass::GetPhotonSto
 bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
 {
   bool ok = true;
+  // A scattering medium: the photons' stretches in air become volume caustics.
+  this->Internal->VolumeSegments.Begin(in.Window, *in.Scene, in.Width, in.Height);
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
     if (!in.LightBuffers->GetView(light).valid || this->Settings.NumberOfPhotons <= 0)
@@ -114,7 +121,7 @@ bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& i
       continue;
     }
     ok = this->Emit(in, light) && this->RenderLightLayers(in, light) && this->Trace(in, light) &&
-      this->Splat(in);
+      this->DrawVolumeLines(in) && this->Splat(in);
   }
   ++this->FrameIndex; // the next frame is a fresh, independent estimate
   return ok;
@@ -169,6 +176,13 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
 
   this->BeginStage("cascaded trace");
   caustics::gl::SetMediumDefine(s.Program, in.MediumGrid); // recompiles only when it changes
+  s.VolumeSegments.SetAppendDefine(s.Program);             // likewise
+  if (s.VolumeSegments.IsOn())
+  {
+    // A stretch per event and the last one: (MaximumEvents + 1) per photon at most.
+    s.VolumeSegments.Reset(static_cast<int>(std::min<long long>(
+      static_cast<long long>(photons) * (this->Settings.MaximumEvents + 1), 1LL << 21)));
+  }
   if (!s.Program->Bind(in.Window))
   {
     this->EndStage("cascaded trace");
@@ -208,6 +222,10 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.Program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(in.Scene->Bounds)));
   s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
   caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
+  if (s.VolumeSegments.IsOn())
+  {
+    s.VolumeSegments.BindForAppend(s.Program);
+  }
   s.Program->DispatchCovering2D(width, height, 8, 8);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   s.Program->Unbind(in.Window);
@@ -221,6 +239,36 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   }
   this->EndStage("cascaded trace");
   return true;
+}
+
+bool vtkCausticsCascadedPhotonPass::DrawVolumeLines(const FrameInputs& in)
+{
+  auto& s = *this->Internal;
+  if (!s.VolumeSegments.IsOn())
+  {
+    return true;
+  }
+  this->BeginStage("cascaded volume lines");
+  const bool ok = s.VolumeSegments.Draw(in.Window,
+    { in.WorldToClip, in.MediumGrid, in.CameraOpticalDepth, in.CameraGBuffer,
+      in.RefractiveGBuffer },
+    this->Settings.VolumeSubSegments);
+  this->EndStage("cascaded volume lines");
+  return ok;
+}
+
+bool vtkCausticsCascadedPhotonPass::RenderVolumeRadiance(
+  const FrameInputs& in, vtkTextureObject* target)
+{
+  auto& s = *this->Internal;
+  if (!s.VolumeSegments.IsOn())
+  {
+    return false; // no scattering medium: no volume stage
+  }
+  this->BeginStage("cascaded volume blur");
+  const bool ok = s.VolumeSegments.Finish(in.Window, this->Settings.VolumeBlurPixels, target);
+  this->EndStage("cascaded volume blur");
+  return ok;
 }
 
 bool vtkCausticsCascadedPhotonPass::Splat(const FrameInputs& in)
@@ -243,4 +291,5 @@ void vtkCausticsCascadedPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   s.Program->ReleaseGraphicsResources(w);
   s.Splatter->ReleaseGraphicsResources(w);
   s.Landed.Release(w);
+  s.VolumeSegments.Release(w);
 }

@@ -25,9 +25,13 @@
  *    the march goes on there against the camera's depth (Fig. 5); hits pass the
  *    normal check; mirrors reflect, up to MaximumEvents specular events; a
  *    participating medium (homogeneous, or a density grid) attenuates every stretch
- *    in air;
+ *    in air (not in the water under an open sheet, as in the reference);
  * 5. irradiance (Eq. 3): the landed photons, in the shared photon record layout, go
- *    to vtkCausticsPhotonSplatter, whose energy-normalized splats give W/m^2.
+ *    to vtkCausticsPhotonSplatter, whose energy-normalized splats give W/m^2;
+ * 6. volume caustics, with a scattering medium only: the stretches in air of step 4
+ *    are appended as they are travelled and drawn by the shared line-based stage
+ *    (caustics::gl::VolumeSegmentList, vtkCausticsVolumeLines, 003 §4-5) into the
+ *    volume layer (stages "cascaded volume lines" and "cascaded volume blur").
  * CameraStage off keeps step 4 in the light's view (photons leaving it are lost).
  * Not done: the paper's roughness and luminance cut-offs (every surface is either
  * perfectly specular or diffuse here, and a luminance cut-off would bias the
@@ -88,6 +92,18 @@ public:
 
   ///@{
   /**
+   * Volume caustics in a scattering medium (vtkCausticsVolumeLines, 003 §4-5, fed by
+   * this technique's photon pieces after their first specular event): the standard
+   * deviation of the Gaussian of the volume layer in pixels (0: none; default 1.5), and
+   * the pieces of a segment in a density grid (003 §5.2; 0 marches per fragment;
+   * default 8). Without a scattering medium no volume stage runs.
+   */
+  vtkCausticsSettingClampMacro(Settings, VolumeBlurPixels, double, 0.0, 16.0);
+  vtkCausticsSettingClampMacro(Settings, VolumeSubSegments, int, 0, 64);
+  ///@}
+
+  ///@{
+  /**
    * Index of the next frame's sample set (the R2 rotation and the roulette's seed);
    * it advances by one every frame. Set it to repeat a frame. Default 0.
    */
@@ -102,6 +118,8 @@ protected:
   CausticNeeds GetCausticNeeds() override;
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
+  /** The volume caustics of the photons' stretches in air (a scattering medium only). */
+  bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   caustics::CascadedSettings Settings;
@@ -115,6 +133,7 @@ private:
   bool RenderLightLayers(const FrameInputs& in, int light);
   bool Trace(const FrameInputs& in, int light);
   bool Splat(const FrameInputs& in);
+  bool DrawVolumeLines(const FrameInputs& in);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -21,6 +21,8 @@ struct CascadedSettings
   int MarchSteps = 512;        ///< most pixels one march visits in one view, [8, 8192]
   int MaximumEvents = 8;       ///< specular events after emission, [1, 32]
   double KernelSpacings = 2.0; ///< splat radius in photon spacings on the receiver, [0.5, 16]
+  double VolumeBlurPixels = 1.5; ///< volume caustics' Gaussian, pixels, [0, 16] (vtkCausticsVolumeLines)
+  int VolumeSubSegments = 8;     ///< volume caustics' pieces per segment in a density grid, [0, 64]
 };
 }
 

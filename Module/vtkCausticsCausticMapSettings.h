@@ -54,6 +54,8 @@ struct CausticMapSettings
                           ///< 1 caustic triangles into the finest level
   bool SplitFresnel = true;               ///< emit a refractor's reflected part too
   double MinimumMapIncidence = 45.0;      ///< degrees, [0, 90]; the map's view turns to it
+  double VolumeBlurPixels = 1.5; ///< volume caustics' Gaussian, pixels, [0, 16] (vtkCausticsVolumeLines)
+  int VolumeSubSegments = 8;     ///< volume caustics' pieces per segment in a density grid, [0, 64]
   int MarchSteps = 64; ///< samples of the photon trace's fallback march, [4, 1024] (no setter)
 
   /** Levels of the caustic map: 4 for the multi-resolution map (§3.3), else 1. */

@@ -7,12 +7,13 @@
 #include "vtkCausticsPhotonBuffer.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
-#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsPhotonGrid.h"
+#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsTimings.h"
+#include "vtkCausticsVolumeSegmentList.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -67,7 +68,8 @@ struct PerLight
 struct vtkCausticsHierarchicalCausticMapPass::Internals
 {
   std::vector<std::unique_ptr<PerLight>> Lights;
-  vtkNew<vtkCausticsPhotonSplatter> Triangles; // RECONSTRUCTION_TRIANGLES (shared stage)
+  vtkNew<vtkCausticsPhotonSplatter> Triangles;    // RECONSTRUCTION_TRIANGLES (shared stage)
+  caustics::gl::VolumeSegmentList VolumeSegments; // photon pieces in air -> volume caustics
 };
 
 vtkCausticsHierarchicalCausticMapPass::vtkCausticsHierarchicalCausticMapPass()
@@ -140,8 +142,8 @@ std::string IncidenceKey(const caustics::SceneData& scene, int index)
   const caustics::Light& light = scene.Lights[index];
   std::ostringstream key;
   key.precision(17);
-  key << static_cast<int>(light.type) << ' ' << light.position[0] << ' ' << light.position[1]
-      << ' ' << light.position[2] << ' ' << light.direction[0] << ' ' << light.direction[1] << ' '
+  key << static_cast<int>(light.type) << ' ' << light.position[0] << ' ' << light.position[1] << ' '
+      << light.position[2] << ' ' << light.direction[0] << ' ' << light.direction[1] << ' '
       << light.direction[2];
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
@@ -235,14 +237,13 @@ double vtkCausticsHierarchicalCausticMapPass::GetReceiverIncidence(int i) const
 {
   const auto& lights = this->Internal->Lights;
   return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? lights[i]->Incidence.angle
-                                                                      : 90.0;
+                                                                    : 90.0;
 }
 
 const caustics::LightView* vtkCausticsHierarchicalCausticMapPass::GetMapView(int i) const
 {
   const auto& lights = this->Internal->Lights;
-  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? &lights[i]->MapView
-                                                                      : nullptr;
+  return i >= 0 && i < static_cast<int>(lights.size()) && lights[i] ? &lights[i]->MapView : nullptr;
 }
 
 bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin)
@@ -281,10 +282,40 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     this->BeginStage("hcm trace");
     light.Traced = light.Traced &&
       light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
-        light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid);
+        light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid,
+        &this->Internal->VolumeSegments);
     this->EndStage("hcm trace");
     ok = ok && light.Traced;
+    if (light.Traced && this->Internal->VolumeSegments.IsOn())
+    {
+      ok = this->DrawVolumeLines(this->GetFrameInputs()) && ok;
+    }
   }
+  return ok;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::DrawVolumeLines(const FrameInputs& in)
+{
+  this->BeginStage("hcm volume lines");
+  const bool ok = this->Internal->VolumeSegments.Draw(in.Window,
+    { in.WorldToClip, in.MediumGrid, in.CameraOpticalDepth, in.CameraGBuffer,
+      in.RefractiveGBuffer },
+    this->Settings.VolumeSubSegments);
+  this->EndStage("hcm volume lines");
+  return ok;
+}
+
+bool vtkCausticsHierarchicalCausticMapPass::RenderVolumeRadiance(
+  const FrameInputs& in, vtkTextureObject* target)
+{
+  if (!this->Internal->VolumeSegments.IsOn())
+  {
+    return false; // no scattering medium: no volume stage
+  }
+  this->BeginStage("hcm volume blur");
+  const bool ok =
+    this->Internal->VolumeSegments.Finish(in.Window, this->Settings.VolumeBlurPixels, target);
+  this->EndStage("hcm volume blur");
   return ok;
 }
 
@@ -345,6 +376,8 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderCausticIrradiance(const FrameI
 {
   vtkOpenGLRenderWindow* renWin = in.Window;
   this->PrepareLights(renWin);
+  // A scattering medium: the photons' pieces in air become volume caustics.
+  this->Internal->VolumeSegments.Begin(renWin, *in.Scene, in.Width, in.Height);
 
   this->BeginStage("hcm photon buffer");
   bool ok = this->RenderPhotonBuffers(renWin);
@@ -475,6 +508,7 @@ void vtkCausticsHierarchicalCausticMapPass::ReleaseTechniqueResources(vtkWindow*
   }
   this->Internal->Lights.clear();
   this->Internal->Triangles->ReleaseGraphicsResources(w);
+  this->Internal->VolumeSegments.Release(w);
 }
 
 void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent indent)
@@ -506,6 +540,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
      << (knobs.Reconstruction == RECONSTRUCTION_TRIANGLES ? "triangles" : "splats") << "\n";
   os << indent << "SplitFresnel: " << knobs.SplitFresnel << "\n";
   os << indent << "MinimumMapIncidence: " << knobs.MinimumMapIncidence << " degrees\n";
+  os << indent << "VolumeBlurPixels: " << knobs.VolumeBlurPixels << " px\n";
+  os << indent << "VolumeSubSegments: " << knobs.VolumeSubSegments << "\n";
   os << indent << "Lights: " << this->Internal->Lights.size() << "\n";
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {

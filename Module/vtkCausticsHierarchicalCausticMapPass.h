@@ -26,10 +26,16 @@
  * 4. Final render: each light's map is projected onto the camera's receivers like
  *    a shadow map, with a visibility test against the map's own receivers, and the
  *    levels summed (Eq. 3); the lights add up in CausticFramebuffer.
- * Stages are timed as "hcm photon buffer" (with "hcm emit", "hcm light layers" and
- * "hcm trace" inside), "hcm gather" (with "hcm traversal" and "hcm splat" inside)
- * and "hcm final render"; with synchronous timings each stage ends with glFinish,
- * so that its CPU time is its wall time. GPU counters (photons processed per
+ * 5. Volume caustics, with a scattering medium only: the photon buffer's trace appends
+ *    each photon's pieces in air (mirror to mirror to receiver) and the shared
+ *    line-based stage (caustics::gl::VolumeSegmentList, vtkCausticsVolumeLines,
+ *    003 §4-5) draws them, light after light, into the volume layer. Under an open
+ *    water sheet the medium is left out, as in the reference.
+ * Stages are timed as "hcm photon buffer" (with "hcm emit", "hcm light layers",
+ * "hcm trace" and, with a scattering medium, "hcm volume lines" inside), "hcm gather"
+ * (with "hcm traversal" and "hcm splat" inside), "hcm final render" and, with a
+ * scattering medium, "hcm volume blur"; with synchronous timings each stage ends with
+ * glFinish, so that its CPU time is its wall time. GPU counters (photons processed per
  * level, valid photons, clusters, splats per level, flux of the splats needing
  * level 4+) are read only on request (GetCounters). See docs/technique-caustic-maps.md.
  */
@@ -227,6 +233,18 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Volume caustics in a scattering medium (vtkCausticsVolumeLines, 003 §4-5, fed by
+   * this technique's photon pieces after their first specular event): the standard
+   * deviation of the Gaussian of the volume layer in pixels (0: none; default 1.5), and
+   * the pieces of a segment in a density grid (003 §5.2; 0 marches per fragment;
+   * default 8). Without a scattering medium no volume stage runs.
+   */
+  vtkCausticsSettingClampMacro(Settings, VolumeBlurPixels, double, 0.0, 16.0);
+  vtkCausticsSettingClampMacro(Settings, VolumeSubSegments, int, 0, 64);
+  ///@}
+
+  ///@{
   /** Emit a refractor's Fresnel-reflected part as a second photon branch. Default on. */
   vtkCausticsSettingMacro(Settings, SplitFresnel, bool);
   vtkBooleanMacro(SplitFresnel, bool);
@@ -350,6 +368,8 @@ protected:
   CausticNeeds GetCausticNeeds() override;
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
+  /** The volume caustics of the photons' pieces in air (a scattering medium only). */
+  bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   /** StartStage/StopStage that wait for the GPU when the timings are synchronous. */
@@ -359,6 +379,7 @@ protected:
   bool RenderPhotonBuffers(vtkOpenGLRenderWindow* renWin);
   bool GatherCausticMaps(vtkOpenGLRenderWindow* renWin);
   bool RenderFinal(vtkOpenGLRenderWindow* renWin);
+  bool DrawVolumeLines(const FrameInputs& in); // one light's traced pieces
 
   caustics::CausticMapSettings Settings;
 

@@ -9,6 +9,7 @@
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsVolumeSegmentList.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
@@ -18,6 +19,7 @@
 #include "vtkCausticsPhotonBufferCommon.h"
 #include "vtkCausticsPhotonBufferHierarchyArgumentsCS.h"
 #include "vtkCausticsPhotonBufferTraceCS.h"
+#include "vtkCausticsVolumeLinesCommon.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,7 +52,8 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   double ChordLength = 0.0, AirLength = 0.0, FluxUnit = 1.0;
   double ReceiverLow[3] = { 0, 0, 0 }, ReceiverHigh[3] = { 0, 0, 0 };
   bool Reflectors = false; // the reflector layer holds the scene's mirrors
-  const caustics::gl::MediumBuffer* MediumGrid = nullptr; // the medium's density, if any
+  const caustics::gl::MediumBuffer* MediumGrid = nullptr;    // the medium's density, if any
+  caustics::gl::VolumeSegmentList* VolumeSegments = nullptr; // phase 2 appends, when on
   vtkTextureObject* Inputs[11] = { nullptr };
 };
 
@@ -128,6 +131,10 @@ bool RunPhases(vtkOpenGLRenderWindow* renWin, vtkCausticsShaderProgram* const ph
       return false;
     }
     SetTraceUniforms(program, trace);
+    if (phase == 2 && trace.VolumeSegments && trace.VolumeSegments->IsOn())
+    {
+      trace.VolumeSegments->BindForAppend(program);
+    }
     if (phase == 0)
     {
       program->DispatchCovering2D(trace.Width, trace.Height, 8, 8);
@@ -155,8 +162,8 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   : Internal(new Internals)
 {
   this->BackLayer->KeepFarthestOn();
-  const std::string source =
-    std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsPhotonBufferTraceCS;
+  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
+    vtkCausticsVolumeLinesCommon + vtkCausticsPhotonBufferTraceCS;
   this->SortProgram->SetName("photon buffer: sort");
   this->SortProgram->SetDefine("PHASE", 0);
   this->SortProgram->SetComputeSource(source.c_str());
@@ -219,7 +226,8 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
   const caustics::SceneData& scene, const caustics::PhotonGrid& grid,
   const caustics::LightView& photonView, const caustics::LightView& mapView,
-  vtkCausticsGBuffer* receivers, const caustics::gl::MediumBuffer* mediumGrid)
+  vtkCausticsGBuffer* receivers, const caustics::gl::MediumBuffer* mediumGrid,
+  caustics::gl::VolumeSegmentList* volumeSegments)
 {
   const int light = grid.Light;
   if (!receivers || light < 0 || light >= static_cast<int>(scene.Lights.size()))
@@ -245,8 +253,8 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
     float mapMatrix[16];
     caustics::gl::ToColumnMajor(mapView.worldToClip, mapMatrix);
     const int* size = receivers->GetSize();
-    if (!this->ReflectorLayer->Render(renWin, geometry, mapMatrix, size[0], size[1],
-          vtkCausticsSceneGeometry::RoleBit(2)))
+    if (!this->ReflectorLayer->Render(
+          renWin, geometry, mapMatrix, size[0], size[1], vtkCausticsSceneGeometry::RoleBit(2)))
     {
       return false;
     }
@@ -260,6 +268,22 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
          this->InsideProgram.GetPointer(), this->AirProgram.GetPointer() })
   {
     caustics::gl::SetMediumDefine(phase, mediumGrid);
+  }
+  // Phase 2's pieces in air, for the volume caustics (each photon: up to one per mirror
+  // and the last).
+  if (volumeSegments)
+  {
+    volumeSegments->SetAppendDefine(this->AirProgram);
+    if (volumeSegments->IsOn())
+    {
+      volumeSegments->Reset(static_cast<int>(std::min<std::size_t>(
+        trace.Capacity * static_cast<std::size_t>(settings.MaximumReflections + 1), 1u << 21)));
+      trace.VolumeSegments = volumeSegments;
+    }
+  }
+  else
+  {
+    this->AirProgram->RemoveDefine("CAUSTICS_VOLUME_SEGMENT_APPEND");
   }
   for (vtkTextureObject* input : trace.Inputs)
   {

@@ -71,6 +71,7 @@ struct SceneData;
 namespace gl
 {
 class MediumBuffer;
+class VolumeSegmentList;
 }
 }
 
@@ -96,14 +97,20 @@ public:
     const caustics::gl::MediumBuffer* mediumGrid = nullptr);
 
   ///@{
-  /** Render() in its two steps: the refractor layers (N x N), then the trace. */
+  /**
+   * Render() in its two steps: the refractor layers (N x N), then the trace. With
+   * `volumeSegments` on (a scattering medium), the trace appends every photon's straight
+   * pieces in air after its first specular event into it (reset here), for the
+   * line-based volume caustics: texels x (MaximumReflections + 1) at most.
+   */
   bool RenderLayers(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
     const caustics::LightView& photonView, const caustics::PhotonGrid& grid);
   bool Trace(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
     vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
     const caustics::PhotonGrid& grid, const caustics::LightView& photonView,
     const caustics::LightView& mapView, vtkCausticsGBuffer* receivers,
-    const caustics::gl::MediumBuffer* mediumGrid = nullptr);
+    const caustics::gl::MediumBuffer* mediumGrid = nullptr,
+    caustics::gl::VolumeSegmentList* volumeSegments = nullptr);
   ///@}
 
   /** GPU counters of the last Render(); flux in W summed over RGB. */

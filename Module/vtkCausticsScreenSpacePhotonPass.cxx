@@ -16,6 +16,7 @@
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
 #include "vtkCausticsVolumeLines.h"
+#include "vtkCausticsVolumeSegmentList.h" // IsNeeded(): the volume stage's rule
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -381,19 +382,13 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
 {
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
-  const caustics::SceneData& scene = *f.Scene;
-  vtkCausticsVolumeLines::View view;
-  view.WorldToClip = f.WorldToClip;
-  view.ClipToWorld = in.ClipToWorld;
-  view.Width = f.Width;
-  view.Height = f.Height;
-  std::copy(in.CameraOrigin, in.CameraOrigin + 4, view.ViewOrigin);
-  std::copy(scene.Bounds, scene.Bounds + 6, view.Bounds);
-  view.Medium = &scene.Participating;
-  view.MediumGrid = f.MediumGrid;
-  view.CameraOpticalDepth = f.CameraOpticalDepth;
-  view.OpaqueDepth = f.CameraGBuffer->GetDepthTexture();
-  view.RefractiveDepth = f.RefractiveGBuffer->GetDepthTexture();
+  // The stage's view, built as for every technique (the frame's camera of PrepareView).
+  caustics::TraceView camera;
+  std::copy(in.ClipToWorld, in.ClipToWorld + 16, camera.ClipToWorld);
+  std::copy(in.CameraOrigin, in.CameraOrigin + 4, camera.ViewOrigin);
+  const vtkCausticsVolumeLines::View view = caustics::gl::VolumeSegmentList::MakeView(*f.Scene,
+    camera, f.Width, f.Height,
+    { f.WorldToClip, f.MediumGrid, f.CameraOpticalDepth, f.CameraGBuffer, f.RefractiveGBuffer });
   const int c = in.Current;
   return this->WriteVolumeSegments(renWin) &&
     in.VolumeLines->Draw(renWin, view,
@@ -495,9 +490,7 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
   {
     return false;
   }
-  const caustics::Medium& medium = scene.Participating;
-  in.GodRaysOn = this->Settings.GodRays && medium.enabled &&
-    (medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0);
+  in.GodRaysOn = this->Settings.GodRays && caustics::gl::VolumeSegmentList::IsNeeded(scene);
   if (in.GodRaysOn)
   {
     in.VolumeLines->Begin(f.Window, f.Width, f.Height);

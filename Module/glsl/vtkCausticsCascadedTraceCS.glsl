@@ -17,7 +17,11 @@
 //    (Fig. 5); a hit counts when the light arrives on the side the camera sees
 //    (<-d, n> >= 0 with n facing the camera). Mirrors reflect (conductor Fresnel)
 //    and refractors met in the light's view are entered, up to maximumEvents; a
-//    participating medium attenuates every stretch in air;
+//    participating medium attenuates every stretch in air (not in the water under an
+//    open sheet, where the reference holds no medium) and, when it scatters
+//    (CAUSTICS_VOLUME_SEGMENT_APPEND), each stretch is appended for the line-based
+//    volume caustics (vtkCausticsVolumeLines), as is the last one of a photon that
+//    leaves the views (to where it leaves the scene);
 // 4. output: landed photons in the photon record layout (vtkCausticsCommon.glsl) and
 //    their kernel radii, for vtkCausticsPhotonSplatter (Eq. 3 by splatting).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -334,12 +338,22 @@ bool OpenRefractor(vec3 x)
     dot(n, ViewAway(lightView, x)) < -0.1 * length(n);
 }
 
-// A straight stretch in air from a to b: the path grows, the participating medium
-// (vtkCausticsCommon.glsl: homogeneous, or a density grid) takes its share.
+// In the water under an open sheet (OpenRefractor): the reference holds no medium
+// there (a photon inside a refractor), so neither extinction nor volume caustic.
+bool underSheet = false;
+
+// A straight stretch in air from a to b: the path grows, it is handed to the volume
+// caustics, and the participating medium (vtkCausticsCommon.glsl: homogeneous, or a
+// density grid) takes its share.
 void Travel(vec3 a, vec3 b, inout vec3 flux, inout float path)
 {
   float length = distance(a, b);
-  flux *= length > 0.0 ? CausticsMediumTransmittance(a, (b - a) / length, 0.0, length) : vec3(1.0);
+  if (length > 0.0)
+  {
+    vec3 d = (b - a) / length;
+    CausticsAppendVolumeSegment(CausticsMakeMediumSegment(a, d, length, flux, underSheet));
+    flux *= underSheet ? vec3(1.0) : CausticsMediumTransmittance(a, d, 0.0, length);
+  }
   path += length;
 }
 
@@ -399,6 +413,7 @@ void main()
     if (inside && OpenRefractor(o))
     {
       inside = false; // in the water under a surface sheet: on to the receivers
+      underSheet = true;
     }
     if (inside)
     {
@@ -447,6 +462,11 @@ void main()
     }
     if (result != MARCH_HIT)
     {
+      if (result != MARCH_BLOCKED)
+      {
+        // It leaves the views: its scattering up to where it leaves the scene.
+        CausticsAppendVolumeSegment(CausticsMakeMediumSegment(o, d, airLength, flux, underSheet));
+      }
       break;
     }
     Travel(o, hitPoint, flux, path);

@@ -20,6 +20,10 @@
 // Each layer crossing: plane steps (the ray is intersected with the plane of the
 // surface seen where the estimate projects, until the estimate stops moving;
 // exact in one step on a plane), with a march + bisection fallback.
+// With a scattering medium (CAUSTICS_VOLUME_SEGMENT_APPEND), phase 2 appends each
+// straight piece in air, mirror to mirror to receiver (or to where it leaves the
+// scene), for the line-based volume caustics (vtkCausticsVolumeLines): pieces after
+// the first specular event only, the light's own beam being vtkCausticsAirlight's.
 // Output per photon: hit position (w = path length from the light, > 0 marks a
 // hit), receiver normal (as modelled; w = |N.D|), flux (rgb W; a = the texel's
 // measure omega_i, m^2 or sr).
@@ -58,7 +62,8 @@ uniform float fluxUnit;    // W per statistics unit
 // The photon buffer, also the hand-over between the two phases (PHASE 0 inside
 // refractors, PHASE 1 in air; two programs, so that each stays small): after
 // phase 0 a texel holds the photon leaving into air (position, path length;
-// direction, 1 = in air; flux, measure), after phase 1 its hit.
+// direction, 1 = in air, 2 = in the water under an open sheet; flux, measure), after
+// phase 1 its hit.
 layout(rgba32f, binding = 0) uniform image2D outPosition;
 layout(rgba32f, binding = 1) uniform image2D outNormal;
 layout(rgba32f, binding = 2) uniform image2D outFlux;
@@ -481,6 +486,7 @@ void main()
   vec3 d = normalize(direction.xyz);
   float path = lightType == 0 ? ViewDepth(photonView, p) : length(p - lightOrigin);
   float absorbed = 0.0, reflected = 0.0;
+  bool underSheet = false;
   // An open refractor (a water surface: one sheet) has no back face behind the
   // entry: the farthest refractor surface the light sees there is the entry itself,
   // facing the light. The photon stays in that medium and goes on to the receivers
@@ -492,6 +498,7 @@ void main()
     dot(backNormalHere, ViewAway(photonView, p)) < -0.1)
   {
     state = 1;
+    underSheet = true;
   }
   for (int event = 0; event < maximumInternalEvents && state == 2; ++event)
   {
@@ -552,7 +559,7 @@ void main()
     return;
   }
   imageStore(outPosition, texel, vec4(p, path));
-  imageStore(outNormal, texel, vec4(d, 1.0));
+  imageStore(outNormal, texel, vec4(d, underSheet ? 2.0 : 1.0));
   imageStore(outFlux, texel, vec4(flux, direction.w));
   Append(1, texel);
 }
@@ -628,6 +635,10 @@ void main()
   vec3 p = start4.xyz;
   vec3 d = leaving.xyz;
   float path = start4.w;
+  // In the water under an open sheet the reference holds no medium (a photon inside a
+  // refractor): neither extinction nor volume caustic there.
+  bool underSheet = leaving.w > 1.5;
+  bool inMedium = causticsMediumOn != 0 && !underSheet;
   float t = -1.0;
   vec3 n = vec3(0.0);
   bool landed = false;
@@ -643,8 +654,8 @@ void main()
     }
     landed = false;
     vec3 x = p + mirrorT * d;
-    vec3 kept = flux4.rgb * (causticsMediumOn != 0 ? CausticsMediumTransmittance(p, d, 0.0, mirrorT)
-                                                   : vec3(1.0));
+    CausticsAppendVolumeSegment(CausticsMakeMediumSegment(p, d, mirrorT, flux4.rgb, underSheet));
+    vec3 kept = flux4.rgb * (inMedium ? CausticsMediumTransmittance(p, d, 0.0, mirrorT) : vec3(1.0));
     vec3 facing = dot(d, mirrorNormal) < 0.0 ? mirrorNormal : -mirrorNormal;
     CausticsMaterial mirror = causticsMaterials[mirrorMaterial];
     if (reflection < maximumReflections)
@@ -667,6 +678,12 @@ void main()
     }
   }
   float power = Power(flux4.rgb);
+  if (AllFinite(p) && AllFinite(d))
+  {
+    // The last piece: to the receiver, or across the scene when it escapes.
+    CausticsAppendVolumeSegment(
+      CausticsMakeMediumSegment(p, d, landed ? t : airLength, flux4.rgb, underSheet));
+  }
   vec3 hit = p + t * d;
   path += t;
   if (!landed || !AllFinite(hit) || !(path > 0.0) || isinf(path) || !(power > 0.0))
@@ -679,7 +696,7 @@ void main()
     imageStore(outFlux, texel, vec4(0.0));
     return;
   }
-  if (causticsMediumOn != 0)
+  if (inMedium)
   {
     // The medium between the surface it left and the receiver.
     vec3 kept = flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, t);

@@ -32,13 +32,10 @@ void main()
   {
     t1 = min(t1, hit);
   }
-  if (!(line.info.x > 0.0) || r.origin.w > 1.5)
+  if (!(line.info.x > 0.0))
   {
     t1 = t0; // nothing to draw
   }
-  CausticsVolumeSegment s;
-  s.origin = vec4(r.origin.xyz, t0);
-  s.direction = vec4(r.direction.xyz, t1);
-  s.flux = vec4(payloads[ray].flux.rgb, 0.0);
-  volumeSegments[ray] = s;
+  volumeSegments[ray] = CausticsMakeVolumeSegment(
+    r.origin.xyz, r.direction.xyz, t0, t1, payloads[ray].flux.rgb, r.origin.w > 1.5);
 }

@@ -18,6 +18,69 @@ struct CausticsVolumeSegment
 // grid, m without), at the subSegments + 1 vertices of its pieces.
 #define CAUSTICS_VOLUME_DEPTHS(access) layout(std430, binding = CAUSTICS_VOLUME_DEPTH_BINDING) access buffer CausticsVolumeDepths { float volumeDepths[]; }
 
+// A photon's straight piece after a specular event: it leaves `origin` along the unit
+// `direction` with `flux` (W); [t0, t1] is drawn. A piece inside a refractor (the
+// reference renderer holds no medium there, nor under an open sheet of water) draws
+// nothing.
+CausticsVolumeSegment CausticsMakeVolumeSegment(
+  vec3 origin, vec3 direction, float t0, float t1, vec3 flux, bool insideRefractor)
+{
+  CausticsVolumeSegment s;
+  s.origin = vec4(origin, t0);
+  s.direction = vec4(direction, insideRefractor || !(t1 > t0) ? t0 : t1);
+  s.flux = vec4(flux, 0.0);
+  return s;
+}
+
+// The same piece cut to the medium's box (causticsMediumLow/High of
+// vtkCausticsCommon.glsl: the scene's bounds, or a density grid's within them), for a
+// tracer whose pieces run from surface to surface: [0, length] of origin + t direction.
+CausticsVolumeSegment CausticsMakeMediumSegment(
+  vec3 origin, vec3 direction, float length, vec3 flux, bool insideRefractor)
+{
+  float t0 = 0.0, t1 = length;
+  if (causticsMediumOn == 0 ||
+    !CausticsClipToBox(origin, direction, causticsMediumLow, causticsMediumHigh, t0, t1))
+  {
+    t1 = t0;
+  }
+  return CausticsMakeVolumeSegment(origin, direction, t0, t1, flux, insideRefractor);
+}
+
+#ifdef CAUSTICS_VOLUME_SEGMENT_APPEND
+// A tracer's pieces, appended (vtkCausticsVolumeSegmentList binds the two buffers):
+// the records, and the count (word 0, which may exceed the capacity: the stage reads
+// min(count, capacity)). Empty pieces and pieces without flux are not appended.
+layout(std430, binding = CAUSTICS_VOLUME_APPEND_SEGMENT_BINDING) writeonly buffer
+  CausticsVolumeAppendSegments
+{
+  CausticsVolumeSegment appendedVolumeSegments[];
+};
+layout(std430, binding = CAUSTICS_VOLUME_APPEND_COUNT_BINDING) buffer CausticsVolumeAppendCount
+{
+  uint appendedVolumeSegmentCount;
+};
+uniform uint volumeSegmentCapacity;
+
+void CausticsAppendVolumeSegment(CausticsVolumeSegment s)
+{
+  if (!(s.direction.w > s.origin.w) || !(s.flux.r + s.flux.g + s.flux.b > 0.0))
+  {
+    return;
+  }
+  uint slot = atomicAdd(appendedVolumeSegmentCount, 1u);
+  if (slot < volumeSegmentCapacity)
+  {
+    appendedVolumeSegments[slot] = s;
+  }
+}
+#else
+// Without a scattering medium the tracers write nothing (the calls compile away).
+void CausticsAppendVolumeSegment(CausticsVolumeSegment s)
+{
+}
+#endif
+
 // The drawn part of segment's piece k of n: t at its two ends (the same split as the
 // fragments' in vtkCausticsVolumeLinesFS.glsl).
 vec2 CausticsVolumePiece(CausticsVolumeSegment s, int k, int n)
