@@ -120,6 +120,7 @@ protected:
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   /** The volume caustics of the photons' stretches in air (a scattering medium only). */
   bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
+  bool WritesPhotonVariance() override { return true; } // the shared deposit stages
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   caustics::CascadedSettings Settings;

@@ -23,8 +23,16 @@ struct DenoiserSettings
   double MomentsAlpha = 0.2;
   /** Frames a history counts at most (the blend weight is max(alpha, 1/n)), [1, 255]. */
   int MaximumHistoryLength = 32;
-  /** History shorter than this: variance from a 7x7 spatial estimate (SVGF 4), [1, 255]. */
+  /** History shorter than this: variance from a short-history estimate (SVGF 4), [1, 255]. */
   int SpatialVarianceFrames = 4;
+  /**
+   * The short-history estimate: the photons' own variance where the technique writes
+   * it (each deposit's squared luminance, summed; vtkCausticsRenderPass::
+   * WritesPhotonVariance()) averaged over the history; off, or without it, SVGF's spatial variance of the 7x7 neighbours, which takes a fine
+   * caustic's structure for noise and blurs it where the light moves (histories stay
+   * short there; docs/denoising.md). Default true.
+   */
+  bool PhotonVariance = true;
   /** A-trous wavelet iterations (steps 1, 2, 4, ... pixels), [0, 10] (SVGF 5). */
   int AtrousIterations = 5;
   /**

@@ -370,6 +370,7 @@ protected:
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   /** The volume caustics of the photons' pieces in air (a scattering medium only). */
   bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
+  bool WritesPhotonVariance() override { return true; } // the shared deposit stages
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   /** StartStage/StopStage that wait for the GPU when the timings are synchronous. */

@@ -111,6 +111,7 @@ protected:
   CausticNeeds GetCausticNeeds() override;
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
+  bool WritesPhotonVariance() override { return true; } // the shared deposit stages
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
   caustics::ImpostorPhotonSettings Settings;

@@ -921,6 +921,7 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
   in.DenoisedOptics = std::move(optics);
   inputs.Window = f.Window;
   inputs.Irradiance = in.CausticTexture;
+  inputs.PhotonVariance = this->WritesPhotonVariance();
   inputs.GBuffer = f.CameraGBuffer;
   inputs.Camera = &f.Scene->View;
   inputs.Scene = f.Scene;

@@ -437,6 +437,15 @@ protected:
   virtual bool RenderCausticIrradiance(const FrameInputs& in);
 
   /**
+   * Hook: whether RenderCausticIrradiance() writes, in alpha, its photons' variance
+   * of luminance (summed CausticsDeposit() of glsl/vtkCausticsCommon.glsl, as the
+   * shared splat, triangle and caustic-map stages do). The denoiser uses it for short
+   * histories; without it it estimates the variance from the neighbours. Default
+   * false: a technique that writes anything else in alpha must not claim it.
+   */
+  virtual bool WritesPhotonVariance() { return false; }
+
+  /**
    * Hook, optional, right after a successful RenderCausticIrradiance(): write
    * in-scattered volume radiance (RGBA32F, W/(m^2 sr), Width x Height) into
    * `target`. Returns true if it wrote it this frame. The base class writes nothing.

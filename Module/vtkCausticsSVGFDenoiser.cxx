@@ -501,6 +501,8 @@ bool vtkCausticsSVGFDenoiser::EstimateVariance(const Inputs& in)
   BindImage(2, s.HistoryMoments, GL_READ_ONLY);
   BindImage(3, s.Filter[0], GL_READ_WRITE);
   program->SetUniformf("spatialFrames", static_cast<float>(this->Settings.SpatialVarianceFrames));
+  program->SetUniformi(
+    "photonVariance", in.PhotonVariance && this->Settings.PhotonVariance ? 1 : 0);
   program->DispatchCovering2D(in.Width, in.Height, LocalSize, LocalSize);
   Barrier();
   program->Unbind(in.Window);
@@ -608,6 +610,7 @@ void vtkCausticsSVGFDenoiser::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MomentsAlpha: " << s.MomentsAlpha << "\n";
   os << indent << "MaximumHistoryLength: " << s.MaximumHistoryLength << "\n";
   os << indent << "SpatialVarianceFrames: " << s.SpatialVarianceFrames << "\n";
+  os << indent << "PhotonVariance: " << (s.PhotonVariance ? "On" : "Off") << "\n";
   os << indent << "AtrousIterations: " << s.AtrousIterations << "\n";
   os << indent << "HistoryIteration: " << s.HistoryIteration << "\n";
   os << indent << "SigmaDepth: " << s.SigmaDepth << "\n";

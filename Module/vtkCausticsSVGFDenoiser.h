@@ -25,8 +25,11 @@
  *    after the change, and any on a still light field, is not tested (the test would
  *    bias sparse photons low). When fewer than MinimumReprojectedFraction of the
  *    receiver pixels reproject (a camera cut), no history is used.
- * 3. Variance of luminance from the moments (spatially from 7x7 neighbours while a
- *    history is shorter than SpatialVarianceFrames).
+ * 3. Variance of luminance from the moments; while a history is shorter than
+ *    SpatialVarianceFrames, the photons' own variance averaged over it where the
+ *    technique wrote one (Inputs::PhotonVariance, knob PhotonVariance), else spatially
+ *    from 7x7 neighbours
+ *    (SVGF's estimate, which takes a fine caustic's structure for noise).
  * 4. A-trous: AtrousIterations wavelet iterations guided by depth, normal and
  *    luminance, with symmetric weights balanced by two Sinkhorn steps so that rows
  *    and columns sum to one (a constant and the flux are both kept; SVGF's
@@ -80,6 +83,10 @@ public:
   vtkCausticsSettingClampMacro(Settings, MaximumHistoryLength, int, 1, 255);
   /** Histories shorter than this take a spatial variance, [1, 255]. Default 4 (SVGF). */
   vtkCausticsSettingClampMacro(Settings, SpatialVarianceFrames, int, 1, 255);
+  /** Short histories take the technique's photon variance where it writes one (else the
+   * 7x7 spatial estimate). Default on. */
+  vtkCausticsSettingMacro(Settings, PhotonVariance, bool);
+  vtkBooleanMacro(PhotonVariance, bool);
   /** A-trous iterations, [0, 10]. Default 5 (SVGF). */
   vtkCausticsSettingClampMacro(Settings, AtrousIterations, int, 0, 10);
   /** The a-trous output kept as colour history (0: unfiltered), [0, 10]. Default 0 (SVGF:
@@ -127,6 +134,10 @@ public:
     /** Whether the optics changed (materials, lights' power and cones, medium): what a
      * rigid motion of the whole scene, lights included, leaves alone. */
     bool OpticsChanged = true;
+    /** Whether the irradiance's alpha holds the variance of its luminance from its own
+     * photons (CausticsDeposit in glsl/vtkCausticsCommon.glsl); short histories then
+     * take it instead of a spatial estimate. */
+    bool PhotonVariance = false;
   };
 
   /**

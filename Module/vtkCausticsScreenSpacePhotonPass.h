@@ -244,6 +244,7 @@ protected:
   CausticNeeds GetCausticNeeds() override;
   PhotonStorage GetPhotonStorage() override;
   bool RenderCausticIrradiance(const FrameInputs& in) override;
+  bool WritesPhotonVariance() override { return true; } // the shared deposit stages
   bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
   double GetViewTolerance(double sceneScale) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;

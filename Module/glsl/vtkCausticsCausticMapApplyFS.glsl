@@ -17,15 +17,16 @@ uniform int levels;
 
 layout(location = 0) out vec4 outIrradiance;
 
-// Bilinear irradiance of map level i at x, over the taps that show x's surface;
-// `seen` tells whether any did.
-vec3 SampleLevel(int i, vec3 x, vec3 n, out bool seen)
+// Bilinear irradiance of map level i at x, over the taps that show x's surface,
+// and in alpha the same mean of the taps' variances (CausticsDeposit); `seen`
+// tells whether any did.
+vec4 SampleLevel(int i, vec3 x, vec3 n, out bool seen)
 {
   seen = false;
   vec2 pixel;
   if (!ViewProject(mapViews[i], x, pixel))
   {
-    return vec3(0.0);
+    return vec4(0.0);
   }
   // Surfaces closer than 1.5 texels to x's tangent plane count as x's own: a
   // plane holds them exactly, curvature moves them by far less than a texel.
@@ -33,7 +34,7 @@ vec3 SampleLevel(int i, vec3 x, vec3 n, out bool seen)
   vec2 f = pixel - 0.5;
   ivec2 base = ivec2(floor(f));
   vec2 w = f - floor(f);
-  vec3 sum = vec3(0.0);
+  vec4 sum = vec4(0.0);
   float weights = 0.0;
   ivec2 last = ivec2(mapViews[i].size) - 1;
   for (int b = 0; b < 2; ++b)
@@ -48,12 +49,12 @@ vec3 SampleLevel(int i, vec3 x, vec3 n, out bool seen)
         continue;
       }
       float weight = (a == 0 ? 1.0 - w.x : w.x) * (b == 0 ? 1.0 - w.y : w.y) + 1e-6;
-      sum += weight * texelFetch(irradiance[i], texel, 0).rgb;
+      sum += weight * texelFetch(irradiance[i], texel, 0);
       weights += weight;
     }
   }
   seen = weights > 0.0;
-  return seen ? sum / weights : vec3(0.0);
+  return seen ? sum / weights : vec4(0.0);
 }
 
 void main()
@@ -68,7 +69,7 @@ void main()
   vec3 x = position.xyz;
   vec3 n = normalize(normalRole.xyz);
   bool seen;
-  vec3 total = SampleLevel(0, x, n, seen);
+  vec4 total = SampleLevel(0, x, n, seen);
   if (!seen)
   {
     discard; // the caustic map's view does not see this point
@@ -81,5 +82,5 @@ void main()
       total += SampleLevel(i, x, n, coarseSeen);
     }
   }
-  outIrradiance = vec4(total, 1.0);
+  outIrradiance = total;
 }

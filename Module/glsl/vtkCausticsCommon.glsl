@@ -5,6 +5,23 @@
 
 const float CAUSTICS_PI = 3.14159265358979323846;
 
+// Luminance of a linear RGB value (Rec. 709 weights): what the denoiser filters on.
+float CausticsLuminance(vec3 c)
+{
+  return dot(c, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// What a reconstruction stage writes into the alpha of caustic irradiance: the
+// square of one deposit's luminance. Summed by additive blending over the
+// deposits of a frame, it is the variance of the pixel's estimate if the deposits
+// were independent (Poisson photons: Var(sum c_i) = sum E[c_i^2]), an estimate from
+// this frame's own photons that the denoiser uses while its history is short.
+vec4 CausticsDeposit(vec3 irradiance)
+{
+  float l = CausticsLuminance(irradiance);
+  return vec4(irradiance, l * l);
+}
+
 // Material roles (caustics::Role).
 const int ROLE_NONE = 0;
 const int ROLE_RECEIVER = 1;

@@ -5,6 +5,7 @@
 // K(d) = 2 / (pi r^2) (1 - d^2 / r^2), whose integral over the plane is 1: each
 // photon deposits exactly its flux (W), so the sum is irradiance in W/m^2.
 // Points off the photon's plane (another surface) or facing away are skipped.
+// Alpha: the deposit's squared luminance (CausticsDeposit), summed into a variance.
 uniform sampler2D targetPosition; // xyz world, w = material (-1: no surface)
 uniform sampler2D targetNormal;   // xyz normal as modelled, w = role
 uniform float planeTolerance;     // allowed distance off the tangent plane, in radii
@@ -36,5 +37,5 @@ void main()
     discard;
   }
   float kernel = 2.0 / (CAUSTICS_PI * r2) * (1.0 - d2 / r2);
-  outIrradiance = vec4(splatFlux * kernel, 1.0);
+  outIrradiance = CausticsDeposit(splatFlux * kernel);
 }

@@ -79,5 +79,5 @@ void main()
   {
     discard;
   }
-  outIrradiance = vec4(fluxPerPixel * covered, 1.0);
+  outIrradiance = CausticsDeposit(fluxPerPixel * covered);
 }

@@ -32,7 +32,7 @@ bool SVGFFinite(vec4 v)
 
 float SVGFLuminance(vec3 c)
 {
-  return dot(c, vec3(0.2126, 0.7152, 0.0722));
+  return CausticsLuminance(c);
 }
 
 // World size of one pixel at x (m).

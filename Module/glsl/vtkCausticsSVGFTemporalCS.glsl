@@ -17,12 +17,14 @@
 // in dim frames more often than in bright ones and took 4.5 % off a still caustic's
 // flux (TestCascadedPhotonPass). A
 // non-finite input texel is rejected (the history stays as it was, or zero without
-// one); a negative one counts as zero.
+// one); a negative one counts as zero. The input's alpha, where the reconstruction
+// wrote one (CausticsDeposit: the frame's photon variance of luminance), is averaged
+// like the moments into the moments' fourth channel.
 layout(rgba32f, binding = 2) uniform readonly image2D irradiance; // W/m^2, this frame
 layout(rgba32f, binding = 3) uniform readonly image2D reprojectedColor;
 layout(rgba32f, binding = 4) uniform readonly image2D reprojectedMoments;
 layout(rgba32f, binding = 5) uniform writeonly image2D integratedColor; // rgb, a: 0
-layout(rgba32f, binding = 6) uniform writeonly image2D historyMoments;  // m1, m2, frames
+layout(rgba32f, binding = 6) uniform writeonly image2D historyMoments;  // m1, m2, frames, v
 layout(r32ui, binding = 7) uniform readonly uimage2D counts;
 uniform float temporalAlpha;
 uniform float momentsAlpha;
@@ -31,12 +33,18 @@ uniform float rejectSigmas;
 uniform float framesSinceLightChanged; // 0: it changed in this frame
 uniform float minimumFraction;
 
-// This frame's irradiance at q as the filter takes it: finite, not negative.
-vec3 Sample(ivec2 q, out bool finite)
+// This frame's irradiance at q as the filter takes it: finite, not negative; alpha
+// its photon variance (not negative).
+vec4 SampleWithVariance(ivec2 q, out bool finite)
 {
   vec4 c = imageLoad(irradiance, q);
   finite = SVGFFinite(c);
-  return finite ? max(c.rgb, vec3(0.0)) : vec3(0.0);
+  return finite ? max(c, vec4(0.0)) : vec4(0.0);
+}
+
+vec3 Sample(ivec2 q, out bool finite)
+{
+  return SampleWithVariance(q, finite).rgb;
 }
 
 // Whether the history (a mean of `frames` frames) agrees with this frame's neighbourhood
@@ -92,11 +100,12 @@ void main()
   vec4 historyM = cut ? vec4(0.0) : imageLoad(reprojectedMoments, p);
   float frames = min(historyM.b, maximumFrames);
   bool finite;
-  vec3 c = Sample(p, finite);
+  vec4 deposit = SampleWithVariance(p, finite);
+  vec3 c = deposit.rgb;
   if (!finite && frames > 0.0)
   {
     imageStore(integratedColor, p, vec4(history.rgb, 0.0)); // nothing new here
-    imageStore(historyMoments, p, vec4(historyM.rg, frames, 0.0));
+    imageStore(historyMoments, p, vec4(historyM.rg, frames, historyM.a));
     return;
   }
   if (frames > framesSinceLightChanged && rejectSigmas > 0.0 &&
@@ -107,8 +116,8 @@ void main()
   float alpha = max(temporalAlpha, 1.0 / (frames + 1.0));
   float alphaM = max(momentsAlpha, 1.0 / (frames + 1.0));
   float l = SVGFLuminance(c);
-  vec2 moments = mix(historyM.rg, vec2(l, l * l), alphaM);
+  vec3 moments = mix(historyM.rga, vec3(l, l * l, deposit.a), alphaM);
   float kept = finite ? min(frames + 1.0, maximumFrames) : 0.0;
   imageStore(integratedColor, p, vec4(mix(history.rgb, c, alpha), 0.0));
-  imageStore(historyMoments, p, vec4(moments, kept, 0.0));
+  imageStore(historyMoments, p, vec4(moments.xy, kept, moments.z));
 }

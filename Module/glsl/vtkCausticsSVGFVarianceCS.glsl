@@ -1,10 +1,19 @@
-// SVGF step 3, variance: of the luminance, from the temporal moments; for a
-// history shorter than spatialFrames from the moments of the 7x7 neighbours on the
-// same surface (depth and normal weights), raised by 4 / frames as SVGF does.
+// SVGF step 3, variance: of the luminance, from the temporal moments. A history
+// shorter than spatialFrames has too few frames for that:
+// - where the technique wrote its photons' own variance (photonVariance: each
+//   deposit's squared luminance, summed; CausticsDeposit), that variance averaged over
+//   the history, as it is (it comes from this frame's photons, not from a few frames,
+//   so SVGF's 4 / frames does not apply: with it the pool's first denoised frame was
+//   0.198 from the truth, without it 0.133; TestCascadedPhotonPass);
+// - otherwise SVGF's estimate, from the moments of the 7x7 neighbours on the same
+//   surface (depth and normal weights), raised by 4 / frames. The neighbours' spread
+//   counts a fine caustic's own structure as noise, which the a-trous filter then
+//   blurs (0.233 on that frame).
 // Stored in the integrated colour's alpha, which the a-trous filter carries.
-layout(rgba32f, binding = 2) uniform readonly image2D historyMoments; // m1, m2, frames
+layout(rgba32f, binding = 2) uniform readonly image2D historyMoments; // m1, m2, frames, v
 layout(rgba32f, binding = 3) uniform image2D integratedColor;         // rgb; a: variance
 uniform float spatialFrames;
+uniform int photonVariance; // 1: the input's alpha held its photons' variance
 
 void main()
 {
@@ -15,7 +24,11 @@ void main()
   }
   vec4 m = imageLoad(historyMoments, p);
   float variance = max(m.g - m.r * m.r, 0.0);
-  if (m.b < spatialFrames)
+  if (m.b < spatialFrames && photonVariance != 0)
+  {
+    variance = m.a;
+  }
+  else if (m.b < spatialFrames)
   {
     vec3 xp = imageLoad(gPosition, p).xyz;
     vec3 np = normalize(imageLoad(gNormal, p).xyz);

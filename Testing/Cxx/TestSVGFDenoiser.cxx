@@ -82,6 +82,10 @@ public:
   vtkIdType Photons = 4096;
   bool Poison = false; // NaN and +Inf in a block of the caustic
 
+  /** Whether the last frame was denoised: a failed denoiser leaves the raw input, which
+   * some of these tests would otherwise pass on. */
+  bool LastFrameDenoised() const { return this->GetFrameResult().Denoised; }
+
 protected:
   NoisyPhotonPass()
   {
@@ -186,7 +190,11 @@ struct Frame
     }
     return rgb;
   }
-  Image Denoised() { return this->Read("CausticIrradiance"); }
+  Image Denoised()
+  {
+    EXPECT_TRUE(this->Pass->LastFrameDenoised()) << "the denoiser did not run";
+    return this->Read("CausticIrradiance");
+  }
   Image Raw() { return this->Read("RawCausticIrradiance"); }
 
   /** The scene's refractor (the ball lens). */
