@@ -10,6 +10,7 @@
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
+#include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTechniques.h"
 
 #include "vtkImageData.h"
@@ -19,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <iostream>
 #include <string>
 
@@ -48,11 +50,17 @@ struct MirrorCup
     this->Truth = reference->GetOutput();
   }
 
-  /** Relative L2 and flux ratio of `technique`'s caustic after three frames. */
-  void Compare(const std::string& technique, double& l2, double& flux)
+  /** Relative L2 and flux ratio of `technique`'s caustic after three frames;
+   * `configure` may set the pass's knobs first. */
+  void Compare(const std::string& technique, double& l2, double& flux,
+    const std::function<void(vtkCausticsRenderPass*)>& configure = nullptr)
   {
     vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
     ASSERT_TRUE(pass);
+    if (configure)
+    {
+      configure(pass);
+    }
     pass->SetLightBufferResolution(256);
     pass->KeepBuffersOn();
     this->Renderer->SetPass(pass);
@@ -113,4 +121,23 @@ TEST(MirrorCup, SecondReflectionsObliquely)
   Check(1,
     { { "screen-space", 0.21, 0.04 }, { "caustic-maps", 0.13, 0.01 },
       { "cpu-progressive", 0.05, 0.01 } });
+}
+
+// Where the oblique screen-space error comes from (not run by default:
+// --gtest_also_run_disabled_tests; figures in docs/accuracy.md, "Mirror cup"): the
+// cup is wholly in the frame, so the automatic trace view is the camera's, which
+// sees the floor inside the cup at a grazing angle behind the wall; the fitted view
+// looks half-way to the sun.
+TEST(MirrorCup, DISABLED_ObliqueScreenSpaceByTraceView)
+{
+  MirrorCup cup(1);
+  const char* names[] = { "automatic", "camera", "fitted" };
+  for (int mode = 0; mode < 3; ++mode)
+  {
+    double l2 = 1.0, flux = 0.0;
+    std::cout << names[mode] << " trace view, ";
+    cup.Compare("screen-space", l2, flux, [mode](vtkCausticsRenderPass* pass) {
+      vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass)->SetTraceView(mode);
+    });
+  }
 }
