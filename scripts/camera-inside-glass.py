@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""What the camera sees from inside the ball lens's glass, against the reference.
+
+The camera-view stage (vtkCausticsScreenSpaceRefractionFS.glsl) takes the first
+refractor surface a pixel sees as an entry from air. This prints the relative L2 of
+the stage's colour ("TechniqueColor") against the reference renderer's camera paths
+("SpecularColor", 64 per pixel) with the eye inside the glass, for the screen-space
+and the distance-impostor camera views, and writes reference | stage side by side
+(PNG, scaled by the reference's largest value) for a look.
+
+  cd build && PYTHONPATH=lib/python3/dist-packages xvfb-run -a /usr/bin/python3 \\
+      ../scripts/camera-inside-glass.py [--eye X,Y,Z] [--output DIR]
+"""
+import argparse
+import os
+
+import numpy as np
+import OpenImageIO as oiio
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkRenderingCore import vtkRenderWindow
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
+
+import vtkcaustics
+
+SIZE = 128
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--eye", default="0.35,3.4,0.25",
+                        help="eye position, m (the ball: centre 0,3,0, radius 1)")
+    parser.add_argument("--output", default="camera-inside-glass")
+    args = parser.parse_args()
+    eye = [float(x) for x in args.eye.split(",")]
+    os.makedirs(args.output, exist_ok=True)
+
+    renderer = vtkOpenGLRenderer()
+    window = vtkRenderWindow()
+    scene = vtkcaustics.vtkCausticsBuiltinScene()
+    scene.SetSceneName("ball-lens")
+    if not scene.Populate(renderer):
+        raise SystemExit(scene.GetLastError())
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(*eye)
+    camera.SetFocalPoint(0, 0, 0)
+    camera.SetViewUp(0, 0, -1)
+    camera.SetViewAngle(60)
+    camera.SetClippingRange(0.01, 20)
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(SIZE, SIZE)
+    window.AddRenderer(renderer)
+
+    reference = vtkcaustics.vtkCausticsReferenceRenderer()
+    reference.SetInputRenderer(renderer)
+    reference.SetImageSize(SIZE, SIZE)
+    reference.SetPhotonsPerLight(1000000)
+    reference.SetSpecularSamples(64)
+    if not reference.Update():
+        raise SystemExit(reference.GetLastError())
+    data = reference.GetOutput().GetPointData()
+    truth = vtk_to_numpy(data.GetArray("SpecularColor")).reshape(SIZE, SIZE, -1)[:, :, :3]
+    mask = vtk_to_numpy(data.GetArray("SpecularMask")).reshape(SIZE, SIZE) > 0
+
+    for method, name in ((0, "screen-space"), (1, "impostors")):
+        technique = vtkcaustics.vtkCausticsTechniques.NewPass("screen-space")
+        technique.SetLightBufferResolution(256)
+        technique.SetCameraViewMethod(method)
+        technique.KeepBuffersOn()
+        renderer.SetPass(technique)
+        window.Render()
+        window.Render()
+        image = vtkImageData()
+        technique.ReadBuffer("TechniqueColor", image)
+        renderer.SetPass(None)
+        technique.ReleaseGraphicsResources(window)
+        shown = vtk_to_numpy(image.GetPointData().GetArray(0)).reshape(SIZE, SIZE, -1)
+        drawn = mask & (shown[:, :, 3] >= 0.5)
+        difference = ((shown[:, :, :3] - truth)[drawn] ** 2).sum()
+        norm = (truth[drawn] ** 2).sum()
+        print(f"{name} view: {int(drawn.sum())} specular pixels, relative L2 "
+              f"{100.0 * np.sqrt(difference / norm):.1f} %")
+        pair = np.concatenate([truth, shown[:, :, :3]], axis=1)[::-1]
+        pair = np.clip(pair / max(float(truth.max()), 1e-12), 0.0, 1.0)
+        path = os.path.join(args.output, f"{name}.png")
+        out = oiio.ImageOutput.create(path)
+        out.open(path, oiio.ImageSpec(2 * SIZE, SIZE, 3, oiio.UINT8))
+        out.write_image((pair * 255).astype(np.uint8))
+        out.close()
+    print(f"wrote reference | stage images to {args.output}/")
+
+
+if __name__ == "__main__":
+    main()
