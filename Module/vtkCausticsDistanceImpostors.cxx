@@ -6,7 +6,6 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
-#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
@@ -269,48 +268,15 @@ void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneDa
 double vtkCausticsDistanceImpostors::WindingNumber(
   const caustics::SceneData& scene, int role, const double point[3])
 {
-  // Van Oosterom and Strackee's signed solid angle of each triangle.
   double sum = 0.0;
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
-    if (!HasRole(scene, mesh, static_cast<caustics::Role>(role)))
+    if (HasRole(scene, mesh, static_cast<caustics::Role>(role)))
     {
-      continue;
-    }
-    const std::size_t vertices = mesh.positions.size() / 3;
-    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-    {
-      double v[3][3];
-      double length[3];
-      bool ok = true;
-      for (int k = 0; k < 3 && ok; ++k)
-      {
-        const std::size_t index = mesh.indices[i + k];
-        ok = index < vertices;
-        for (int a = 0; a < 3 && ok; ++a)
-        {
-          v[k][a] = mesh.positions[3 * index + a] - point[a];
-          ok = std::isfinite(v[k][a]);
-        }
-        length[k] = ok ? std::sqrt(v[k][0] * v[k][0] + v[k][1] * v[k][1] + v[k][2] * v[k][2]) : 0;
-      }
-      if (!ok)
-      {
-        continue;
-      }
-      const auto dot = [](const double* x, const double* y) {
-        return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-      };
-      const double triple = v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
-        v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
-        v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]);
-      const double denominator = length[0] * length[1] * length[2] +
-        dot(v[0], v[1]) * length[2] + dot(v[0], v[2]) * length[1] +
-        dot(v[1], v[2]) * length[0];
-      sum += 2.0 * std::atan2(triple, denominator);
+      sum += caustics::WindingNumber(mesh, point);
     }
   }
-  return sum / (4.0 * vtkMath::Pi());
+  return sum;
 }
 
 bool vtkCausticsDistanceImpostors::RenderMap(

@@ -59,6 +59,31 @@ vtkStandardNewMacro(vtkCausticsRenderPass);
 
 namespace
 {
+/**
+ * The material of the refractor the eye is in, or -1 (air, or a parallel view): the
+ * first refractor whose winding number at the eye is at least one half. Only looked
+ * for when the eye is inside the specular actors' bounds, so most frames pay nothing.
+ */
+int EyeMaterial(const caustics::SceneData& scene, const double viewOrigin[4])
+{
+  const double* b = scene.SpecularBounds;
+  if (viewOrigin[3] == 0.0 || !(viewOrigin[0] >= b[0] && viewOrigin[0] <= b[1] &&
+                                viewOrigin[1] >= b[2] && viewOrigin[1] <= b[3] &&
+                                viewOrigin[2] >= b[4] && viewOrigin[2] <= b[5]))
+  {
+    return -1;
+  }
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    if (scene.Materials[mesh.material].role == caustics::Role::Refractor &&
+      caustics::WindingNumber(mesh, viewOrigin) >= 0.5)
+    {
+      return mesh.material;
+    }
+  }
+  return -1;
+}
+
 using Box = std::array<double, 6>;
 
 /**
@@ -572,6 +597,7 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   const caustics::TraceView camera =
     caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
   std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, inputs.ViewOrigin);
+  inputs.EyeMaterial = EyeMaterial(scene, inputs.ViewOrigin);
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
   std::copy(scene.SpecularBounds, scene.SpecularBounds + 6, inputs.SpecularBounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);

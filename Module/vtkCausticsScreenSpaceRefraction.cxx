@@ -168,6 +168,7 @@ bool vtkCausticsScreenSpaceRefraction::Render(
       static_cast<float>(inputs.ViewOrigin[1]), static_cast<float>(inputs.ViewOrigin[2]),
       static_cast<float>(inputs.ViewOrigin[3]) };
     p->SetUniform4f("viewOrigin", origin);
+    p->SetUniformi("eyeMaterial", inputs.EyeMaterial);
     p->SetUniform3f("boundsMin", static_cast<float>(inputs.Bounds[0]),
       static_cast<float>(inputs.Bounds[2]), static_cast<float>(inputs.Bounds[4]));
     p->SetUniform3f("boundsMax", static_cast<float>(inputs.Bounds[1]),

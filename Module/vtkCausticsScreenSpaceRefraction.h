@@ -75,6 +75,8 @@ public:
     const float* WorldToClip = nullptr;           ///< column-major
     int Width = 0, Height = 0;
     double ViewOrigin[4] = { 0, 0, 0, 1 }; ///< eye (w = 1) or view direction (w = 0)
+    /** The material of the refractor the eye is in (a camera inside glass), -1: air. */
+    int EyeMaterial = -1;
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
     /** Reflectors' and refractors' bounds (SceneData::SpecularBounds): the pixels
      * traced are those of their screen rectangle. */

@@ -2052,20 +2052,23 @@ struct ReferenceTracer::Internals
   {
     glm::dvec3 ng, ns;
     FacingNormals(v, hit, ng, ns);
-    hit.geometricNormal = ng;
-    hit.shadingNormal = ns;
     StoreFloat(hit.position, &image.position[3 * id]);
-    StoreFloat(hit.shadingNormal, &image.normal[3 * id]);
+    StoreFloat(ns, &image.normal[3 * id]);
     const Material& material = this->MaterialOf(hit.mesh);
     if (material.role != Role::Receiver)
     {
       // Glass or a mirror: pass 3 follows the camera's paths from it
       // (ShadeSpecularPixels); the pixel's footprint there sizes their caustic kernel.
+      // The hit keeps its own normals: they tell CameraPath whether the camera ray
+      // enters the glass or leaves it (a camera inside the glass sees the way out
+      // first; turned to the camera, every first hit looked like an entry from air).
       image.specularMask[id] = 1.0f;
       radius = -this->Settings.kernelRadiusPixels *
-        std::sqrt(this->PixelArea(i, j, hit.position, hit.geometricNormal, hit.t));
+        std::sqrt(this->PixelArea(i, j, hit.position, ng, hit.t));
       return;
     }
+    hit.geometricNormal = ng;
+    hit.shadingNormal = ns;
     image.mask[id] = 1.0f;
     StoreFloat(ToGlm(material.albedo), &image.albedo[3 * id]);
     const double area = this->PixelArea(i, j, hit.position, hit.geometricNormal, hit.t);

@@ -3,6 +3,7 @@
 #include "vtkCausticsDensityGrid.h"
 
 #include <glm/glm.hpp>
+#include <glm/gtc/constants.hpp> // For glm::pi
 #include <glm/gtc/type_ptr.hpp> // For glm::make_mat4, glm::value_ptr
 
 #include <algorithm>
@@ -641,6 +642,40 @@ bool VisibleBounds(const SceneData& scene, double box[6])
   }
   std::copy(seen, seen + 6, box);
   return true;
+}
+
+double WindingNumber(const Mesh& mesh, const double point[3])
+{
+  const glm::dvec3 x(point[0], point[1], point[2]);
+  const std::size_t vertices = mesh.positions.size() / 3;
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+  {
+    glm::dvec3 v[3];
+    bool ok = true;
+    for (int k = 0; k < 3 && ok; ++k)
+    {
+      const std::size_t index = mesh.indices[i + k];
+      ok = index < vertices;
+      if (ok)
+      {
+        v[k] = glm::dvec3(mesh.positions[3 * index], mesh.positions[3 * index + 1],
+                 mesh.positions[3 * index + 2]) -
+          x;
+        ok = std::isfinite(v[k].x) && std::isfinite(v[k].y) && std::isfinite(v[k].z);
+      }
+    }
+    if (!ok)
+    {
+      continue;
+    }
+    const double l0 = glm::length(v[0]), l1 = glm::length(v[1]), l2 = glm::length(v[2]);
+    const double triple = glm::dot(v[0], glm::cross(v[1], v[2]));
+    const double denominator = l0 * l1 * l2 + glm::dot(v[0], v[1]) * l2 +
+      glm::dot(v[0], v[2]) * l1 + glm::dot(v[1], v[2]) * l0;
+    sum += 2.0 * std::atan2(triple, denominator);
+  }
+  return sum / (4.0 * glm::pi<double>());
 }
 
 double VisibleScale(const SceneData& scene)

@@ -242,6 +242,14 @@ double VisibleScale(const SceneData& scene);
 double VisibleOverSpecular(const SceneData& scene);
 
 /**
+ * The generalized winding number of `mesh` at `point`: the signed solid angle of its
+ * triangles over 4 pi (Van Oosterom and Strackee). About 1 inside a closed mesh whose
+ * triangles face outward, 0 outside, fractions for open meshes; triangles with an
+ * index out of range or a non-finite vertex are skipped.
+ */
+double WindingNumber(const Mesh& mesh, const double point[3]);
+
+/**
  * The view a light-space receiver map (a caustic map) of light `index` is stored
  * in: the light's own view (ComputeLightView) aimed at the part of the scene the
  * camera sees (VisibleBounds), so that its texels go where the image can show

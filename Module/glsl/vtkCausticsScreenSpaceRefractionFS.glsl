@@ -35,6 +35,7 @@ uniform int hasLostShading;
 uniform mat4 worldToClip;
 uniform vec2 viewport;
 uniform vec4 viewOrigin; // camera position (w = 1) or view direction (w = 0)
+uniform int eyeMaterial; // the refractor the eye is in (a camera inside glass), -1: air
 uniform vec3 boundsMin;
 uniform vec3 boundsMax;
 uniform vec3 background;
@@ -530,24 +531,36 @@ void main()
     float ior = max(material.params.x, 1.0);
     vec3 facing = dot(v, n) < 0.0 ? n : -n;
     float cosI = clamp(-dot(v, facing), 0.0, 1.0);
-    // The camera is in air: from index 1 into the refractor, whichever way n faces.
+    // From the eye's medium into the other, whichever way n faces: the camera is in
+    // air (into the refractor), or inside the glass (out of it: the surface seen first
+    // is the way out, and the light has crossed the glass up to it).
+    bool eyeInGlass = eyeMaterial >= 0;
+    float n1 = eyeInGlass ? max(causticsMaterials[eyeMaterial].params.x, 1.0) : 1.0;
+    float n2 = eyeInGlass ? 1.0 : ior;
     float reflectance;
     vec3 reflected, refracted;
-    bool transmits = CausticsDielectric(v, facing, cosI, 1.0, ior, reflectance, reflected, refracted);
-    weights[0] = vec3(reflectance); // reflected, outside
+    bool transmits = CausticsDielectric(v, facing, cosI, n1, n2, reflectance, reflected, refracted);
+    vec3 crossed = eyeInGlass ? CausticsTransmittance(
+      causticsMaterials[eyeMaterial].attenuation.rgb, distance(x, viewOrigin.xyz)) : vec3(1.0);
+    weights[0] = crossed * reflectance; // reflected, staying in the eye's medium
     directions[0] = reflected;
-    weights[1] = vec3(1.0 - reflectance); // refracted, through the object's layers
+    weights[1] = crossed * (1.0 - reflectance); // refracted, into the other
     directions[1] = refracted;
     paths = transmits ? 2 : 1;
-    absorption = material.attenuation.rgb;
+    absorption = (eyeInGlass ? causticsMaterials[eyeMaterial] : material).attenuation.rgb;
     leftRole = ROLE_REFRACTOR;
   }
   vec3 color = vec3(0.0);
   for (int k = 0; k < paths; ++k)
   {
-    bool inside = k == 1;
+    // In the glass: the refracted path from air, the reflected one from inside. Only
+    // the path from air into the glass follows the refractor's layers along the pixel
+    // (the next is layer 1); the others have turned off that line.
+    bool inside = (k == 1) != (eyeMaterial >= 0);
+    bool alongLayers = k == 1 && eyeMaterial < 0;
     color += weights[k] *
-      TracePath(x, directions[k], inside, 0, inside ? 1 : -1, absorption, leftRole);
+      TracePath(x, directions[k], inside, alongLayers ? 0 : -1, alongLayers ? 1 : -1,
+        absorption, leftRole);
   }
   outColor = vec4(color, 1.0);
 }
