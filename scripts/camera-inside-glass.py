@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """What the camera sees from inside the ball lens's glass, against the reference.
 
-The camera-view stage (vtkCausticsScreenSpaceRefractionFS.glsl) takes the first
-refractor surface a pixel sees as an entry from air. This prints the relative L2 of
+With the eye inside glass, the first refractor surface a pixel sees is the way out
+(the camera-view stage finds the eye's refractor by its winding number; the reference
+by the side of the surface's normal the ray comes from). This prints the relative L2 of
 the stage's colour ("TechniqueColor") against the reference renderer's camera paths
 ("SpecularColor", 64 per pixel) with the eye inside the glass, for the screen-space
 and the distance-impostor camera views, and writes reference | stage side by side
