@@ -27,8 +27,9 @@ struct DenoiserSettings
   int SpatialVarianceFrames = 4;
   /**
    * The short-history estimate: the photons' own variance where the technique writes
-   * it (each deposit's squared luminance, summed; vtkCausticsRenderPass::
-   * WritesPhotonVariance()) averaged over the history; off, or without it, SVGF's spatial variance of the 7x7 neighbours, which takes a fine
+   * it (the squared difference of the estimates of the frame's two halves of photons;
+   * vtkCausticsRenderPass::WritesPhotonVariance()) averaged over the history; off, or
+   * without it, SVGF's spatial variance of the 7x7 neighbours, which takes a fine
    * caustic's structure for noise and blurs it where the light moves (histories stay
    * short there; docs/denoising.md). Default true.
    */

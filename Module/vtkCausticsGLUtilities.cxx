@@ -365,7 +365,7 @@ void ToColumnMajor(const double rowMajor[16], float columnMajor[16])
 }
 
 vtkSmartPointer<vtkImageData> ReadTexture(
-  vtkTextureObject* texture, const std::string& arrayName, int components)
+  vtkTextureObject* texture, const std::string& arrayName, int components, int firstChannel)
 {
   const int width = static_cast<int>(texture->GetWidth());
   const int height = static_cast<int>(texture->GetHeight());
@@ -411,7 +411,8 @@ vtkSmartPointer<vtkImageData> ReadTexture(
   {
     for (int c = 0; c < components; ++c)
     {
-      array->SetComponent(i, c, c < channels ? pixels[i * channels + c] : 0.0f);
+      const int channel = firstChannel + c;
+      array->SetComponent(i, c, channel < channels ? pixels[i * channels + channel] : 0.0f);
     }
   }
   image->GetPointData()->AddArray(array);

@@ -108,11 +108,11 @@ VTKRENDERINGCAUSTICS_EXPORT void InvertColumnMajor(const float matrix[16], float
 
 /**
  * Downloads a 2D texture (float or integer colour, or depth) into a new image whose
- * point data has one array `arrayName` with `components` components (the first
- * `components` channels of the texture). For tests and debugging only: it stalls.
+ * point data has one array `arrayName` with `components` components (the texture's
+ * channels from `firstChannel` on). For tests and debugging only: it stalls.
  */
 VTKRENDERINGCAUSTICS_EXPORT vtkSmartPointer<vtkImageData> ReadTexture(
-  vtkTextureObject* texture, const std::string& arrayName, int components);
+  vtkTextureObject* texture, const std::string& arrayName, int components, int firstChannel = 0);
 
 /**
  * A GL buffer object: shader storage, vertices, indices, indirect commands. The one

@@ -1417,6 +1417,7 @@ struct vtkCausticsRenderPass::BufferEntry
   bool PerLight; ///< "Name:i" for light i
   vtkTextureObject* (*Texture)(vtkCausticsRenderPass* pass, int light);
   bool (*Available)(vtkCausticsRenderPass* pass);
+  int FirstChannel = 0; ///< the texture's first channel read
 };
 
 const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(const std::string& base)
@@ -1436,6 +1437,13 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
                                   : p->Internal->CausticTexture.Get();
       },
       caustics },
+    { "PhotonHalfSetDifference", 1, false,
+      [](Pass* p, int)
+      {
+        return p->Result.Denoised ? p->Internal->Denoiser->GetRawTexture()
+                                  : p->Internal->CausticTexture.Get();
+      },
+      [](Pass* p) { return p->Result.Caustics && p->WritesPhotonVariance(); }, 3 },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
     { "LostShading", 3, false, [](Pass* p, int) { return p->Internal->LostShadingTexture.Get(); },
@@ -1529,7 +1537,7 @@ bool vtkCausticsRenderPass::ReadBuffer(const char* name, vtkImageData* output)
                      "that did not run)");
     return false;
   }
-  auto image = caustics::gl::ReadTexture(texture, name, entry->Components);
+  auto image = caustics::gl::ReadTexture(texture, name, entry->Components, entry->FirstChannel);
   output->ShallowCopy(image);
   return true;
 }

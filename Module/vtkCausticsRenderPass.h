@@ -336,7 +336,10 @@ public:
   /**
    * Reads an intermediate buffer of the last frame into `output` (point-data array
    * named `name`). Names: FinalColor, CausticIrradiance (denoised with Denoise on),
-   * RawCausticIrradiance (the technique's, before denoising), DirectIrradiance,
+   * RawCausticIrradiance (the technique's, before denoising), PhotonHalfSetDifference
+   * (beside the raw estimate when WritesPhotonVariance(): the difference, W/m^2, of
+   * the luminance estimates of the frame's two halves of photons; its square is the
+   * variance of the raw estimate), DirectIrradiance,
    * VolumeRadiance, TechniqueColor, Position, Normal, Albedo, Depth, ReceiverMask,
    * RefractivePosition, RefractiveNormal, RefractiveDepth, and per light i
    * LightPosition:i, LightNormal:i, LightFlux:i, LightDepth:i. Returns false (with
@@ -437,9 +440,10 @@ protected:
   virtual bool RenderCausticIrradiance(const FrameInputs& in);
 
   /**
-   * Hook: whether RenderCausticIrradiance() writes, in alpha, its photons' variance
-   * of luminance (summed CausticsDeposit() of glsl/vtkCausticsCommon.glsl, as the
-   * shared splat, triangle and caustic-map stages do). The denoiser uses it for short
+   * Hook: whether RenderCausticIrradiance() writes, in alpha, the difference of the
+   * luminance estimates of the frame's two halves of photons, whose square is the
+   * estimate's variance (summed CausticsDeposit() of glsl/vtkCausticsCommon.glsl, as
+   * the shared splat, triangle and caustic-map stages do). The denoiser uses it for short
    * histories; without it it estimates the variance from the neighbours. Default
    * false: a technique that writes anything else in alpha must not claim it.
    */

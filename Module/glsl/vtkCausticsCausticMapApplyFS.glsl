@@ -18,8 +18,8 @@ uniform int levels;
 layout(location = 0) out vec4 outIrradiance;
 
 // Bilinear irradiance of map level i at x, over the taps that show x's surface,
-// and in alpha the same mean of the taps' variances (CausticsDeposit); `seen`
-// tells whether any did.
+// and in alpha the same mean of the taps' half-set differences (CausticsDeposit: its
+// square is the variance of this mean); `seen` tells whether any did.
 vec4 SampleLevel(int i, vec3 x, vec3 n, out bool seen)
 {
   seen = false;

@@ -43,6 +43,7 @@ flat out vec3 splatCentre;
 flat out vec3 splatNormal;
 flat out vec3 splatFlux;
 flat out float splatRadius;
+flat out float splatHalfSet; // CausticsHalfSet of the photon or cluster
 
 void Discard()
 {
@@ -112,6 +113,7 @@ void main()
   vec3 flux;
   float r;
   float smallest = minimumRadiusPixels;
+  uint member = index; // the photon's, or its cluster's, index in its level's grid
   if (k == 0)
   {
     flux = texelFetch(hitFlux, texel, 0).rgb;
@@ -120,7 +122,8 @@ void main()
   else
   {
     ivec2 node = texel >> k;
-    Node cluster = nodes[nodeOffsets[k] + uint(node.y * nodeRowLength[k] + node.x)];
+    member = uint(node.y * nodeRowLength[k] + node.x);
+    Node cluster = nodes[nodeOffsets[k] + member];
     flux = vec3(cluster.fluxR, cluster.fluxG, cluster.fluxB) * float(1u << (2 * k));
     position = vec3(cluster.x, cluster.y, cluster.z);
     // Converged: the photons all land in one texel; no finer than the image though
@@ -167,6 +170,7 @@ void main()
   splatCentre = position;
   splatNormal = n;
   splatFlux = deposit > 0.0 ? flux / deposit : flux;
+  splatHalfSet = CausticsHalfSet(member);
   gl_Position = clip;
   gl_PointSize = min(2.0 * reach + 2.0, 1023.0);
 }

@@ -5,7 +5,8 @@
 // K(d) = 2 / (pi r^2) (1 - d^2 / r^2), whose integral over the plane is 1: each
 // photon deposits exactly its flux (W), so the sum is irradiance in W/m^2.
 // Points off the photon's plane (another surface) or facing away are skipped.
-// Alpha: the deposit's squared luminance (CausticsDeposit), summed into a variance.
+// Alpha: the deposit's luminance signed by its photon's half set (CausticsDeposit),
+// summed into the difference of the two halves' estimates.
 uniform sampler2D targetPosition; // xyz world, w = material (-1: no surface)
 uniform sampler2D targetNormal;   // xyz normal as modelled, w = role
 uniform float planeTolerance;     // allowed distance off the tangent plane, in radii
@@ -15,6 +16,7 @@ flat in vec3 splatCentre;
 flat in vec3 splatNormal;
 flat in vec3 splatFlux;
 flat in float splatRadius;
+flat in float splatHalfSet;
 
 layout(location = 0) out vec4 outIrradiance;
 
@@ -37,5 +39,5 @@ void main()
     discard;
   }
   float kernel = 2.0 / (CAUSTICS_PI * r2) * (1.0 - d2 / r2);
-  outIrradiance = CausticsDeposit(splatFlux * kernel);
+  outIrradiance = CausticsDeposit(splatFlux * kernel, splatHalfSet);
 }

@@ -20,6 +20,7 @@ flat out vec3 splatCentre;
 flat out vec3 splatNormal;
 flat out vec3 splatFlux;
 flat out float splatRadius;
+flat out float splatHalfSet; // CausticsHalfSet of the photon
 
 void Discard()
 {
@@ -96,6 +97,7 @@ void main()
   splatNormal = n;
   splatFlux = flux;
   splatRadius = r;
+  splatHalfSet = CausticsHalfSet(uint(gl_VertexID));
   gl_Position = clip;
   gl_PointSize = min(2.0 * 1.4143 * clamped + 2.0, 1023.0);
 }

@@ -14,6 +14,7 @@ flat in vec3 planePoint;
 flat in vec3 planeNormal;
 flat in float planeReach;
 flat in vec3 fluxPerPixel;
+flat in float halfSet;
 
 layout(location = 0) out vec4 outIrradiance;
 
@@ -79,5 +80,5 @@ void main()
   {
     discard;
   }
-  outIrradiance = CausticsDeposit(fluxPerPixel * covered);
+  outIrradiance = CausticsDeposit(fluxPerPixel * covered, halfSet);
 }

@@ -10,6 +10,7 @@ flat out vec3 planePoint;
 flat out vec3 planeNormal;
 flat out float planeReach;    // largest distance of a receiving point off its plane (m)
 flat out vec3 fluxPerPixel;   // W per pixel of screen area it covers, per m^2 there
+flat out float halfSet;       // CausticsHalfSet of its cell
 
 uniform float planeTolerance; // in lengths of the triangle's longest edge
 
@@ -64,6 +65,7 @@ void main()
   planeNormal = tri.normal;
   planeReach = planeTolerance * longest;
   fluxPerPixel = tri.flux / (screenArea * pixelArea);
+  halfSet = CausticsHalfSet(uint(triangle / 2));
   // The pixel-aligned rectangle around it, within the viewport.
   vec2 low = clamp(floor(min(min(tri.pixel[0], tri.pixel[1]), tri.pixel[2])), vec2(0.0), triangleViewport);
   vec2 high = clamp(ceil(max(max(tri.pixel[0], tri.pixel[1]), tri.pixel[2])), vec2(0.0), triangleViewport);

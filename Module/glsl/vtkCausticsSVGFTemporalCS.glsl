@@ -18,8 +18,9 @@
 // flux (TestCascadedPhotonPass). A
 // non-finite input texel is rejected (the history stays as it was, or zero without
 // one); a negative one counts as zero. The input's alpha, where the reconstruction
-// wrote one (CausticsDeposit: the frame's photon variance of luminance), is averaged
-// like the moments into the moments' fourth channel.
+// wrote one (CausticsDeposit: the difference of the estimates of the frame's two
+// halves of photons), gives this frame's photon variance (CausticsPhotonVariance),
+// averaged like the moments into the moments' fourth channel.
 layout(rgba32f, binding = 2) uniform readonly image2D irradiance; // W/m^2, this frame
 layout(rgba32f, binding = 3) uniform readonly image2D reprojectedColor;
 layout(rgba32f, binding = 4) uniform readonly image2D reprojectedMoments;
@@ -34,12 +35,12 @@ uniform float framesSinceLightChanged; // 0: it changed in this frame
 uniform float minimumFraction;
 
 // This frame's irradiance at q as the filter takes it: finite, not negative; alpha
-// its photon variance (not negative).
+// its photon variance.
 vec4 SampleWithVariance(ivec2 q, out bool finite)
 {
   vec4 c = imageLoad(irradiance, q);
   finite = SVGFFinite(c);
-  return finite ? max(c, vec4(0.0)) : vec4(0.0);
+  return finite ? vec4(max(c.rgb, vec3(0.0)), CausticsPhotonVariance(c.a)) : vec4(0.0);
 }
 
 vec3 Sample(ivec2 q, out bool finite)
