@@ -8,6 +8,7 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsTimings.h"
 #include "TestTechniqueFrame.h"
 
@@ -26,12 +27,14 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <sstream>
 #include <vector>
 
@@ -67,6 +70,44 @@ struct Fixture
     EXPECT_TRUE(this->Pass->ReadBuffer(name, image)) << name;
     return image;
   }
+};
+
+/** Every texel of every texture, read back: what a consumer can see. */
+std::vector<std::vector<double>> ReadAll(std::initializer_list<vtkTextureObject*> textures)
+{
+  std::vector<std::vector<double>> all;
+  for (vtkTextureObject* texture : textures)
+  {
+    const int components = texture->GetComponents();
+    auto image = caustics::gl::ReadTexture(texture, "t", components);
+    vtkDataArray* array = image->GetPointData()->GetArray(0);
+    std::vector<double> values(array->GetNumberOfValues());
+    for (vtkIdType v = 0; v < array->GetNumberOfValues(); ++v)
+    {
+      values[v] = array->GetComponent(v / components, static_cast<int>(v % components));
+    }
+    all.push_back(std::move(values));
+  }
+  return all;
+}
+
+/** Fills a float colour texture with 7: a frame that draws it again wipes the mark. */
+void Mark(vtkTextureObject* texture)
+{
+  const float value[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
+  glClearTexImage(texture->GetHandle(), 0, GL_RGBA, GL_FLOAT, value);
+}
+
+bool Marked(vtkTextureObject* texture)
+{
+  return ReadAll({ texture })[0][0] == 7.0;
+}
+
+/** A property of one change between frames, for the kept-buffers tests. */
+struct Change
+{
+  const char* What;
+  std::function<void()> Apply;
 };
 
 double Sum(vtkImageData* image, int component)
@@ -133,6 +174,92 @@ TEST(GBuffer, SphereCentreNormalFacesTheCamera)
   const vtkIdType floorId = static_cast<vtkIdType>(py) * 256 + static_cast<vtkIdType>(px);
   EXPECT_NEAR(opaque->GetPointData()->GetArray(0)->GetComponent(floorId, 1), 1.0, 1e-3);
   EXPECT_EQ(std::lround(opaque->GetPointData()->GetArray(0)->GetComponent(floorId, 3)), 1);
+}
+
+TEST(GBuffer, KeepsUnchangedTargetsAndRedrawsOnAnyChange)
+{
+  Fixture f("ball-lens", 64);
+  f.Pass->KeepBuffersOn(); // upload the geometry even without caustics
+  f.Window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(f.Window);
+  gl->MakeCurrent();
+  auto scene = [&]() -> const caustics::SceneData&
+  { return f.Pass->GetSceneExtractor()->GetScene(); };
+  float matrix[16];
+  caustics::gl::ToColumnMajor(scene().View.worldToClip, matrix);
+  int size = 32;
+  int roles = vtkCausticsSceneGeometry::AllRoles;
+  vtkNew<vtkCausticsGBuffer> kept;
+  auto render = [&](vtkCausticsGBuffer* g)
+  { return g->Render(gl, f.Pass->GetGeometry(), matrix, size, size, roles); };
+  auto contents = [](vtkCausticsGBuffer* g)
+  {
+    return ReadAll({ g->GetPositionTexture(), g->GetNormalTexture(), g->GetAlbedoTexture(),
+      g->GetDepthTexture() });
+  };
+  ASSERT_TRUE(render(kept));
+  EXPECT_FALSE(kept->GetLastRenderReused()) << "a first frame draws";
+
+  // Nothing changed: the targets are kept, untouched.
+  Mark(kept->GetPositionTexture());
+  ASSERT_TRUE(render(kept));
+  EXPECT_TRUE(kept->GetLastRenderReused());
+  EXPECT_TRUE(Marked(kept->GetPositionTexture()));
+  kept->ReuseUnchangedOff(); // wipe the mark
+  ASSERT_TRUE(render(kept));
+  kept->ReuseUnchangedOn();
+
+  // Each change redraws, to exactly what a fresh instance draws, and the frame
+  // after it keeps the new targets.
+  vtkActor* ball = nullptr;
+  vtkActor* floor = nullptr;
+  for (const caustics::Mesh& mesh : scene().Meshes)
+  {
+    const bool refractor = scene().Materials[mesh.material].role == caustics::Role::Refractor;
+    (refractor ? ball : floor) = mesh.actor;
+  }
+  ASSERT_NE(ball, nullptr);
+  ASSERT_NE(floor, nullptr);
+  const std::vector<Change> changes = {
+    { "a moved actor", [&]() { ball->AddPosition(0.25, 0.0, 0.0); } },
+    { "the camera", [&]() { matrix[12] += 0.05f; } },
+    { "a resize", [&]() { size = 48; } },
+    { "the role mask", [&]() { roles = vtkCausticsSceneGeometry::SpecularRoles; } },
+    { "keep farthest", [&]() { kept->KeepFarthestOn(); } },
+    { "a material's albedo",
+      [&]()
+      {
+        roles = vtkCausticsSceneGeometry::AllRoles;
+        kept->KeepFarthestOff();
+        floor->GetProperty()->SetColor(0.2, 0.4, 0.6);
+      } },
+    { "a material's role",
+      [&]() { vtkCausticsMaterial::SetRole(ball, vtkCausticsMaterial::ROLE_REFLECTOR); } },
+  };
+  auto last = contents(kept);
+  for (const Change& change : changes)
+  {
+    Mark(kept->GetPositionTexture());
+    change.Apply();
+    f.Window->Render(); // a new snapshot of the scene, uploaded
+    gl->MakeCurrent();
+    ASSERT_TRUE(render(kept));
+    EXPECT_FALSE(kept->GetLastRenderReused()) << change.What;
+    vtkNew<vtkCausticsGBuffer> fresh;
+    fresh->SetKeepFarthest(kept->GetKeepFarthest());
+    ASSERT_TRUE(render(fresh));
+    const auto now = contents(kept);
+    EXPECT_TRUE(now == contents(fresh)) << change.What << ": not what a fresh instance draws";
+    EXPECT_TRUE(now != last) << change.What << " changes the targets (else this proves nothing)";
+    fresh->ReleaseGraphicsResources(f.Window);
+    ASSERT_TRUE(render(kept));
+    EXPECT_TRUE(kept->GetLastRenderReused()) << "after " << change.What;
+    last = now;
+  }
+  std::ostringstream print;
+  kept->Print(print);
+  EXPECT_NE(print.str().find("ReuseUnchanged: 1"), std::string::npos);
+  kept->ReleaseGraphicsResources(f.Window);
 }
 
 TEST(LightBuffers, DirectionalFluxSumsToPowerInFrustum)
@@ -214,56 +341,40 @@ TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
   ASSERT_TRUE(render(kept));
   EXPECT_FALSE(kept->GetLastRenderReused()) << "a first frame draws";
 
-  // Every texture of every light, read back: what a consumer can see.
+  // Every texture of every light.
   auto contents = [](vtkCausticsLightBuffers* buffers)
   {
     std::vector<std::vector<double>> all;
     for (int i = 0; i < buffers->GetNumberOfLights(); ++i)
     {
       vtkCausticsGBuffer* g = buffers->GetGBuffer(i);
-      for (auto* texture : { g->GetPositionTexture(), g->GetNormalTexture(), g->GetAlbedoTexture(),
-             g->GetDepthTexture(), buffers->GetFluxTexture(i) })
+      for (auto& texture : ReadAll({ g->GetPositionTexture(), g->GetNormalTexture(),
+             g->GetAlbedoTexture(), g->GetDepthTexture(), buffers->GetFluxTexture(i) }))
       {
-        const int components = texture == g->GetDepthTexture() ? 1 : 4;
-        auto image = caustics::gl::ReadTexture(texture, "t", components);
-        vtkDataArray* array = image->GetPointData()->GetArray(0);
-        std::vector<double> values(array->GetNumberOfValues());
-        for (vtkIdType v = 0; v < array->GetNumberOfValues(); ++v)
-        {
-          values[v] = array->GetComponent(v / components, static_cast<int>(v % components));
-        }
-        all.push_back(std::move(values));
+        all.push_back(std::move(texture));
       }
     }
     return all;
   };
-  // A mark in every texture tells whether a frame drew the buffers again.
-  auto mark = [&]()
-  {
-    const float value[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
-    for (int i = 0; i < kept->GetNumberOfLights(); ++i)
-    {
-      vtkCausticsGBuffer* g = kept->GetGBuffer(i);
-      for (auto* texture :
-        { g->GetPositionTexture(), g->GetNormalTexture(), g->GetAlbedoTexture() })
-      {
-        glClearTexImage(texture->GetHandle(), 0, GL_RGBA, GL_FLOAT, value);
-      }
-      glClearTexImage(kept->GetFluxTexture(i)->GetHandle(), 0, GL_RGBA, GL_FLOAT, value);
-    }
-  };
-  auto marked = [&]() { return contents(kept)[0][0] == 7.0; };
+  // A mark in the flux tells whether a frame drew the buffers again. (Each G-buffer
+  // keeps its targets by its own inputs, GBuffer.KeepsUnchangedTargetsAndRedrawsOnAnyChange:
+  // a new intensity leaves them as they are.)
+  auto mark = [&]() { Mark(kept->GetFluxTexture(0)); };
+  auto marked = [&]() { return Marked(kept->GetFluxTexture(0)); };
 
   // Nothing changed: the buffers are kept, untouched; a moved camera changes nothing.
   mark();
   ASSERT_TRUE(render(kept));
   EXPECT_TRUE(kept->GetLastRenderReused());
   EXPECT_TRUE(marked());
-  ASSERT_TRUE(render(kept)); // the marks off again: still kept
   f.Renderer->GetActiveCamera()->Azimuth(30.0);
   f.Window->Render(); // a new snapshot of the scene, uploaded
   gl->MakeCurrent();
   EXPECT_TRUE(render(kept) && kept->GetLastRenderReused()) << "the camera is no input";
+  EXPECT_TRUE(marked());
+  kept->ReuseUnchangedOff(); // wipe the mark
+  ASSERT_TRUE(render(kept));
+  kept->ReuseUnchangedOn();
 
   // Each change redraws, to exactly what a fresh instance draws, and the frame
   // after it keeps the new buffers.
@@ -278,11 +389,6 @@ TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
   ASSERT_NE(floor, nullptr);
   auto* light = vtkLight::SafeDownCast(f.Renderer->GetLights()->GetItemAsObject(0));
   ASSERT_NE(light, nullptr);
-  struct Change
-  {
-    const char* What;
-    std::function<void()> Apply;
-  };
   const std::vector<Change> changes = {
     { "a moved actor", [&]() { ball->AddPosition(0.25, 0.0, 0.0); } },
     { "a turned light", [&]() { light->SetPosition(0.3, 1.0, 0.2); } },
