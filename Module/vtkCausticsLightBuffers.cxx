@@ -199,6 +199,7 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
   {
     PerLight& light = in.Lights[i];
     light.View = views[i];
+    light.GBuffer->SetReuseUnchanged(this->ReuseUnchanged);
     float worldToClip[16];
     caustics::gl::ToColumnMajor(light.View.worldToClip, worldToClip);
     ok = light.GBuffer->Render(renWin, geometry, worldToClip, resolution, resolution,

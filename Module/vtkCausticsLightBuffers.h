@@ -76,7 +76,8 @@ public:
   ///@{
   /**
    * Keep the buffers of the last Render() when its inputs are unchanged (the list
-   * in the class description). Default on.
+   * in the class description). Off, every Render() draws every buffer, the lights'
+   * G-buffers included (their own ReuseUnchanged follows this one). Default on.
    */
   vtkSetMacro(ReuseUnchanged, bool);
   vtkGetMacro(ReuseUnchanged, bool);

@@ -421,12 +421,14 @@ TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
     last = now;
   }
 
-  // Off: every frame draws.
+  // Off: every frame draws, the G-buffers too.
   kept->ReuseUnchangedOff();
   mark();
+  Mark(kept->GetGBuffer(0)->GetPositionTexture());
   ASSERT_TRUE(render(kept));
   EXPECT_FALSE(kept->GetLastRenderReused());
   EXPECT_FALSE(marked());
+  EXPECT_FALSE(Marked(kept->GetGBuffer(0)->GetPositionTexture()));
   std::ostringstream print;
   kept->Print(print);
   EXPECT_NE(print.str().find("ReuseUnchanged: 0"), std::string::npos);
