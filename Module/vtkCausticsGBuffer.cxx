@@ -13,6 +13,9 @@
 #include "vtkCausticsGBufferFS.h"
 #include "vtkCausticsGBufferVS.h"
 
+#include <cstdint>
+#include <vector>
+
 vtkStandardNewMacro(vtkCausticsGBuffer);
 
 vtkCausticsGBuffer::vtkCausticsGBuffer()
@@ -27,6 +30,19 @@ vtkCausticsGBuffer::~vtkCausticsGBuffer() = default;
 bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
   const float worldToClip[16], int width, int height, int roleMask)
 {
+  // Nothing the targets depend on changed: they are still right (no GL work at all).
+  std::vector<std::uint64_t> key{ reinterpret_cast<std::uintptr_t>(renWin),
+    reinterpret_cast<std::uintptr_t>(geometry), geometry->GetContentVersion(),
+    static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(height),
+    static_cast<std::uint64_t>(roleMask), static_cast<std::uint64_t>(this->KeepFarthest) };
+  caustics::gl::AppendKey(key, worldToClip, 16);
+  this->LastRenderReused = this->ReuseUnchanged && key == this->Key;
+  if (this->LastRenderReused)
+  {
+    return true;
+  }
+  this->Key.clear(); // until this Render() succeeds
+
   bool resized = false;
   resized |= caustics::gl::EnsureTexture(this->PositionTexture, renWin, width, height, GL_RGBA32F);
   resized |= caustics::gl::EnsureTexture(this->NormalTexture, renWin, width, height, GL_RGBA16F);
@@ -82,6 +98,10 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
     this->Program->Unbind(renWin);
   }
   state->PopFramebufferBindings();
+  if (ok)
+  {
+    this->Key = std::move(key);
+  }
   return ok;
 }
 
@@ -94,6 +114,8 @@ void vtkCausticsGBuffer::ReleaseGraphicsResources(vtkWindow* win)
   this->Framebuffer->ReleaseGraphicsResources(win);
   this->Program->ReleaseGraphicsResources(win);
   this->Size[0] = this->Size[1] = 0;
+  this->Key.clear();
+  this->LastRenderReused = false;
 }
 
 void vtkCausticsGBuffer::PrintSelf(ostream& os, vtkIndent indent)
@@ -102,4 +124,6 @@ void vtkCausticsGBuffer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
   os << indent << "Program ready: " << this->Program->IsReady() << "\n";
   os << indent << "KeepFarthest: " << this->KeepFarthest << "\n";
+  os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
+  os << indent << "LastRenderReused: " << this->LastRenderReused << "\n";
 }

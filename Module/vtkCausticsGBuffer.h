@@ -11,6 +11,11 @@
  * The caustics render pass keeps two for the camera (opaque roles: receivers and
  * reflectors; and refractors) and vtkCausticsLightBuffers one per light.
  * Textures are allocated on first use and when the size changes, never per frame.
+ * A Render() whose inputs are those of the targets held keeps them and draws
+ * nothing (ReuseUnchanged, on by default): the same window, geometry object and
+ * geometry content (vtkCausticsSceneGeometry::GetContentVersion(), renewed when a
+ * mesh, the layout or a material changes), world-to-clip matrix, size, role mask
+ * and KeepFarthest. ReleaseGraphicsResources() and a failed Render() keep nothing.
  */
 #ifndef vtkCausticsGBuffer_h
 #define vtkCausticsGBuffer_h
@@ -19,6 +24,9 @@
 #include "vtkRenderingCausticsModule.h" // For export macro
 
 #include "vtkNew.h" // For vtkNew members
+
+#include <cstdint> // For std::uint64_t
+#include <vector>  // For std::vector
 
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
@@ -64,6 +72,19 @@ public:
   vtkBooleanMacro(KeepFarthest, bool);
   ///@}
 
+  ///@{
+  /**
+   * Keep the targets of the last Render() when its inputs are unchanged (the list
+   * in the class description). Default on.
+   */
+  vtkSetMacro(ReuseUnchanged, bool);
+  vtkGetMacro(ReuseUnchanged, bool);
+  vtkBooleanMacro(ReuseUnchanged, bool);
+  ///@}
+
+  /** Whether the last Render() kept the targets it already held (nothing changed). */
+  vtkGetMacro(LastRenderReused, bool);
+
   void ReleaseGraphicsResources(vtkWindow* win);
 
 protected:
@@ -78,6 +99,9 @@ protected:
   vtkNew<vtkCausticsShaderProgram> Program;
   int Size[2] = { 0, 0 };
   bool KeepFarthest = false;
+  bool ReuseUnchanged = true;
+  bool LastRenderReused = false;
+  std::vector<std::uint64_t> Key; // the inputs of the targets held; empty: none
 
 private:
   vtkCausticsGBuffer(const vtkCausticsGBuffer&) = delete;

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <mutex>
 #include <vector>
 
@@ -361,6 +362,37 @@ void ToColumnMajor(const double rowMajor[16], float columnMajor[16])
     {
       columnMajor[4 * c + r] = static_cast<float>(rowMajor[4 * r + c]);
     }
+  }
+}
+
+void AppendKey(std::vector<std::uint64_t>& key, const double* values, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, values + i, sizeof(bits));
+    key.push_back(bits);
+  }
+}
+
+void AppendKey(std::vector<std::uint64_t>& key, const float* values, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    std::uint32_t bits;
+    std::memcpy(&bits, values + i, sizeof(bits));
+    key.push_back(bits);
+  }
+}
+
+void AppendMeshesKey(std::vector<std::uint64_t>& key, const SceneData& scene)
+{
+  key.push_back(scene.Meshes.size());
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    key.push_back(mesh.version);
+    key.push_back(static_cast<std::uint64_t>(mesh.material));
+    key.push_back(static_cast<std::uint64_t>(scene.Materials[mesh.material].role));
   }
 }
 

@@ -17,8 +17,10 @@
 #include "vtkTextureObject.h"           // For vtkNew<vtkTextureObject>
 
 #include <cstddef> // For std::size_t
+#include <cstdint> // For std::uint64_t
 #include <memory>  // For std::shared_ptr
 #include <string>  // For std::string
+#include <vector>  // For std::vector
 
 class vtkCausticsShaderProgram;
 class vtkImageData;
@@ -29,6 +31,7 @@ namespace caustics
 {
 class DensityGrid;
 struct Medium;
+struct SceneData;
 namespace gl
 {
 /** GL objects and their storage held by the caustics stages of this process. */
@@ -102,6 +105,27 @@ VTKRENDERINGCAUSTICS_EXPORT void SetMediumUniforms(vtkCausticsShaderProgram* pro
 
 /** Row-major double matrix (vtkMatrix4x4 layout) to column-major floats for GL. */
 VTKRENDERINGCAUSTICS_EXPORT void ToColumnMajor(const double rowMajor[16], float columnMajor[16]);
+
+///@{
+/**
+ * Keys of kept results: a stage that keeps what it drew while its inputs stay the
+ * same appends to a key everything the result is a function of, and draws again
+ * only when the key differs from the one of what it holds. Values go in by their
+ * exact bits (any change, however small, redraws).
+ */
+VTKRENDERINGCAUSTICS_EXPORT void AppendKey(
+  std::vector<std::uint64_t>& key, const double* values, int count);
+VTKRENDERINGCAUSTICS_EXPORT void AppendKey(
+  std::vector<std::uint64_t>& key, const float* values, int count);
+/**
+ * What vtkCausticsSceneGeometry draws from the scene's meshes: their number and,
+ * per mesh, its version (globally unique, renewed by vtkCausticsSceneExtractor
+ * whenever its triangles or its actor's matrix change), material slot and role.
+ * Material properties other than the role are not in it.
+ */
+VTKRENDERINGCAUSTICS_EXPORT void AppendMeshesKey(
+  std::vector<std::uint64_t>& key, const SceneData& scene);
+///@}
 
 /** The inverse of a 4x4 matrix, both column-major floats (inverted in double precision). */
 VTKRENDERINGCAUSTICS_EXPORT void InvertColumnMajor(const float matrix[16], float inverse[16]);

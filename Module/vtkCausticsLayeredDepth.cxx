@@ -185,19 +185,8 @@ std::vector<std::uint64_t> ContentKey(const caustics::SceneData& scene,
   std::vector<std::uint64_t> key = settings;
   key.push_back(reinterpret_cast<std::uintptr_t>(geometry));
   key.push_back(static_cast<std::uint64_t>(width) << 32 | static_cast<std::uint32_t>(height));
-  for (int i = 0; i < 16; ++i)
-  {
-    std::uint32_t bits;
-    std::memcpy(&bits, worldToClip + i, sizeof(bits));
-    key.push_back(bits);
-  }
-  key.push_back(scene.Meshes.size());
-  for (const caustics::Mesh& mesh : scene.Meshes)
-  {
-    key.push_back(mesh.version);
-    key.push_back(static_cast<std::uint64_t>(mesh.material));
-    key.push_back(static_cast<std::uint64_t>(scene.Materials[mesh.material].role));
-  }
+  caustics::gl::AppendKey(key, worldToClip, 16);
+  caustics::gl::AppendMeshesKey(key, scene);
   return key;
 }
 

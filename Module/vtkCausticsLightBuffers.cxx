@@ -15,6 +15,8 @@
 #include "vtkCausticsFullScreenVS.h"
 #include "vtkCausticsLightFluxFS.h"
 
+#include <cstdint>
+#include <iterator>
 #include <vector>
 
 vtkStandardNewMacro(vtkCausticsLightBuffers);
@@ -52,6 +54,48 @@ void SetFluxUniforms(vtkCausticsShaderProgram* program, const caustics::Light& s
   program->SetUniformf("cosOuter", static_cast<float>(source.cosOuter));
   program->SetUniformf("cosInner", static_cast<float>(source.cosInner));
 }
+
+/**
+ * Everything the buffers are a function of: the window and the geometry object,
+ * the settings, every mesh as drawn (caustics::gl::AppendMeshesKey) with its whole
+ * material (the G-buffer stores albedo and IOR), and per light its emission and
+ * placement and the view computed from them and the scene's bounds. Equal keys
+ * give equal buffers.
+ */
+std::vector<std::uint64_t> ContentKey(const vtkOpenGLRenderWindow* renWin,
+  const vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+  const std::vector<caustics::LightView>& views, const std::vector<std::uint64_t>& settings)
+{
+  std::vector<std::uint64_t> key = settings;
+  key.push_back(reinterpret_cast<std::uintptr_t>(renWin));
+  key.push_back(reinterpret_cast<std::uintptr_t>(geometry));
+  caustics::gl::AppendMeshesKey(key, scene);
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    const caustics::Material& m = scene.Materials[mesh.material];
+    const double values[] = { m.albedo[0], m.albedo[1], m.albedo[2], m.ior, m.roughness,
+      m.metalN[0], m.metalN[1], m.metalN[2], m.metalK[0], m.metalK[1], m.metalK[2],
+      m.attenuation[0], m.attenuation[1], m.attenuation[2] };
+    caustics::gl::AppendKey(key, values, static_cast<int>(std::size(values)));
+  }
+  key.push_back(scene.Lights.size());
+  for (std::size_t i = 0; i < scene.Lights.size(); ++i)
+  {
+    const caustics::Light& l = scene.Lights[i];
+    const caustics::LightView& v = views[i];
+    key.push_back(static_cast<std::uint64_t>(l.type));
+    key.push_back(
+      static_cast<std::uint64_t>(v.valid) << 1 | static_cast<std::uint64_t>(v.perspective));
+    const double values[] = { l.position[0], l.position[1], l.position[2], l.direction[0],
+      l.direction[1], l.direction[2], l.radiometric[0], l.radiometric[1], l.radiometric[2],
+      l.cosOuter, l.cosInner, v.eye[0], v.eye[1], v.eye[2], v.axis[0], v.axis[1], v.axis[2],
+      v.right[0], v.right[1], v.right[2], v.up[0], v.up[1], v.up[2], v.halfExtent, v.nearPlane,
+      v.farPlane };
+    caustics::gl::AppendKey(key, values, static_cast<int>(std::size(values)));
+    caustics::gl::AppendKey(key, v.worldToClip, 16);
+  }
+  return key;
+}
 }
 
 struct vtkCausticsLightBuffers::Internals
@@ -61,6 +105,8 @@ struct vtkCausticsLightBuffers::Internals
   vtkNew<vtkCausticsShaderProgram> FluxProgram;
   caustics::gl::FullScreenTriangle Triangle;
   caustics::LightView Invalid;
+  std::vector<std::uint64_t> Key; // ContentKey() of the buffers held; empty: none
+  bool Reused = false;            // the last Render() kept the buffers held
 
   void SetNumberOfLights(vtkOpenGLRenderWindow* renWin, int count);
   bool RenderFlux(
@@ -136,23 +182,24 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
 {
   auto& in = *this->Internal;
   const int count = static_cast<int>(scene.Lights.size());
+  const std::vector<caustics::LightView> views = this->ComputeViews(scene);
+  // Nothing the buffers depend on changed: they are still right (no GL work at all).
+  std::vector<std::uint64_t> key = ContentKey(renWin, geometry, scene, views,
+    { static_cast<std::uint64_t>(this->Resolution), static_cast<std::uint64_t>(this->Focus) });
+  in.Reused = this->ReuseUnchanged && key == in.Key;
+  if (in.Reused)
+  {
+    return true;
+  }
+  in.Key.clear(); // until this Render() succeeds
   in.SetNumberOfLights(renWin, count);
   const int resolution = this->Resolution;
   bool ok = true;
   for (int i = 0; i < count; ++i)
   {
     PerLight& light = in.Lights[i];
-    light.View = caustics::ComputeLightView(scene, i,
-      this->Focus == FOCUS_SCENE ? caustics::LightView::Focus::Scene
-                                 : caustics::LightView::Focus::Specular);
-    // Shadow maps (FOCUS_SCENE) of a lamp inside a room are clamped as a rule; what
-    // they miss counts as lit. Photons that are not traced are worth a warning.
-    if (light.View.clamped && this->Focus == FOCUS_SPECULAR)
-    {
-      vtkWarningMacro(<< "light " << i
-                      << " is inside the bounds it must light; its buffers cover only a "
-                         "150 degree cone towards the scene's centre");
-    }
+    light.View = views[i];
+    light.GBuffer->SetReuseUnchanged(this->ReuseUnchanged);
     float worldToClip[16];
     caustics::gl::ToColumnMajor(light.View.worldToClip, worldToClip);
     ok = light.GBuffer->Render(renWin, geometry, worldToClip, resolution, resolution,
@@ -160,7 +207,37 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
       ok;
     ok = in.RenderFlux(renWin, scene.Lights[i], light, resolution) && ok;
   }
+  if (ok)
+  {
+    in.Key = std::move(key);
+  }
   return ok;
+}
+
+std::vector<caustics::LightView> vtkCausticsLightBuffers::ComputeViews(
+  const caustics::SceneData& scene)
+{
+  std::vector<caustics::LightView> views;
+  for (int i = 0; i < static_cast<int>(scene.Lights.size()); ++i)
+  {
+    views.push_back(caustics::ComputeLightView(scene, i,
+      this->Focus == FOCUS_SCENE ? caustics::LightView::Focus::Scene
+                                 : caustics::LightView::Focus::Specular));
+    // Shadow maps (FOCUS_SCENE) of a lamp inside a room are clamped as a rule; what
+    // they miss counts as lit. Photons that are not traced are worth a warning.
+    if (views.back().clamped && this->Focus == FOCUS_SPECULAR)
+    {
+      vtkWarningMacro(<< "light " << i
+                      << " is inside the bounds it must light; its buffers cover only a "
+                         "150 degree cone towards the scene's centre");
+    }
+  }
+  return views;
+}
+
+bool vtkCausticsLightBuffers::GetLastRenderReused() const
+{
+  return this->Internal->Reused;
 }
 
 const caustics::LightView& vtkCausticsLightBuffers::GetView(int i) const
@@ -197,6 +274,8 @@ void vtkCausticsLightBuffers::ReleaseGraphicsResources(vtkWindow* win)
   }
   in.Lights.clear();
   in.ActiveLights = 0;
+  in.Key.clear();
+  in.Reused = false;
   in.FluxProgram->ReleaseGraphicsResources(win);
   in.Triangle.Release();
 }
@@ -206,6 +285,8 @@ void vtkCausticsLightBuffers::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "Focus: " << (this->Focus == FOCUS_SCENE ? "scene" : "specular") << "\n";
+  os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
+  os << indent << "LastRenderReused: " << this->Internal->Reused << "\n";
   os << indent << "Lights: " << this->Internal->ActiveLights << "\n";
   for (int i = 0; i < this->Internal->ActiveLights; ++i)
   {

@@ -15,6 +15,21 @@
  *    texels equals the light's power inside the frustum. Flux is written for every
  *    texel, hit or not (rgb: W; a: the texel's area in m^2 or solid angle in sr).
  * GL objects are created when a light first appears or the resolution changes.
+ *
+ * A Render() whose inputs are those of the buffers held keeps them and draws
+ * nothing (ReuseUnchanged, on by default): a still light over a still scene pays
+ * for its buffers once, whatever the camera does. The buffers are drawn again when
+ * any of these changed since the buffers held were drawn:
+ * - the window or the vtkCausticsSceneGeometry passed in;
+ * - Resolution or Focus;
+ * - the meshes: their number and order, and per mesh its version (renewed by
+ *   vtkCausticsSceneExtractor when its triangles or its actor's matrix change),
+ *   material slot, role and material properties (the G-buffer stores albedo and IOR);
+ * - the lights: their number, and per light its type, position, direction,
+ *   emission and spot cone, and the view computed from them and the scene's bounds;
+ * - ReleaseGraphicsResources() was called.
+ * Nothing else is read: the camera in particular is not. A failed Render() keeps
+ * nothing, so the next one draws.
  */
 #ifndef vtkCausticsLightBuffers_h
 #define vtkCausticsLightBuffers_h
@@ -25,6 +40,7 @@
 #include "vtkCausticsSceneData.h" // For caustics::LightView
 
 #include <memory> // For std::unique_ptr
+#include <vector> // For std::vector
 
 class vtkCausticsGBuffer;
 class vtkCausticsSceneGeometry;
@@ -57,8 +73,25 @@ public:
   vtkGetMacro(Focus, int);
   ///@}
 
+  ///@{
+  /**
+   * Keep the buffers of the last Render() when its inputs are unchanged (the list
+   * in the class description). Off, every Render() draws every buffer, the lights'
+   * G-buffers included (their own ReuseUnchanged follows this one). Default on.
+   */
+  vtkSetMacro(ReuseUnchanged, bool);
+  vtkGetMacro(ReuseUnchanged, bool);
+  vtkBooleanMacro(ReuseUnchanged, bool);
+  ///@}
+
+  /** Whether the last Render() kept the buffers it already held (nothing changed). */
+  bool GetLastRenderReused() const;
+
 #ifndef __VTK_WRAP__
-  /** Renders the buffers of every light. Returns false on a GL/program failure. */
+  /**
+   * Renders the buffers of every light, or keeps those held (ReuseUnchanged).
+   * Returns false on a GL/program failure.
+   */
   bool Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
     const caustics::SceneData& scene);
 
@@ -81,6 +114,7 @@ protected:
 
   int Resolution = 512;
   int Focus = FOCUS_SPECULAR;
+  bool ReuseUnchanged = true;
 
 private:
   vtkCausticsLightBuffers(const vtkCausticsLightBuffers&) = delete;
@@ -88,6 +122,11 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+#ifndef __VTK_WRAP__
+  /** The frustum of every light for Focus (warns of a clamped one for photons). */
+  std::vector<caustics::LightView> ComputeViews(const caustics::SceneData& scene);
+#endif
 };
 
 #endif

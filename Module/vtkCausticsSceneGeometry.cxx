@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstring>
 #include <numeric>
 
@@ -17,6 +18,13 @@ namespace
 {
 // Interleaved vertex: position (3 floats), normal (3 floats), material index (uint).
 constexpr int WordsPerVertex = 7;
+
+/** Unique in the process: a geometry's content version never repeats another's. */
+vtkTypeUInt64 NextContentVersion()
+{
+  static std::atomic<vtkTypeUInt64> next{ 1 };
+  return next++;
+}
 
 struct GPUMaterial
 {
@@ -177,6 +185,7 @@ struct vtkCausticsSceneGeometry::Internals
   std::vector<Range> Ranges;
   std::vector<GPUMaterial> Materials;
   vtkIdType LastUploadBytes = 0;
+  vtkTypeUInt64 ContentVersion = NextContentVersion();
   std::vector<float> Staging;
 };
 
@@ -207,6 +216,7 @@ void vtkCausticsSceneGeometry::ReleaseGraphicsResources(vtkWindow*)
   in.Slots.clear();
   in.Ranges.clear();
   in.Materials.clear(); // the material buffer is gone: the next Upload() must resend them
+  in.ContentVersion = NextContentVersion();
 }
 
 bool vtkCausticsSceneGeometry::Upload(
@@ -241,6 +251,10 @@ bool vtkCausticsSceneGeometry::Upload(
   in.Slots = std::move(slots);
   in.Ranges = DrawRanges(in.Slots);
   this->UploadMaterials(scene);
+  if (!sameLayout || in.LastUploadBytes > 0)
+  {
+    in.ContentVersion = NextContentVersion();
+  }
   return glGetError() == GL_NO_ERROR;
 }
 
@@ -346,6 +360,11 @@ unsigned int vtkCausticsSceneGeometry::GetMaterialBuffer() const
 {
   return this->Internal->MaterialBuffer.Handle();
 }
+vtkTypeUInt64 vtkCausticsSceneGeometry::GetContentVersion() const
+{
+  return this->Internal->ContentVersion;
+}
+
 vtkIdType vtkCausticsSceneGeometry::GetLastUploadBytes() const
 {
   return this->Internal->LastUploadBytes;
@@ -360,4 +379,5 @@ void vtkCausticsSceneGeometry::PrintSelf(ostream& os, vtkIndent indent)
      << this->GetNumberOfTriangles(RoleBit(3)) << "\n";
   os << indent << "VertexBytes: " << this->Internal->VertexBuffer.Bytes() << "\n";
   os << indent << "LastUploadBytes: " << this->Internal->LastUploadBytes << "\n";
+  os << indent << "ContentVersion: " << this->Internal->ContentVersion << "\n";
 }

@@ -66,6 +66,14 @@ public:
   /** Bytes uploaded by the last Upload() (0 when nothing changed). */
   vtkIdType GetLastUploadBytes() const;
 
+  /**
+   * A number renewed (unique in the process) whenever what Draw() draws or the
+   * material table holds changes: an Upload() that sent a mesh, changed the layout
+   * or the materials, and ReleaseGraphicsResources(). Stages that keep what they
+   * drew from this geometry compare it.
+   */
+  vtkTypeUInt64 GetContentVersion() const;
+
   /** Deletes all GL objects. */
   void ReleaseGraphicsResources(vtkWindow* win);
 

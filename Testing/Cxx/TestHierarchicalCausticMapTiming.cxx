@@ -18,6 +18,7 @@
 // and "hcm final render".
 #include "TestHierarchicalCausticMapUtilities.h"
 
+#include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsTimings.h"
 
 #include <gtest/gtest.h>
@@ -117,6 +118,9 @@ TEST(HierarchicalCausticMapTiming, DISABLED_Table3)
     hcmtest::Frame f(scene ? scene : "ball-lens", size, 256);
     ASSERT_TRUE(f.Populated);
     f.Pass->GetTimings()->SynchronousOn();
+    // Table 3 times rendering the photon buffer: the light buffers must not be kept
+    // from the frame before (vtkCausticsLightBuffers::ReuseUnchanged).
+    f.Pass->GetLightBuffers()->ReuseUnchangedOff();
     std::vector<double> photonBuffer, finalSingle, finalMulti;
     std::vector<double> gathers;
     long long processed = 0, valid = 0;

@@ -1,29 +1,42 @@
 // Numbers in the shared render buffers: camera G-buffer normals, light-buffer
-// flux bookkeeping, direct irradiance, and the skip path of the pass.
+// flux bookkeeping and the buffers kept while nothing they show changes, direct
+// irradiance, and the skip path of the pass.
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
+#include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsTimings.h"
 #include "TestTechniqueFrame.h"
 
 #include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <initializer_list>
+#include <sstream>
+#include <vector>
 
 namespace
 {
@@ -57,6 +70,44 @@ struct Fixture
     EXPECT_TRUE(this->Pass->ReadBuffer(name, image)) << name;
     return image;
   }
+};
+
+/** Every texel of every texture, read back: what a consumer can see. */
+std::vector<std::vector<double>> ReadAll(std::initializer_list<vtkTextureObject*> textures)
+{
+  std::vector<std::vector<double>> all;
+  for (vtkTextureObject* texture : textures)
+  {
+    const int components = texture->GetComponents();
+    auto image = caustics::gl::ReadTexture(texture, "t", components);
+    vtkDataArray* array = image->GetPointData()->GetArray(0);
+    std::vector<double> values(array->GetNumberOfValues());
+    for (vtkIdType v = 0; v < array->GetNumberOfValues(); ++v)
+    {
+      values[v] = array->GetComponent(v / components, static_cast<int>(v % components));
+    }
+    all.push_back(std::move(values));
+  }
+  return all;
+}
+
+/** Fills a float colour texture with 7: a frame that draws it again wipes the mark. */
+void Mark(vtkTextureObject* texture)
+{
+  const float value[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
+  glClearTexImage(texture->GetHandle(), 0, GL_RGBA, GL_FLOAT, value);
+}
+
+bool Marked(vtkTextureObject* texture)
+{
+  return ReadAll({ texture })[0][0] == 7.0;
+}
+
+/** A property of one change between frames, for the kept-buffers tests. */
+struct Change
+{
+  const char* What;
+  std::function<void()> Apply;
 };
 
 double Sum(vtkImageData* image, int component)
@@ -125,6 +176,92 @@ TEST(GBuffer, SphereCentreNormalFacesTheCamera)
   EXPECT_EQ(std::lround(opaque->GetPointData()->GetArray(0)->GetComponent(floorId, 3)), 1);
 }
 
+TEST(GBuffer, KeepsUnchangedTargetsAndRedrawsOnAnyChange)
+{
+  Fixture f("ball-lens", 64);
+  f.Pass->KeepBuffersOn(); // upload the geometry even without caustics
+  f.Window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(f.Window);
+  gl->MakeCurrent();
+  auto scene = [&]() -> const caustics::SceneData&
+  { return f.Pass->GetSceneExtractor()->GetScene(); };
+  float matrix[16];
+  caustics::gl::ToColumnMajor(scene().View.worldToClip, matrix);
+  int size = 32;
+  int roles = vtkCausticsSceneGeometry::AllRoles;
+  vtkNew<vtkCausticsGBuffer> kept;
+  auto render = [&](vtkCausticsGBuffer* g)
+  { return g->Render(gl, f.Pass->GetGeometry(), matrix, size, size, roles); };
+  auto contents = [](vtkCausticsGBuffer* g)
+  {
+    return ReadAll({ g->GetPositionTexture(), g->GetNormalTexture(), g->GetAlbedoTexture(),
+      g->GetDepthTexture() });
+  };
+  ASSERT_TRUE(render(kept));
+  EXPECT_FALSE(kept->GetLastRenderReused()) << "a first frame draws";
+
+  // Nothing changed: the targets are kept, untouched.
+  Mark(kept->GetPositionTexture());
+  ASSERT_TRUE(render(kept));
+  EXPECT_TRUE(kept->GetLastRenderReused());
+  EXPECT_TRUE(Marked(kept->GetPositionTexture()));
+  kept->ReuseUnchangedOff(); // wipe the mark
+  ASSERT_TRUE(render(kept));
+  kept->ReuseUnchangedOn();
+
+  // Each change redraws, to exactly what a fresh instance draws, and the frame
+  // after it keeps the new targets.
+  vtkActor* ball = nullptr;
+  vtkActor* floor = nullptr;
+  for (const caustics::Mesh& mesh : scene().Meshes)
+  {
+    const bool refractor = scene().Materials[mesh.material].role == caustics::Role::Refractor;
+    (refractor ? ball : floor) = mesh.actor;
+  }
+  ASSERT_NE(ball, nullptr);
+  ASSERT_NE(floor, nullptr);
+  const std::vector<Change> changes = {
+    { "a moved actor", [&]() { ball->AddPosition(0.25, 0.0, 0.0); } },
+    { "the camera", [&]() { matrix[12] += 0.05f; } },
+    { "a resize", [&]() { size = 48; } },
+    { "the role mask", [&]() { roles = vtkCausticsSceneGeometry::SpecularRoles; } },
+    { "keep farthest", [&]() { kept->KeepFarthestOn(); } },
+    { "a material's albedo",
+      [&]()
+      {
+        roles = vtkCausticsSceneGeometry::AllRoles;
+        kept->KeepFarthestOff();
+        floor->GetProperty()->SetColor(0.2, 0.4, 0.6);
+      } },
+    { "a material's role",
+      [&]() { vtkCausticsMaterial::SetRole(ball, vtkCausticsMaterial::ROLE_REFLECTOR); } },
+  };
+  auto last = contents(kept);
+  for (const Change& change : changes)
+  {
+    Mark(kept->GetPositionTexture());
+    change.Apply();
+    f.Window->Render(); // a new snapshot of the scene, uploaded
+    gl->MakeCurrent();
+    ASSERT_TRUE(render(kept));
+    EXPECT_FALSE(kept->GetLastRenderReused()) << change.What;
+    vtkNew<vtkCausticsGBuffer> fresh;
+    fresh->SetKeepFarthest(kept->GetKeepFarthest());
+    ASSERT_TRUE(render(fresh));
+    const auto now = contents(kept);
+    EXPECT_TRUE(now == contents(fresh)) << change.What << ": not what a fresh instance draws";
+    EXPECT_TRUE(now != last) << change.What << " changes the targets (else this proves nothing)";
+    fresh->ReleaseGraphicsResources(f.Window);
+    ASSERT_TRUE(render(kept));
+    EXPECT_TRUE(kept->GetLastRenderReused()) << "after " << change.What;
+    last = now;
+  }
+  std::ostringstream print;
+  kept->Print(print);
+  EXPECT_NE(print.str().find("ReuseUnchanged: 1"), std::string::npos);
+  kept->ReleaseGraphicsResources(f.Window);
+}
+
 TEST(LightBuffers, DirectionalFluxSumsToPowerInFrustum)
 {
   Fixture f("ball-lens");
@@ -186,6 +323,116 @@ TEST(LightBuffers, PointAndSpotFluxSumsToPowerInFrustum)
   EXPECT_NEAR(Sum(flux, 0) / expected, 1.0, 0.005);
   // Without the falloff, the measure (alpha) sums to the frustum's solid angle.
   EXPECT_NEAR(Sum(flux, 3) / view.FrustumSolidAngle(), 1.0, 0.005);
+}
+
+TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
+{
+  Fixture f("ball-lens", 64);
+  f.Pass->KeepBuffersOn(); // upload the geometry even without caustics
+  f.Window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(f.Window);
+  gl->MakeCurrent();
+  auto scene = [&]() -> const caustics::SceneData&
+  { return f.Pass->GetSceneExtractor()->GetScene(); };
+  vtkNew<vtkCausticsLightBuffers> kept;
+  kept->SetResolution(32);
+  auto render = [&](vtkCausticsLightBuffers* buffers)
+  { return buffers->Render(gl, f.Pass->GetGeometry(), scene()); };
+  ASSERT_TRUE(render(kept));
+  EXPECT_FALSE(kept->GetLastRenderReused()) << "a first frame draws";
+
+  // Every texture of every light.
+  auto contents = [](vtkCausticsLightBuffers* buffers)
+  {
+    std::vector<std::vector<double>> all;
+    for (int i = 0; i < buffers->GetNumberOfLights(); ++i)
+    {
+      vtkCausticsGBuffer* g = buffers->GetGBuffer(i);
+      for (auto& texture : ReadAll({ g->GetPositionTexture(), g->GetNormalTexture(),
+             g->GetAlbedoTexture(), g->GetDepthTexture(), buffers->GetFluxTexture(i) }))
+      {
+        all.push_back(std::move(texture));
+      }
+    }
+    return all;
+  };
+  // A mark in the flux tells whether a frame drew the buffers again. (Each G-buffer
+  // keeps its targets by its own inputs, GBuffer.KeepsUnchangedTargetsAndRedrawsOnAnyChange:
+  // a new intensity leaves them as they are.)
+  auto mark = [&]() { Mark(kept->GetFluxTexture(0)); };
+  auto marked = [&]() { return Marked(kept->GetFluxTexture(0)); };
+
+  // Nothing changed: the buffers are kept, untouched; a moved camera changes nothing.
+  mark();
+  ASSERT_TRUE(render(kept));
+  EXPECT_TRUE(kept->GetLastRenderReused());
+  EXPECT_TRUE(marked());
+  f.Renderer->GetActiveCamera()->Azimuth(30.0);
+  f.Window->Render(); // a new snapshot of the scene, uploaded
+  gl->MakeCurrent();
+  EXPECT_TRUE(render(kept) && kept->GetLastRenderReused()) << "the camera is no input";
+  EXPECT_TRUE(marked());
+  kept->ReuseUnchangedOff(); // wipe the mark
+  ASSERT_TRUE(render(kept));
+  kept->ReuseUnchangedOn();
+
+  // Each change redraws, to exactly what a fresh instance draws, and the frame
+  // after it keeps the new buffers.
+  vtkActor* ball = nullptr;
+  vtkActor* floor = nullptr;
+  for (const caustics::Mesh& mesh : scene().Meshes)
+  {
+    const bool refractor = scene().Materials[mesh.material].role == caustics::Role::Refractor;
+    (refractor ? ball : floor) = mesh.actor;
+  }
+  ASSERT_NE(ball, nullptr);
+  ASSERT_NE(floor, nullptr);
+  auto* light = vtkLight::SafeDownCast(f.Renderer->GetLights()->GetItemAsObject(0));
+  ASSERT_NE(light, nullptr);
+  const std::vector<Change> changes = {
+    { "a moved actor", [&]() { ball->AddPosition(0.25, 0.0, 0.0); } },
+    { "a turned light", [&]() { light->SetPosition(0.3, 1.0, 0.2); } },
+    { "the light's intensity", [&]() { light->SetIntensity(2.0); } },
+    { "a resolution", [&]() { kept->SetResolution(48); } },
+    { "a focus", [&]() { kept->SetFocus(vtkCausticsLightBuffers::FOCUS_SCENE); } },
+    { "a material's albedo", [&]() { floor->GetProperty()->SetColor(0.2, 0.4, 0.6); } },
+    { "a material's role",
+      [&]() { vtkCausticsMaterial::SetRole(ball, vtkCausticsMaterial::ROLE_REFLECTOR); } },
+  };
+  auto last = contents(kept);
+  for (const Change& change : changes)
+  {
+    mark();
+    change.Apply();
+    f.Window->Render();
+    gl->MakeCurrent();
+    ASSERT_TRUE(render(kept));
+    EXPECT_FALSE(kept->GetLastRenderReused()) << change.What;
+    vtkNew<vtkCausticsLightBuffers> fresh;
+    fresh->SetResolution(kept->GetResolution());
+    fresh->SetFocus(kept->GetFocus());
+    ASSERT_TRUE(render(fresh));
+    const auto now = contents(kept);
+    EXPECT_TRUE(now == contents(fresh)) << change.What << ": not what a fresh instance draws";
+    EXPECT_TRUE(now != last) << change.What << " changes the buffers (else this proves nothing)";
+    fresh->ReleaseGraphicsResources(f.Window);
+    ASSERT_TRUE(render(kept));
+    EXPECT_TRUE(kept->GetLastRenderReused()) << "after " << change.What;
+    last = now;
+  }
+
+  // Off: every frame draws, the G-buffers too.
+  kept->ReuseUnchangedOff();
+  mark();
+  Mark(kept->GetGBuffer(0)->GetPositionTexture());
+  ASSERT_TRUE(render(kept));
+  EXPECT_FALSE(kept->GetLastRenderReused());
+  EXPECT_FALSE(marked());
+  EXPECT_FALSE(Marked(kept->GetGBuffer(0)->GetPositionTexture()));
+  std::ostringstream print;
+  kept->Print(print);
+  EXPECT_NE(print.str().find("ReuseUnchanged: 0"), std::string::npos);
+  kept->ReleaseGraphicsResources(f.Window);
 }
 
 TEST(DirectIrradiance, LitFloorAndShadowUnderTheBall)
