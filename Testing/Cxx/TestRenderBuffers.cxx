@@ -110,6 +110,16 @@ struct Change
   std::function<void()> Apply;
 };
 
+/** The ball lens scene's actors: the refractor and the other one. */
+void BallAndFloor(const caustics::SceneData& scene, vtkActor*& ball, vtkActor*& floor)
+{
+  for (const caustics::Mesh& mesh : scene.Meshes)
+  {
+    const bool refractor = scene.Materials[mesh.material].role == caustics::Role::Refractor;
+    (refractor ? ball : floor) = mesh.actor;
+  }
+}
+
 double Sum(vtkImageData* image, int component)
 {
   vtkDataArray* array = image->GetPointData()->GetArray(0);
@@ -213,11 +223,7 @@ TEST(GBuffer, KeepsUnchangedTargetsAndRedrawsOnAnyChange)
   // after it keeps the new targets.
   vtkActor* ball = nullptr;
   vtkActor* floor = nullptr;
-  for (const caustics::Mesh& mesh : scene().Meshes)
-  {
-    const bool refractor = scene().Materials[mesh.material].role == caustics::Role::Refractor;
-    (refractor ? ball : floor) = mesh.actor;
-  }
+  BallAndFloor(scene(), ball, floor);
   ASSERT_NE(ball, nullptr);
   ASSERT_NE(floor, nullptr);
   const std::vector<Change> changes = {
@@ -380,11 +386,7 @@ TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
   // after it keeps the new buffers.
   vtkActor* ball = nullptr;
   vtkActor* floor = nullptr;
-  for (const caustics::Mesh& mesh : scene().Meshes)
-  {
-    const bool refractor = scene().Materials[mesh.material].role == caustics::Role::Refractor;
-    (refractor ? ball : floor) = mesh.actor;
-  }
+  BallAndFloor(scene(), ball, floor);
   ASSERT_NE(ball, nullptr);
   ASSERT_NE(floor, nullptr);
   auto* light = vtkLight::SafeDownCast(f.Renderer->GetLights()->GetItemAsObject(0));
