@@ -75,9 +75,9 @@ struct MeshMotion
 static_assert(sizeof(MeshMotion) == 80, "the shader's SVGFMotion");
 
 /**
- * Where an actor's mesh was in a frame: the actor's matrix, three of the mesh's world
- * vertices (which check that the matrix moved them: an actor inside a moving
- * assembly or a deformed mesh moves otherwise) and the mesh's index.
+ * Where an actor's mesh was in a frame: its model-to-world matrix (the actor's
+ * composed with its assemblies'), three of the mesh's world vertices (which check
+ * that the matrix moved them: a deformed mesh moves otherwise) and the mesh's index.
  */
 struct Placement
 {
@@ -94,8 +94,7 @@ struct Placement
     , Vertices(mesh.positions.size() / 3)
     , Index(index)
   {
-    std::copy(mesh.actor->GetMatrix()->GetData(), mesh.actor->GetMatrix()->GetData() + 16,
-      this->Matrix.begin());
+    this->Matrix = mesh.modelToWorld;
     if (vtkMapper* mapper = mesh.actor->GetMapper())
     {
       vtkDataObject* input = mapper->GetInputDataObject(0, 0);
@@ -140,10 +139,9 @@ bool Near(const double a[3], const double b[3], double scale)
 
 /**
  * The motion of a mesh from the last frame to this one: previous x inverse(current)
- * of the actor's matrices. False when the mapper or its input changed (a new shape),
- * the matrix cannot be inverted or the motion does not take this frame's sample
- * vertices to the last frame's: then the mesh moved otherwise (deformed, or with an
- * assembly).
+ * of the model-to-world matrices. False when the mapper or its input changed (a new
+ * shape), the matrix cannot be inverted or the motion does not take this frame's
+ * sample vertices to the last frame's: then the mesh moved otherwise (deformed).
  */
 bool MeshMotionOf(const Placement& previous, const Placement& current, Motion& motion)
 {

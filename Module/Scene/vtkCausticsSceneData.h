@@ -52,6 +52,8 @@ struct Mesh
 {
   std::string name;                   ///< actor's name or "actor <index>" for messages
   vtkActor* actor = nullptr;          ///< the source actor (not owned)
+  /** Model to world, row-major: the actor's matrix composed with its assemblies'. */
+  std::array<double, 16> modelToWorld{ { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 } };
   int material = 0;                   ///< index into SceneData::Materials
   std::vector<float> positions;       ///< world-space xyz per vertex
   std::vector<float> normals;         ///< world-space unit normal per vertex

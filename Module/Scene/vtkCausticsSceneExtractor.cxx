@@ -558,6 +558,7 @@ caustics::Mesh vtkCausticsSceneExtractor::Internals::ExtractMesh(
   cache.dropped = cache.repaired = 0;
   caustics::Mesh mesh;
   mesh.actor = actor;
+  std::copy(matrix->GetData(), matrix->GetData() + 16, mesh.modelToWorld.begin());
   mesh.name = vtkCausticsMaterial::GetName(actor);
   if (mesh.name.empty())
   {
