@@ -347,13 +347,15 @@ Output:
                              buffers 64 x 64, 1 warm-up frame, reference 1e5 photons)
 
 Volume caustics (docs/technique-volume-caustics.md):
-  --volume                   instead of the sweep: the screen-space god-rays
-                             (vtkCausticsVolumeLines) on --scenes (default:
+  --volume                   instead of the sweep: the line-based volume caustics
+                             (vtkCausticsVolumeLines) of each technique that writes
+                             volume lines (--techniques, default: screen-space,
+                             caustic-maps,cascaded) on --scenes (default:
                              smoke-lens,underwater) at --size: frame time against the
                              volume caustic's error for each photon grid and
                              sub-segment count, and 003's Table 2 analogue (photon
-                             grid x screen size -> frame time) on the first scene;
-                             writes volume.md
+                             grid x screen size -> frame time) per technique on the
+                             first scene; writes volume.md
   --volume-grids A,B,...     photon grids N (N x N photons; default 64,128,256)
   --volume-sub-segments A,.. sub-segment counts, 0 = per-fragment march (default 1,8,32)
   --volume-sizes A,B,...     screen sizes of the Table 2 analogue (default 64,128,256)
@@ -748,6 +750,20 @@ Options Parse(int argc, char* argv[])
     ApplySmoke(options, ladderGiven);
   }
   ApplyTemporal(options, photonsGiven, ladderGiven);
+  if (options.Volume && options.TechniquesGiven)
+  {
+    // --volume: the techniques that write volume lines, as --techniques names them.
+    const auto& volume = caustics_bench::VolumeTechniqueNames();
+    for (const auto& technique : options.Techniques)
+    {
+      if (std::find(volume.begin(), volume.end(), technique) == volume.end())
+      {
+        throw UsageError("--volume: technique '" + technique +
+          "' writes no volume lines (those that do: " + Join(volume) + ")");
+      }
+    }
+    options.VolumeTables.Techniques = options.Techniques;
+  }
   if (options.Animate == 0)
   {
     CheckLadder(options);
@@ -1986,7 +2002,8 @@ int RunVolume(const Options& options)
   settings.Size = options.Size;
   settings.Frames = options.Frames;
   settings.Warmup = options.Warmup;
-  std::cout << "caustics-bench --volume: " << Join(settings.Scenes) << ", " << settings.Size
+  std::cout << "caustics-bench --volume: " << Join(settings.Scenes) << " x "
+            << Join(settings.Techniques) << ", " << settings.Size
             << "x" << settings.Size << ", " << machine.CPU << " (" << machine.Threads
             << " threads)" << std::endl;
   const std::string tables = caustics_bench::RunVolumeTables(settings, window, std::cout);
