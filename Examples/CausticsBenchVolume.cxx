@@ -190,8 +190,8 @@ std::string RunVolumeTables(
   std::ostringstream md;
   md << "Time against error at " << settings.Size << "² (each technique's volume stages: "
      << "screen-space's `god-ray` stages, caustic maps' `hcm volume`, cascaded's "
-     << "`cascaded volume`; median of " << settings.Frames << " frames after "
-     << settings.Warmup << " warm-up; error of `VolumeRadiance` against the reference's "
+     << "`cascaded volume`; median of " << settings.Frames << " frames after " << settings.Warmup
+     << " warm-up; error of `VolumeRadiance` against the reference's "
      << "`VolumeCausticRadiance`, " << settings.VolumePhotons << " volume photons):\n\n"
      << "| scene | technique | photons | sub-segments | frame (ms) | volume stages (ms) | "
      << "rel. L2 | total ratio |\n"
@@ -214,12 +214,11 @@ std::string RunVolumeTables(
           {
             throw std::runtime_error(metrics->GetLastError());
           }
-          const std::string row = "| " + name + " | " + technique + " | " +
-            std::to_string(grid) + "² | " +
-            (subSegments == 0 ? std::string("march") : std::to_string(subSegments)) + " | " +
-            Fixed(run.FrameMilliseconds, 0) + " | " + Fixed(run.VolumeMilliseconds, 0) + " | " +
-            Fixed(metrics->GetRelativeL2Error(), 3) + " | " + Fixed(metrics->GetFluxRatio(), 3) +
-            " |\n";
+          const std::string row = "| " + name + " | " + technique + " | " + std::to_string(grid) +
+            "² | " + (subSegments == 0 ? std::string("march") : std::to_string(subSegments)) +
+            " | " + Fixed(run.FrameMilliseconds, 0) + " | " + Fixed(run.VolumeMilliseconds, 0) +
+            " | " + Fixed(metrics->GetRelativeL2Error(), 3) + " | " +
+            Fixed(metrics->GetFluxRatio(), 3) + " |\n";
           md << row;
           progress << row << std::flush;
         }

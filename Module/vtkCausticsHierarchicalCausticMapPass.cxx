@@ -501,7 +501,8 @@ bool vtkCausticsHierarchicalCausticMapPass::ReadPhotonBuffer(int light, vtkImage
   return true;
 }
 
-const caustics::gl::VolumeSegmentList* vtkCausticsHierarchicalCausticMapPass::GetVolumeSegmentList() const
+const caustics::gl::VolumeSegmentList* vtkCausticsHierarchicalCausticMapPass::GetVolumeSegmentList()
+  const
 {
   return &this->Internal->VolumeSegments;
 }

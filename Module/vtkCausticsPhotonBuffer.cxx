@@ -281,7 +281,7 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
       volumeSegments->Reserve(renWin,
         static_cast<long long>(trace.Capacity) * (settings.MaximumReflections + 1),
         settings.VolumeSubSegments, mediumGrid && mediumGrid->HasGrid(),
-        "2 x LightBufferResolution^2 x (MaximumReflections + 1)",
+        "photon buffer texels, LightBufferResolution^2 per branch, x (MaximumReflections + 1)",
         "LightBufferResolution or MaximumReflections");
       trace.VolumeSegments = volumeSegments;
     }

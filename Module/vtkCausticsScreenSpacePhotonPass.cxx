@@ -395,7 +395,7 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   const int capacity = in.VolumeCapacity.Choose(renWin, this, in.Capacity,
     vtkCausticsVolumeLines::PiecesFor(
       f.MediumGrid && f.MediumGrid->HasGrid(), this->Settings.VolumeSubSegments),
-    "one per photon of a bounce, 2 x LightBufferResolution^2", "LightBufferResolution");
+    "one per photon slot of a bounce, LightBufferResolution^2 per branch", "LightBufferResolution");
   return this->WriteVolumeSegments(renWin) &&
     in.VolumeLines->Draw(renWin, view,
       { in.VolumeSegments.Handle(), in.Tracer->GetArgumentBuffer(), 3, capacity },

@@ -97,16 +97,22 @@ int VolumeSegmentCapacity::Choose(vtkOpenGLRenderWindow* renWin, vtkObject* owne
   this->Warning.clear();
   if (sizing.IsShort())
   {
-    const bool depthsBind = sizeof(float) * (sizing.Pieces + 1.0) > vtkCausticsVolumeLines::SegmentBytes;
+    // The larger per-segment buffer is the one that meets the block first.
+    const bool depthsBind =
+      sizeof(float) * (sizing.Pieces + 1.0) > vtkCausticsVolumeLines::SegmentBytes;
     std::ostringstream why;
     why << "volume caustics: these settings allow up to " << sizing.WorstCase
-        << " photon segments per light (" << bound << "); this OpenGL holds "
-        << sizing.Fitting << " (" << (depthsBind ? "their optical depths at " : "their records, ")
-        << (depthsBind ? std::to_string(sizing.Pieces) + " sub-segments, " : std::string())
-        << "within GL_MAX_SHADER_STORAGE_BLOCK_SIZE "
-        << FormatBytes(this->Limits.MaximumStorageBlockBytes) << " or the memory budget "
-        << FormatBytes(this->Limits.MemoryBudgetBytes) << "). Segments past "
-        << sizing.Capacity
+        << " photon segments per light (" << bound << "); this OpenGL holds " << sizing.Fitting
+        << " (their "
+        << (depthsBind ? "optical depths at " + std::to_string(sizing.Pieces) + " sub-segments"
+                       : std::string("records"))
+        << " within GL_MAX_SHADER_STORAGE_BLOCK_SIZE, "
+        << FormatBytes(this->Limits.MaximumStorageBlockBytes);
+    if (this->Limits.MemoryBudgetBytes > 0.0)
+    {
+      why << ", and the memory budget, " << FormatBytes(this->Limits.MemoryBudgetBytes);
+    }
+    why << "). Segments past " << sizing.Capacity
         << " are dropped and the volume caustic loses their light; lower " << knobs
         << (depthsBind ? " or VolumeSubSegments" : "") << " to keep them all.";
     this->Warning = why.str();
@@ -115,8 +121,8 @@ int VolumeSegmentCapacity::Choose(vtkOpenGLRenderWindow* renWin, vtkObject* owne
   return sizing.Capacity;
 }
 
-void VolumeSegmentList::Reserve(vtkOpenGLRenderWindow* renWin, long long worstCase,
-  int subSegments, bool grid, const char* bound, const char* knobs)
+void VolumeSegmentList::Reserve(vtkOpenGLRenderWindow* renWin, long long worstCase, int subSegments,
+  bool grid, const char* bound, const char* knobs)
 {
   this->Capacity = this->Sizer.Choose(renWin, this->Owner, worstCase,
     vtkCausticsVolumeLines::PiecesFor(grid, subSegments), bound, knobs);

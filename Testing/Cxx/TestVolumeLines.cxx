@@ -513,7 +513,8 @@ TEST(VolumeLines, SegmentListsHoldWhatTheSettingsAllow)
   const int photons = 256, size = 64;
   const long long n = static_cast<long long>(photons) * photons;
   const auto check = [fitting](const char* name, const caustics::gl::VolumeSegmentList* list,
-                       long long worstCase, int warnings, int expectedWarnings) {
+                       long long worstCase, int warnings, int expectedWarnings)
+  {
     ASSERT_NE(list, nullptr);
     const auto& sizing = list->GetCapacity().GetSizing();
     const unsigned int appended = list->ReadAppendedCount();
@@ -537,12 +538,14 @@ TEST(VolumeLines, SegmentListsHoldWhatTheSettingsAllow)
   int warnings = 0;
   vtkNew<vtkCallbackCommand> onWarning;
   onWarning->SetClientData(&warnings);
-  onWarning->SetCallback([](vtkObject*, unsigned long, void* count, void* text) {
-    const char* message = static_cast<const char*>(text);
-    std::cout << "warning: " << (message ? message : "") << "\n";
-    *static_cast<int*>(count) +=
-      message && std::string(message).find("photon segments") != std::string::npos;
-  });
+  onWarning->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void* text)
+    {
+      const char* message = static_cast<const char*>(text);
+      std::cout << "warning: " << (message ? message : "") << "\n";
+      *static_cast<int*>(count) +=
+        message && std::string(message).find("photon segments") != std::string::npos;
+    });
   pass->AddObserver(vtkCommand::WarningEvent, onWarning);
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;
