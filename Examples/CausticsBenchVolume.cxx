@@ -2,9 +2,12 @@
 
 #include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsCascadedPhotonPass.h"
 #include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
+#include "vtkCausticsTechniques.h"
 #include "vtkCausticsTimings.h"
 
 #include "vtkDataArray.h"
@@ -37,16 +40,53 @@ double Median(std::vector<double> values)
 struct VolumeRun
 {
   double FrameMilliseconds = 0.0;  ///< wall, Render + wait for the GPU
-  double VolumeMilliseconds = 0.0; ///< GPU time of the god-ray stages
+  double VolumeMilliseconds = 0.0; ///< GPU time of the technique's volume stages
   vtkSmartPointer<vtkImageData> Volume;
 };
 
-VolumeRun Render(const VolumeSettings& settings, vtkRenderWindow* window,
-  vtkOpenGLRenderer* renderer, int grid, int subSegments, int size)
+/** Stages whose name holds this word are the technique's volume stages. */
+const char* VolumeStageWord(const std::string& technique)
 {
-  vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+  return technique == "screen-space" ? "god-ray"
+    : technique == "caustic-maps"    ? "hcm volume"
+                                     : "cascaded volume";
+}
+
+/**
+ * `technique` with an N x N photon grid (N = `grid`: the light buffers, hence the
+ * screen-space and caustic-map photons; cascaded also samples N^2 photons) and
+ * `subSegments`; every other knob at its default.
+ */
+vtkSmartPointer<vtkCausticsRenderPass> MakePass(
+  const std::string& technique, int grid, int subSegments)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
   pass->SetLightBufferResolution(grid);
-  pass->SetVolumeSubSegments(subSegments);
+  if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))
+  {
+    screenSpace->SetVolumeSubSegments(subSegments);
+  }
+  else if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))
+  {
+    maps->SetVolumeSubSegments(subSegments);
+  }
+  else if (auto* cascaded = vtkCausticsCascadedPhotonPass::SafeDownCast(pass))
+  {
+    cascaded->SetNumberOfPhotons(grid * grid);
+    cascaded->SetVolumeSubSegments(subSegments);
+  }
+  else
+  {
+    throw std::runtime_error("technique '" + technique + "' writes no volume lines");
+  }
+  return pass;
+}
+
+VolumeRun Render(const VolumeSettings& settings, vtkRenderWindow* window,
+  vtkOpenGLRenderer* renderer, const std::string& technique, int grid, int subSegments, int size)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(technique, grid, subSegments);
+  const std::string stageWord = VolumeStageWord(technique);
   // The volume caustic alone, as the reference's VolumeCausticRadiance it is compared
   // with (the airlight, a separate stage: docs/airlight.md).
   pass->GetAirlight()->EnabledOff();
@@ -72,7 +112,7 @@ VolumeRun Render(const VolumeSettings& settings, vtkRenderWindow* window,
     for (int s = 0; s < timings->GetNumberOfStages(); ++s)
     {
       const std::string name = timings->GetStageName(s);
-      if (timings->GetStageRan(s) && name.find("god-ray") != std::string::npos)
+      if (timings->GetStageRan(s) && name.find(stageWord) != std::string::npos)
       {
         sum += std::max(0.0, timings->GetStageGPUMilliseconds(s));
       }
@@ -138,69 +178,84 @@ std::string Fixed(double value, int digits)
 }
 }
 
+const std::vector<std::string>& VolumeTechniqueNames()
+{
+  static const std::vector<std::string> names{ "screen-space", "caustic-maps", "cascaded" };
+  return names;
+}
+
 std::string RunVolumeTables(
   const VolumeSettings& settings, vtkRenderWindow* window, std::ostream& progress)
 {
   std::ostringstream md;
-  md << "Time against error at " << settings.Size << "² (screen-space technique, its "
-     << "god-rays; median of " << settings.Frames << " frames after " << settings.Warmup
+  md << "Time against error at " << settings.Size << "² (each technique's volume stages: "
+     << "screen-space's `god-ray` stages, caustic maps' `hcm volume`, cascaded's "
+     << "`cascaded volume`; median of " << settings.Frames << " frames after " << settings.Warmup
      << " warm-up; error of `VolumeRadiance` against the reference's "
      << "`VolumeCausticRadiance`, " << settings.VolumePhotons << " volume photons):\n\n"
-     << "| scene | photons | sub-segments | frame (ms) | god-rays (ms) | rel. L2 | total ratio |\n"
-     << "|---|--:|--:|--:|--:|--:|--:|\n";
+     << "| scene | technique | photons | sub-segments | frame (ms) | volume stages (ms) | "
+     << "rel. L2 | total ratio |\n"
+     << "|---|---|--:|--:|--:|--:|--:|--:|\n";
   for (const std::string& name : settings.Scenes)
   {
     vtkSmartPointer<vtkOpenGLRenderer> renderer = Scene(name);
     vtkSmartPointer<vtkImageData> truth = Reference(settings, renderer, settings.Size);
-    for (int grid : settings.Grids)
+    for (const std::string& technique : settings.Techniques)
     {
-      for (int subSegments : settings.SubSegments)
+      for (int grid : settings.Grids)
       {
-        const VolumeRun run = Render(settings, window, renderer, grid, subSegments, settings.Size);
-        vtkNew<vtkCausticsErrorMetrics> metrics;
-        metrics->SetArrayName("VolumeRadiance");
-        if (!metrics->Compute(run.Volume, truth))
+        for (int subSegments : settings.SubSegments)
         {
-          throw std::runtime_error(metrics->GetLastError());
+          const VolumeRun run =
+            Render(settings, window, renderer, technique, grid, subSegments, settings.Size);
+          vtkNew<vtkCausticsErrorMetrics> metrics;
+          metrics->SetArrayName("VolumeRadiance");
+          if (!metrics->Compute(run.Volume, truth))
+          {
+            throw std::runtime_error(metrics->GetLastError());
+          }
+          const std::string row = "| " + name + " | " + technique + " | " + std::to_string(grid) +
+            "² | " + (subSegments == 0 ? std::string("march") : std::to_string(subSegments)) +
+            " | " + Fixed(run.FrameMilliseconds, 0) + " | " + Fixed(run.VolumeMilliseconds, 0) +
+            " | " + Fixed(metrics->GetRelativeL2Error(), 3) + " | " +
+            Fixed(metrics->GetFluxRatio(), 3) + " |\n";
+          md << row;
+          progress << row << std::flush;
         }
-        const std::string row = "| " + name + " | " + std::to_string(grid) + "² | " +
-          (subSegments == 0 ? std::string("march") : std::to_string(subSegments)) + " | " +
-          Fixed(run.FrameMilliseconds, 0) + " | " + Fixed(run.VolumeMilliseconds, 0) + " | " +
-          Fixed(metrics->GetRelativeL2Error(), 3) + " | " + Fixed(metrics->GetFluxRatio(), 3) +
-          " |\n";
-        md << row;
-        progress << row << std::flush;
       }
     }
   }
   // 003's Table 2: caustic-buffer resolution against screen size (frame time; the paper
-  // gives frames per second).
+  // gives frames per second), for each technique.
   const std::string scene = settings.Scenes.front();
   md << "\nTable 2 analogue (003 §6): " << scene
-     << ", frame time in ms (median, wall) by caustic-buffer (photon grid) and screen size, "
-     << "default sub-segments:\n\n| photons \\ screen |";
+     << ", frame time in ms (median, wall) by technique, caustic-buffer (photon grid) and "
+     << "screen size, default sub-segments:\n\n| technique | photons \\ screen |";
   for (int size : settings.Sizes)
   {
     md << " " << size << "² |";
   }
-  md << "\n|---|";
+  md << "\n|---|---|";
   for (std::size_t k = 0; k < settings.Sizes.size(); ++k)
   {
     md << "--:|";
   }
   md << "\n";
   vtkSmartPointer<vtkOpenGLRenderer> renderer = Scene(scene);
-  for (int grid : settings.Grids)
+  for (const std::string& technique : settings.Techniques)
   {
-    md << "| " << grid << "² |";
-    for (int size : settings.Sizes)
+    for (int grid : settings.Grids)
     {
-      const VolumeRun run = Render(settings, window, renderer, grid, 8, size);
-      md << " " << Fixed(run.FrameMilliseconds, 0) << " |";
-      progress << "table 2: " << grid << "² photons, " << size
-               << "²: " << Fixed(run.FrameMilliseconds, 0) << " ms" << std::endl;
+      md << "| " << technique << " | " << grid << "² |";
+      for (int size : settings.Sizes)
+      {
+        const VolumeRun run = Render(settings, window, renderer, technique, grid, 8, size);
+        md << " " << Fixed(run.FrameMilliseconds, 0) << " |";
+        progress << "table 2: " << technique << ", " << grid << "² photons, " << size
+                 << "²: " << Fixed(run.FrameMilliseconds, 0) << " ms" << std::endl;
+      }
+      md << "\n";
     }
-    md << "\n";
   }
   return md.str();
 }

@@ -1,7 +1,8 @@
 // caustics-bench --volume: the line-based volume caustics (vtkCausticsVolumeLines, paper
-// 003) of the screen-space technique on the media scenes: frame time against the volume
-// caustic's error for photon counts and sub-segment counts, and the analogue of 003's
-// Table 2 (caustic-buffer size x screen size -> frame time), as Markdown
+// 003) of each technique that writes volume lines (screen-space, caustic-maps, cascaded)
+// on the media scenes: frame time against the volume caustic's error for photon counts
+// and sub-segment counts, and the analogue of 003's Table 2 (caustic-buffer size x
+// screen size -> frame time) per technique, as Markdown
 // (docs/technique-volume-caustics.md shows a generated run).
 #ifndef CausticsBenchVolume_h
 #define CausticsBenchVolume_h
@@ -14,9 +15,13 @@ class vtkRenderWindow;
 namespace caustics_bench
 {
 /** What a --volume run needs from the command line. */
+/** The techniques that feed vtkCausticsVolumeLines, in the tables' order. */
+const std::vector<std::string>& VolumeTechniqueNames();
+
 struct VolumeSettings
 {
   std::vector<std::string> Scenes{ "smoke-lens", "underwater" };
+  std::vector<std::string> Techniques = VolumeTechniqueNames(); ///< a subset, in any order
   std::vector<int> Grids{ 64, 128, 256 };   ///< light-buffer side N: N x N photons
   std::vector<int> SubSegments{ 1, 8, 32 }; ///< VolumeSubSegments (0: per-fragment march)
   std::vector<int> Sizes{ 64, 128, 256 };   ///< screen sizes of the Table 2 analogue

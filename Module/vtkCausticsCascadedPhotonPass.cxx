@@ -66,6 +66,7 @@ vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
   : Internal(new Internals)
 {
   auto& s = *this->Internal;
+  s.VolumeSegments.SetOwner(this);
   s.Program->SetName("cascaded photon trace");
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
     vtkCausticsVolumeLinesCommon + vtkCausticsCascadedTraceCS;
@@ -179,9 +180,13 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.VolumeSegments.SetAppendDefine(s.Program);             // likewise
   if (s.VolumeSegments.IsOn())
   {
-    // A stretch per event and the last one: (MaximumEvents + 1) per photon at most.
-    s.VolumeSegments.Reset(static_cast<int>(std::min<long long>(
-      static_cast<long long>(photons) * (this->Settings.MaximumEvents + 1), 1LL << 21)));
+    // Travel() appends a stretch per event in air, and an event that leaves the
+    // light's view appends two (the stretch to where it left, then the camera view's
+    // to its hit or out of the scene): 2 x MaximumEvents per photon at most.
+    s.VolumeSegments.Reserve(in.Window,
+      2LL * static_cast<long long>(photons) * this->Settings.MaximumEvents,
+      this->Settings.VolumeSubSegments, in.MediumGrid && in.MediumGrid->HasGrid(),
+      "NumberOfPhotons x 2 x MaximumEvents", "NumberOfPhotons or MaximumEvents");
   }
   if (!s.Program->Bind(in.Window))
   {
@@ -279,6 +284,11 @@ bool vtkCausticsCascadedPhotonPass::Splat(const FrameInputs& in)
     in.CameraGBuffer, in.WorldToClip);
   this->EndStage("cascaded splat");
   return ok;
+}
+
+const caustics::gl::VolumeSegmentList* vtkCausticsCascadedPhotonPass::GetVolumeSegmentList() const
+{
+  return &this->Internal->VolumeSegments;
 }
 
 void vtkCausticsCascadedPhotonPass::ReleaseTechniqueResources(vtkWindow* w)

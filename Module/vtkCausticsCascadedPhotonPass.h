@@ -111,6 +111,11 @@ public:
   vtkGetMacro(FrameIndex, unsigned int);
   ///@}
 
+#ifndef __VTK_WRAP__
+  /** Its appended volume segments (capacity, sizing, count; for tests). */
+  const caustics::gl::VolumeSegmentList* GetVolumeSegmentList() const override;
+#endif
+
 protected:
   vtkCausticsCascadedPhotonPass();
   ~vtkCausticsCascadedPhotonPass() override;

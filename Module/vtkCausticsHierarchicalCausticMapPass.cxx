@@ -75,6 +75,7 @@ struct vtkCausticsHierarchicalCausticMapPass::Internals
 vtkCausticsHierarchicalCausticMapPass::vtkCausticsHierarchicalCausticMapPass()
   : Internal(new Internals)
 {
+  this->Internal->VolumeSegments.SetOwner(this); // it warns when its segments cannot all fit
   this->SetRefractionTracing(true); // the base pass's camera view of glass
   this->SetSpecularShadows(true);   // its caustic replaces the light glass and mirrors block
 }
@@ -498,6 +499,12 @@ bool vtkCausticsHierarchicalCausticMapPass::ReadPhotonBuffer(int light, vtkImage
   output->GetPointData()->AddArray(normal->GetPointData()->GetArray(0));
   output->GetPointData()->AddArray(flux->GetPointData()->GetArray(0));
   return true;
+}
+
+const caustics::gl::VolumeSegmentList* vtkCausticsHierarchicalCausticMapPass::GetVolumeSegmentList()
+  const
+{
+  return &this->Internal->VolumeSegments;
 }
 
 void vtkCausticsHierarchicalCausticMapPass::ReleaseTechniqueResources(vtkWindow* w)

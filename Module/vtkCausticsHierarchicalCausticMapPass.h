@@ -353,6 +353,11 @@ public:
   vtkCausticsPhotonBufferHierarchy* GetHierarchy(int i);
   vtkCausticsCausticMap* GetCausticMap(int i);
 
+#ifndef __VTK_WRAP__
+  /** Its appended volume segments (capacity, sizing, count; for tests). */
+  const caustics::gl::VolumeSegmentList* GetVolumeSegmentList() const override;
+#endif
+
 protected:
   /**
    * The map covers the part of the scene the camera sees: the caustic's peak loses

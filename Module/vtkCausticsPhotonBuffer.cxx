@@ -276,8 +276,13 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
     volumeSegments->SetAppendDefine(this->AirProgram);
     if (volumeSegments->IsOn())
     {
-      volumeSegments->Reset(static_cast<int>(std::min<std::size_t>(
-        trace.Capacity * static_cast<std::size_t>(settings.MaximumReflections + 1), 1u << 21)));
+      // Per photon: a piece per mirror met, the last mirror's photon stopping there
+      // (MaximumReflections + 1 of them), or fewer mirrors and the last piece.
+      volumeSegments->Reserve(renWin,
+        static_cast<long long>(trace.Capacity) * (settings.MaximumReflections + 1),
+        settings.VolumeSubSegments, mediumGrid && mediumGrid->HasGrid(),
+        "photon buffer texels, LightBufferResolution^2 per branch, x (MaximumReflections + 1)",
+        "LightBufferResolution or MaximumReflections");
       trace.VolumeSegments = volumeSegments;
     }
   }

@@ -93,6 +93,7 @@ struct SceneData;
 namespace gl
 {
 class MediumBuffer;
+class VolumeSegmentList;
 }
 }
 
@@ -220,6 +221,16 @@ public:
   ///@}
 
 #ifndef __VTK_WRAP__
+  /**
+   * The volume segments the technique's tracer appends for the volume caustics
+   * (caustic maps, cascaded: their capacity, its sizing, the last trace's count), or
+   * null (the base class; screen-space draws its rays directly). For tests.
+   */
+  virtual const caustics::gl::VolumeSegmentList* GetVolumeSegmentList() const
+  {
+    return nullptr;
+  }
+
   /**
    * GPU objects and memory the caustics stages hold, from their own bookkeeping
    * (counted where the module makes its GL objects: the textures of

@@ -16,7 +16,7 @@
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
 #include "vtkCausticsVolumeLines.h"
-#include "vtkCausticsVolumeSegmentList.h" // IsNeeded(): the volume stage's rule
+#include "vtkCausticsVolumeSegmentList.h" // IsNeeded(), VolumeSegmentCapacity
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -101,6 +101,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   caustics::gl::StorageBuffer Payloads[2];
   caustics::gl::StorageBuffer Counters[2];
   caustics::gl::StorageBuffer VolumeSegments; // CausticsVolumeSegment per ray
+  caustics::gl::VolumeSegmentCapacity VolumeCapacity; // how many of them the stage holds
   int Current = 0;
   int Capacity = 0;
   // Splat records of the photons that ended on receivers this bounce.
@@ -389,10 +390,15 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   const vtkCausticsVolumeLines::View view = caustics::gl::VolumeSegmentList::MakeView(*f.Scene,
     camera, f.Width, f.Height,
     { f.WorldToClip, f.MediumGrid, f.CameraOpticalDepth, f.CameraGBuffer, f.RefractiveGBuffer });
-  const int c = in.Current;
+  // One segment per traced ray: the stage's optical depths for all of them, or, where
+  // this OpenGL cannot hold them at VolumeSubSegments, what it holds and one warning.
+  const int capacity = in.VolumeCapacity.Choose(renWin, this, in.Capacity,
+    vtkCausticsVolumeLines::PiecesFor(
+      f.MediumGrid && f.MediumGrid->HasGrid(), this->Settings.VolumeSubSegments),
+    "one per photon slot of a bounce, LightBufferResolution^2 per branch", "LightBufferResolution");
   return this->WriteVolumeSegments(renWin) &&
     in.VolumeLines->Draw(renWin, view,
-      { in.VolumeSegments.Handle(), in.Tracer->GetArgumentBuffer(), 3, in.Capacity },
+      { in.VolumeSegments.Handle(), in.Tracer->GetArgumentBuffer(), 3, capacity },
       this->Settings.VolumeSubSegments);
 }
 
@@ -601,6 +607,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   in.VolumeLines->ReleaseGraphicsResources(w);
   in.SegmentProgram->ReleaseGraphicsResources(w);
   in.VolumeSegments.Release();
+  in.VolumeCapacity.Release();
   in.InitialProgram->ReleaseGraphicsResources(w);
   in.TransferProgram->ReleaseGraphicsResources(w);
   in.ShadowProgram->ReleaseGraphicsResources(w);

@@ -80,6 +80,12 @@ bool vtkCausticsVolumeLines::Begin(vtkOpenGLRenderWindow*, int width, int height
   return true;
 }
 
+int vtkCausticsVolumeLines::PiecesFor(bool grid, int subSegments)
+{
+  // A homogeneous medium's optical depth is linear along a segment: one piece.
+  return grid ? std::max(1, std::min(subSegments, 64)) : 1;
+}
+
 bool vtkCausticsVolumeLines::Draw(
   vtkOpenGLRenderWindow* renWin, const View& view, const Segments& segments, int subSegments)
 {
@@ -94,9 +100,8 @@ bool vtkCausticsVolumeLines::Draw(
   {
     return true; // nothing traced
   }
-  // A homogeneous medium's optical depth is linear along a segment: one piece.
   const bool grid = view.MediumGrid && view.MediumGrid->HasGrid();
-  const int pieces = grid ? std::max(1, std::min(subSegments, 64)) : 1;
+  const int pieces = PiecesFor(grid, subSegments);
   // 0: the comparison mode that marches the density per fragment.
   if (grid && subSegments <= 0)
   {

@@ -99,6 +99,13 @@ public:
   /** Bytes of one CausticsVolumeSegment record. */
   static constexpr int SegmentBytes = 48;
 
+  /**
+   * The pieces Draw() cuts a segment into: `subSegments` in [1, 64] in a density grid
+   * (`grid`), else one (0, the march, also allocates one). Draw() holds (pieces + 1)
+   * optical depths of 4 bytes per segment of the Segments' capacity.
+   */
+  static int PiecesFor(bool grid, int subSegments);
+
   /** Clears the accumulation image for a width x height view. */
   bool Begin(vtkOpenGLRenderWindow* renWin, int width, int height);
 

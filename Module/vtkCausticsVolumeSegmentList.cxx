@@ -4,9 +4,13 @@
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkObject.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <climits>
+#include <sstream>
 
 namespace caustics
 {
@@ -50,9 +54,78 @@ void VolumeSegmentList::SetAppendDefine(vtkCausticsShaderProgram* program) const
   }
 }
 
-void VolumeSegmentList::Reset(int capacity)
+VolumeSegmentCapacity::Sizing VolumeSegmentCapacity::Fit(
+  const DeviceLimits& limits, long long worstCase, int pieces)
 {
-  this->Capacity = std::max(capacity, 1);
+  Sizing sizing;
+  sizing.WorstCase = std::max(worstCase, 1LL);
+  sizing.Pieces = std::max(pieces, 1);
+  const double record = vtkCausticsVolumeLines::SegmentBytes;
+  const double depths = sizeof(float) * (sizing.Pieces + 1.0);
+  double fitting = INT_MAX; // the counts and indices are 32-bit on the GPU
+  if (limits.MaximumStorageBlockBytes > 0.0)
+  {
+    // Each buffer is one storage block: the records, and the stage's optical depths.
+    fitting = std::min(fitting, limits.MaximumStorageBlockBytes / std::max(record, depths));
+  }
+  if (limits.MemoryBudgetBytes > 0.0)
+  {
+    fitting = std::min(fitting, limits.MemoryBudgetBytes / (record + depths));
+  }
+  sizing.Fitting = static_cast<long long>(fitting);
+  sizing.Capacity = static_cast<int>(std::max(1LL, std::min(sizing.WorstCase, sizing.Fitting)));
+  return sizing;
+}
+
+int VolumeSegmentCapacity::Choose(vtkOpenGLRenderWindow* renWin, vtkObject* owner,
+  long long worstCase, int pieces, const char* bound, const char* knobs)
+{
+  if (!this->Queried)
+  {
+    renWin->MakeCurrent();
+    this->Limits = QueryDeviceLimits(0.0); // the context's limits do not change
+    this->Queried = true;
+  }
+  const Sizing sizing = Fit(this->Limits, worstCase, pieces);
+  const bool changed = sizing.WorstCase != this->Last.WorstCase ||
+    sizing.Fitting != this->Last.Fitting || this->Warning.empty() == sizing.IsShort();
+  this->Last = sizing;
+  if (!changed)
+  {
+    return sizing.Capacity;
+  }
+  this->Warning.clear();
+  if (sizing.IsShort())
+  {
+    // The larger per-segment buffer is the one that meets the block first.
+    const bool depthsBind =
+      sizeof(float) * (sizing.Pieces + 1.0) > vtkCausticsVolumeLines::SegmentBytes;
+    std::ostringstream why;
+    why << "volume caustics: these settings allow up to " << sizing.WorstCase
+        << " photon segments per light (" << bound << "); this OpenGL holds " << sizing.Fitting
+        << " (their "
+        << (depthsBind ? "optical depths at " + std::to_string(sizing.Pieces) + " sub-segments"
+                       : std::string("records"))
+        << " within GL_MAX_SHADER_STORAGE_BLOCK_SIZE, "
+        << FormatBytes(this->Limits.MaximumStorageBlockBytes);
+    if (this->Limits.MemoryBudgetBytes > 0.0)
+    {
+      why << ", and the memory budget, " << FormatBytes(this->Limits.MemoryBudgetBytes);
+    }
+    why << "). Segments past " << sizing.Capacity
+        << " are dropped and the volume caustic loses their light; lower " << knobs
+        << (depthsBind ? " or VolumeSubSegments" : "") << " to keep them all.";
+    this->Warning = why.str();
+    vtkWarningWithObjectMacro(owner, << this->Warning);
+  }
+  return sizing.Capacity;
+}
+
+void VolumeSegmentList::Reserve(vtkOpenGLRenderWindow* renWin, long long worstCase, int subSegments,
+  bool grid, const char* bound, const char* knobs)
+{
+  this->Capacity = this->Sizer.Choose(renWin, this->Owner, worstCase,
+    vtkCausticsVolumeLines::PiecesFor(grid, subSegments), bound, knobs);
   this->Records.Allocate(static_cast<std::size_t>(vtkCausticsVolumeLines::SegmentBytes) *
       static_cast<std::size_t>(this->Capacity),
     StorageBuffer::Usage::Copy);
@@ -65,6 +138,17 @@ void VolumeSegmentList::BindForAppend(vtkCausticsShaderProgram* program) const
   this->Records.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_VOLUME_APPEND_SEGMENT_BINDING);
   this->Count.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_VOLUME_APPEND_COUNT_BINDING);
   program->SetUniformu("volumeSegmentCapacity", static_cast<unsigned int>(this->Capacity));
+}
+
+unsigned int VolumeSegmentList::ReadAppendedCount() const
+{
+  unsigned int count = 0;
+  if (this->Count.Handle())
+  {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(this->Count.Handle(), 0, sizeof(count), &count);
+  }
+  return count;
 }
 
 vtkCausticsVolumeLines::Segments VolumeSegmentList::GetSegments() const
@@ -114,6 +198,7 @@ void VolumeSegmentList::Release(vtkWindow* win)
   this->Lines->ReleaseGraphicsResources(win);
   this->Records.Release();
   this->Count.Release();
+  this->Sizer.Release();
   this->Capacity = 0;
   this->On = false;
   this->Scene = nullptr;

@@ -12,27 +12,33 @@
  * 1. Begin(): with a scattering medium only (IsOn()), the stage's accumulation image
  *    is cleared and the camera's view taken; without one nothing runs and the
  *    tracers compile without the writes (SetAppendDefine());
- * 2. per light, Reset() before the trace (the records grow only: a steady scene
- *    allocates nothing; the count is zeroed on the GPU), BindForAppend() with the
- *    tracer's program bound (CAUSTICS_VOLUME_APPEND_*_BINDING and the capacity), then
- *    Draw() after it: the stage re-samples and draws the appended segments (their
- *    count stays on the GPU; beyond the capacity they are dropped);
+ * 2. per light, Reserve() before the trace: room for the most segments the
+ *    technique's settings allow (its CPU-side bound), when this OpenGL holds them
+ *    (VolumeSegmentCapacity: one warning per change of the settings when it does not;
+ *    the records grow only: a steady scene allocates nothing; the count is zeroed on
+ *    the GPU), BindForAppend() with the tracer's program bound
+ *    (CAUSTICS_VOLUME_APPEND_*_BINDING and the capacity), then Draw() after it: the
+ *    stage re-samples and draws the appended segments (their count stays on the GPU;
+ *    beyond the capacity they would be dropped, which the bound rules out);
  * 3. Finish(): the Gaussian into the frame's volume layer.
  * Not a vtkObject (kept out of wrapping); the owner calls Release() with its context.
  */
 #ifndef vtkCausticsVolumeSegmentList_h
 #define vtkCausticsVolumeSegmentList_h
 
-#include "vtkCausticsGLUtilities.h" // For caustics::gl::StorageBuffer
+#include "vtkCausticsDeviceLimits.h" // For caustics::gl::DeviceLimits
+#include "vtkCausticsGLUtilities.h"  // For caustics::gl::StorageBuffer
 #include "vtkCausticsTraceView.h"   // For caustics::TraceView
 #include "vtkCausticsVolumeLines.h" // For vtkCausticsVolumeLines::Segments
 #include "vtkNew.h"                 // For vtkNew
 
 #include <cstddef> // For std::size_t
+#include <string>  // For std::string
 
 class vtkCausticsCameraOpticalDepth;
 class vtkCausticsGBuffer;
 class vtkCausticsShaderProgram;
+class vtkObject;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
@@ -43,6 +49,58 @@ struct SceneData;
 namespace gl
 {
 class MediumBuffer;
+
+/**
+ * How many volume segments a technique gets room for. The tracers append on the GPU
+ * and nobody reads the count back, so a list shorter than what a trace appends would
+ * silently lose the volume caustic's light. A technique states the most segments its
+ * settings allow in one trace (its worst case, a CPU-side bound); the capacity is that
+ * bound when this OpenGL holds it: the records (vtkCausticsVolumeLines::SegmentBytes
+ * each) and the stage's (pieces + 1) optical depths per segment (4 bytes each) must
+ * each fit in GL_MAX_SHADER_STORAGE_BLOCK_SIZE (a larger buffer is only partly visible
+ * to the shaders), and both in the memory budget (caustics::gl::QueryDeviceLimits).
+ * Where the bound does not fit, the capacity is what fits and the owner warns once
+ * per change of the settings, naming the knobs that lower the bound.
+ */
+class VTKRENDERINGCAUSTICS_EXPORT VolumeSegmentCapacity
+{
+public:
+  struct Sizing
+  {
+    long long WorstCase = 0; ///< segments the settings allow in one trace
+    long long Fitting = 0;   ///< segments this OpenGL holds at `Pieces` pieces each
+    int Pieces = 1;          ///< optical-depth pieces per segment (vtkCausticsVolumeLines)
+    int Capacity = 1;        ///< min(WorstCase, Fitting), at least 1
+    bool IsShort() const { return this->Fitting < this->WorstCase; }
+  };
+
+  /** The sizing for `worstCase` segments of `pieces` pieces within `limits`. */
+  static Sizing Fit(const DeviceLimits& limits, long long worstCase, int pieces);
+
+  /**
+   * The capacity for this trace on `renWin`'s context (its limits are queried once).
+   * When short, `owner` warns once per change of the sizing: `bound` is the formula
+   * of `worstCase` in the owner's knobs (e.g. "NumberOfPhotons x 2 x MaximumEvents"),
+   * `knobs` the ones to lower. Nothing is built or queried on a frame that repeats
+   * the last one's sizing.
+   */
+  int Choose(vtkOpenGLRenderWindow* renWin, vtkObject* owner, long long worstCase, int pieces,
+    const char* bound, const char* knobs);
+
+  /** The last Choose()'s sizing. */
+  const Sizing& GetSizing() const { return this->Last; }
+  /** The warning Choose() gave last (empty: none since the sizing fit). */
+  const std::string& GetWarning() const { return this->Warning; }
+
+  /** Forgets the context's limits (the owner's ReleaseGraphicsResources()). */
+  void Release() { this->Queried = false; }
+
+private:
+  DeviceLimits Limits;
+  bool Queried = false;
+  Sizing Last;
+  std::string Warning;
+};
 
 class VTKRENDERINGCAUSTICS_EXPORT VolumeSegmentList
 {
@@ -80,8 +138,23 @@ public:
 
   /** Compiles the appends into `program` this frame, or leaves them out (before Bind()). */
   void SetAppendDefine(vtkCausticsShaderProgram* program) const;
-  /** Room for `capacity` segments (at least one) and a zero count, before a trace. */
-  void Reset(int capacity);
+  /** Who warns when the settings allow more segments than fit (the technique's pass). */
+  void SetOwner(vtkObject* owner) { this->Owner = owner; }
+  /**
+   * Room for `worstCase` segments, the most the owner's settings allow in one trace
+   * (`bound`: its formula; `knobs`: what lowers it), or for what this OpenGL holds
+   * with a warning (VolumeSegmentCapacity), and a zero count; before a trace.
+   * `subSegments` and `grid` (a density grid) give the stage's pieces per segment.
+   */
+  void Reserve(vtkOpenGLRenderWindow* renWin, long long worstCase, int subSegments, bool grid,
+    const char* bound, const char* knobs);
+  /** The last Reserve()'s sizing (worst case, what fits, the capacity). */
+  const VolumeSegmentCapacity& GetCapacity() const { return this->Sizer; }
+  /**
+   * Segments the last trace appended (may exceed the capacity: those were dropped).
+   * A GPU->CPU read-back for tests and diagnostics, never called while rendering.
+   */
+  unsigned int ReadAppendedCount() const;
   /** Binds both buffers and sets the capacity in `program`, which must be bound. */
   void BindForAppend(vtkCausticsShaderProgram* program) const;
   /** Re-samples and draws the segments appended since Reset() (step 2). */
@@ -101,6 +174,8 @@ private:
   StorageBuffer Records; // CausticsVolumeSegment records
   StorageBuffer Count;   // word 0: segments appended (may exceed the capacity)
   int Capacity = 0;
+  VolumeSegmentCapacity Sizer;
+  vtkObject* Owner = nullptr;
   bool On = false;
   const SceneData* Scene = nullptr; // this frame's
   TraceView Camera;                 // this frame's camera: eye, inverse matrix
