@@ -201,6 +201,5 @@ TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
   const double eye[3] = { -1.4, 0.25, -1.2 }, focal[3] = { 1.5, 1.1, 1.0 },
                up[3] = { 0.0, 1.0, 0.0 };
   SpecularError("pool", "screen-space", vtkCausticsRenderPass::SCREEN_SPACE, eye, focal, up);
-  SpecularError(
-    "pool", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye, focal, up);
+  SpecularError("pool", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye, focal, up);
 }
