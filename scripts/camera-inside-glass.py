@@ -7,9 +7,9 @@ number, else reads it per pixel from the first refractor surface seen from its b
 side, as under the pool's open water sheet; the reference decides by the side of the
 surface's normal the ray comes from, at every surface). This prints the relative L2 of
 the stage's colour ("TechniqueColor") against the reference renderer's camera paths
-("SpecularColor", 64 per pixel) with the eye inside the glass, for the screen-space
-and the distance-impostor camera views, and writes reference | stage side by side
-(PNG, scaled by the reference's largest value) for a look.
+("SpecularColor", 64 per pixel) with the eye inside the refractor, for the
+screen-space, the distance-impostor and the combined (BOTH) camera views, and writes
+reference | stage side by side (PNG, scaled by the reference's largest value) for a look.
 
   cd build && PYTHONPATH=lib/python3/dist-packages xvfb-run -a /usr/bin/python3 \\
       ../scripts/camera-inside-glass.py [--scene NAME] [--eye X,Y,Z] [--focal X,Y,Z]
@@ -73,7 +73,7 @@ def main():
     truth = vtk_to_numpy(data.GetArray("SpecularColor")).reshape(SIZE, SIZE, -1)[:, :, :3]
     mask = vtk_to_numpy(data.GetArray("SpecularMask")).reshape(SIZE, SIZE) > 0
 
-    for method, name in ((0, "screen-space"), (1, "impostors")):
+    for method, name in ((0, "screen-space"), (1, "impostors"), (2, "both")):
         technique = vtkcaustics.vtkCausticsTechniques.NewPass("screen-space")
         technique.SetLightBufferResolution(256)
         technique.SetCameraViewMethod(method)
