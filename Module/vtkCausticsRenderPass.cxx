@@ -60,9 +60,14 @@ vtkStandardNewMacro(vtkCausticsRenderPass);
 namespace
 {
 /**
- * The material of the refractor the eye is in, or -1 (air, or a parallel view): the
- * first refractor whose winding number at the eye is at least one half. Only looked
- * for when the eye is inside the specular actors' bounds, so most frames pay nothing.
+ * The material of the closed refractor the eye is in, or -1 (air, an open refractor, or
+ * a parallel view): the first refractor whose winding number at the eye is at least one
+ * half. Only looked for when the eye is inside the specular actors' bounds, so most
+ * frames pay nothing. An open refractor (a water sheet) has no winding number of 1
+ * anywhere: where this is -1, the refraction shader takes the eye to be in the medium
+ * of the first refractor surface a pixel sees from its back side (the reference's rule
+ * at every surface; glsl/vtkCausticsScreenSpaceRefractionFS.glsl), one dot product per
+ * pixel and nothing here.
  */
 int EyeMaterial(const caustics::SceneData& scene, const double viewOrigin[4])
 {

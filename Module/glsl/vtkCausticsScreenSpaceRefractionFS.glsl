@@ -35,7 +35,9 @@ uniform int hasLostShading;
 uniform mat4 worldToClip;
 uniform vec2 viewport;
 uniform vec4 viewOrigin; // camera position (w = 1) or view direction (w = 0)
-uniform int eyeMaterial; // the refractor the eye is in (a camera inside glass), -1: air
+// The closed refractor the eye is in (winding number >= 1/2 at the eye), -1: none. Where
+// it is -1, each pixel reads the eye's medium from the first refractor surface it sees.
+uniform int eyeMaterial;
 uniform vec3 boundsMin;
 uniform vec3 boundsMax;
 uniform vec3 background;
@@ -495,6 +497,7 @@ void main()
   vec3 x;
   vec3 absorption = vec3(0.0);
   int leftRole = ROLE_REFLECTOR;
+  int eyeIn = -1; // the refractor the eye is in, as this pixel sees it; -1: air
   if (front.w < 0.0 || (opaque.w >= 0.0 && ViewDepth(opaque.xyz) < ViewDepth(front.xyz)))
   {
     // No refractor in front: a mirror, where VTK drew it (VTK shows no reflection
@@ -529,25 +532,35 @@ void main()
     vec3 n = texelFetch(refractorNormal, ivec3(pixel, 0), 0).xyz;
     CausticsMaterial material = causticsMaterials[int(front.w + 0.5)];
     float ior = max(material.params.x, 1.0);
-    vec3 facing = dot(v, n) < 0.0 ? n : -n;
+    bool backFace = dot(v, n) > 0.0;
+    vec3 facing = backFace ? -n : n;
     float cosI = clamp(-dot(v, facing), 0.0, 1.0);
-    // From the eye's medium into the other, whichever way n faces: the camera is in
-    // air (into the refractor), or inside the glass (out of it: the surface seen first
-    // is the way out, and the light has crossed the glass up to it).
-    bool eyeInGlass = eyeMaterial >= 0;
-    float n1 = eyeInGlass ? max(causticsMaterials[eyeMaterial].params.x, 1.0) : 1.0;
+    // The eye's medium: the closed refractor it is in (eyeMaterial), else, as the
+    // reference decides at every surface, the refractor whose surface this pixel sees
+    // from its back side (the side its normal does not point to): a camera under an
+    // open water sheet (one surface, normal up) is in the water, one above it is in
+    // air. A camera beside the sheet is in air where it sees the sheet's front, in the
+    // water where it sees its back (below the sheet's plane), as the reference takes it
+    // though no water is modelled around the eye. The interpolated normal decides: at a
+    // closed refractor's silhouette, seen from outside, it can face away from the eye
+    // (a grazing pixel, mostly reflected either way). From the eye's medium into the
+    // other: from air into the refractor, or out of it (the surface seen first is the
+    // way out, and the light has crossed the medium up to it).
+    eyeIn = eyeMaterial >= 0 ? eyeMaterial : (backFace ? int(front.w + 0.5) : -1);
+    bool eyeInGlass = eyeIn >= 0;
+    float n1 = eyeInGlass ? max(causticsMaterials[eyeIn].params.x, 1.0) : 1.0;
     float n2 = eyeInGlass ? 1.0 : ior;
     float reflectance;
     vec3 reflected, refracted;
     bool transmits = CausticsDielectric(v, facing, cosI, n1, n2, reflectance, reflected, refracted);
     vec3 crossed = eyeInGlass ? CausticsTransmittance(
-      causticsMaterials[eyeMaterial].attenuation.rgb, distance(x, viewOrigin.xyz)) : vec3(1.0);
+      causticsMaterials[eyeIn].attenuation.rgb, distance(x, viewOrigin.xyz)) : vec3(1.0);
     weights[0] = crossed * reflectance; // reflected, staying in the eye's medium
     directions[0] = reflected;
     weights[1] = crossed * (1.0 - reflectance); // refracted, into the other
     directions[1] = refracted;
     paths = transmits ? 2 : 1;
-    absorption = (eyeInGlass ? causticsMaterials[eyeMaterial] : material).attenuation.rgb;
+    absorption = (eyeInGlass ? causticsMaterials[eyeIn] : material).attenuation.rgb;
     leftRole = ROLE_REFRACTOR;
   }
   vec3 color = vec3(0.0);
@@ -556,8 +569,8 @@ void main()
     // In the glass: the refracted path from air, the reflected one from inside. Only
     // the path from air into the glass follows the refractor's layers along the pixel
     // (the next is layer 1); the others have turned off that line.
-    bool inside = (k == 1) != (eyeMaterial >= 0);
-    bool alongLayers = k == 1 && eyeMaterial < 0;
+    bool inside = (k == 1) != (eyeIn >= 0);
+    bool alongLayers = k == 1 && eyeIn < 0;
     color += weights[k] *
       TracePath(x, directions[k], inside, alongLayers ? 0 : -1, alongLayers ? 1 : -1,
         absorption, leftRole);

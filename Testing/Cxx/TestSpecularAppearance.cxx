@@ -6,17 +6,23 @@
 // on the background), on the pixels whose first visible surface is specular, at
 // 128 x 128 pixels and 256 x 256 photons.
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsTechniques.h"
 #include "vtkCausticsTimings.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderer.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 
 #include <gtest/gtest.h>
@@ -29,22 +35,76 @@ namespace
 {
 constexpr int Size = 128;
 
-/** Relative L2 of the technique's colour against the reference's on specular pixels. */
+/** A plane actor: corner `origin`, edges to `p1` and `p2` (normal (p1 - o) x (p2 - o)). */
+vtkSmartPointer<vtkActor> Plane(
+  const double origin[3], const double p1[3], const double p2[3], int resolution)
+{
+  vtkNew<vtkPlaneSource> source;
+  source->SetOrigin(origin[0], origin[1], origin[2]);
+  source->SetPoint1(p1[0], p1[1], p1[2]);
+  source->SetPoint2(p2[0], p2[1], p2[2]);
+  source->SetResolution(resolution, resolution);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(source->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/**
+ * An open water sheet (index 1.33, flat, y = 1, normal up) 6 m wide over a 2 m floor,
+ * lit from above by a directional light: a camera can stand beside it, beyond its edge.
+ */
+void PopulateWideSheet(vtkRenderer* renderer)
+{
+  const double floorCorner[3] = { -1.0, 0.0, 1.0 }, floorRight[3] = { 1.0, 0.0, 1.0 },
+               floorBack[3] = { -1.0, 0.0, -1.0 };
+  auto floor = Plane(floorCorner, floorRight, floorBack, 8);
+  floor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  renderer->AddActor(floor);
+  const double sheetCorner[3] = { -3.0, 1.0, 3.0 }, sheetRight[3] = { 3.0, 1.0, 3.0 },
+               sheetBack[3] = { -3.0, 1.0, -3.0 };
+  auto sheet = Plane(sheetCorner, sheetRight, sheetBack, 32);
+  vtkCausticsMaterial::MakeGlass(sheet->GetProperty(), 1.33);
+  renderer->AddActor(sheet);
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(0.3, 1.0, 0.2);
+  sun->SetFocalPoint(0.0, 0.0, 0.0);
+  renderer->AddLight(sun);
+}
+
+/**
+ * Relative L2 of the technique's colour against the reference's on specular pixels, on
+ * the built-in scene `sceneName` or, with `populate`, on the scene it adds (`sceneName`
+ * then only names it in the output).
+ */
 double SpecularError(const std::string& sceneName, const std::string& technique,
-  int method = vtkCausticsRenderPass::SCREEN_SPACE, const double* eye = nullptr)
+  int method = vtkCausticsRenderPass::SCREEN_SPACE, const double* eye = nullptr,
+  const double* focal = nullptr, const double* up = nullptr,
+  void (*populate)(vtkRenderer*) = nullptr)
 {
   vtkNew<vtkOpenGLRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
   vtkNew<vtkCausticsBuiltinScene> scene;
-  scene->SetSceneName(sceneName.c_str());
-  EXPECT_TRUE(scene->Populate(renderer));
+  if (populate)
+  {
+    populate(renderer);
+  }
+  else
+  {
+    scene->SetSceneName(sceneName.c_str());
+    EXPECT_TRUE(scene->Populate(renderer));
+  }
   if (eye)
   {
-    // Looking down at the floor's caustic from `eye`.
+    // From `eye` towards `focal` (default: down at the floor's caustic at the origin).
+    const double origin[3] = { 0.0, 0.0, 0.0 }, south[3] = { 0.0, 0.0, -1.0 };
     vtkCamera* camera = renderer->GetActiveCamera();
     camera->SetPosition(eye);
-    camera->SetFocalPoint(0.0, 0.0, 0.0);
-    camera->SetViewUp(0.0, 0.0, -1.0);
+    camera->SetFocalPoint(focal ? focal : origin);
+    camera->SetViewUp(up ? up : south);
     camera->SetViewAngle(60.0);
     camera->SetClippingRange(0.01, 20.0);
   }
@@ -103,8 +163,8 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
   const double error = norm > 0.0 ? std::sqrt(difference / norm) : 1.0;
   const char* methods[] = { "screen-space view", "impostor view", "screen-space + impostor view" };
   std::cout << sceneName << ", " << technique << ", " << methods[method] << ": " << pixels
-            << " specular pixels, relative L2 " << 100.0 * error << " %; camera view "
-            << view << " ms a frame, maps " << maps << " ms once\n";
+            << " specular pixels, relative L2 " << 100.0 * error << " %; camera view " << view
+            << " ms a frame, maps " << maps << " ms once\n";
   return error;
 }
 }
@@ -163,4 +223,69 @@ TEST(SpecularAppearance, CameraInsideTheGlass)
   EXPECT_LT(
     SpecularError("ball-lens", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye),
     0.08);
+}
+
+// A camera under the pool's open water sheet (index 1.33, one surface at y ~ 1, its
+// normal up, the water below it), looking up at it obliquely: inside Snell's window
+// the walls above the water and the sky (the background), outside it the floor by
+// total internal reflection. The reference leaves the water there (the ray meets the
+// sheet's back side); the sheet has no winding number of 1 anywhere, so the stage
+// took it as an entry from air (89.6 %, screen-space view; 88.1 %, impostor view)
+// until each pixel read the eye's medium from the side of the first refractor surface
+// it sees. Reached: 70.4 % and 44.6 % (scripts/camera-inside-glass.py --scene pool
+// prints the same and writes the images). The screen-space view's reflected rays head
+// down to a floor behind the camera, out of the view: they see the background (the
+// view's mean is 36 % under the reference's; the impostors' 4 % over it). The
+// impostor view follows the floor's tiles in the waves but blurs their reflection.
+// Bounds just above.
+TEST(SpecularAppearance, CameraUnderTheWaterSheet)
+{
+  const double eye[3] = { 0.5, 0.4, 0.8 }, focal[3] = { -0.4, 1.0, -0.6 },
+               up[3] = { 0.0, 1.0, 0.0 };
+  EXPECT_LT(
+    SpecularError("pool", "screen-space", vtkCausticsRenderPass::SCREEN_SPACE, eye, focal, up),
+    0.71);
+  EXPECT_LT(SpecularError(
+              "pool", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye, focal, up),
+    0.45);
+}
+
+// A second framing, not designed around: low, near a corner, looking across the pool
+// at the far wall's waterline, mostly total internal reflection at grazing angles.
+// Measured, not bounded: 88.8 % before and 77.8 % after (screen-space view), 88.1 %
+// and 70.3 % (impostor view).
+TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
+{
+  const double eye[3] = { -1.4, 0.25, -1.2 }, focal[3] = { 1.5, 1.1, 1.0 },
+               up[3] = { 0.0, 1.0, 0.0 };
+  SpecularError("pool", "screen-space", vtkCausticsRenderPass::SCREEN_SPACE, eye, focal, up);
+  SpecularError("pool", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye, focal, up);
+}
+
+// A camera beside an open sheet, beyond its edge (PopulateWideSheet: the sheet spans
+// x in [-3, 3]; the eye at x = 4). Below the sheet's plane it sees the sheet's back
+// side: the reference leaves the water there, and so does the stage, though no water
+// is modelled around the eye (the rule reads the sheet's facing, not a volume). Before
+// the per-pixel rule: 86.2 % (screen-space view) and 85.6 % (impostor view); reached:
+// 22.8 % and 14.4 %. Above the plane it sees the front, an entry from air, unchanged by
+// the rule: 16.6 % and 18.7 %. Bounds just above.
+TEST(SpecularAppearance, CameraBesideTheWaterSheet)
+{
+  const int screen = vtkCausticsRenderPass::SCREEN_SPACE;
+  const int impostors = vtkCausticsRenderPass::DISTANCE_IMPOSTORS;
+  const double up[3] = { 0.0, 1.0, 0.0 };
+  const double below[3] = { 4.0, 0.6, 0.3 }, towardsTheSheet[3] = { 1.0, 1.0, 0.0 };
+  EXPECT_LT(SpecularError("sheet, beside below", "screen-space", screen, below, towardsTheSheet, up,
+              PopulateWideSheet),
+    0.23);
+  EXPECT_LT(SpecularError("sheet, beside below", "screen-space", impostors, below, towardsTheSheet,
+              up, PopulateWideSheet),
+    0.15);
+  const double above[3] = { 4.0, 1.6, 0.3 }, origin[3] = { 0.0, 0.0, 0.0 };
+  EXPECT_LT(SpecularError(
+              "sheet, beside above", "screen-space", screen, above, origin, up, PopulateWideSheet),
+    0.17);
+  EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
+              PopulateWideSheet),
+    0.19);
 }
