@@ -396,6 +396,40 @@ void AppendMeshesKey(std::vector<std::uint64_t>& key, const SceneData& scene)
   }
 }
 
+std::vector<double> LightFieldSignature(const SceneData& scene, bool placement)
+{
+  std::vector<double> s;
+  auto add = [&s](const Vec3& v) { s.insert(s.end(), v.begin(), v.end()); };
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    s.insert(s.end(),
+      { placement ? static_cast<double>(mesh.version) : 0.0, static_cast<double>(mesh.material) });
+  }
+  for (const Material& m : scene.Materials)
+  {
+    s.insert(s.end(), { static_cast<double>(m.role), m.ior, m.roughness });
+    add(m.metalN);
+    add(m.metalK);
+    add(m.attenuation);
+  }
+  for (const Light& light : scene.Lights)
+  {
+    s.push_back(static_cast<double>(light.type));
+    if (placement)
+    {
+      add(light.position);
+      add(light.direction);
+    }
+    add(light.radiometric);
+    s.insert(s.end(), { light.cosOuter, light.cosInner });
+  }
+  const Medium& medium = scene.Participating;
+  s.insert(s.end(), { medium.enabled ? 1.0 : 0.0, medium.g });
+  add(medium.sigmaS);
+  add(medium.sigmaA);
+  return s;
+}
+
 vtkSmartPointer<vtkImageData> ReadTexture(
   vtkTextureObject* texture, const std::string& arrayName, int components, int firstChannel)
 {

@@ -127,6 +127,18 @@ VTKRENDERINGCAUSTICS_EXPORT void AppendMeshesKey(
   std::vector<std::uint64_t>& key, const SceneData& scene);
 ///@}
 
+/**
+ * What the caustic irradiance on the receivers depends on, as numbers: every mesh's
+ * geometry version (vertices, actor matrix) and material slot, every material's optics
+ * (role, IOR, roughness, metal n and k, attenuation; not the albedo), every light
+ * (type, position, direction, emission, spot cone), the medium's coefficients. The
+ * camera is not in it: irradiance does not depend on the view. Without `placement`,
+ * only the optics: no mesh versions, no light positions or directions (what a rigid
+ * motion of the whole scene leaves alone).
+ */
+VTKRENDERINGCAUSTICS_EXPORT std::vector<double> LightFieldSignature(
+  const SceneData& scene, bool placement = true);
+
 /** The inverse of a 4x4 matrix, both column-major floats (inverted in double precision). */
 VTKRENDERINGCAUSTICS_EXPORT void InvertColumnMajor(const float matrix[16], float inverse[16]);
 

@@ -57,10 +57,11 @@ void SetFluxUniforms(vtkCausticsShaderProgram* program, const caustics::Light& s
 
 /**
  * Everything the buffers are a function of: the window and the geometry object,
- * the settings, every mesh as drawn (caustics::gl::AppendMeshesKey) with its whole
- * material (the G-buffer stores albedo and IOR), and per light its emission and
- * placement and the view computed from them and the scene's bounds. Equal keys
- * give equal buffers.
+ * the settings, every mesh as drawn (caustics::gl::AppendMeshesKey), the lights,
+ * materials and medium as the caustic irradiance sees them
+ * (caustics::gl::LightFieldSignature) with the albedo the G-buffer stores besides,
+ * and per light the view computed from it and the scene's bounds. Equal keys give
+ * equal buffers.
  */
 std::vector<std::uint64_t> ContentKey(const vtkOpenGLRenderWindow* renWin,
   const vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
@@ -70,25 +71,18 @@ std::vector<std::uint64_t> ContentKey(const vtkOpenGLRenderWindow* renWin,
   key.push_back(reinterpret_cast<std::uintptr_t>(renWin));
   key.push_back(reinterpret_cast<std::uintptr_t>(geometry));
   caustics::gl::AppendMeshesKey(key, scene);
-  for (const caustics::Mesh& mesh : scene.Meshes)
+  const std::vector<double> lightField = caustics::gl::LightFieldSignature(scene);
+  caustics::gl::AppendKey(key, lightField.data(), static_cast<int>(lightField.size()));
+  for (const caustics::Material& m : scene.Materials)
   {
-    const caustics::Material& m = scene.Materials[mesh.material];
-    const double values[] = { m.albedo[0], m.albedo[1], m.albedo[2], m.ior, m.roughness,
-      m.metalN[0], m.metalN[1], m.metalN[2], m.metalK[0], m.metalK[1], m.metalK[2],
-      m.attenuation[0], m.attenuation[1], m.attenuation[2] };
-    caustics::gl::AppendKey(key, values, static_cast<int>(std::size(values)));
+    caustics::gl::AppendKey(key, m.albedo.data(), 3);
   }
-  key.push_back(scene.Lights.size());
-  for (std::size_t i = 0; i < scene.Lights.size(); ++i)
+  key.push_back(views.size());
+  for (const caustics::LightView& v : views)
   {
-    const caustics::Light& l = scene.Lights[i];
-    const caustics::LightView& v = views[i];
-    key.push_back(static_cast<std::uint64_t>(l.type));
     key.push_back(
       static_cast<std::uint64_t>(v.valid) << 1 | static_cast<std::uint64_t>(v.perspective));
-    const double values[] = { l.position[0], l.position[1], l.position[2], l.direction[0],
-      l.direction[1], l.direction[2], l.radiometric[0], l.radiometric[1], l.radiometric[2],
-      l.cosOuter, l.cosInner, v.eye[0], v.eye[1], v.eye[2], v.axis[0], v.axis[1], v.axis[2],
+    const double values[] = { v.eye[0], v.eye[1], v.eye[2], v.axis[0], v.axis[1], v.axis[2],
       v.right[0], v.right[1], v.right[2], v.up[0], v.up[1], v.up[2], v.halfExtent, v.nearPlane,
       v.farPlane };
     caustics::gl::AppendKey(key, values, static_cast<int>(std::size(values)));

@@ -91,47 +91,6 @@ int EyeMaterial(const caustics::SceneData& scene, const double viewOrigin[4])
 
 using Box = std::array<double, 6>;
 
-/**
- * What the caustic irradiance on the receivers depends on, as numbers: every mesh's
- * geometry version (vertices, actor matrix), every material's optics, every light,
- * the medium's coefficients. The camera is not in it: irradiance does not depend on
- * the view. Without `placement`, only the optics: no mesh versions, no light
- * positions or directions (what a rigid motion of the whole scene leaves alone).
- */
-std::vector<double> LightFieldSignature(const caustics::SceneData& scene, bool placement = true)
-{
-  std::vector<double> s;
-  auto add = [&s](const caustics::Vec3& v) { s.insert(s.end(), v.begin(), v.end()); };
-  for (const caustics::Mesh& mesh : scene.Meshes)
-  {
-    s.insert(s.end(),
-      { placement ? static_cast<double>(mesh.version) : 0.0, static_cast<double>(mesh.material) });
-  }
-  for (const caustics::Material& m : scene.Materials)
-  {
-    s.insert(s.end(), { static_cast<double>(m.role), m.ior, m.roughness });
-    add(m.metalN);
-    add(m.metalK);
-    add(m.attenuation);
-  }
-  for (const caustics::Light& light : scene.Lights)
-  {
-    s.push_back(static_cast<double>(light.type));
-    if (placement)
-    {
-      add(light.position);
-      add(light.direction);
-    }
-    add(light.radiometric);
-    s.insert(s.end(), { light.cosOuter, light.cosInner });
-  }
-  const caustics::Medium& medium = scene.Participating;
-  s.insert(s.end(), { medium.enabled ? 1.0 : 0.0, medium.g });
-  add(medium.sigmaS);
-  add(medium.sigmaA);
-  return s;
-}
-
 /** Binds a framebuffer with one colour attachment and clears it to zero. */
 void BindAndClear(vtkOpenGLFramebufferObject* framebuffer,
   std::initializer_list<vtkTextureObject*> textures, vtkOpenGLRenderWindow* renWin, bool attach)
@@ -330,7 +289,7 @@ struct vtkCausticsRenderPass::Internals
   vtkNew<vtkCausticsSVGFDenoiser> Denoiser; // denoises CausticTexture in place (Denoise)
   bool PreviousDenoised = false;            // whether the frame before this one was denoised
   std::size_t DenoisedLights = 0;           // lights of the last denoised frame
-  std::vector<double> DenoisedLightField; // LightFieldSignature of the last denoised frame
+  std::vector<double> DenoisedLightField; // caustics::gl::LightFieldSignature of the last denoised frame
   std::vector<double> DenoisedOptics;     // the same without placements
   vtkNew<vtkTextureObject> DirectTexture; // RGBA32F, W/m^2
   // RGBA32F: VTK's diffuse shading (albedo 1) that reflectors and refractors block.
@@ -943,9 +902,9 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
     in.Denoiser->ResetHistory();
   }
   in.DenoisedLights = f.Scene->Lights.size();
-  std::vector<double> lightField = LightFieldSignature(*f.Scene);
+  std::vector<double> lightField = caustics::gl::LightFieldSignature(*f.Scene);
   vtkCausticsSVGFDenoiser::Inputs inputs;
-  std::vector<double> optics = LightFieldSignature(*f.Scene, false);
+  std::vector<double> optics = caustics::gl::LightFieldSignature(*f.Scene, false);
   inputs.LightChanged = lightField != in.DenoisedLightField;
   inputs.OpticsChanged = optics != in.DenoisedOptics;
   in.DenoisedLightField = std::move(lightField);
@@ -1430,24 +1389,19 @@ const vtkCausticsRenderPass::BufferEntry* vtkCausticsRenderPass::FindBuffer(cons
   using Pass = vtkCausticsRenderPass;
   auto always = [](Pass*) { return true; };
   auto caustics = [](Pass* p) { return p->Result.Caustics; };
+  // The technique's caustic irradiance before denoising (alpha: CausticsDeposit's).
+  auto raw = [](Pass* p, int)
+  {
+    return p->Result.Denoised ? p->Internal->Denoiser->GetRawTexture()
+                              : p->Internal->CausticTexture.Get();
+  };
   static const BufferEntry table[] = {
     { "FinalColor", 3, false, [](Pass* p, int) { return p->Internal->FinalTexture.Get(); },
       [](Pass* p) { return p->KeepBuffers; } },
     { "CausticIrradiance", 3, false, [](Pass* p, int) { return p->Internal->CausticTexture.Get(); },
       caustics },
-    { "RawCausticIrradiance", 3, false,
-      [](Pass* p, int)
-      {
-        return p->Result.Denoised ? p->Internal->Denoiser->GetRawTexture()
-                                  : p->Internal->CausticTexture.Get();
-      },
-      caustics },
-    { "PhotonHalfSetDifference", 1, false,
-      [](Pass* p, int)
-      {
-        return p->Result.Denoised ? p->Internal->Denoiser->GetRawTexture()
-                                  : p->Internal->CausticTexture.Get();
-      },
+    { "RawCausticIrradiance", 3, false, raw, caustics },
+    { "PhotonHalfSetDifference", 1, false, raw,
       [](Pass* p) { return p->Result.Caustics && p->WritesPhotonVariance(); }, 3 },
     { "DirectIrradiance", 3, false, [](Pass* p, int) { return p->Internal->DirectTexture.Get(); },
       [](Pass* p) { return p->Result.Direct; } },
