@@ -73,8 +73,10 @@ void main()
   vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - x : -viewOrigin.xyz * 1.0e6;
   float distanceToCamera = length(toCamera);
   vec3 v = toCamera / distanceToCamera;
+  // To the camera from the near plane, as the composite, the airlight and the reference's
+  // camera rays take it (the march's start when the volume does not serve).
   vec3 transmittance = CausticsTransmittance(causticsSigmaT, along) *
-    CausticsMediumTransmittanceToCamera(x, x + toCamera);
+    CausticsMediumTransmittanceToCamera(x, Unproject(gl_FragCoord.xy, -1.0));
 #ifdef CAUSTICS_MEDIUM_GRID
   vec3 scattering = sigmaS * CausticsMediumDensity(x);
 #else
