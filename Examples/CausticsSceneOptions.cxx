@@ -67,6 +67,9 @@ const char* const OverridesUsage = R"(Overrides:
                              per channel, 1/m per unit density (0..1e9)
   --medium-density-scale S   factor on the grid's densities, 0..1e6 (default 1)
   --medium-g G               Henyey-Greenstein g, (-1, 1)
+  --medium-fills-refractors  the medium fills the refractors too (murky water
+                             under a water surface); alone, it applies to the
+                             scene's own medium
 )";
 
 std::string QualityUsage()
@@ -459,6 +462,7 @@ void DeclareMediumOptions(Arguments& arguments, SceneOptions& options)
       }
       medium.HasDensityScale = medium.Given = true;
     });
+  arguments.Flag("--medium-fills-refractors", [&medium] { medium.FillsRefractors = true; });
 }
 }
 
@@ -596,6 +600,7 @@ vtkSmartPointer<vtkCausticsMedium> MakeMedium(const SceneOptions::MediumOptions&
   medium->SetScatteringCoefficient(scattering.data());
   medium->SetAbsorptionCoefficient(absorption.data());
   medium->SetAnisotropy(options.HasG ? options.G : (options.HasGrey ? options.Grey[2] : 0.0));
+  medium->SetFillsRefractors(options.FillsRefractors);
   if (grid)
   {
     // The error goes into the exception (one line), not to VTK's output window.
@@ -661,6 +666,15 @@ void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer)
   if (options.Medium.Given)
   {
     vtkCausticsMedium::AttachTo(renderer, MakeMedium(options.Medium));
+  }
+  else if (options.Medium.FillsRefractors)
+  {
+    vtkCausticsMedium* medium = vtkCausticsMedium::GetFrom(renderer);
+    if (!medium)
+    {
+      throw UsageError("--medium-fills-refractors: the scene has no medium (give one with --medium)");
+    }
+    medium->FillsRefractorsOn();
   }
 }
 

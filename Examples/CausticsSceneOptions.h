@@ -57,6 +57,7 @@ struct SceneOptions
     bool HasScattering = false, HasAbsorption = false, HasG = false, HasDensityScale = false;
     std::array<double, 3> Scattering{}, Absorption{}; ///< per channel, 1/m per unit density
     double G = 0.0, DensityScale = 1.0;
+    bool FillsRefractors = false; ///< --medium-fills-refractors (alone: the scene's medium)
   } Medium;
 };
 

@@ -209,6 +209,7 @@ void SetMediumUniforms(vtkCausticsShaderProgram* program, const caustics::Medium
   const double bounds[6], const MediumBuffer* grid)
 {
   program->SetUniformi("causticsMediumOn", medium.enabled ? 1 : 0);
+  program->SetUniformi("causticsMediumFillsRefractors", medium.fillsRefractors ? 1 : 0);
   double low[3] = { bounds[0], bounds[2], bounds[4] };
   double high[3] = { bounds[1], bounds[3], bounds[5] };
   const bool followsGrid =
@@ -424,7 +425,7 @@ std::vector<double> LightFieldSignature(const SceneData& scene, bool placement)
     s.insert(s.end(), { light.cosOuter, light.cosInner });
   }
   const Medium& medium = scene.Participating;
-  s.insert(s.end(), { medium.enabled ? 1.0 : 0.0, medium.g });
+  s.insert(s.end(), { medium.enabled ? 1.0 : 0.0, medium.g, medium.fillsRefractors ? 1.0 : 0.0 });
   add(medium.sigmaS);
   add(medium.sigmaA);
   return s;

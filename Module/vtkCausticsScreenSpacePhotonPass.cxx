@@ -415,6 +415,9 @@ bool vtkCausticsScreenSpacePhotonPass::WriteVolumeSegments(vtkOpenGLRenderWindow
   {
     return false;
   }
+  // Whether the medium fills the refractors: a ray inside one draws its line or not.
+  const FrameInputs& f = this->GetFrameInputs();
+  caustics::gl::SetMediumUniforms(p, *f.Scene, f.MediumGrid);
   const int c = in.Current;
   in.Rays[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING);
   in.Payloads[c].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_PAYLOAD_BINDING);

@@ -1525,7 +1525,7 @@ struct ReferenceTracer::Internals
   /**
    * Losses along the segment of length `length` just travelled: Beer-Lambert inside
    * a refractor, extinction in the medium (which also records the segment as a beam
-   * in the beam pass).
+   * in the beam pass) in air, and inside refractors when the medium fills them.
    */
   void Attenuate(Branch& s, double length, Random& random, ChunkResult& out) const
   {
@@ -1536,7 +1536,10 @@ struct ReferenceTracer::Internals
       {
         Absorb(s, s.flux * glm::exp(attenuation * -length), out);
       }
-      return;
+      if (!this->Scene->Participating.fillsRefractors)
+      {
+        return;
+      }
     }
     double t0, t1;
     if (!this->MediumOn ||

@@ -426,6 +426,10 @@ std::string vtkCausticsReferenceRenderer::ComputeCacheKey(
     hash.Value(medium.sigmaS);
     hash.Value(medium.sigmaA);
     hash.Value(medium.g);
+    if (medium.fillsRefractors)
+    {
+      hash.Value(1); // only then: the keys of media in air are those of before
+    }
   }
   // A density grid: its voxels' values (hashed once when loaded), scale and placement.
   // Nothing is added without one, so homogeneous keys are those of before grids.

@@ -33,6 +33,7 @@ void vtkCausticsMedium::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AbsorptionCoefficient (1/m): " << this->AbsorptionCoefficient[0] << " "
      << this->AbsorptionCoefficient[1] << " " << this->AbsorptionCoefficient[2] << "\n";
   os << indent << "Anisotropy: " << this->Anisotropy << "\n";
+  os << indent << "FillsRefractors: " << this->FillsRefractors << "\n";
   os << indent << "Density: ";
   if (this->LoadedDensity)
   {

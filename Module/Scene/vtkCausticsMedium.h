@@ -71,6 +71,23 @@ public:
 
   ///@{
   /**
+   * Whether the medium also fills the refractors its density reaches into. Off
+   * (default): refractors hold none, as glass in fog or smoke; light inside them
+   * loses only their own attenuation. On: the medium is there too, as murky water
+   * under a water surface; its density then says where it is (a grid below the
+   * surface keeps the air above clear).
+   *
+   * The volume lines are seen along straight camera rays up to the first surface,
+   * refractors included (003 §5.3, and the reference's camera rays), so a medium
+   * inside a refractor shows in the volume layer only to a camera inside it.
+   */
+  vtkSetMacro(FillsRefractors, bool);
+  vtkGetMacro(FillsRefractors, bool);
+  vtkBooleanMacro(FillsRefractors, bool);
+  ///@}
+
+  ///@{
+  /**
    * Reads the density from float grid `gridName` of OpenVDB file `vdbFile` (a fog
    * volume). Returns false with one error line naming the problem, keeping the previous
    * density: missing file, not a VDB or truncated, no such grid (the file's grids are
@@ -157,6 +174,7 @@ protected:
   double ScatteringCoefficient[3] = { 0, 0, 0 };
   double AbsorptionCoefficient[3] = { 0, 0, 0 };
   double Anisotropy = 0.0;
+  bool FillsRefractors = false;
   double DensityScale = 1.0;
   vtkMatrix4x4* DensityMatrix = nullptr;
   std::shared_ptr<const caustics::DensityGrid> LoadedDensity; // as read, unplaced

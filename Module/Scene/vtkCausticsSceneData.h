@@ -122,6 +122,7 @@ struct Medium
   Vec3 sigmaS{ { 0, 0, 0 } }; ///< scattering coefficient, 1/m per unit density
   Vec3 sigmaA{ { 0, 0, 0 } }; ///< absorption coefficient, 1/m per unit density
   double g = 0.0;             ///< Henyey-Greenstein anisotropy
+  bool fillsRefractors = false; ///< also inside refractors (vtkCausticsMedium::SetFillsRefractors)
   /** Density, placed and scaled (vtkCausticsMedium::GetDensity()); null: homogeneous. */
   std::shared_ptr<const DensityGrid> density;
 

@@ -430,6 +430,7 @@ caustics::Medium DescribeMedium(vtkRenderer* renderer)
       participating.sigmaA[c] = medium->GetAbsorptionCoefficient()[c];
     }
     participating.g = medium->GetAnisotropy();
+    participating.fillsRefractors = medium->GetFillsRefractors();
     participating.density = medium->GetDensity();
   }
   return participating;

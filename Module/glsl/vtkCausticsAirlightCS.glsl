@@ -77,12 +77,17 @@ vec3 InScattered(vec3 x, vec3 v)
     return vec3(0.0);
   }
   // Volume shadows: a point has no surface to tilt, so two texels and float noise.
+  // Where the medium fills the refractors, a point behind a refractor's surface is in
+  // it (under the water) and lit only through it, the volume caustic: float noise only.
   float distance = CausticsLightDistance(x, lightType, lightPosition, lightDirection);
   float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
+  float noise = 1e-5 * abs(distance);
+  float bias = 2.0 * texel + noise;
   float specular;
   float visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
-    lightWorldToClip * vec4(x, 1.0), distance, 2.0 * texel + 1e-5 * abs(distance), lightType,
-    lightPosition, lightDirection, specular);
+    lightWorldToClip * vec4(x, 1.0), distance, bias,
+    causticsMediumFillsRefractors != 0 ? noise : bias, lightType, lightPosition,
+    lightDirection, specular);
   if (!(visibility > 0.0))
   {
     return vec3(0.0);

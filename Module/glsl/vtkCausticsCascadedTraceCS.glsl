@@ -339,7 +339,8 @@ bool OpenRefractor(vec3 x)
 }
 
 // In the water under an open sheet (OpenRefractor): the reference holds no medium
-// there (a photon inside a refractor), so neither extinction nor volume caustic.
+// there (a photon inside a refractor) unless the medium fills the refractors, so
+// neither extinction nor volume caustic.
 bool underSheet = false;
 
 // A straight stretch in air from a to b: the path grows, it is handed to the volume
@@ -352,7 +353,8 @@ void Travel(vec3 a, vec3 b, inout vec3 flux, inout float path)
   {
     vec3 d = (b - a) / length;
     CausticsAppendVolumeSegment(CausticsMakeMediumSegment(a, d, length, flux, underSheet));
-    flux *= underSheet ? vec3(1.0) : CausticsMediumTransmittance(a, d, 0.0, length);
+    flux *= CausticsStretchInMedium(underSheet) ? CausticsMediumTransmittance(a, d, 0.0, length)
+                                                : vec3(1.0);
   }
   path += length;
 }

@@ -148,9 +148,11 @@ bool CausticsClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0,
 #define CAUSTICS_MEDIUM_MAX_STEPS 256
 
 // The participating medium (caustics::Medium): homogeneous, filling the scene's
-// bounding box but not the refractors, as in the reference renderer. Set from the
-// host by caustics::gl::SetMediumUniforms.
+// bounding box but not the refractors unless causticsMediumFillsRefractors (murky
+// water), as in the reference renderer. Set from the host by
+// caustics::gl::SetMediumUniforms.
 uniform int causticsMediumOn;
+uniform int causticsMediumFillsRefractors;
 uniform vec3 causticsSigmaT;     // extinction, 1/m
 uniform vec3 causticsMediumLow;  // the scene's bounds (m)
 uniform vec3 causticsMediumHigh;
@@ -289,6 +291,13 @@ vec3 CausticsMediumTransmittance(vec3 o, vec3 d, float t0, float t1)
   return CausticsMediumTransmittanceSteps(o, d, t0, t1, CAUSTICS_MEDIUM_MAX_STEPS);
 }
 
+// Whether a photon's stretch lies in the medium: always in air, inside a refractor
+// only when the medium fills the refractors (murky water under a surface).
+bool CausticsStretchInMedium(bool insideRefractor)
+{
+  return causticsMediumOn != 0 && (!insideRefractor || causticsMediumFillsRefractors != 0);
+}
+
 // Distance of p from a light along its rays: from the light (point, spot: lightType 1,
 // 2), or along the axis from its view's eye plane (directional, lightType 0).
 float CausticsLightDistance(vec3 p, int lightType, vec3 origin, vec3 axis)
@@ -302,9 +311,11 @@ float CausticsLightDistance(vec3 p, int lightType, vec3 origin, vec3 axis)
 // bilinear percentage-closer filtering, an occluder counting when it is nearer the light
 // than distance - bias (m); `specular` gets the weight of the occluders that are
 // reflectors or refractors. Outside the map's frustum (it holds the whole scene) nothing
-// occludes.
+// occludes. A refractor occluder counts from refractorBias on: a point of a medium that
+// fills the refractors, just behind a water surface, is in the water, lit only through it.
 float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal, vec4 clip,
-  float distance, float bias, int lightType, vec3 origin, vec3 axis, out float specular)
+  float distance, float bias, float refractorBias, int lightType, vec3 origin, vec3 axis,
+  out float specular)
 {
   specular = 0.0;
   vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -324,14 +335,15 @@ float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal,
       ivec2 texelIndex = clamp(ivec2(base) + ivec2(i, j), ivec2(0), ivec2(size) - 1);
       vec4 occluder = texelFetch(shadowPosition, texelIndex, 0);
       float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      int role = occluder.w < 0.0 ? -1 : int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
+      float slack = role == ROLE_REFRACTOR ? refractorBias : bias;
       if (occluder.w < 0.0 ||
-        CausticsLightDistance(occluder.xyz, lightType, origin, axis) >= distance - bias)
+        CausticsLightDistance(occluder.xyz, lightType, origin, axis) >= distance - slack)
       {
         visibility += weight;
       }
       else
       {
-        int role = int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
         specular += role == ROLE_REFLECTOR || role == ROLE_REFRACTOR ? weight : 0.0;
       }
     }

@@ -164,7 +164,7 @@ void main()
       flux *= absorbing >= 0 ? CausticsTransmittance(causticsMaterials[absorbing].attenuation.rgb, t)
                              : vec3(1.0);
     }
-    else
+    if (CausticsStretchInMedium(inside))
     {
       flux *= CausticsMediumTransmittance(o, d, 0.0, t);
     }

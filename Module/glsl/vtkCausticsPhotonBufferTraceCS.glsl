@@ -636,9 +636,10 @@ void main()
   vec3 d = leaving.xyz;
   float path = start4.w;
   // In the water under an open sheet the reference holds no medium (a photon inside a
-  // refractor): neither extinction nor volume caustic there.
+  // refractor) unless the medium fills the refractors: neither extinction nor volume
+  // caustic there.
   bool underSheet = leaving.w > 1.5;
-  bool inMedium = causticsMediumOn != 0 && !underSheet;
+  bool inMedium = CausticsStretchInMedium(underSheet);
   float t = -1.0;
   vec3 n = vec3(0.0);
   bool landed = false;

@@ -1,6 +1,7 @@
 // What each photon does at its first hit (000_54cf099eeccf42d9.txt §2.3, §3.1):
 // 1. its flux loses what the segment absorbed: Beer-Lambert inside a refractor,
-//    the medium's extinction (within the scene's bounds) in air;
+//    the medium's extinction (within the scene's bounds) in air, and inside
+//    refractors too when the medium fills them;
 // 2. on a receiver it ends (caustic shadowing falls out of first-hit termination,
 //    §1.2): a landed photon record (vtkCausticsCommon.glsl) and its kernel radius
 //    for vtkCausticsPhotonSplatter at its texel of the emitter grid, if the camera
@@ -114,7 +115,7 @@ void main()
     // Inside the refractor the photon last entered or reflected in: its surface.
     flux *= CausticsTransmittance(causticsMaterials[int(ray.direction.w + 0.5)].attenuation.rgb, t);
   }
-  else
+  if (CausticsStretchInMedium(inside))
   {
     flux *= CausticsMediumTransmittance(ray.origin.xyz, d, 0.0, t);
   }

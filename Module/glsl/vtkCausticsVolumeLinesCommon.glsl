@@ -19,15 +19,16 @@ struct CausticsVolumeSegment
 #define CAUSTICS_VOLUME_DEPTHS(access) layout(std430, binding = CAUSTICS_VOLUME_DEPTH_BINDING) access buffer CausticsVolumeDepths { float volumeDepths[]; }
 
 // A photon's straight piece after a specular event: it leaves `origin` along the unit
-// `direction` with `flux` (W); [t0, t1] is drawn. A piece inside a refractor (the
-// reference renderer holds no medium there, nor under an open sheet of water) draws
-// nothing.
+// `direction` with `flux` (W); [t0, t1] is drawn. A piece inside a refractor (or under
+// an open sheet of water) draws nothing unless the medium fills the refractors
+// (CausticsStretchInMedium, as in the reference renderer).
 CausticsVolumeSegment CausticsMakeVolumeSegment(
   vec3 origin, vec3 direction, float t0, float t1, vec3 flux, bool insideRefractor)
 {
   CausticsVolumeSegment s;
   s.origin = vec4(origin, t0);
-  s.direction = vec4(direction, insideRefractor || !(t1 > t0) ? t0 : t1);
+  s.direction =
+    vec4(direction, !CausticsStretchInMedium(insideRefractor) || !(t1 > t0) ? t0 : t1);
   s.flux = vec4(flux, 0.0);
   return s;
 }
