@@ -311,6 +311,7 @@ struct vtkCausticsRenderPass::Internals
   caustics::gl::DeviceLimits Limits; // of LimitsWindow's context, for LimitsBudget
   vtkOpenGLRenderWindow* LimitsWindow = nullptr;
   double LimitsBudget = -1.0;
+  double EstimatedBytes = 0.0;       // the last CheckResources()'s estimate of the technique's memory
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
   std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
@@ -761,6 +762,7 @@ bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int
   const double perLight = technique.PerLight ? lights : 1.0;
   const double perSlot = SharedBytesPerPhoton * lights + technique.BytesPerPhoton * perLight;
   const double total = slots * perSlot + technique.FixedBytes * perLight;
+  in.EstimatedBytes = total;
   const double largest = slots * technique.LargestBufferPerPhoton;
   const bool tooTall = 2 * n > limits.MaximumTextureSize;
   const bool tooLarge =
@@ -795,6 +797,17 @@ bool vtkCausticsRenderPass::CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int
   }
   in.ResourceError = why.str();
   return false;
+}
+
+double vtkCausticsRenderPass::GetVolumeSegmentBudget() const
+{
+  const auto& in = *this->Internal;
+  if (!in.LimitsWindow || !(in.Limits.MemoryBudgetBytes > 0.0))
+  {
+    return 0.0; // no budget known: the lists are bounded by the storage block alone
+  }
+  // What the technique's own buffers leave; at least a byte (a budget, not "none").
+  return std::max(in.Limits.MemoryBudgetBytes - in.EstimatedBytes, 1.0);
 }
 
 bool vtkCausticsRenderPass::SupportsCaustics(vtkOpenGLRenderWindow* renWin, bool buffers)

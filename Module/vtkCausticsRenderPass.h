@@ -345,6 +345,14 @@ public:
   const char* GetResourceError() const;
 
   /**
+   * Bytes of GPU memory the volume caustics' segment lists may take: the budget of
+   * CheckResources() (MaximumGPUMemory, or the device's) less the technique's own
+   * estimate, as of the last check; 0 when no budget is known (the lists are then
+   * bounded by the storage block size alone).
+   */
+  double GetVolumeSegmentBudget() const;
+
+  /**
    * Reads an intermediate buffer of the last frame into `output` (point-data array
    * named `name`). Names: FinalColor, CausticIrradiance (denoised with Denoise on),
    * RawCausticIrradiance (the technique's, before denoising), PhotonHalfSetDifference

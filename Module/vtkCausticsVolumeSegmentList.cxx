@@ -2,6 +2,7 @@
 
 #include "vtkCausticsBindings.h" // CAUSTICS_VOLUME_APPEND_*_BINDING
 #include "vtkCausticsGBuffer.h"
+#include "vtkCausticsRenderPass.h" // GetVolumeSegmentBudget()
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObject.h"
@@ -86,7 +87,12 @@ int VolumeSegmentCapacity::Choose(vtkOpenGLRenderWindow* renWin, vtkObject* owne
     this->Limits = QueryDeviceLimits(0.0); // the context's limits do not change
     this->Queried = true;
   }
-  const Sizing sizing = Fit(this->Limits, worstCase, pieces);
+  // The memory the owning pass leaves the lists (its MaximumGPUMemory, or the device's
+  // budget, less its own buffers); the storage block bounds them alone without one.
+  DeviceLimits limits = this->Limits;
+  const auto* pass = vtkCausticsRenderPass::SafeDownCast(owner);
+  limits.MemoryBudgetBytes = pass ? pass->GetVolumeSegmentBudget() : limits.MemoryBudgetBytes;
+  const Sizing sizing = Fit(limits, worstCase, pieces);
   const bool changed = sizing.WorstCase != this->Last.WorstCase ||
     sizing.Fitting != this->Last.Fitting || this->Warning.empty() == sizing.IsShort();
   this->Last = sizing;
@@ -108,9 +114,10 @@ int VolumeSegmentCapacity::Choose(vtkOpenGLRenderWindow* renWin, vtkObject* owne
                        : std::string("records"))
         << " within GL_MAX_SHADER_STORAGE_BLOCK_SIZE, "
         << FormatBytes(this->Limits.MaximumStorageBlockBytes);
-    if (this->Limits.MemoryBudgetBytes > 0.0)
+    if (limits.MemoryBudgetBytes > 0.0)
     {
-      why << ", and the memory budget, " << FormatBytes(this->Limits.MemoryBudgetBytes);
+      why << ", and the " << FormatBytes(limits.MemoryBudgetBytes)
+          << " of GPU memory the technique's own buffers leave (MaximumGPUMemory, or the device's)";
     }
     why << "). Segments past " << sizing.Capacity
         << " are dropped and the volume caustic loses their light; lower " << knobs
