@@ -1,14 +1,20 @@
 #!/usr/bin/env python3
-"""The noise of the reference's AirlightRadiance on a built-in scene, in one run.
+"""The noise of one of the reference's volume arrays on a built-in scene, in one run.
 
-Renders the scene's reference (vtkCausticsReferenceRenderer, as TestAirlight does:
-128^2, 1000 photons) with seeds 1 and 2 and prints the relative L2 between them and
-its share per seed (/ sqrt 2): the floor under which no GPU airlight can be measured
-against one reference (TestAirlight.MediaScenesMatchReference, docs/airlight.md).
+Renders the scene's reference (vtkCausticsReferenceRenderer) with seeds 1 and 2 and
+prints the relative L2 between them and its share per seed (/ sqrt 2): the floor under
+which no GPU result can be measured against one reference.
 
-  PYTHONPATH=build/lib/python3/dist-packages CAUSTICS_REFERENCE_CACHE=build/reference-cache \\
-      /usr/bin/python3 scripts/airlight-reference-noise.py [underwater]
+- The airlight (default), as TestAirlight does (128^2, 1000 photons;
+  TestAirlight.MediaScenesMatchReference, docs/airlight.md):
+    PYTHONPATH=build/lib/python3/dist-packages CAUSTICS_REFERENCE_CACHE=build/reference-cache \\
+        /usr/bin/python3 scripts/reference-noise.py smoke-lens
+- The volume caustic, as TestVolumeLines does (200 000 volume photons, at 128^2 or 256^2;
+  docs/technique-volume-caustics.md):
+    ... scripts/reference-noise.py underwater --array VolumeCausticRadiance \\
+        --size 256 --volume-photons 200000
 """
+import argparse
 import math
 import sys
 
@@ -20,34 +26,44 @@ from vtkcaustics.vtkIOCaustics import vtkCausticsBuiltinScene
 from vtkcaustics.vtkCausticsReference import vtkCausticsReferenceRenderer
 
 
-def airlight(renderer, seed):
+def render(renderer, args, seed):
     reference = vtkCausticsReferenceRenderer()
     reference.SetInputRenderer(renderer)
-    reference.SetImageSize(128, 128)
-    reference.SetPhotonsPerLight(1000)
-    reference.SetVolumePhotonsPerLight(1000)
+    reference.SetImageSize(args.size, args.size)
+    reference.SetPhotonsPerLight(args.photons)
+    reference.SetVolumePhotonsPerLight(args.volume_photons)
     reference.SetSeed(seed)
     if not reference.Update():
         sys.exit(reference.GetLastError())
-    array = reference.GetOutput().GetPointData().GetArray("AirlightRadiance")
+    array = reference.GetOutput().GetPointData().GetArray(args.array)
+    if array is None:
+        sys.exit(f"the reference has no array {args.array}")
     return vtk_to_numpy(array).astype(float)
 
 
 def main():
-    name = sys.argv[1] if len(sys.argv) > 1 else "underwater"
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("scene", nargs="?", default="smoke-lens", help="built-in scene")
+    parser.add_argument("--array", default="AirlightRadiance",
+                        help="AirlightRadiance, VolumeCausticRadiance, CausticIrradiance ...")
+    parser.add_argument("--size", type=int, default=128, help="image side, pixels")
+    parser.add_argument("--photons", type=int, default=1000, help="surface photons per light")
+    parser.add_argument("--volume-photons", type=int, default=1000,
+                        help="volume (beam) photons per light")
+    args = parser.parse_args()
     renderer = vtkOpenGLRenderer()
     scene = vtkCausticsBuiltinScene()
-    scene.SetSceneName(name)
+    scene.SetSceneName(args.scene)
     if not scene.Populate(renderer):
         sys.exit(scene.GetLastError())
-    a, b = airlight(renderer, 1), airlight(renderer, 2)
+    a, b = render(renderer, args, 1), render(renderer, args, 2)
     norm = (b ** 2).sum()
     if norm <= 0.0:
-        print(f"{name}: the reference's airlight is 0 everywhere")
+        print(f"{args.scene}: the reference's {args.array} is 0 everywhere")
         return
     l2 = math.sqrt(((a - b) ** 2).sum() / norm)
-    print(f"{name}: reference seeds 1 and 2 differ by a relative L2 of {l2:.4f}; "
-          f"one seed's noise is about {l2 / math.sqrt(2):.4f}")
+    print(f"{args.scene}, {args.array} at {args.size}^2: reference seeds 1 and 2 differ by a "
+          f"relative L2 of {l2:.4f}; one seed's noise is about {l2 / math.sqrt(2):.4f}")
 
 
 if __name__ == "__main__":

@@ -408,8 +408,8 @@ vtkSmartPointer<vtkImageData> SampleDensity(const double box[6], double voxel, D
 }
 
 /** Attaches `density` as a medium with the given coefficients (1/m per unit density). */
-void AttachMedium(vtkRenderer* renderer, vtkImageData* density, const double scattering[3],
-  const double absorption[3], double g)
+vtkCausticsMedium* AttachMedium(vtkRenderer* renderer, vtkImageData* density,
+  const double scattering[3], const double absorption[3], double g)
 {
   vtkNew<vtkCausticsMedium> medium;
   medium->SetScatteringCoefficient(scattering[0], scattering[1], scattering[2]);
@@ -417,16 +417,22 @@ void AttachMedium(vtkRenderer* renderer, vtkImageData* density, const double sca
   medium->SetAnisotropy(g);
   medium->SetDensityData(density);
   vtkCausticsMedium::AttachTo(renderer, medium);
+  return medium; // the renderer holds it
 }
 
 /**
  * The underwater scene's murky water: below the pool's surface, a plankton layer
  * (density peaking at 1, half a metre down, 0.25 m thick) in lumps of a smooth noise,
- * over a faint haze (0.05). Sea water's colours: red absorbed most.
+ * over a faint haze (0.05). Sea water's colours: red absorbed most. The medium fills
+ * the water (vtkCausticsMedium::FillsRefractors): the light the waves focus scatters
+ * in it, the god rays of a camera under water.
  */
 void AttachPlankton(vtkRenderer* renderer)
 {
-  const double top = PoolWaterLevel - 0.06; // under the deepest trough (amplitudes sum to 0.053)
+  // Under the deepest trough (the amplitudes sum to 0.053 m) by a voxel more: the
+  // grid's last samples and the half voxel around them stay in the water, the air
+  // above holds no medium.
+  const double top = PoolWaterLevel - 0.06 - 0.05;
   const double box[6] = { -PoolHalfSize, PoolHalfSize, 0.0, top, -PoolHalfSize, PoolHalfSize };
   auto density = SampleDensity(box, 0.05,
     [](double x, double y, double z)
@@ -437,7 +443,7 @@ void AttachPlankton(vtkRenderer* renderer)
       return 0.05 + layer * lumps;
     });
   const double scattering[3] = { 0.25, 0.3, 0.3 }, absorption[3] = { 0.3, 0.06, 0.04 };
-  AttachMedium(renderer, density, scattering, absorption, 0.6);
+  AttachMedium(renderer, density, scattering, absorption, 0.6)->FillsRefractorsOn();
 }
 
 /**
@@ -494,6 +500,10 @@ bool vtkCausticsBuiltinScene::Populate(vtkRenderer* renderer)
   {
     this->AddPool(renderer);
     AttachPlankton(renderer);
+    // Under the water, across the light's drift (it travels towards -x, -z) and a
+    // little up towards it: the god rays side-on, forward scattering (g = 0.6) seen.
+    const double eye[3] = { 1.7, 0.35, -1.7 }, focal[3] = { -1.2, 0.65, 1.2 };
+    SetCamera(renderer, eye, focal, 60.0);
   }
   else if (this->SceneName == "smoke-lens")
   {

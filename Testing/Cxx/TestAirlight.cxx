@@ -207,7 +207,13 @@ void PositionalLight(vtkRenderer* renderer, const double position[3], double con
   renderer->AddLight(light);
 }
 
-Frame ExpectMatch(Session& session, const char* name, double l2Bound, double totalBound)
+/**
+ * The GPU's airlight against the reference's: relative L2 and total within the bounds,
+ * or with `l2Bound` 0 (no direct light reaches the medium) both dark, the GPU's sum
+ * over the image at most `leak`.
+ */
+Frame ExpectMatch(
+  Session& session, const char* name, double l2Bound, double totalBound, double leak = 0.0)
 {
   vtkRenderer* renderer = session.GetRenderer();
   const Frame frame = session.Render();
@@ -226,8 +232,13 @@ Frame ExpectMatch(Session& session, const char* name, double l2Bound, double tot
   if (l2Bound == 0.0)
   {
     // No direct light reaches the medium: both must be dark.
-    EXPECT_EQ(Sum(frame.Volume), 0.0) << name;
-    EXPECT_EQ(c.TotalRatio, 0.0) << name;
+    EXPECT_LE(Sum(frame.Volume), leak) << name;
+    double referenceSum = 0.0;
+    for (vtkIdType i = 0; i < reference->GetNumberOfValues(); ++i)
+    {
+      referenceSum += std::abs(reference->GetVariantValue(i).ToDouble());
+    }
+    EXPECT_EQ(referenceSum, 0.0) << name;
     return frame;
   }
   EXPECT_LT(c.RelativeL2, l2Bound) << name;
@@ -257,17 +268,22 @@ TEST(Airlight, HomogeneousFogMatchesReference)
   ExpectMatch(session, "ball lens, spot light", 0.031, 2e-4);
 }
 
-// The built-in media scenes through their density grids: the murky water under the sun,
-// the smoke plume in the glass ball's volume shadow (its spot right above: dark), and
-// the plume under a spot from the side. The reference's ratio tracking is noisy here: two
-// seeds differ by a relative L2 of 0.228 on underwater, 0.161 per seed
-// (scripts/airlight-reference-noise.py), which is all the GPU's 0.163 is. Reached:
-// underwater L2 0.163, total 0.9977; slanted spot L2 0.097, total 0.9993.
+// The built-in media scenes through their density grids: the smoke plume in the glass
+// ball's volume shadow (its spot right above: dark), the plume under a spot from the
+// side, and the murky water under the pool's surface. Through the grid the reference's
+// ratio tracking is noisy (scripts/reference-noise.py measures it on a built-in scene).
+// Reached: slanted spot L2 0.097, total 0.9993.
+// The murky water fills the pool under its surface (FillsRefractors): no direct light
+// reaches it, all its light came through the waves (the volume caustic, TestVolumeLines),
+// and the reference's airlight is 0. The GPU's volume shadows let a little through at
+// the far wall that the sun grazes, where points within their two-texel bias behind the
+// wall count as lit: a sum of 0.0423 over the image, 1.3e-4 of the volume caustic's
+// (329 in TestVolumeLines' frame of the same view). Bound just above.
 TEST(Airlight, MediaScenesMatchReference)
 {
   vtkNew<vtkCausticsBuiltinScene> scene;
   Session session("none", Size);
-  for (const char* name : { "underwater", "smoke-lens", "smoke-lens, slanted spot" })
+  for (const char* name : { "smoke-lens", "smoke-lens, slanted spot", "underwater" })
   {
     session.GetPass()->GetCameraOpticalDepth()->EnabledOn();
     scene->SetSceneName(std::string(name).substr(0, std::string(name).find(',')).c_str());
@@ -281,9 +297,8 @@ TEST(Airlight, MediaScenesMatchReference)
       PositionalLight(session.GetRenderer(), spot, 30.0, 16.0);
     }
     const std::string which = name;
-    const double l2 = which == "underwater" ? 0.17 : which == "smoke-lens" ? 0.0 : 0.105;
-    const double total = which == "underwater" ? 0.003 : 0.001;
-    const Frame looked = ExpectMatch(session, name, l2, total);
+    const double l2 = which == "smoke-lens, slanted spot" ? 0.105 : 0.0;
+    const Frame looked = ExpectMatch(session, name, l2, 0.001, which == "underwater" ? 0.045 : 0.0);
     if (l2 > 0.0)
     {
       // T_cam by the march along each ray instead of the camera optical-depth volume.
@@ -295,8 +310,8 @@ TEST(Airlight, MediaScenesMatchReference)
       std::cout << name << ": T_cam from the optical-depth volume vs the march: relative L2 "
                 << fromMarch << "; airlight stage " << looked.AirlightMilliseconds << " ms vs "
                 << marched.AirlightMilliseconds << " ms (GPU, first frames)\n";
-      // Reached: 0.00109 (underwater), 0.00128 (slanted spot).
-      EXPECT_LT(fromMarch, which == "underwater" ? 0.0012 : 0.0014) << name;
+      // Reached: 0.00128 (slanted spot).
+      EXPECT_LT(fromMarch, 0.0014) << name;
     }
   }
 }
