@@ -21,7 +21,7 @@
  * for its buffers once, whatever the camera does. The buffers are drawn again when
  * any of these changed since the buffers held were drawn:
  * - the window or the vtkCausticsSceneGeometry passed in;
- * - Resolution or Focus;
+ * - Resolution, Focus or Flux;
  * - the meshes: their number and order, and per mesh its version (renewed by
  *   vtkCausticsSceneExtractor when its triangles or its actor's matrix change),
  *   material slot, role and material properties (the G-buffer stores albedo and IOR);
@@ -75,6 +75,18 @@ public:
 
   ///@{
   /**
+   * Draw each light's flux texture (step 3). Off, the buffers are shadow maps only
+   * (G-buffers; GetFluxTexture() returns nullptr): the direct irradiance and the
+   * airlight read positions and normals, never the flux, so the render pass's
+   * shadow maps skip the pass and its RGBA32F texture (16 MB at 1024 texels).
+   * Default on.
+   */
+  vtkSetMacro(Flux, bool);
+  vtkGetMacro(Flux, bool);
+  vtkBooleanMacro(Flux, bool);
+  ///@}
+  ///@{
+  /**
    * Keep the buffers of the last Render() when its inputs are unchanged (the list
    * in the class description). Off, every Render() draws every buffer, the lights'
    * G-buffers included (their own ReuseUnchanged follows this one). Default on.
@@ -103,7 +115,7 @@ public:
   int GetNumberOfLights() const;
   /** Position, normal, albedo and depth seen from light i. */
   vtkCausticsGBuffer* GetGBuffer(int i);
-  /** Flux per texel of light i (rgb: W, a: m^2 or sr). */
+  /** Flux per texel of light i (rgb: W, a: m^2 or sr); nullptr with Flux off. */
   vtkTextureObject* GetFluxTexture(int i);
 
   void ReleaseGraphicsResources(vtkWindow* win);
@@ -114,6 +126,7 @@ protected:
 
   int Resolution = 512;
   int Focus = FOCUS_SPECULAR;
+  bool Flux = true;
   bool ReuseUnchanged = true;
 
 private:

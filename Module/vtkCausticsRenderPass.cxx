@@ -326,6 +326,7 @@ vtkCausticsRenderPass::vtkCausticsRenderPass()
 {
   auto& in = *this->Internal;
   in.ShadowBuffers->SetFocus(vtkCausticsLightBuffers::FOCUS_SCENE);
+  in.ShadowBuffers->FluxOff(); // shadow maps: positions and normals only
   in.DirectProgram->SetName("direct irradiance");
   in.DirectProgram->SetVertexSource(vtkCausticsFullScreenVS);
   in.DirectProgram->SetFragmentSource(vtkCausticsDirectIrradianceFS);

@@ -437,6 +437,40 @@ TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
   kept->ReleaseGraphicsResources(f.Window);
 }
 
+// Shadow maps alone (Flux off, as the render pass's): no flux texture, the same
+// G-buffers as with the flux, and turning the flux on again draws it.
+TEST(LightBuffers, FluxOffKeepsTheGBuffersAndDrawsNoFlux)
+{
+  Fixture f("ball-lens", 64);
+  f.Pass->KeepBuffersOn(); // upload the geometry even without caustics
+  f.Window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(f.Window);
+  gl->MakeCurrent();
+  const caustics::SceneData& scene = f.Pass->GetSceneExtractor()->GetScene();
+  vtkNew<vtkCausticsLightBuffers> shadows, full;
+  shadows->SetResolution(32);
+  shadows->FluxOff();
+  full->SetResolution(32);
+  ASSERT_TRUE(shadows->Render(gl, f.Pass->GetGeometry(), scene));
+  ASSERT_TRUE(full->Render(gl, f.Pass->GetGeometry(), scene));
+  ASSERT_EQ(shadows->GetNumberOfLights(), 1);
+  EXPECT_EQ(shadows->GetFluxTexture(0), nullptr);
+  ASSERT_NE(full->GetFluxTexture(0), nullptr);
+  auto targets = [](vtkCausticsLightBuffers* buffers) {
+    vtkCausticsGBuffer* g = buffers->GetGBuffer(0);
+    return ReadAll({ g->GetPositionTexture(), g->GetNormalTexture(), g->GetAlbedoTexture(),
+      g->GetDepthTexture() });
+  };
+  EXPECT_TRUE(targets(shadows) == targets(full));
+  shadows->FluxOn();
+  ASSERT_TRUE(shadows->Render(gl, f.Pass->GetGeometry(), scene));
+  EXPECT_FALSE(shadows->GetLastRenderReused()) << "Flux is an input";
+  ASSERT_NE(shadows->GetFluxTexture(0), nullptr);
+  EXPECT_TRUE(ReadAll({ shadows->GetFluxTexture(0) }) == ReadAll({ full->GetFluxTexture(0) }));
+  shadows->ReleaseGraphicsResources(f.Window);
+  full->ReleaseGraphicsResources(f.Window);
+}
+
 TEST(DirectIrradiance, LitFloorAndShadowUnderTheBall)
 {
   Fixture f("ball-lens");
