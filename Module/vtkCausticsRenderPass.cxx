@@ -326,7 +326,7 @@ vtkCausticsRenderPass::vtkCausticsRenderPass()
 {
   auto& in = *this->Internal;
   in.ShadowBuffers->SetFocus(vtkCausticsLightBuffers::FOCUS_SCENE);
-  in.ShadowBuffers->FluxOff(); // shadow maps: positions and normals only
+  in.ShadowBuffers->ShadowMapsOnlyOn(); // positions and normals are all they give
   in.DirectProgram->SetName("direct irradiance");
   in.DirectProgram->SetVertexSource(vtkCausticsFullScreenVS);
   in.DirectProgram->SetFragmentSource(vtkCausticsDirectIrradianceFS);
