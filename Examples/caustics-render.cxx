@@ -423,7 +423,10 @@ int Run(const Options& options)
   vtkNew<vtkCausticsBuiltinScene> builtin;
   caustics_cli::LoadScene(options, window, renderer, builtin);
   caustics_cli::ApplyOverrides(options, renderer);
-  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(options, renderer);
+  // `best` is chosen once: the choice walks every mesh (closed, convex).
+  Options chosen = options;
+  chosen.Technique = caustics_cli::TechniqueFor(options, renderer);
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(chosen, renderer);
   renderer->SetPass(pass);
   // Refuse a photon grid this OpenGL cannot hold before anything is allocated (the
   // frame checks again with the scene's lights: no outputs then either).
@@ -440,7 +443,7 @@ int Run(const Options& options)
   std::vector<std::pair<std::string, std::string>> layers;
   vtkSmartPointer<vtkImageData> image = ReadLayers(options, pass, layers);
   WriteImages(options, image, layers);
-  PrintSummary(options, pass, how, caustics_cli::TechniqueFor(options, renderer));
+  PrintSummary(options, pass, how, chosen.Technique);
   if (options.Timings)
   {
     PrintTimings(options, times);
