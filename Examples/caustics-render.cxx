@@ -337,7 +337,7 @@ void PrintTimings(const Options& options, StageTimes& times)
 {
   const std::string wall = "whole frame (wall clock)";
   const std::string processCPU = "whole frame (process cpu)";
-  std::size_t width = wall.size();
+  std::size_t width = processCPU.size();
   for (const auto& name : times.Order)
   {
     width = std::max(width, name.size());
