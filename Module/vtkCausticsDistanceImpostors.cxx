@@ -122,6 +122,7 @@ struct vtkCausticsDistanceImpostors::Internals
 vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
   : Internal(new Internals)
 {
+  this->Internal->Face->AlbedoOff(); // the arrays take positions and normals
   this->Internal->Shade->SetName("distance impostor shading");
   this->Internal->Shade->SetComputeSource(vtkCausticsImpostorShadeCS);
 }
