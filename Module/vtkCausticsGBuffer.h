@@ -86,9 +86,10 @@ public:
   /**
    * Draw the Albedo target. Off, the G-buffer holds position, normal and depth only
    * and GetAlbedoTexture() has no storage (handle 0). Only the camera's opaque
-   * G-buffer's albedo is read (composite, refraction): the shadow maps (8 MB less at
-   * their default 1024 texels), the caustic map's receivers, the photon buffer's
-   * layers and the distance impostors' faces turn it off. Default on.
+   * G-buffer's albedo is read (composite, refraction): the camera's refractive
+   * G-buffer, the shadow maps (8 MB less at their default 1024 texels), the caustic
+   * map's receivers, the photon buffer's layers and the distance impostors' faces
+   * turn it off. Default on.
    */
   vtkSetMacro(Albedo, bool);
   vtkGetMacro(Albedo, bool);
