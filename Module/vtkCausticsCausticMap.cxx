@@ -43,6 +43,7 @@ vtkCausticsCausticMap::vtkCausticsCausticMap()
   for (int j = 0; j < 4; ++j)
   {
     this->Receivers[j] = vtkSmartPointer<vtkCausticsGBuffer>::New();
+    this->Receivers[j]->AlbedoOff(); // the visibility test reads positions and normals
     this->Irradiance[j] = vtkSmartPointer<vtkTextureObject>::New();
     this->Framebuffers[j] = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
   }

@@ -122,6 +122,7 @@ struct vtkCausticsDistanceImpostors::Internals
 vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
   : Internal(new Internals)
 {
+  this->Internal->Face->AlbedoOff(); // the arrays take positions and normals
   this->Internal->Shade->SetName("distance impostor shading");
   this->Internal->Shade->SetComputeSource(vtkCausticsImpostorShadeCS);
 }
@@ -144,9 +145,14 @@ bool vtkCausticsDistanceImpostors::Update(
   this->ChooseReferencePoints(scene);
   auto& in = *this->Internal;
   const int r = this->Resolution;
-  in.Position.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
-  in.Normal.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA16F);
-  in.Radiance.Ensure(r, r, NUMBER_OF_MAPS * Faces, GL_RGBA32F);
+  // The arrays end with the last map made: the shaders read a map's layers only
+  // where impostorValid says it exists, so the ball lens (refractor maps alone)
+  // holds and shades 12 layers, not 24: at 256 texels, 31 MB less to allocate (12
+  // layers of position RGBA32F, normal RGBA16F and radiance RGBA32F).
+  const int layers = this->GetNumberOfLayers();
+  in.Position.Ensure(r, r, layers, GL_RGBA32F);
+  in.Normal.Ensure(r, r, layers, GL_RGBA16F);
+  in.Radiance.Ensure(r, r, layers, GL_RGBA32F);
   if (in.Caustic.Ensure(r, r, 3 * CausticMaps * Faces, GL_R32I))
   {
     const int zero = 0;
@@ -166,6 +172,17 @@ bool vtkCausticsDistanceImpostors::Update(
     std::fill(in.Made, in.Made + NUMBER_OF_MAPS, false);
   }
   return ok;
+}
+
+int vtkCausticsDistanceImpostors::GetNumberOfLayers() const
+{
+  const auto& in = *this->Internal;
+  int maps = 1; // an array of one map's layers even when none is made
+  for (int map = 0; map < NUMBER_OF_MAPS; ++map)
+  {
+    maps = in.Made[map] ? map + 1 : maps;
+  }
+  return maps * Faces;
 }
 
 bool vtkCausticsDistanceImpostors::SceneChanged(const caustics::SceneData& scene)
@@ -345,7 +362,7 @@ bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
     geometry->BindMaterials();
     glBindImageTexture(0, in.Radiance.Handle, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     const unsigned int groups = static_cast<unsigned int>((this->Resolution + 7) / 8);
-    p->Dispatch(groups, groups, NUMBER_OF_MAPS * Faces);
+    p->Dispatch(groups, groups, static_cast<unsigned int>(in.Position.Layers));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
   p->Unbind(renWin);

@@ -170,6 +170,12 @@ public:
 
   /** Whether the last Update() made the given map (its role group is not empty). */
   bool HasMap(int map) const;
+  /**
+   * Layers of the position, normal and radiance arrays after the last Update(): 6
+   * per map up to the last map made (6 when none is), e.g. 12 for refractors alone.
+   * The maps not made below it keep their layers, unused.
+   */
+  int GetNumberOfLayers() const;
   /** The generalized winding number of the reflectors at their reference point (last Update()). */
   double GetReflectorWinding() const;
   /** The reference point of a map (world, m). */

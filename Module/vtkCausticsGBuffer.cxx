@@ -34,7 +34,8 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   std::vector<std::uint64_t> key{ reinterpret_cast<std::uintptr_t>(renWin),
     reinterpret_cast<std::uintptr_t>(geometry), geometry->GetContentVersion(),
     static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(height),
-    static_cast<std::uint64_t>(roleMask), static_cast<std::uint64_t>(this->KeepFarthest) };
+    static_cast<std::uint64_t>(roleMask), static_cast<std::uint64_t>(this->KeepFarthest),
+    static_cast<std::uint64_t>(this->Albedo) };
   caustics::gl::AppendKey(key, worldToClip, 16);
   this->LastRenderReused = this->ReuseUnchanged && key == this->Key;
   if (this->LastRenderReused)
@@ -46,7 +47,10 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   bool resized = false;
   resized |= caustics::gl::EnsureTexture(this->PositionTexture, renWin, width, height, GL_RGBA32F);
   resized |= caustics::gl::EnsureTexture(this->NormalTexture, renWin, width, height, GL_RGBA16F);
-  resized |= caustics::gl::EnsureTexture(this->AlbedoTexture, renWin, width, height, GL_RGBA16F);
+  if (this->Albedo)
+  {
+    resized |= caustics::gl::EnsureTexture(this->AlbedoTexture, renWin, width, height, GL_RGBA16F);
+  }
   resized |=
     caustics::gl::EnsureTexture(this->DepthTexture, renWin, width, height, GL_DEPTH_COMPONENT32F);
   this->Size[0] = width;
@@ -56,14 +60,28 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   state->PushFramebufferBindings();
   this->Framebuffer->SetContext(renWin);
   this->Framebuffer->Bind();
-  if (resized || this->Framebuffer->GetNumberOfColorAttachments() != 3)
+  // Without the albedo target the shader's third output has no draw buffer: GL
+  // discards it.
+  const int targets = this->Albedo ? 3 : 2;
+  if (resized || this->Framebuffer->GetNumberOfColorAttachments() != targets)
   {
     this->Framebuffer->AddColorAttachment(0, this->PositionTexture);
     this->Framebuffer->AddColorAttachment(1, this->NormalTexture);
-    this->Framebuffer->AddColorAttachment(2, this->AlbedoTexture);
+    if (this->Albedo)
+    {
+      this->Framebuffer->AddColorAttachment(2, this->AlbedoTexture);
+    }
+    else
+    {
+      this->Framebuffer->RemoveColorAttachment(2);
+    }
     this->Framebuffer->AddDepthAttachment(this->DepthTexture);
   }
-  this->Framebuffer->ActivateDrawBuffers(3);
+  this->Framebuffer->ActivateDrawBuffers(targets);
+  if (!this->Albedo)
+  {
+    this->AlbedoTexture->ReleaseGraphicsResources(renWin); // detached above
+  }
 
   vtkOpenGLState::ScopedglViewport viewport(state);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
@@ -86,7 +104,10 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   const float farDepth = this->KeepFarthest ? 0.0f : 1.0f;
   glClearBufferfv(GL_COLOR, 0, noSurface);
   glClearBufferfv(GL_COLOR, 1, zero);
-  glClearBufferfv(GL_COLOR, 2, zero);
+  if (this->Albedo)
+  {
+    glClearBufferfv(GL_COLOR, 2, zero);
+  }
   glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
   bool ok = this->Program->Bind(renWin);
@@ -124,6 +145,7 @@ void vtkCausticsGBuffer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
   os << indent << "Program ready: " << this->Program->IsReady() << "\n";
   os << indent << "KeepFarthest: " << this->KeepFarthest << "\n";
+  os << indent << "Albedo: " << this->Albedo << "\n";
   os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
   os << indent << "LastRenderReused: " << this->LastRenderReused << "\n";
 }

@@ -14,8 +14,8 @@
  * A Render() whose inputs are those of the targets held keeps them and draws
  * nothing (ReuseUnchanged, on by default): the same window, geometry object and
  * geometry content (vtkCausticsSceneGeometry::GetContentVersion(), renewed when a
- * mesh, the layout or a material changes), world-to-clip matrix, size, role mask
- * and KeepFarthest. ReleaseGraphicsResources() and a failed Render() keep nothing.
+ * mesh, the layout or a material changes), world-to-clip matrix, size, role mask,
+ * KeepFarthest and Albedo. ReleaseGraphicsResources() and a failed Render() keep nothing.
  */
 #ifndef vtkCausticsGBuffer_h
 #define vtkCausticsGBuffer_h
@@ -82,6 +82,20 @@ public:
   vtkBooleanMacro(ReuseUnchanged, bool);
   ///@}
 
+  ///@{
+  /**
+   * Draw the Albedo target. Off, the G-buffer holds position, normal and depth only
+   * and GetAlbedoTexture() has no storage (handle 0). Only the camera's opaque
+   * G-buffer's albedo is read (composite, refraction): the camera's refractive
+   * G-buffer, the shadow maps (8 MB less at their default 1024 texels), the caustic
+   * map's receivers, the photon buffer's layers and the distance impostors' faces
+   * turn it off. Default on.
+   */
+  vtkSetMacro(Albedo, bool);
+  vtkGetMacro(Albedo, bool);
+  vtkBooleanMacro(Albedo, bool);
+  ///@}
+
   /** Whether the last Render() kept the targets it already held (nothing changed). */
   vtkGetMacro(LastRenderReused, bool);
 
@@ -99,6 +113,7 @@ protected:
   vtkNew<vtkCausticsShaderProgram> Program;
   int Size[2] = { 0, 0 };
   bool KeepFarthest = false;
+  bool Albedo = true;
   bool ReuseUnchanged = true;
   bool LastRenderReused = false;
   std::vector<std::uint64_t> Key; // the inputs of the targets held; empty: none

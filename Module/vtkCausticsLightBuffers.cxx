@@ -179,7 +179,8 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
   const std::vector<caustics::LightView> views = this->ComputeViews(scene);
   // Nothing the buffers depend on changed: they are still right (no GL work at all).
   std::vector<std::uint64_t> key = ContentKey(renWin, geometry, scene, views,
-    { static_cast<std::uint64_t>(this->Resolution), static_cast<std::uint64_t>(this->Focus) });
+    { static_cast<std::uint64_t>(this->Resolution), static_cast<std::uint64_t>(this->Focus),
+      static_cast<std::uint64_t>(this->ShadowMapsOnly) });
   in.Reused = this->ReuseUnchanged && key == in.Key;
   if (in.Reused)
   {
@@ -194,12 +195,21 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
     PerLight& light = in.Lights[i];
     light.View = views[i];
     light.GBuffer->SetReuseUnchanged(this->ReuseUnchanged);
+    light.GBuffer->SetAlbedo(!this->ShadowMapsOnly);
     float worldToClip[16];
     caustics::gl::ToColumnMajor(light.View.worldToClip, worldToClip);
     ok = light.GBuffer->Render(renWin, geometry, worldToClip, resolution, resolution,
            vtkCausticsSceneGeometry::AllRoles) &&
       ok;
-    ok = in.RenderFlux(renWin, scene.Lights[i], light, resolution) && ok;
+    if (!this->ShadowMapsOnly)
+    {
+      ok = in.RenderFlux(renWin, scene.Lights[i], light, resolution) && ok;
+    }
+    else
+    {
+      light.Flux->ReleaseGraphicsResources(renWin);
+      light.FluxFramebuffer->ReleaseGraphicsResources(renWin);
+    }
   }
   if (ok)
   {
@@ -254,7 +264,7 @@ vtkCausticsGBuffer* vtkCausticsLightBuffers::GetGBuffer(int i)
 vtkTextureObject* vtkCausticsLightBuffers::GetFluxTexture(int i)
 {
   auto& in = *this->Internal;
-  return i >= 0 && i < in.ActiveLights ? in.Lights[i].Flux.GetPointer() : nullptr;
+  return !this->ShadowMapsOnly && i >= 0 && i < in.ActiveLights ? in.Lights[i].Flux.GetPointer() : nullptr;
 }
 
 void vtkCausticsLightBuffers::ReleaseGraphicsResources(vtkWindow* win)
@@ -279,6 +289,7 @@ void vtkCausticsLightBuffers::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "Focus: " << (this->Focus == FOCUS_SCENE ? "scene" : "specular") << "\n";
+  os << indent << "ShadowMapsOnly: " << this->ShadowMapsOnly << "\n";
   os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
   os << indent << "LastRenderReused: " << this->Internal->Reused << "\n";
   os << indent << "Lights: " << this->Internal->ActiveLights << "\n";

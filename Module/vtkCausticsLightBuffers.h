@@ -21,7 +21,7 @@
  * for its buffers once, whatever the camera does. The buffers are drawn again when
  * any of these changed since the buffers held were drawn:
  * - the window or the vtkCausticsSceneGeometry passed in;
- * - Resolution or Focus;
+ * - Resolution, Focus or ShadowMapsOnly;
  * - the meshes: their number and order, and per mesh its version (renewed by
  *   vtkCausticsSceneExtractor when its triangles or its actor's matrix change),
  *   material slot, role and material properties (the G-buffer stores albedo and IOR);
@@ -75,6 +75,19 @@ public:
 
   ///@{
   /**
+   * Shadow maps only: each light's G-buffer holds position, normal and depth, with
+   * no albedo target (vtkCausticsGBuffer::Albedo off) and no flux (step 3 skipped;
+   * GetFluxTexture() returns nullptr). The direct irradiance and the airlight read
+   * nothing else, so the render pass's shadow maps skip, at the default 1024 texels,
+   * 25 MB of textures that llvmpipe zeroes on allocation, and the flux pass.
+   * Default off.
+   */
+  vtkSetMacro(ShadowMapsOnly, bool);
+  vtkGetMacro(ShadowMapsOnly, bool);
+  vtkBooleanMacro(ShadowMapsOnly, bool);
+  ///@}
+  ///@{
+  /**
    * Keep the buffers of the last Render() when its inputs are unchanged (the list
    * in the class description). Off, every Render() draws every buffer, the lights'
    * G-buffers included (their own ReuseUnchanged follows this one). Default on.
@@ -103,7 +116,7 @@ public:
   int GetNumberOfLights() const;
   /** Position, normal, albedo and depth seen from light i. */
   vtkCausticsGBuffer* GetGBuffer(int i);
-  /** Flux per texel of light i (rgb: W, a: m^2 or sr). */
+  /** Flux per texel of light i (rgb: W, a: m^2 or sr); nullptr with ShadowMapsOnly on. */
   vtkTextureObject* GetFluxTexture(int i);
 
   void ReleaseGraphicsResources(vtkWindow* win);
@@ -114,6 +127,7 @@ protected:
 
   int Resolution = 512;
   int Focus = FOCUS_SPECULAR;
+  bool ShadowMapsOnly = false;
   bool ReuseUnchanged = true;
 
 private:

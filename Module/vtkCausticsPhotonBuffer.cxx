@@ -162,6 +162,10 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   : Internal(new Internals)
 {
   this->BackLayer->KeepFarthestOn();
+  // The trace reads the layers' positions and normals: no albedo targets.
+  this->FrontLayer->AlbedoOff();
+  this->BackLayer->AlbedoOff();
+  this->ReflectorLayer->AlbedoOff();
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
     vtkCausticsVolumeLinesCommon + vtkCausticsPhotonBufferTraceCS;
   this->SortProgram->SetName("photon buffer: sort");

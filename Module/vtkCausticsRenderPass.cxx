@@ -327,6 +327,8 @@ vtkCausticsRenderPass::vtkCausticsRenderPass()
 {
   auto& in = *this->Internal;
   in.ShadowBuffers->SetFocus(vtkCausticsLightBuffers::FOCUS_SCENE);
+  in.ShadowBuffers->ShadowMapsOnlyOn(); // positions and normals are all they give
+  in.RefractiveGBuffer->AlbedoOff();    // only the opaque G-buffer's albedo is read
   in.DirectProgram->SetName("direct irradiance");
   in.DirectProgram->SetVertexSource(vtkCausticsFullScreenVS);
   in.DirectProgram->SetFragmentSource(vtkCausticsDirectIrradianceFS);

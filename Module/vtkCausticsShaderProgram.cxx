@@ -9,6 +9,8 @@
 #include "vtkCausticsCommon.h"         // embedded glsl/vtkCausticsCommon.glsl
 #include "vtkCausticsPNanoVDBSource.h" // embedded nanovdb/PNanoVDB.h
 
+#include <atomic>
+#include <chrono>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -60,6 +62,10 @@ void vtkCausticsShaderProgram::PrintSelf(ostream& os, vtkIndent indent)
 
 namespace
 {
+// Every instance's builds in this process (GetNumberOfBuilds, GetBuildMilliseconds).
+std::atomic<long long> Builds{ 0 };
+std::atomic<long long> BuildNanoseconds{ 0 };
+
 void AssignSource(std::string& target, const char* source, bool& dirty)
 {
   const std::string value = source ? source : "";
@@ -245,6 +251,7 @@ bool vtkCausticsShaderProgram::Build()
     stages.emplace_back(GL_FRAGMENT_SHADER, &in.Fragment);
   }
 
+  const auto start = std::chrono::steady_clock::now();
   const std::string prefix = SourcePrefix(in.Defines);
   const GLuint program = glCreateProgram();
   std::vector<GLuint> shaders;
@@ -262,6 +269,10 @@ bool vtkCausticsShaderProgram::Build()
     glDetachShader(program, shader);
     glDeleteShader(shader);
   }
+  ++Builds;
+  BuildNanoseconds += std::chrono::duration_cast<std::chrono::nanoseconds>(
+    std::chrono::steady_clock::now() - start)
+                        .count();
   if (!ok)
   {
     glDeleteProgram(program);
@@ -385,4 +396,14 @@ void vtkCausticsShaderProgram::ReleaseGraphicsResources(vtkWindow*)
   in.Locations.clear();
   in.Dirty = true;
   in.Failed = false;
+}
+
+long long vtkCausticsShaderProgram::GetNumberOfBuilds()
+{
+  return Builds;
+}
+
+double vtkCausticsShaderProgram::GetBuildMilliseconds()
+{
+  return 1e-6 * static_cast<double>(BuildNanoseconds);
 }

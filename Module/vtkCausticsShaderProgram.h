@@ -109,6 +109,17 @@ public:
   /** Deletes the GL program. */
   void ReleaseGraphicsResources(vtkWindow* win);
 
+  ///@{
+  /**
+   * Programs compiled and linked by every instance in this process, and the wall
+   * time (ms) their glCompileShader/glLinkProgram calls took: where a process's first
+   * frame spends on compilation (the driver may still compile per draw state, e.g.
+   * llvmpipe's shader variants, inside the stages). Thread-safe.
+   */
+  static long long GetNumberOfBuilds();
+  static double GetBuildMilliseconds();
+  ///@}
+
 protected:
   vtkCausticsShaderProgram();
   ~vtkCausticsShaderProgram() override;

@@ -447,6 +447,9 @@ TEST(DistanceImpostors, MapsRenderOnlyOnChange)
   f.Look(Views[0], ball.Centre);
   ASSERT_NE(f.Render("TechniqueColor"), nullptr);
   EXPECT_EQ(f.Impostors()->GetMapRenders(), 1);
+  // Glass alone: the two refractor maps, 12 layers (the mirrors' maps hold none).
+  EXPECT_FALSE(f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_ENVIRONMENT));
+  EXPECT_EQ(f.Impostors()->GetNumberOfLayers(), 12);
   f.Render("TechniqueColor");
   EXPECT_EQ(f.Impostors()->GetMapRenders(), 1) << "an unchanged frame";
   f.Look(Views[1], ball.Centre);
@@ -493,6 +496,8 @@ TEST(DistanceImpostors, ReflectorSurfaceOnlyWhereMirrorsSeeThemselves)
     EXPECT_TRUE(f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_ENVIRONMENT));
     winding = f.Impostors()->GetReflectorWinding();
     const bool made = f.Impostors()->HasMap(vtkCausticsDistanceImpostors::REFLECTOR_SURFACE);
+    // Every map up to the last one made keeps its 6 layers.
+    EXPECT_EQ(f.Impostors()->GetNumberOfLayers(), made ? 24 : 18);
     // The invalidation rules of the other maps: no render for an unchanged frame,
     // one when ReflectorBounces turns the mirrors' own map off, none when it only
     // changes its count.

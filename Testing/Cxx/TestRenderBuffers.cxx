@@ -437,6 +437,43 @@ TEST(LightBuffers, KeepsUnchangedMapsAndRedrawsOnAnyChange)
   kept->ReleaseGraphicsResources(f.Window);
 }
 
+// Shadow maps alone (ShadowMapsOnly, as the render pass's): no flux and no albedo
+// target, the same positions, normals and depth as the full buffers, and turning
+// the option off draws the flux and albedo again.
+TEST(LightBuffers, ShadowMapsOnlyKeepsPositionsNormalsAndDepth)
+{
+  Fixture f("ball-lens", 64);
+  f.Pass->KeepBuffersOn(); // upload the geometry even without caustics
+  f.Window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(f.Window);
+  gl->MakeCurrent();
+  const caustics::SceneData& scene = f.Pass->GetSceneExtractor()->GetScene();
+  vtkNew<vtkCausticsLightBuffers> shadows, full;
+  shadows->SetResolution(32);
+  shadows->ShadowMapsOnlyOn();
+  full->SetResolution(32);
+  ASSERT_TRUE(shadows->Render(gl, f.Pass->GetGeometry(), scene));
+  ASSERT_TRUE(full->Render(gl, f.Pass->GetGeometry(), scene));
+  ASSERT_EQ(shadows->GetNumberOfLights(), 1);
+  EXPECT_EQ(shadows->GetFluxTexture(0), nullptr);
+  EXPECT_EQ(shadows->GetGBuffer(0)->GetAlbedoTexture()->GetHandle(), 0u);
+  ASSERT_NE(full->GetFluxTexture(0), nullptr);
+  auto targets = [](vtkCausticsLightBuffers* buffers) {
+    vtkCausticsGBuffer* g = buffers->GetGBuffer(0);
+    return ReadAll({ g->GetPositionTexture(), g->GetNormalTexture(), g->GetDepthTexture() });
+  };
+  EXPECT_TRUE(targets(shadows) == targets(full));
+  shadows->ShadowMapsOnlyOff();
+  ASSERT_TRUE(shadows->Render(gl, f.Pass->GetGeometry(), scene));
+  EXPECT_FALSE(shadows->GetLastRenderReused()) << "ShadowMapsOnly is an input";
+  ASSERT_NE(shadows->GetFluxTexture(0), nullptr);
+  EXPECT_TRUE(ReadAll({ shadows->GetFluxTexture(0), shadows->GetGBuffer(0)->GetAlbedoTexture() }) ==
+    ReadAll({ full->GetFluxTexture(0), full->GetGBuffer(0)->GetAlbedoTexture() }));
+  EXPECT_TRUE(targets(shadows) == targets(full));
+  shadows->ReleaseGraphicsResources(f.Window);
+  full->ReleaseGraphicsResources(f.Window);
+}
+
 TEST(DirectIrradiance, LitFloorAndShadowUnderTheBall)
 {
   Fixture f("ball-lens");
