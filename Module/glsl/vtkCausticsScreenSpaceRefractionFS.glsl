@@ -58,6 +58,9 @@ const int OPAQUE = 1;
 const int REFRACTOR = 2;
 const int METHOD_IMPOSTORS = 1;
 const int METHOD_BOTH = 2;
+// A Fresnel-reflected branch (TracePath) is followed when it carries at least this
+// share of the pixel's colour; lighter ones are dropped.
+const float MIN_BRANCH_WEIGHT = 0.01;
 
 struct March
 {
@@ -404,42 +407,81 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
 // longer give), refracted with exact Fresnel weights (total internal reflection
 // stays inside), reflected by mirrors with the conductor's Fresnel reflectance,
 // until it meets another opaque surface (its colour) or leaves (the background),
-// at most maxEvents interfaces. One loop with one march, so that the march's code
-// is compiled once (llvmpipe compiles each inlined copy).
+// at most maxEvents interfaces. At a dielectric that transmits, the Fresnel-
+// reflected part (weight R) is not dropped: it is kept as one deferred branch and
+// traced once the refracted path ends (the internal reflections inside glass: at
+// the ball lens's far side 4 % at normal incidence, all of it towards the rim), with
+// the events it has left; while the branch is held, further reflected parts are
+// dropped (their weight is R x R' at most). One loop with one march, so that the
+// march's code is compiled once (llvmpipe compiles each inlined copy).
 vec3 TracePath(
   vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption, int leftRole)
 {
+  vec3 color = vec3(0.0);
   vec3 throughput = vec3(1.0);
   bool impostor = viewMethod == METHOD_IMPOSTORS;
   int bounces = 0; // mirror-to-mirror reflections in a row
-  for (int event = 0; event < maxEvents; ++event)
+  int event = 0;
+  // The deferred reflected branch (held: its weight is not zero).
+  bool held = false;
+  vec3 heldO = vec3(0.0), heldD = vec3(0.0), heldThroughput = vec3(0.0);
+  vec3 heldAbsorption = vec3(0.0);
+  bool heldInside = false, heldImpostor = false;
+  int heldCurrent = -1, heldNext = -1, heldEvent = 0, heldRole = ROLE_NONE;
+  for (int step = 0; step < 2 * maxEvents; ++step)
   {
+    // The path ends: on a surface, leaving, or out of events; then the held branch.
+    bool ends = event >= maxEvents;
+    vec3 ending = background;
+    vec3 x = o;
     March m;
-    if (!impostor)
+    if (!ends)
     {
-      m = MarchRay(o, d, next, inside ? current : -1);
-      impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+      if (!impostor)
+      {
+        m = MarchRay(o, d, next, inside ? current : -1);
+        impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+      }
+      if (impostor)
+      {
+        m = ImpostorRay(o, d, inside, leftRole, bounces);
+      }
+      CompleteHit(m);
+      if (inside)
+      {
+        throughput *= CausticsTransmittance(absorption, m.t);
+      }
+      x = o + m.t * d;
+      ends = m.kind == MISS || (m.kind == OPAQUE && m.role != ROLE_REFLECTOR);
+      if (m.kind == OPAQUE && m.role != ROLE_REFLECTOR)
+      {
+        ending = m.pixel.x >= 0 ? Shade(m.pixel) : m.radiance;
+      }
     }
-    if (impostor)
+    if (ends)
     {
-      m = ImpostorRay(o, d, inside, leftRole, bounces);
+      color += throughput * ending;
+      if (!held)
+      {
+        return color;
+      }
+      held = false;
+      o = heldO;
+      d = heldD;
+      throughput = heldThroughput;
+      absorption = heldAbsorption;
+      inside = heldInside;
+      impostor = heldImpostor;
+      current = heldCurrent;
+      next = heldNext;
+      event = heldEvent;
+      leftRole = heldRole;
+      bounces = 0;
+      continue;
     }
-    CompleteHit(m);
-    if (inside)
-    {
-      throughput *= CausticsTransmittance(absorption, m.t);
-    }
-    if (m.kind == MISS)
-    {
-      return throughput * background;
-    }
-    vec3 x = o + m.t * d;
+    ++event;
     if (m.kind == OPAQUE)
     {
-      if (m.role != ROLE_REFLECTOR)
-      {
-        return throughput * (m.pixel.x >= 0 ? Shade(m.pixel) : m.radiance);
-      }
       CausticsMaterial mirror = causticsMaterials[m.material];
       vec3 n = m.normal;
       vec3 facing = dot(d, n) < 0.0 ? n : -n;
@@ -465,6 +507,22 @@ vec3 TracePath(
       vec3 mirrored, refracted;
       if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
       {
+        if (!held && max(throughput.r, max(throughput.g, throughput.b)) * r >= MIN_BRANCH_WEIGHT)
+        {
+          // The reflected part stays on this side: inside, between the same layers
+          // (as total internal reflection); outside, off the layers' order.
+          held = true;
+          heldO = x;
+          heldD = mirrored;
+          heldThroughput = throughput * r;
+          heldAbsorption = absorption;
+          heldInside = inside;
+          heldImpostor = impostor;
+          heldCurrent = inside ? current : -1;
+          heldNext = inside ? next : -1;
+          heldEvent = event;
+          heldRole = ROLE_REFRACTOR;
+        }
         throughput *= 1.0 - r;
         d = refracted;
         inside = !inside;
@@ -480,7 +538,8 @@ vec3 TracePath(
     }
     o = x;
   }
-  return throughput * background;
+  // Out of steps with a path still going: it ends as one out of events does.
+  return color + throughput * background + (held ? heldThroughput * background : vec3(0.0));
 }
 
 void main()
