@@ -115,6 +115,20 @@ bool InFront(vec3 x, float depth, vec3 p, vec3 n)
   return OnSide(x, depth, p, n, false);
 }
 
+// Whether the ray o + t d, at x, is leaving the surface sample (p, n) rather than
+// crossing it: within a few pixel footprints of p, on the camera's side of its tangent
+// plane and moving away from it, as a ray that a mirror standing on the floor sends out
+// from the wall's foot (in depth it passes behind the wall's pixel there; it crosses
+// the floor next to it, not the wall).
+bool Leaving(vec3 o, vec3 d, vec3 x, vec3 p, vec3 n)
+{
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  vec3 front = dot(toCamera, n) >= 0.0 ? n : -n;
+  vec4 clip = worldToClip * vec4(p, 1.0);
+  float reach = tolerance + 4.0 * abs(clip.w) * pixelScale;
+  return dot(x - p, front) > 0.0 && dot(d, front) > 0.0 && distance(x, p) < reach;
+}
+
 // Refines a crossing of the surface (p, n) near parameter t: the tangent-plane hit.
 float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
 {
@@ -160,7 +174,11 @@ void RefineOpaqueHit(vec3 o, vec3 d, inout March result)
   bool inside = clip.w > 0.0 && all(greaterThanEqual(exact, ivec2(0))) &&
     all(lessThan(exact, ivec2(viewport)));
   vec4 there = inside ? texelFetch(gPosition, exact, 0) : vec4(0.0, 0.0, 0.0, -1.0);
+  // The same surface: near the crossing and of the same role (where a mirror stands
+  // on the floor, the floor's crossing at the wall's foot projects onto the wall's
+  // own pixel, within reach; the floor's tiles differ in material, not in role).
   bool same = there.w >= 0.0 &&
+    texelFetch(gNormal, exact, 0).w == texelFetch(gNormal, q, 0).w &&
     distance(there.xyz, o + result.t * d) < 4.0 * abs(clip.w) * pixelScale + tolerance;
   result.pixel = same ? exact : q;
 }
@@ -195,7 +213,9 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
   vec3 x = o + t * d;
   float depth = depthLine.x + t * depthLine.y; // ViewDepth(x): affine in t
   vec4 opaque = texelFetch(gPosition, q, 0);
-  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, texelFetch(gNormal, q, 0).xyz))
+  vec3 opaqueNormal = texelFetch(gNormal, q, 0).xyz;
+  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal) &&
+    !Leaving(o, d, x, opaque.xyz, opaqueNormal))
   {
     result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
     result.t = t;
@@ -321,9 +341,11 @@ void CompleteHit(inout March m)
   }
 }
 
-// The camera pixel that shows the surface point h in the opaque G-buffer (within
-// `slack` m and a few pixel footprints), or (-1, -1) where the camera does not see it.
-ivec2 CameraPixel(vec3 h, float slack)
+// The camera pixel that shows the surface point h, of role `role`, in the opaque
+// G-buffer (within `slack` m and a few pixel footprints), or (-1, -1) where the camera
+// does not see it (a surface of another role within reach, such as a mirror wall whose
+// foot stands on the floor at h, is not it).
+ivec2 CameraPixel(vec3 h, float slack, int role)
 {
   vec4 clip = worldToClip * vec4(h, 1.0);
   if (!(clip.w > 0.0))
@@ -336,8 +358,8 @@ ivec2 CameraPixel(vec3 h, float slack)
     return ivec2(-1);
   }
   vec4 there = texelFetch(gPosition, q, 0);
-  bool same =
-    there.w >= 0.0 && distance(there.xyz, h) < 4.0 * clip.w * pixelScale + slack + tolerance;
+  bool same = there.w >= 0.0 && int(texelFetch(gNormal, q, 0).w + 0.5) == role &&
+    distance(there.xyz, h) < 4.0 * clip.w * pixelScale + slack + tolerance;
   return same ? q : ivec2(-1);
 }
 
@@ -390,7 +412,7 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
   {
     vec3 h = o + t * d;
     float texelSize = 4.0 * distance(h, impostorCentre[texel.z / 6]) / float(impostorResolution);
-    m.pixel = CameraPixel(h, texelSize);
+    m.pixel = CameraPixel(h, texelSize, m.role);
     // The map's direct light, and the caustic a photon technique stored there (net
     // of the light the specular objects block: no shadow otherwise).
     m.radiance = max(texelFetch(impostorRadiance, texel, 0).rgb +
