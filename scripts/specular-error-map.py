@@ -34,7 +34,7 @@ from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
 
 import vtkcaustics
 
-SIZE = 128
+SIZE = int(os.environ.get("SPECULAR_MAP_SIZE", "128"))
 NAMES = {0: "screen-space", 1: "impostors", 2: "both"}
 ROLE_REFLECTOR = 2
 
