@@ -58,6 +58,9 @@ const int OPAQUE = 1;
 const int REFRACTOR = 2;
 const int METHOD_IMPOSTORS = 1;
 const int METHOD_BOTH = 2;
+// A Fresnel-reflected branch (TracePath) is followed when it carries at least this
+// share of the pixel's colour; lighter ones are dropped.
+const float MIN_BRANCH_WEIGHT = 0.01;
 
 struct March
 {
@@ -112,6 +115,20 @@ bool InFront(vec3 x, float depth, vec3 p, vec3 n)
   return OnSide(x, depth, p, n, false);
 }
 
+// Whether the ray o + t d, at x, is leaving the surface sample (p, n) rather than
+// crossing it: within a few pixel footprints of p, on the camera's side of its tangent
+// plane and moving away from it, as a ray that a mirror standing on the floor sends out
+// from the wall's foot (in depth it passes behind the wall's pixel there; it crosses
+// the floor next to it, not the wall).
+bool Leaving(vec3 o, vec3 d, vec3 x, vec3 p, vec3 n)
+{
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  vec3 front = dot(toCamera, n) >= 0.0 ? n : -n;
+  vec4 clip = worldToClip * vec4(p, 1.0);
+  float reach = tolerance + 4.0 * abs(clip.w) * pixelScale;
+  return dot(x - p, front) > 0.0 && dot(d, front) > 0.0 && distance(x, p) < reach;
+}
+
 // Refines a crossing of the surface (p, n) near parameter t: the tangent-plane hit.
 float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
 {
@@ -157,7 +174,11 @@ void RefineOpaqueHit(vec3 o, vec3 d, inout March result)
   bool inside = clip.w > 0.0 && all(greaterThanEqual(exact, ivec2(0))) &&
     all(lessThan(exact, ivec2(viewport)));
   vec4 there = inside ? texelFetch(gPosition, exact, 0) : vec4(0.0, 0.0, 0.0, -1.0);
+  // The same surface: near the crossing and of the same role (where a mirror stands
+  // on the floor, the floor's crossing at the wall's foot projects onto the wall's
+  // own pixel, within reach; the floor's tiles differ in material, not in role).
   bool same = there.w >= 0.0 &&
+    texelFetch(gNormal, exact, 0).w == texelFetch(gNormal, q, 0).w &&
     distance(there.xyz, o + result.t * d) < 4.0 * abs(clip.w) * pixelScale + tolerance;
   result.pixel = same ? exact : q;
 }
@@ -192,7 +213,9 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
   vec3 x = o + t * d;
   float depth = depthLine.x + t * depthLine.y; // ViewDepth(x): affine in t
   vec4 opaque = texelFetch(gPosition, q, 0);
-  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, texelFetch(gNormal, q, 0).xyz))
+  vec3 opaqueNormal = texelFetch(gNormal, q, 0).xyz;
+  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal) &&
+    !Leaving(o, d, x, opaque.xyz, opaqueNormal))
   {
     result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
     result.t = t;
@@ -318,9 +341,11 @@ void CompleteHit(inout March m)
   }
 }
 
-// The camera pixel that shows the surface point h in the opaque G-buffer (within
-// `slack` m and a few pixel footprints), or (-1, -1) where the camera does not see it.
-ivec2 CameraPixel(vec3 h, float slack)
+// The camera pixel that shows the surface point h, of role `role`, in the opaque
+// G-buffer (within `slack` m and a few pixel footprints), or (-1, -1) where the camera
+// does not see it (a surface of another role within reach, such as a mirror wall whose
+// foot stands on the floor at h, is not it).
+ivec2 CameraPixel(vec3 h, float slack, int role)
 {
   vec4 clip = worldToClip * vec4(h, 1.0);
   if (!(clip.w > 0.0))
@@ -333,8 +358,8 @@ ivec2 CameraPixel(vec3 h, float slack)
     return ivec2(-1);
   }
   vec4 there = texelFetch(gPosition, q, 0);
-  bool same =
-    there.w >= 0.0 && distance(there.xyz, h) < 4.0 * clip.w * pixelScale + slack + tolerance;
+  bool same = there.w >= 0.0 && int(texelFetch(gNormal, q, 0).w + 0.5) == role &&
+    distance(there.xyz, h) < 4.0 * clip.w * pixelScale + slack + tolerance;
   return same ? q : ivec2(-1);
 }
 
@@ -387,7 +412,7 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
   {
     vec3 h = o + t * d;
     float texelSize = 4.0 * distance(h, impostorCentre[texel.z / 6]) / float(impostorResolution);
-    m.pixel = CameraPixel(h, texelSize);
+    m.pixel = CameraPixel(h, texelSize, m.role);
     // The map's direct light, and the caustic a photon technique stored there (net
     // of the light the specular objects block: no shadow otherwise).
     m.radiance = max(texelFetch(impostorRadiance, texel, 0).rgb +
@@ -404,42 +429,81 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
 // longer give), refracted with exact Fresnel weights (total internal reflection
 // stays inside), reflected by mirrors with the conductor's Fresnel reflectance,
 // until it meets another opaque surface (its colour) or leaves (the background),
-// at most maxEvents interfaces. One loop with one march, so that the march's code
-// is compiled once (llvmpipe compiles each inlined copy).
+// at most maxEvents interfaces. At a dielectric that transmits, the Fresnel-
+// reflected part (weight R) is not dropped: it is kept as one deferred branch and
+// traced once the refracted path ends (the internal reflections inside glass: at
+// the ball lens's far side 4 % at normal incidence, all of it towards the rim), with
+// the events it has left; while the branch is held, further reflected parts are
+// dropped (their weight is R x R' at most). One loop with one march, so that the
+// march's code is compiled once (llvmpipe compiles each inlined copy).
 vec3 TracePath(
   vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption, int leftRole)
 {
+  vec3 color = vec3(0.0);
   vec3 throughput = vec3(1.0);
   bool impostor = viewMethod == METHOD_IMPOSTORS;
   int bounces = 0; // mirror-to-mirror reflections in a row
-  for (int event = 0; event < maxEvents; ++event)
+  int event = 0;
+  // The deferred reflected branch (held: its weight is not zero).
+  bool held = false;
+  vec3 heldO = vec3(0.0), heldD = vec3(0.0), heldThroughput = vec3(0.0);
+  vec3 heldAbsorption = vec3(0.0);
+  bool heldInside = false, heldImpostor = false;
+  int heldCurrent = -1, heldNext = -1, heldEvent = 0, heldRole = ROLE_NONE;
+  for (int step = 0; step < 2 * maxEvents; ++step)
   {
+    // The path ends: on a surface, leaving, or out of events; then the held branch.
+    bool ends = event >= maxEvents;
+    vec3 ending = background;
+    vec3 x = o;
     March m;
-    if (!impostor)
+    if (!ends)
     {
-      m = MarchRay(o, d, next, inside ? current : -1);
-      impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+      if (!impostor)
+      {
+        m = MarchRay(o, d, next, inside ? current : -1);
+        impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+      }
+      if (impostor)
+      {
+        m = ImpostorRay(o, d, inside, leftRole, bounces);
+      }
+      CompleteHit(m);
+      if (inside)
+      {
+        throughput *= CausticsTransmittance(absorption, m.t);
+      }
+      x = o + m.t * d;
+      ends = m.kind == MISS || (m.kind == OPAQUE && m.role != ROLE_REFLECTOR);
+      if (m.kind == OPAQUE && m.role != ROLE_REFLECTOR)
+      {
+        ending = m.pixel.x >= 0 ? Shade(m.pixel) : m.radiance;
+      }
     }
-    if (impostor)
+    if (ends)
     {
-      m = ImpostorRay(o, d, inside, leftRole, bounces);
+      color += throughput * ending;
+      if (!held)
+      {
+        return color;
+      }
+      held = false;
+      o = heldO;
+      d = heldD;
+      throughput = heldThroughput;
+      absorption = heldAbsorption;
+      inside = heldInside;
+      impostor = heldImpostor;
+      current = heldCurrent;
+      next = heldNext;
+      event = heldEvent;
+      leftRole = heldRole;
+      bounces = 0;
+      continue;
     }
-    CompleteHit(m);
-    if (inside)
-    {
-      throughput *= CausticsTransmittance(absorption, m.t);
-    }
-    if (m.kind == MISS)
-    {
-      return throughput * background;
-    }
-    vec3 x = o + m.t * d;
+    ++event;
     if (m.kind == OPAQUE)
     {
-      if (m.role != ROLE_REFLECTOR)
-      {
-        return throughput * (m.pixel.x >= 0 ? Shade(m.pixel) : m.radiance);
-      }
       CausticsMaterial mirror = causticsMaterials[m.material];
       vec3 n = m.normal;
       vec3 facing = dot(d, n) < 0.0 ? n : -n;
@@ -465,6 +529,22 @@ vec3 TracePath(
       vec3 mirrored, refracted;
       if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
       {
+        if (!held && max(throughput.r, max(throughput.g, throughput.b)) * r >= MIN_BRANCH_WEIGHT)
+        {
+          // The reflected part stays on this side: inside, between the same layers
+          // (as total internal reflection); outside, off the layers' order.
+          held = true;
+          heldO = x;
+          heldD = mirrored;
+          heldThroughput = throughput * r;
+          heldAbsorption = absorption;
+          heldInside = inside;
+          heldImpostor = impostor;
+          heldCurrent = inside ? current : -1;
+          heldNext = inside ? next : -1;
+          heldEvent = event;
+          heldRole = ROLE_REFRACTOR;
+        }
         throughput *= 1.0 - r;
         d = refracted;
         inside = !inside;
@@ -480,7 +560,8 @@ vec3 TracePath(
     }
     o = x;
   }
-  return throughput * background;
+  // Out of steps with a path still going: it ends as one out of events does.
+  return color + throughput * background + (held ? heldThroughput * background : vec3(0.0));
 }
 
 void main()
