@@ -506,6 +506,11 @@ vtkCausticsLayeredDepth* vtkCausticsRenderPass::GetRefractorLayeredDepth()
   return this->Internal->RefractorLayers;
 }
 
+vtkCausticsScreenSpaceRefraction* vtkCausticsRenderPass::GetScreenSpaceRefraction()
+{
+  return this->Internal->Refraction;
+}
+
 vtkCausticsDistanceImpostors* vtkCausticsRenderPass::GetDistanceImpostors()
 {
   return this->Internal->Impostors;

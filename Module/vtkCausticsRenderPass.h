@@ -76,6 +76,7 @@ class vtkCausticsCameraOpticalDepth;
 class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
 class vtkCausticsLayeredDepth;
+class vtkCausticsScreenSpaceRefraction;
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneExtractor;
 class vtkCausticsSceneGeometry;
@@ -280,6 +281,8 @@ public:
   vtkGetMacro(RefractionEvents, int);
   /** The refractors' layered depth image of the last frame that traced refraction. */
   vtkCausticsLayeredDepth* GetRefractorLayeredDepth();
+  /** The camera-view stage itself (its knobs, e.g. InternalReflections). */
+  vtkCausticsScreenSpaceRefraction* GetScreenSpaceRefraction();
   ///@}
 
   /**

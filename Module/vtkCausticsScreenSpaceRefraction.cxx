@@ -176,6 +176,7 @@ bool vtkCausticsScreenSpaceRefraction::Render(
     p->SetUniform3f("background", static_cast<float>(inputs.Background[0]),
       static_cast<float>(inputs.Background[1]), static_cast<float>(inputs.Background[2]));
     p->SetUniformi("maxEvents", this->MaximumEvents);
+    p->SetUniformi("internalReflections", this->InternalReflections ? 1 : 0);
     p->SetUniformf("tolerance", static_cast<float>(inputs.Tolerance));
     p->SetUniformf(
       "pixelScale", caustics::ssp::PixelScale(inputs.WorldToClip, inputs.Width, inputs.Height));
@@ -210,4 +211,5 @@ void vtkCausticsScreenSpaceRefraction::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MaximumEvents: " << this->MaximumEvents << "\n";
+  os << indent << "InternalReflections: " << this->InternalReflections << "\n";
 }

@@ -42,6 +42,7 @@ uniform vec3 boundsMin;
 uniform vec3 boundsMax;
 uniform vec3 background;
 uniform int maxEvents;
+uniform int internalReflections; // follow the Fresnel-reflected branch at dielectrics (TracePath)
 uniform float tolerance;      // m
 uniform float pixelScale;     // world size of one pixel at clip w = 1, m
 uniform float depthTolerance; // window depth: VTK's image and the G-buffers agree
@@ -529,7 +530,8 @@ vec3 TracePath(
       vec3 mirrored, refracted;
       if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
       {
-        if (!held && max(throughput.r, max(throughput.g, throughput.b)) * r >= MIN_BRANCH_WEIGHT)
+        if (internalReflections != 0 && !held &&
+          max(throughput.r, max(throughput.g, throughput.b)) * r >= MIN_BRANCH_WEIGHT)
         {
           // The reflected part stays on this side: inside, between the same layers
           // (as total internal reflection); outside, off the layers' order.
