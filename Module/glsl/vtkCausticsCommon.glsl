@@ -335,10 +335,14 @@ float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal,
       ivec2 texelIndex = clamp(ivec2(base) + ivec2(i, j), ivec2(0), ivec2(size) - 1);
       vec4 occluder = texelFetch(shadowPosition, texelIndex, 0);
       float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
-      int role = occluder.w < 0.0 ? -1 : int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
-      float slack = role == ROLE_REFRACTOR ? refractorBias : bias;
-      if (occluder.w < 0.0 ||
-        CausticsLightDistance(occluder.xyz, lightType, origin, axis) >= distance - slack)
+      float nearer = occluder.w < 0.0
+        ? -1.0
+        : distance - CausticsLightDistance(occluder.xyz, lightType, origin, axis);
+      // The role only where an occluder may count (its texel read once, as before).
+      int role = nearer <= min(bias, refractorBias)
+        ? -1
+        : int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
+      if (nearer <= (role == ROLE_REFRACTOR ? refractorBias : bias))
       {
         visibility += weight;
       }
