@@ -496,6 +496,38 @@ TEST(VolumeLines, ExtinctionUnderTheOpenSheetAsTheReference)
 
 namespace
 {
+/** Counts (and prints) the warnings of `object` that contain `needle`, while it lives. */
+class WarningCounter
+{
+public:
+  WarningCounter(vtkObject* object, const char* needle)
+    : Object(object)
+    , Needle(needle)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void* text)
+      {
+        auto* counter = static_cast<WarningCounter*>(self);
+        const std::string message = text ? static_cast<const char*>(text) : "";
+        std::cout << "warning: " << message << "\n";
+        counter->Count += message.find(counter->Needle) != std::string::npos;
+      });
+    this->Tag = object->AddObserver(vtkCommand::WarningEvent, this->Callback);
+  }
+  ~WarningCounter() { this->Object->RemoveObserver(this->Tag); }
+  WarningCounter(const WarningCounter&) = delete;
+  WarningCounter& operator=(const WarningCounter&) = delete;
+
+  int Count = 0;
+
+private:
+  vtkObject* Object;
+  std::string Needle;
+  vtkNew<vtkCallbackCommand> Callback;
+  unsigned long Tag = 0;
+};
+
 /** GL_MAX_SHADER_STORAGE_BLOCK_SIZE of an offscreen window's context, in bytes. */
 double StorageBlockBytes()
 {
@@ -556,18 +588,7 @@ TEST(VolumeLines, SegmentListsHoldWhatTheSettingsAllow)
   pass->DenoiseOff();
   pass->GetAirlight()->EnabledOff();
   pass->KeepBuffersOn();
-  int warnings = 0;
-  vtkNew<vtkCallbackCommand> onWarning;
-  onWarning->SetClientData(&warnings);
-  onWarning->SetCallback(
-    [](vtkObject*, unsigned long, void* count, void* text)
-    {
-      const char* message = static_cast<const char*>(text);
-      std::cout << "warning: " << (message ? message : "") << "\n";
-      *static_cast<int*>(count) +=
-        message && std::string(message).find("photon segments") != std::string::npos;
-    });
-  pass->AddObserver(vtkCommand::WarningEvent, onWarning);
+  WarningCounter warnings(pass, "photon segments");
   renderer->SetPass(pass);
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -588,11 +609,10 @@ TEST(VolumeLines, SegmentListsHoldWhatTheSettingsAllow)
     ASSERT_TRUE(pass->ReadBuffer("VolumeRadiance", volume));
     total[k] = CausticTotal(volume, "VolumeRadiance");
     const std::string name = "cascaded, " + std::to_string(events[k]) + " events";
-    check(name.c_str(), pass->GetVolumeSegmentList(), n * 2 * events[k], warnings,
+    check(name.c_str(), pass->GetVolumeSegmentList(), n * 2 * events[k], warnings.Count,
       n * 2 * events[k] > fitting ? 1 : 0);
-    warnings = 0;
+    warnings.Count = 0;
   }
-  pass->RemoveObserver(onWarning);
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
   std::cout << "cascaded volume total, 32 events over 8: " << total[1] / total[0] << "\n";
@@ -625,17 +645,7 @@ TEST(VolumeLines, SegmentListsKeepToMaximumGPUMemory)
   maps->SetLightBufferResolution(128);
   maps->GetAirlight()->EnabledOff();
   maps->KeepBuffersOn();
-  int warnings = 0;
-  vtkNew<vtkCallbackCommand> onWarning;
-  onWarning->SetClientData(&warnings);
-  onWarning->SetCallback(
-    [](vtkObject*, unsigned long, void* count, void* text)
-    {
-      const std::string message = text ? static_cast<const char*>(text) : "";
-      std::cout << "warning: " << message << "\n";
-      *static_cast<int*>(count) += message.find("MaximumGPUMemory") != std::string::npos;
-    });
-  maps->AddObserver(vtkCommand::WarningEvent, onWarning);
+  WarningCounter warnings(maps, "MaximumGPUMemory");
   renderer->SetPass(maps);
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -651,7 +661,7 @@ TEST(VolumeLines, SegmentListsKeepToMaximumGPUMemory)
   const auto unlimited = maps->GetVolumeSegmentList()->GetCapacity().GetSizing();
   ASSERT_GT(estimate, 0.0);
   ASSERT_FALSE(unlimited.IsShort());
-  EXPECT_EQ(warnings, 0);
+  EXPECT_EQ(warnings.Count, 0);
 
   const double room = 1024.0 * 1024.0;
   maps->SetMaximumGPUMemory(estimate + room);
@@ -669,7 +679,7 @@ TEST(VolumeLines, SegmentListsKeepToMaximumGPUMemory)
   EXPECT_EQ(sizing.WorstCase, unlimited.WorstCase);
   EXPECT_LE(sizing.Capacity * perSegment, room);
   EXPECT_GT(sizing.Capacity * perSegment, 0.9 * room);
-  EXPECT_EQ(warnings, 1);
+  EXPECT_EQ(warnings.Count, 1);
   vtkNew<vtkImageData> volume;
   ASSERT_TRUE(maps->ReadBuffer("VolumeRadiance", volume));
   vtkDataArray* values = volume->GetPointData()->GetArray(0);
@@ -682,7 +692,6 @@ TEST(VolumeLines, SegmentListsKeepToMaximumGPUMemory)
   maps->SetMaximumGPUMemory(0.0); // the device's budget again
   window->Render();
   EXPECT_EQ(maps->GetVolumeSegmentList()->GetCapacity().GetSizing().Capacity, unlimited.Capacity);
-  maps->RemoveObserver(onWarning);
   renderer->SetPass(nullptr);
   maps->ReleaseGraphicsResources(window);
   window->RemoveRenderer(renderer);
