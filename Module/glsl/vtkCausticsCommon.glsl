@@ -107,6 +107,19 @@ float CausticsRandom(inout uint state)
   return float(state >> 8) * (1.0 / 16777216.0);
 }
 
+// A uniform number in [0, 1) for the photon at `texel` of a photon grid, stratified
+// over the grid: the R2 sequence's dither (plastic-number increments, in 32-bit fixed
+// point) rotated by `rotation` (a fixed-point number drawn once per frame). Each
+// photon's number is uniform (Cranley-Patterson rotation), so Russian roulette on it
+// stays unbiased; and any patch of neighbouring photons takes each branch in the
+// share its probability says, where white noise leaves clumps of holes that show as
+// speckle where their light converges (a lens's focus).
+float CausticsGridStratified(ivec2 texel, uint rotation)
+{
+  uint fixedPoint = uint(texel.x) * 0xc13fa9a9u + uint(texel.y) * 0x91e10da6u + rotation;
+  return float(fixedPoint >> 8u) * (1.0 / 16777216.0);
+}
+
 // The sum of a flux's channels: what Russian roulette weighs paths by.
 float CausticsChannelSum(vec3 c)
 {

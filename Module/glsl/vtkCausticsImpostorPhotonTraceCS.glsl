@@ -135,6 +135,10 @@ void main()
   float reach = lightType == 0 ? 3.0e38 : distance(o, lightOrigin);
   flux *= CausticsMediumTransmittance(o, towardsLight, 0.0, reach);
   uint rng = CausticsHash(uint(g.x + g.y * photonGrid.x) ^ CausticsHash(frameSeed));
+  // The first roulette (a lens's exit) decides most of the photons' fate: stratified
+  // over the grid, so that the light converging on a focus is not speckled.
+  bool stratified = true;
+  uint rotation = CausticsHash(frameSeed ^ 0x68e31da4u);
   int bounces = 0; // mirror-to-mirror reflections in a row
 
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
@@ -173,7 +177,9 @@ void main()
     {
       bounces = role == ROLE_REFLECTOR && leftRole == ROLE_REFLECTOR ? bounces + 1 : 0;
       bool wasInside = inside;
-      CausticsScatterOneBranch(n, causticsMaterials[material], role, d, flux, inside, rng);
+      float u = stratified ? CausticsGridStratified(g, rotation) : CausticsRandom(rng);
+      stratified = false;
+      CausticsScatterOneBranchBy(u, n, causticsMaterials[material], role, d, flux, inside);
       insideMaterial = inside && !wasInside ? material : insideMaterial;
       leftRole = role;
       o = h;

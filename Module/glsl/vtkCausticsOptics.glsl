@@ -114,11 +114,12 @@ CausticsInteraction CausticsSurfaceInteraction(
 }
 
 // A photon's specular event followed as one branch (Russian roulette): reflection
-// or refraction, chosen with its share of the exact Fresnel weights, the flux
-// divided by that probability so that the estimate stays unbiased. `inside` follows
-// the refractor's side; a surface that passes nothing leaves the flux at 0.
-void CausticsScatterOneBranch(vec3 n, CausticsMaterial material, int role, inout vec3 d,
-  inout vec3 flux, inout bool inside, inout uint rng)
+// or refraction, chosen by the uniform number u with its share of the exact Fresnel
+// weights, the flux divided by that probability so that the estimate stays
+// unbiased. `inside` follows the refractor's side; a surface that passes nothing
+// leaves the flux at 0.
+void CausticsScatterOneBranchBy(float u, vec3 n, CausticsMaterial material, int role,
+  inout vec3 d, inout vec3 flux, inout bool inside)
 {
   CausticsInteraction s = CausticsSurfaceInteraction(d, n, material, role, 1.0);
   float reflected = CausticsChannelSum(s.reflectedWeight);
@@ -130,7 +131,7 @@ void CausticsScatterOneBranch(vec3 n, CausticsMaterial material, int role, inout
     flux = vec3(0.0);
     return;
   }
-  bool reflect = CausticsRandom(rng) * total < reflected;
+  bool reflect = u * total < reflected;
   float probability = (reflect ? reflected : refracted) / total;
   flux *= (reflect ? s.reflectedWeight : s.refractedWeight) / probability;
   d = reflect ? s.reflected : s.refracted;
@@ -138,4 +139,11 @@ void CausticsScatterOneBranch(vec3 n, CausticsMaterial material, int role, inout
   {
     inside = reflect ? inside : s.entering;
   }
+}
+
+// The same with the photon's own random stream.
+void CausticsScatterOneBranch(vec3 n, CausticsMaterial material, int role, inout vec3 d,
+  inout vec3 flux, inout bool inside, inout uint rng)
+{
+  CausticsScatterOneBranchBy(CausticsRandom(rng), n, material, role, d, flux, inside);
 }

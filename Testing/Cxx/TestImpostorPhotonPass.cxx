@@ -307,17 +307,18 @@ TEST(ImpostorPhotonPass, IsRegistered)
 
 TEST(ImpostorPhotonPass, BallLensMatchesReference)
 {
-  // Reached: flux ratio 0.9971, relative L2 0.1003 (the 3 % met, its 10 %
-  // missed by a hair: the halo far from the focus, where a few photons per pixel
-  // land, still shows the light buffer's texel grid; 0.244 before the kernel radii
-  // followed the landed neighbours, SpreadStretch). Bounds: 3 %, 0.11.
+  // Reached: flux ratio 0.9981, relative L2 0.0947, the 3 % and 10 % (0.1003
+  // while the exit's roulette drew white noise, whose clumps of internally reflected
+  // photons speckled the focus; 0.244 before the kernel radii followed the landed
+  // neighbours, SpreadStretch). What is left is mostly the light buffer's texel grid,
+  // the same every frame (0.090 after 4 frames). Bounds: 3 %, 0.10.
   Impostors c("ball-lens");
   ASSERT_TRUE(c.RenderFrames());
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(c.Compare("ball lens", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.11);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.10);
 }
 
 TEST(ImpostorPhotonPass, RingMatchesReference)
@@ -385,16 +386,20 @@ TEST(ImpostorPhotonPass, MirrorCupMatchesReference)
 
 TEST(ImpostorPhotonPass, BunnyMatchesReference)
 {
-  // A glass bunny under a spot light in a Cornell box. Reached: flux ratio 1.028,
-  // relative L2 0.755, peak 1 px off: the 3 % met, its 10 % not. The bunny is
+  // A glass bunny under a spot light in a Cornell box. Reached (8 frames): flux
+  // ratio 1.0284, relative L2 0.751, peak 1 px off: the 3 % met, its 10 % not. The bunny is
   // not convex: its refractor map, seen from the centre of its box, misses the ears
   // and the hollows (the paper's "view dependent occlusions"), so photons inside
   // leave through the wrong face. Before Hit() skipped the start of a ray that starts
   // behind the map's surface (a photon entering a face the map does not hold), such
   // a photon "left" where it entered: 1.092 and 1.51, one bright band beside the
   // base. Bounds just past what is reached, so that it cannot get worse unseen.
+  // The flux's excess, 2.85-2.9 % (the mean of 8 frames, either roulette), is at the
+  // issue's bound, and one frame's roulette moves it by 0.2-0.4 %: 8 frames, so that
+  // the check measures the technique rather than a frame's luck (2 frames gave
+  // 1.028 with white-noise roulette, 1.031 with the stratified one).
   Impostors c("bunny");
-  ASSERT_TRUE(c.RenderFrames());
+  ASSERT_TRUE(c.RenderFrames(8));
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(c.Compare("bunny", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
