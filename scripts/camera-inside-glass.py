@@ -7,7 +7,7 @@ number, else reads it per pixel from the first refractor surface seen from its b
 side, as under the pool's open water sheet; the reference decides by the side of the
 surface's normal the ray comes from, at every surface). This prints the relative L2 of
 the stage's colour ("TechniqueColor") against the reference renderer's camera paths
-("SpecularColor", 64 per pixel) with the eye inside the refractor, for the
+("SpecularColor", 256 per pixel) with the eye inside the refractor, for the
 screen-space, the distance-impostor and the combined (BOTH) camera views, and writes
 reference | stage side by side (PNG, scaled by the reference's largest value) for a look.
 
@@ -66,7 +66,7 @@ def main():
     reference.SetInputRenderer(renderer)
     reference.SetImageSize(SIZE, SIZE)
     reference.SetPhotonsPerLight(1000000)
-    reference.SetSpecularSamples(64)
+    reference.SetSpecularSamples(256)
     if not reference.Update():
         raise SystemExit(reference.GetLastError())
     data = reference.GetOutput().GetPointData()

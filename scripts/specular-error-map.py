@@ -49,7 +49,7 @@ def reference_color(renderer, seed):
     reference.SetInputRenderer(renderer)
     reference.SetImageSize(SIZE, SIZE)
     reference.SetPhotonsPerLight(1000000)
-    reference.SetSpecularSamples(64)
+    reference.SetSpecularSamples(256)
     reference.SetSeed(seed)
     if not reference.Update():
         raise SystemExit(reference.GetLastError())
