@@ -423,6 +423,23 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
   return m;
 }
 
+// One camera path's state along TracePath: where it is and heads, what it still
+// carries, the refractor layers it is between, and the events it has used.
+struct CameraPath
+{
+  vec3 o;          // origin of the next march
+  vec3 d;          // direction
+  vec3 throughput; // the share of the pixel's colour it carries
+  vec3 absorption; // Beer-Lambert coefficients while inside
+  bool inside;     // inside a refractor
+  bool impostor;   // traced against the distance impostors from here on
+  int current;     // refractor layers it is between (-1: not consulted)
+  int next;
+  int event;       // interfaces met
+  int leftRole;    // role of the surface it left
+  int bounces;     // mirror-to-mirror reflections in a row
+};
+
 // What a path that leaves a surface the camera sees brings back, in display
 // colour: o + t d marched through the refractor's layers (`inside` the refractor
 // between layers `current` and `next`; next = -1: the layers are not consulted,
@@ -441,40 +458,35 @@ vec3 TracePath(
   vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption, int leftRole)
 {
   vec3 color = vec3(0.0);
-  vec3 throughput = vec3(1.0);
-  bool impostor = viewMethod == METHOD_IMPOSTORS;
-  int bounces = 0; // mirror-to-mirror reflections in a row
-  int event = 0;
-  // The deferred reflected branch (held: its weight is not zero).
+  CameraPath path = CameraPath(o, d, vec3(1.0), absorption, inside,
+    viewMethod == METHOD_IMPOSTORS, current, next, 0, leftRole, 0);
+  // The deferred reflected branch (held: its throughput is not zero).
   bool held = false;
-  vec3 heldO = vec3(0.0), heldD = vec3(0.0), heldThroughput = vec3(0.0);
-  vec3 heldAbsorption = vec3(0.0);
-  bool heldInside = false, heldImpostor = false;
-  int heldCurrent = -1, heldNext = -1, heldEvent = 0, heldRole = ROLE_NONE;
+  CameraPath branch = path;
   for (int step = 0; step < 2 * maxEvents; ++step)
   {
     // The path ends: on a surface, leaving, or out of events; then the held branch.
-    bool ends = event >= maxEvents;
+    bool ends = path.event >= maxEvents;
     vec3 ending = background;
-    vec3 x = o;
+    vec3 x = path.o;
     March m;
     if (!ends)
     {
-      if (!impostor)
+      if (!path.impostor)
       {
-        m = MarchRay(o, d, next, inside ? current : -1);
-        impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+        m = MarchRay(path.o, path.d, path.next, path.inside ? path.current : -1);
+        path.impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
       }
-      if (impostor)
+      if (path.impostor)
       {
-        m = ImpostorRay(o, d, inside, leftRole, bounces);
+        m = ImpostorRay(path.o, path.d, path.inside, path.leftRole, path.bounces);
       }
       CompleteHit(m);
-      if (inside)
+      if (path.inside)
       {
-        throughput *= CausticsTransmittance(absorption, m.t);
+        path.throughput *= CausticsTransmittance(path.absorption, m.t);
       }
-      x = o + m.t * d;
+      x = path.o + m.t * path.d;
       ends = m.kind == MISS || (m.kind == OPAQUE && m.role != ROLE_REFLECTOR);
       if (m.kind == OPAQUE && m.role != ROLE_REFLECTOR)
       {
@@ -483,87 +495,79 @@ vec3 TracePath(
     }
     if (ends)
     {
-      color += throughput * ending;
+      color += path.throughput * ending;
       if (!held)
       {
         return color;
       }
       held = false;
-      o = heldO;
-      d = heldD;
-      throughput = heldThroughput;
-      absorption = heldAbsorption;
-      inside = heldInside;
-      impostor = heldImpostor;
-      current = heldCurrent;
-      next = heldNext;
-      event = heldEvent;
-      leftRole = heldRole;
-      bounces = 0;
+      path = branch;
       continue;
     }
-    ++event;
+    ++path.event;
     if (m.kind == OPAQUE)
     {
       CausticsMaterial mirror = causticsMaterials[m.material];
       vec3 n = m.normal;
-      vec3 facing = dot(d, n) < 0.0 ? n : -n;
-      bounces = leftRole == ROLE_REFLECTOR ? bounces + 1 : 0;
-      throughput *= FresnelConductor(
-        clamp(-dot(d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
-      d = reflect(d, facing);
-      next = -1;
-      current = -1;
-      inside = false;
-      leftRole = ROLE_REFLECTOR;
+      vec3 facing = dot(path.d, n) < 0.0 ? n : -n;
+      path.bounces = path.leftRole == ROLE_REFLECTOR ? path.bounces + 1 : 0;
+      path.throughput *= FresnelConductor(
+        clamp(-dot(path.d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
+      path.d = reflect(path.d, facing);
+      path.next = -1;
+      path.current = -1;
+      path.inside = false;
+      path.leftRole = ROLE_REFLECTOR;
     }
     else
     {
       CausticsMaterial hitMaterial = causticsMaterials[m.material];
       float hitIor = max(hitMaterial.params.x, 1.0);
-      bool towardsOutside = dot(d, m.normal) > 0.0;
+      bool towardsOutside = dot(path.d, m.normal) > 0.0;
       vec3 f = towardsOutside ? -m.normal : m.normal;
-      float c = clamp(-dot(d, f), 0.0, 1.0);
-      float n1 = inside ? hitIor : 1.0;
-      float n2 = inside ? 1.0 : hitIor;
+      float c = clamp(-dot(path.d, f), 0.0, 1.0);
+      float n1 = path.inside ? hitIor : 1.0;
+      float n2 = path.inside ? 1.0 : hitIor;
       float r;
       vec3 mirrored, refracted;
-      if (CausticsDielectric(d, f, c, n1, n2, r, mirrored, refracted))
+      if (CausticsDielectric(path.d, f, c, n1, n2, r, mirrored, refracted))
       {
+        vec3 reflectedThroughput = path.throughput * r;
         if (internalReflections != 0 && !held &&
-          max(throughput.r, max(throughput.g, throughput.b)) * r >= MIN_BRANCH_WEIGHT)
+          max(reflectedThroughput.r, max(reflectedThroughput.g, reflectedThroughput.b)) >=
+            MIN_BRANCH_WEIGHT)
         {
           // The reflected part stays on this side: inside, between the same layers
-          // (as total internal reflection); outside, off the layers' order.
+          // (as total internal reflection); outside, off the layers' order. It starts
+          // its mirror-to-mirror count afresh.
           held = true;
-          heldO = x;
-          heldD = mirrored;
-          heldThroughput = throughput * r;
-          heldAbsorption = absorption;
-          heldInside = inside;
-          heldImpostor = impostor;
-          heldCurrent = inside ? current : -1;
-          heldNext = inside ? next : -1;
-          heldEvent = event;
-          heldRole = ROLE_REFRACTOR;
+          branch = path;
+          branch.o = x;
+          branch.d = mirrored;
+          branch.throughput = reflectedThroughput;
+          branch.current = path.inside ? path.current : -1;
+          branch.next = path.inside ? path.next : -1;
+          branch.leftRole = ROLE_REFRACTOR;
+          branch.bounces = 0;
         }
-        throughput *= 1.0 - r;
-        d = refracted;
-        inside = !inside;
-        absorption = hitMaterial.attenuation.rgb;
-        current = m.layer;
-        next = current + 1;
-        leftRole = ROLE_REFRACTOR;
+        path.throughput *= 1.0 - r;
+        path.d = refracted;
+        path.inside = !path.inside;
+        path.absorption = hitMaterial.attenuation.rgb;
+        path.current = m.layer;
+        path.next = path.current + 1;
+        path.leftRole = ROLE_REFRACTOR;
       }
       else
       {
-        d = mirrored; // total internal reflection: still between the same layers
+        path.d = mirrored; // total internal reflection: still between the same layers
       }
     }
-    o = x;
+    path.o = x;
   }
   // Out of steps with a path still going: it ends as one out of events does.
-  return color + throughput * background + (held ? heldThroughput * background : vec3(0.0));
+  return color + path.throughput * background +
+    (held ? branch.throughput * background : vec3(0.0));
 }
 
 void main()
