@@ -87,7 +87,7 @@ void PopulateWideSheet(vtkRenderer* renderer)
 double SpecularError(const std::string& sceneName, const std::string& technique,
   int method = vtkCausticsRenderPass::SCREEN_SPACE, const double* eye = nullptr,
   const double* focal = nullptr, const double* up = nullptr,
-  void (*populate)(vtkRenderer*) = nullptr, bool internalReflections = true)
+  void (*populate)(vtkRenderer*) = nullptr, bool internalReflections = true, int size = Size)
 {
   vtkNew<vtkOpenGLRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
@@ -114,11 +114,11 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
   }
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
-  window->SetSize(Size, Size);
+  window->SetSize(size, size);
   window->AddRenderer(renderer);
   vtkNew<vtkCausticsReferenceRenderer> reference;
   reference->SetInputRenderer(renderer);
-  reference->SetImageSize(Size, Size);
+  reference->SetImageSize(size, size);
   reference->SetPhotonsPerLight(1000000);
   reference->SetSpecularSamples(256);
   EXPECT_TRUE(reference->Update()) << reference->GetLastError();
@@ -150,7 +150,7 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
   }
   double difference = 0.0, norm = 0.0;
   int pixels = 0;
-  for (vtkIdType p = 0; p < Size * Size; ++p)
+  for (vtkIdType p = 0; p < static_cast<vtkIdType>(size) * size; ++p)
   {
     // Where the reference's first surface is specular and the stage drew it.
     if (specular->GetComponent(p, 0) == 0.0 || shown->GetComponent(p, 3) < 0.5)
@@ -237,6 +237,21 @@ TEST(SpecularAppearance, DefaultView)
                 nullptr, false),
       bounds[k]);
   }
+}
+
+// The same at the issue's 256 x 256 pixels, default settings: the impostor view 8.9 %
+// and the combined view (the default) 7.3 %, the issue's 10 % (the screen-space view
+// 26.8 %; the reference's own noise 3.7 %). The ring's mirror wall (21.0 % impostor
+// view, 21.3 % combined) and the bunny (59.8 %, 61.7 %) are not reached at this size
+// either (scripts/specular-error-map.py --size 256). Bounds just above.
+TEST(SpecularAppearance, DefaultViewAtTheIssuesSize)
+{
+  EXPECT_LT(SpecularError("ball-lens", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS,
+              nullptr, nullptr, nullptr, nullptr, false, 256),
+    0.092);
+  EXPECT_LT(SpecularError("ball-lens", "screen-space", vtkCausticsRenderPass::BOTH, nullptr,
+              nullptr, nullptr, nullptr, false, 256),
+    0.076);
 }
 
 // A camera inside the ball lens's glass (n = 1.5, centre (0, 3, 0), radius 1), off its
