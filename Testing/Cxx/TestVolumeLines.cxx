@@ -831,7 +831,7 @@ CausticLayers TechniqueLayers(vtkOpenGLRenderer* renderer, const FillsTechnique&
 
 // The ball in a medium, with the medium filling the ball or only the air around it, at
 // 128^2 pixels and photons, one frame each; the reference with 400 000 photons (surface)
-// and 200 000 (volume). Cold (no reference cache) 23 s on a loaded 2-core llvmpipe.
+// and 200 000 (volume). Cold (no reference cache) 23-26 s on a loaded 2-core llvmpipe.
 // - Surface caustic: the floor's caustic with fills over without. The reference's ratio,
 //   0.6445, is the light the ball's inside takes; the four techniques reach 0.6451
 //   (caustic maps), 0.6453 (cascaded), 0.6456 (screen-space), 0.6455 (impostors): bound
