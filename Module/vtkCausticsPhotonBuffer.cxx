@@ -54,6 +54,7 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   bool Reflectors = false; // the reflector layer holds the scene's mirrors
   const caustics::gl::MediumBuffer* MediumGrid = nullptr;    // the medium's density, if any
   caustics::gl::VolumeSegmentList* VolumeSegments = nullptr; // phase 2 appends, when on
+  bool InsideAppends = false; // phase 1 appends too (the medium fills the refractors)
   vtkTextureObject* Inputs[11] = { nullptr };
 };
 
@@ -131,7 +132,8 @@ bool RunPhases(vtkOpenGLRenderWindow* renWin, vtkCausticsShaderProgram* const ph
       return false;
     }
     SetTraceUniforms(program, trace);
-    if (phase == 2 && trace.VolumeSegments && trace.VolumeSegments->IsOn())
+    if (trace.VolumeSegments && trace.VolumeSegments->IsOn() &&
+      (phase == 2 || (phase == 1 && trace.InsideAppends)))
     {
       trace.VolumeSegments->BindForAppend(program);
     }
@@ -274,25 +276,44 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
     caustics::gl::SetMediumDefine(phase, mediumGrid);
   }
   // Phase 2's pieces in air, for the volume caustics (each photon: up to one per mirror
-  // and the last).
+  // and the last), and phase 1's inside the refractors when the medium fills them (up
+  // to one per interface). Without that phase 1 compiles no append (it would append
+  // nothing), and the list's worst case is phase 2's alone.
+  const bool fills = scene.Participating.enabled && scene.Participating.fillsRefractors;
   if (volumeSegments)
   {
     volumeSegments->SetAppendDefine(this->AirProgram);
+    if (fills)
+    {
+      volumeSegments->SetAppendDefine(this->InsideProgram);
+    }
+    else
+    {
+      this->InsideProgram->RemoveDefine("CAUSTICS_VOLUME_SEGMENT_APPEND");
+    }
     if (volumeSegments->IsOn())
     {
       // Per photon: a piece per mirror met, the last mirror's photon stopping there
-      // (MaximumReflections + 1 of them), or fewer mirrors and the last piece.
+      // (MaximumReflections + 1 of them), or fewer mirrors and the last piece; plus,
+      // with fills, a piece per interface inside (MaximumInternalEvents).
+      const int inside = fills ? settings.MaximumInternalEvents : 0;
       volumeSegments->Reserve(renWin,
-        static_cast<long long>(trace.Capacity) * (settings.MaximumReflections + 1),
+        static_cast<long long>(trace.Capacity) * (settings.MaximumReflections + 1 + inside),
         settings.VolumeSubSegments, mediumGrid && mediumGrid->HasGrid(),
-        "photon buffer texels, LightBufferResolution^2 per branch, x (MaximumReflections + 1)",
-        "LightBufferResolution or MaximumReflections");
+        fills ? "photon buffer texels, LightBufferResolution^2 per branch, x "
+                "(MaximumReflections + 1 + MaximumInternalEvents)"
+              : "photon buffer texels, LightBufferResolution^2 per branch, x "
+                "(MaximumReflections + 1)",
+        fills ? "LightBufferResolution, MaximumReflections or MaximumInternalEvents"
+              : "LightBufferResolution or MaximumReflections");
       trace.VolumeSegments = volumeSegments;
+      trace.InsideAppends = fills;
     }
   }
   else
   {
     this->AirProgram->RemoveDefine("CAUSTICS_VOLUME_SEGMENT_APPEND");
+    this->InsideProgram->RemoveDefine("CAUSTICS_VOLUME_SEGMENT_APPEND");
   }
   for (vtkTextureObject* input : trace.Inputs)
   {

@@ -8,7 +8,8 @@
 //    photon, so each frame is an unbiased estimate whatever the photon count;
 // 2. inside a refractor: a march through the light's image against the refractors'
 //    nearest and farthest faces seen from the light, to the exit, where the photon
-//    refracts or reflects (Fresnel Russian roulette again, Beer-Lambert on the way);
+//    refracts or reflects (Fresnel Russian roulette again, Beer-Lambert on the way,
+//    and, when the medium fills the refractors, its extinction and volume caustic);
 // 3. in air (§3.2): a march through the light's image against its opaque depth
 //    (receivers and reflectors), the termination refined by Eq. 2 and accepted when
 //    the point lies on the surface the texel shows; when the ray leaves the light's
@@ -17,8 +18,9 @@
 //    (Fig. 5); a hit counts when the light arrives on the side the camera sees
 //    (<-d, n> >= 0 with n facing the camera). Mirrors reflect (conductor Fresnel)
 //    and refractors met in the light's view are entered, up to maximumEvents; a
-//    participating medium attenuates every stretch in air (not in the water under an
-//    open sheet, where the reference holds no medium) and, when it scatters
+//    participating medium attenuates every stretch in air (in the water under an
+//    open sheet and inside closed refractors only when it fills the refractors, as in
+//    the reference) and, when it scatters
 //    (CAUSTICS_VOLUME_SEGMENT_APPEND), each stretch is appended for the line-based
 //    volume caustics (vtkCausticsVolumeLines), as is the last one of a photon that
 //    leaves the views (to where it leaves the scene);
@@ -343,18 +345,17 @@ bool OpenRefractor(vec3 x)
 // neither extinction nor volume caustic.
 bool underSheet = false;
 
-// A straight stretch in air from a to b: the path grows, it is handed to the volume
-// caustics, and the participating medium (vtkCausticsCommon.glsl: homogeneous, or a
-// density grid) takes its share.
-void Travel(vec3 a, vec3 b, inout vec3 flux, inout float path)
+// A straight stretch from a to b, in air (or under an open sheet: underSheet) or
+// inside a closed refractor: the path grows, and where the participating medium
+// (vtkCausticsCommon.glsl: homogeneous, or a density grid) holds the stretch
+// (CausticsStretchInMedium) it is handed to the volume caustics and the medium takes
+// its share (CausticsMediumStretch).
+void Travel(vec3 a, vec3 b, bool insideRefractor, inout vec3 flux, inout float path)
 {
   float length = distance(a, b);
   if (length > 0.0)
   {
-    vec3 d = (b - a) / length;
-    CausticsAppendVolumeSegment(CausticsMakeMediumSegment(a, d, length, flux, underSheet));
-    flux *= CausticsStretchInMedium(underSheet) ? CausticsMediumTransmittance(a, d, 0.0, length)
-                                                : vec3(1.0);
+    flux = CausticsMediumStretch(a, (b - a) / length, length, flux, insideRefractor);
   }
   path += length;
 }
@@ -424,10 +425,11 @@ void main()
       {
         break;
       }
+      // The medium, when it fills the refractors, then the refractor's own absorption.
       vec3 sigma = causticsMaterials[hitMaterial].attenuation.rgb;
       float chord = length(hitPoint - o);
+      Travel(o, hitPoint, true, flux, path);
       flux *= CausticsTransmittance(sigma, chord);
-      path += chord;
       CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
       o = hitPoint + nudge * d;
       continue;
@@ -444,7 +446,7 @@ void main()
       if (March(lightView, frontPosition, frontNormal, true, o, d, reach, false) == MARCH_HIT &&
         hitRole == ROLE_REFRACTOR)
       {
-        Travel(o, hitPoint, flux, path);
+        Travel(o, hitPoint, underSheet, flux, path);
         CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
         o = hitPoint + nudge * d;
         continue;
@@ -458,7 +460,7 @@ void main()
     {
       // Reprojection into the camera view (§3.2, Fig. 5): march on from the last
       // position the light's view could vouch for.
-      Travel(o, lastPoint, flux, path);
+      Travel(o, lastPoint, underSheet, flux, path);
       o = lastPoint;
       result = March(cameraView, cameraPosition, cameraNormal, false, o, d, airLength, false);
     }
@@ -471,7 +473,7 @@ void main()
       }
       break;
     }
-    Travel(o, hitPoint, flux, path);
+    Travel(o, hitPoint, underSheet, flux, path);
     if (hitRole == ROLE_REFLECTOR)
     {
       CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFLECTOR, d, flux, inside, rng);

@@ -8,7 +8,9 @@
 //    the light sees them, Beer-Lambert absorption applies on the way, and the
 //    photon refracts out with exact Fresnel; total internal reflection continues
 //    inside, up to maximumInternalEvents interfaces. The part reflected back
-//    inside at a partial exit is not followed (counted);
+//    inside at a partial exit is not followed (counted). A medium that fills the
+//    refractors takes its share on each stretch and, when it scatters, the stretch
+//    is appended for the volume caustics (as phase 2's);
 // 2. in air, one thread per listed photon: the hit is found on the receivers as
 //    the caustic map's view sees them (a receiver-only depth layer); a mirror met
 //    before it (a mirror-only layer of the same view) reflects the photon with the
@@ -22,8 +24,10 @@
 // exact in one step on a plane), with a march + bisection fallback.
 // With a scattering medium (CAUSTICS_VOLUME_SEGMENT_APPEND), phase 2 appends each
 // straight piece in air, mirror to mirror to receiver (or to where it leaves the
-// scene), for the line-based volume caustics (vtkCausticsVolumeLines): pieces after
-// the first specular event only, the light's own beam being vtkCausticsAirlight's.
+// scene), and, when the medium fills the refractors, phase 1 each piece inside,
+// interface to interface, for the line-based volume caustics (vtkCausticsVolumeLines):
+// pieces after the first specular event only, the light's own beam being
+// vtkCausticsAirlight's.
 // Output per photon: hit position (w = path length from the light, > 0 marks a
 // hit), receiver normal (as modelled; w = |N.D|), flux (rgb W; a = the texel's
 // measure omega_i, m^2 or sr).
@@ -522,7 +526,10 @@ void main()
         p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
     }
     CausticsMaterial medium = causticsMaterials[max(int(material + 0.5), 0)];
-    vec3 transmitted = flux * CausticsTransmittance(medium.attenuation.rgb, t);
+    // The participating medium when it fills the refractors (its volume caustic and
+    // extinction), then the refractor's own absorption.
+    vec3 transmitted = CausticsMediumStretch(p, d, t, flux, true) *
+      CausticsTransmittance(medium.attenuation.rgb, t);
     absorbed += Power(flux - transmitted);
     flux = transmitted;
     path += t;
@@ -655,8 +662,7 @@ void main()
     }
     landed = false;
     vec3 x = p + mirrorT * d;
-    CausticsAppendVolumeSegment(CausticsMakeMediumSegment(p, d, mirrorT, flux4.rgb, underSheet));
-    vec3 kept = flux4.rgb * (inMedium ? CausticsMediumTransmittance(p, d, 0.0, mirrorT) : vec3(1.0));
+    vec3 kept = CausticsMediumStretch(p, d, mirrorT, flux4.rgb, underSheet);
     vec3 facing = dot(d, mirrorNormal) < 0.0 ? mirrorNormal : -mirrorNormal;
     CausticsMaterial mirror = causticsMaterials[mirrorMaterial];
     if (reflection < maximumReflections)

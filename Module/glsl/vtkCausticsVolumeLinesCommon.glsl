@@ -82,6 +82,22 @@ void CausticsAppendVolumeSegment(CausticsVolumeSegment s)
 }
 #endif
 
+// A photon's straight stretch of `length` m from `origin` along the unit `direction`,
+// carrying `flux` (W) at its start, that a tracer follows from surface to surface:
+// handed to the volume caustics, and the flux it keeps at the stretch's end after the
+// medium's extinction, when the stretch lies in the medium (CausticsStretchInMedium:
+// in air, or inside a refractor when the medium fills the refractors). A refractor's own
+// Beer-Lambert absorption is the caller's.
+vec3 CausticsMediumStretch(
+  vec3 origin, vec3 direction, float length, vec3 flux, bool insideRefractor)
+{
+  CausticsAppendVolumeSegment(
+    CausticsMakeMediumSegment(origin, direction, length, flux, insideRefractor));
+  return CausticsStretchInMedium(insideRefractor)
+    ? flux * CausticsMediumTransmittance(origin, direction, 0.0, length)
+    : flux;
+}
+
 // The drawn part of segment's piece k of n: t at its two ends (the same split as the
 // fragments' in vtkCausticsVolumeLinesFS.glsl).
 vec2 CausticsVolumePiece(CausticsVolumeSegment s, int k, int n)

@@ -13,6 +13,7 @@
 #include "vtkCausticsDeviceLimits.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
+#include "vtkCausticsImpostorPhotonPass.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
@@ -20,6 +21,7 @@
 #include "vtkCausticsVolumeSegmentList.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -695,4 +697,254 @@ TEST(VolumeLines, SegmentListsKeepToMaximumGPUMemory)
   renderer->SetPass(nullptr);
   maps->ReleaseGraphicsResources(window);
   window->RemoveRenderer(renderer);
+}
+
+// --- A medium that fills CLOSED refractors (vtkCausticsMedium::FillsRefractors) ---
+// The caustic maps' phase 1 (inside, interface to interface) and cascaded's path through
+// a closed refractor follow the reference's rule, as screen-space and the distance
+// impostors already did: with the medium filling the refractors, every stretch inside
+// loses the medium's extinction and leaves a volume segment; without it, neither.
+namespace
+{
+/**
+ * ball-lens (a glass ball of radius 1 m over a floor, the sun straight above) in a
+ * homogeneous medium filling the scene's bounds: sigma_s 0.1, sigma_a 0.15 1/m. The
+ * refracted photons cross about 1.75 m of the ball: filling it takes 35 % of the
+ * floor's caustic (the reference's 0.6445).
+ */
+vtkSmartPointer<vtkOpenGLRenderer> MakeBallInMedium(bool fills, bool cameraInside = false)
+{
+  vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeScene("ball-lens");
+  if (cameraInside)
+  {
+    // In the ball, 0.87 m from its centre, looking down through the light converging
+    // in it; the ball's surface hides the rest (003 §5.3, and the reference's camera).
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(0.0, 3.2, 0.85);
+    camera->SetFocalPoint(0.0, 2.3, 0.0);
+    camera->SetViewAngle(70.0);
+    camera->OrthogonalizeViewUp();
+    renderer->ResetCameraClippingRange();
+  }
+  vtkNew<vtkCausticsMedium> medium;
+  medium->SetScatteringCoefficient(0.1, 0.1, 0.1);
+  medium->SetAbsorptionCoefficient(0.15, 0.15, 0.15);
+  medium->SetFillsRefractors(fills);
+  vtkCausticsMedium::AttachTo(renderer, medium);
+  return renderer;
+}
+
+/** A frame's (or the reference's) surface caustic total and volume caustic layer. */
+struct CausticLayers
+{
+  double SurfaceTotal = 0.0;            ///< sum of the caustic irradiance (ratios only)
+  vtkSmartPointer<vtkImageData> Volume; ///< VolumeRadiance, W/(m^2 sr); null: none read
+  long long Segments = -1; ///< volume segments the trace appended (-1: no appending list)
+};
+
+/** The reference's surface caustic (400 000 photons) and volume caustic. */
+CausticLayers ReferenceLayers(vtkOpenGLRenderer* renderer)
+{
+  vtkNew<vtkCausticsReferenceRenderer> reference;
+  reference->SetInputRenderer(renderer);
+  reference->SetImageSize(ImageSize, ImageSize);
+  reference->SetPhotonsPerLight(400000);
+  EXPECT_TRUE(reference->Update()) << reference->GetLastError();
+  CausticLayers layers;
+  layers.SurfaceTotal = CausticTotal(reference->GetOutput(), "CausticIrradiance");
+  layers.Volume = ReferenceVolumeCaustic(renderer);
+  return layers;
+}
+
+/**
+ * A technique under test: its pass, whether it draws a volume caustic, and the bounds
+ * on that caustic's mean radiance ratio against the reference (|ratio - 1|, without and
+ * with fills), each just above what is reached (MediumFillingAClosedBallAsTheReference).
+ */
+struct FillsTechnique
+{
+  const char* Name;
+  vtkSmartPointer<vtkCausticsRenderPass> (*Make)();
+  bool Volume;
+  double VolumeTotalBound[2];
+};
+
+/**
+ * The techniques at LightBufferResolution^2 photons, their volume blur the reference's
+ * kernel; cascaded without its denoiser, FrameIndex 0 (the same photons with and
+ * without fills).
+ */
+const FillsTechnique FillsTechniques[] = {
+  { "caustic maps",
+    []() -> vtkSmartPointer<vtkCausticsRenderPass>
+    {
+      auto pass = vtkSmartPointer<vtkCausticsHierarchicalCausticMapPass>::New();
+      pass->SetVolumeBlurPixels(MatchedBlurPixels);
+      return pass;
+    },
+    true, { 0.038, 0.017 } }, // reached 0.9627, 0.9840
+  { "cascaded",
+    []() -> vtkSmartPointer<vtkCausticsRenderPass>
+    {
+      auto pass = vtkSmartPointer<vtkCausticsCascadedPhotonPass>::New();
+      pass->SetNumberOfPhotons(LightBufferResolution * LightBufferResolution);
+      pass->SetVolumeBlurPixels(MatchedBlurPixels);
+      pass->DenoiseOff();
+      return pass;
+    },
+    true, { 0.017, 0.015 } }, // reached 0.9842, 0.9863
+  { "screen-space",
+    []() -> vtkSmartPointer<vtkCausticsRenderPass>
+    {
+      auto pass = vtkSmartPointer<vtkCausticsScreenSpacePhotonPass>::New();
+      pass->SetGodRayBlurPixels(MatchedBlurPixels);
+      return pass;
+    },
+    true, { 0.014, 0.002 } }, // reached 0.9872, 1.0003
+  { "impostors",
+    []() -> vtkSmartPointer<vtkCausticsRenderPass>
+    { return vtkSmartPointer<vtkCausticsImpostorPhotonPass>::New(); },
+    false, { 0.0, 0.0 } }, // no volume caustic
+};
+
+/** One frame of a technique at ImageSize^2. */
+CausticLayers TechniqueLayers(vtkOpenGLRenderer* renderer, const FillsTechnique& technique)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass = technique.Make();
+  pass->SetLightBufferResolution(LightBufferResolution);
+  pass->GetAirlight()->EnabledOff(); // the volume caustic alone
+  pass->KeepBuffersOn();
+  renderer->SetPass(pass);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(ImageSize, ImageSize);
+  window->AddRenderer(renderer);
+  window->Render();
+  CausticLayers layers;
+  vtkNew<vtkImageData> caustic;
+  EXPECT_TRUE(pass->ReadBuffer("CausticIrradiance", caustic)) << technique.Name;
+  layers.SurfaceTotal = CausticTotal(caustic, caustic->GetPointData()->GetArray(0)->GetName());
+  if (technique.Volume)
+  {
+    layers.Volume = vtkSmartPointer<vtkImageData>::New();
+    EXPECT_TRUE(pass->ReadBuffer("VolumeRadiance", layers.Volume)) << technique.Name;
+  }
+  if (const caustics::gl::VolumeSegmentList* list = pass->GetVolumeSegmentList())
+  {
+    layers.Segments = list->ReadAppendedCount(); // a test-only read-back
+  }
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  window->RemoveRenderer(renderer);
+  return layers;
+}
+}
+
+// The ball in a medium, with the medium filling the ball or only the air around it, at
+// 128^2 pixels and photons, one frame each; the reference with 400 000 photons (surface)
+// and 200 000 (volume). Cold (no reference cache) 23-26 s on a loaded 2-core llvmpipe.
+// - Surface caustic: the floor's caustic with fills over without. The reference's ratio,
+//   0.6445, is the light the ball's inside takes; the four techniques reach 0.6451
+//   (caustic maps), 0.6453 (cascaded), 0.6456 (screen-space), 0.6455 (impostors): bound
+//   0.002, just above. Before caustic maps and cascaded followed the rule: 1 and 1.
+// - Volume caustic against the reference's (the camera outside the ball sees the beams
+//   under it, dimmer with fills: ratio 0.678 in the reference, 0.679-0.693 on the GPU):
+//   mean radiance ratio (bounds per technique,
+//   FillsTechniques) and relative L2, reached 0.082-0.088 (bound 0.09, just above; the
+//   reference's own noise at 128^2 is about 0.09: SmokeLensMatchesReference). Before,
+//   with fills, caustic maps and cascaded reached ratios 1.421 and 1.452 (the beams
+//   under the ball not dimmed by its inside, none inside) and relative L2 0.542, 0.540.
+TEST(VolumeLines, MediumFillingAClosedBallAsTheReference)
+{
+  constexpr int Count = sizeof(FillsTechniques) / sizeof(FillsTechniques[0]);
+  double referenceSurface[2] = { 0.0, 0.0 }, referenceVolume[2] = { 0.0, 0.0 };
+  double surface[Count][2] = {}, volume[Count][2] = {};
+  long long segments[Count][2] = {};
+  for (int fills = 0; fills < 2; ++fills)
+  {
+    vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeBallInMedium(fills != 0);
+    const CausticLayers reference = ReferenceLayers(renderer);
+    referenceSurface[fills] = reference.SurfaceTotal;
+    referenceVolume[fills] = CausticTotal(reference.Volume, "VolumeRadiance");
+    for (int k = 0; k < Count; ++k)
+    {
+      const FillsTechnique& technique = FillsTechniques[k];
+      const CausticLayers layers = TechniqueLayers(renderer, technique);
+      surface[k][fills] = layers.SurfaceTotal;
+      segments[k][fills] = layers.Segments;
+      if (!technique.Volume)
+      {
+        continue;
+      }
+      volume[k][fills] = CausticTotal(layers.Volume, "VolumeRadiance");
+      vtkNew<vtkCausticsErrorMetrics> metrics;
+      metrics->SetArrayName("VolumeRadiance");
+      ASSERT_TRUE(metrics->Compute(layers.Volume, reference.Volume)) << technique.Name;
+      const auto result = metrics->GetResult();
+      std::cout << "ball in a medium " << (fills ? "filling the ball" : "only in air") << ", "
+                << technique.Name << " volume caustic: " << metrics->GetSummary() << "\n";
+      EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << technique.Name;
+      EXPECT_NEAR(result.FluxRatio, 1.0, technique.VolumeTotalBound[fills])
+        << technique.Name << ", fills " << fills;
+      EXPECT_LT(result.RelativeL2Error, 0.09) << technique.Name << ", fills " << fills;
+    }
+  }
+  const double referenceRatio[2] = { referenceSurface[1] / referenceSurface[0],
+    referenceVolume[1] / referenceVolume[0] };
+  // The reference's own rule: the ball's inside takes about a third.
+  EXPECT_NEAR(referenceRatio[0], 0.645, 0.005);
+  for (int k = 0; k < Count; ++k)
+  {
+    const FillsTechnique& technique = FillsTechniques[k];
+    const double ratio = surface[k][1] / surface[k][0];
+    std::cout << "ball in a medium, filling the ball over only in air: surface caustic "
+              << "reference " << referenceRatio[0] << ", " << technique.Name << " " << ratio;
+    if (technique.Volume)
+    {
+      std::cout << "; volume caustic reference " << referenceRatio[1] << ", " << technique.Name
+                << " " << volume[k][1] / volume[k][0];
+    }
+    if (segments[k][0] >= 0)
+    {
+      std::cout << "; segments appended " << segments[k][0] << " -> " << segments[k][1];
+      // The pieces inside the ball, which no camera outside it sees (its surface hides
+      // them, as in the reference): reached 8604 -> 12936 (caustic maps), 5434 -> 9766
+      // (cascaded); before, the same count with and without fills.
+      EXPECT_GT(segments[k][1], segments[k][0]) << technique.Name;
+    }
+    std::cout << "\n";
+    EXPECT_NEAR(ratio, referenceRatio[0], 0.002) << technique.Name;
+  }
+}
+
+// The same ball, the medium filling it, seen by a camera inside it: the volume caustic
+// is the light converging in the ball, drawn from the pieces caustic maps' phase 1 and
+// cascaded's stretches inside append, and screen-space's. The camera is amid the
+// pieces: before the volume lines were clipped to the near plane, a piece reaching
+// behind the eye was drawn with the wrong length per pixel (its far end projected
+// through w < 0), and the three techniques gave 4.5, 5.1 and 4.9 times the reference's
+// total. Reached: caustic maps 0.979, cascaded 1.039, screen-space 1.030, relative L2
+// 0.124, 0.146, 0.114; bounds just above.
+TEST(VolumeLines, MediumFillingAClosedBallSeenFromInside)
+{
+  vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeBallInMedium(true, true);
+  const CausticLayers reference = ReferenceLayers(renderer);
+  const double ratioBounds[] = { 0.025, 0.045, 0.035 }; // FillsTechniques' order
+  const double l2Bounds[] = { 0.13, 0.15, 0.12 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const FillsTechnique& technique = FillsTechniques[k];
+    ASSERT_TRUE(technique.Volume);
+    const CausticLayers layers = TechniqueLayers(renderer, technique);
+    vtkNew<vtkCausticsErrorMetrics> metrics;
+    metrics->SetArrayName("VolumeRadiance");
+    ASSERT_TRUE(metrics->Compute(layers.Volume, reference.Volume)) << technique.Name;
+    const auto result = metrics->GetResult();
+    std::cout << "ball in a medium filling it, seen from inside, " << technique.Name
+              << " volume caustic: " << metrics->GetSummary() << "\n";
+    EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << technique.Name;
+    EXPECT_NEAR(result.FluxRatio, 1.0, ratioBounds[k]) << technique.Name;
+    EXPECT_LT(result.RelativeL2Error, l2Bounds[k]) << technique.Name;
+  }
 }
