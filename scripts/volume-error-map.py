@@ -25,7 +25,8 @@ apart:
       [--photons 128,256] [--blurs 0.61,1.5] [--frames 8] [--output DIR]
 
 Writes DIR/SCENE-TECHNIQUE-PHOTONS-BLUR.png: reference | technique | difference (red:
-extra, blue: missing), scaled by the reference's 99th percentile.
+extra, blue: missing), both at the matched resolution, square roots of the values
+scaled by the reference's 99th percentile (the difference by a third of it).
 """
 import argparse
 import importlib.util
@@ -154,6 +155,7 @@ def report(label, shown, seeds, blur, args):
     ratios = [a[band].sum() / max(b[band].sum(), 1e-300) for band in bands]
     print("    matched error by eighths of the image, bottom to top (share, total ratio): " +
           ", ".join(f"{100 * s:.0f} % {r:.3f}" for s, r in zip(shares, ratios)))
+    return a, b
 
 
 def main():
@@ -203,9 +205,9 @@ def main():
                     single = np.mean([rel(image, truth) for image in images])
                     print(f"  {name}, {photons}^2 photons, blur {blur} px: one frame's "
                           f"relative L2 {single:.4f} (mean over {frames})")
-                report(label + f" ({seconds:.0f} s)", shown, (one, two), blur, args)
+                a, b = report(label + f" ({seconds:.0f} s)", shown, (one, two), blur, args)
                 write_map(os.path.join(args.output, f"{args.scene}-{name}-{photons}-{blur}.png"),
-                          truth, shown)
+                          b, a)
     print(f"wrote reference | technique | difference images to {args.output}/")
 
 
