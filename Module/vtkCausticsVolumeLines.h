@@ -30,7 +30,8 @@
  *    `blurPixels` standard deviation into the frame's volume texture: the paper's
  *    normalized Gaussian re-distribution of the irregular line samples (Fig. 5),
  *    here of constant screen-space support, which also fills lines that are too
- *    sparse on screen.
+ *    sparse on screen; its weights are normalized over the taps inside the image
+ *    (lines outside the view are not drawn: unknown there, not dark).
  * The medium fills the scene's bounding box and not the refractors, as in the
  * reference renderer (docs/reference.md). Steps, knobs and measured figures:
  * docs/technique-volume-caustics.md.

@@ -9,10 +9,12 @@ which no GPU result can be measured against one reference.
   TestAirlight.MediaScenesMatchReference, docs/airlight.md):
     PYTHONPATH=build/lib/python3/dist-packages CAUSTICS_REFERENCE_CACHE=build/reference-cache \\
         /usr/bin/python3 scripts/reference-noise.py smoke-lens
-- The volume caustic, as TestVolumeLines does (200 000 volume photons, at 128^2 or 256^2;
-  docs/technique-volume-caustics.md):
+- The volume caustic, as TestVolumeLines does (200 000 volume photons on smoke-lens,
+  1 000 000 on underwater, at 128^2 or 256^2; docs/technique-volume-caustics.md):
     ... scripts/reference-noise.py underwater --array VolumeCausticRadiance \\
-        --size 256 --volume-photons 200000
+        --size 256 --volume-photons 1000000
+  This is the raw per-pixel noise; at a technique's resolution (its blur) it is far
+  lower: scripts/volume-error-map.py prints both.
 """
 import argparse
 import math

@@ -1,7 +1,9 @@
 // Separable Gaussian of the volume lines' image: the normalized Gaussian that
 // re-distributes the lines' irregular samples (003 §5.2, Fig. 5; 000 §3.2 "blurred with
-// a Gaussian filter"), of constant screen-space support. The weights sum to 1, so the
-// blur moves radiance between pixels without changing its sum.
+// a Gaussian filter"), of constant screen-space support. The weights are normalized
+// over the taps inside the image: a pixel near the border is the mean of the lines it
+// sees, as the reference's kernel sums the beams on both sides of it (lines outside the
+// view are not drawn, so taps there would count as dark and dim the border).
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(rgba32f, binding = 0) uniform readonly image2D source;
@@ -24,10 +26,10 @@ void main()
   for (int k = -radius; k <= radius; ++k)
   {
     float w = sigma > 0.0 ? exp(-0.5 * float(k * k) / (sigma * sigma)) : (k == 0 ? 1.0 : 0.0);
-    total += w;
     ivec2 q = pixel + k * axis;
     if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)))
     {
+      total += w;
       sum += w * imageLoad(source, q).rgb;
     }
   }

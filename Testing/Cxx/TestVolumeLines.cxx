@@ -5,8 +5,10 @@
 // under the pool's water surface), against the reference renderer's volume caustic
 // (photon beams with an exact beam radiance estimate, VolumeCausticRadiance, not the
 // airlight): the total (the mean radiance ratio) and the relative L2, one render per
-// scene; and the re-sampled optical depth (sub-segments) against the per-fragment
-// march it replaces, with the time of both; and no volume stage without a medium.
+// scene (underwater: the pass's default blur against the reference filtered to the
+// same resolution, ReferenceMatchingBlur); and the re-sampled optical depth
+// (sub-segments) against the per-fragment march it replaces, with the time of both;
+// and no volume stage without a medium.
 #include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsCascadedPhotonPass.h"
@@ -37,6 +39,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -48,7 +51,17 @@ constexpr int LightBufferResolution = 128;
 // footprints (VolumeKernelRadiusPixels), whose standard deviation per axis is
 // 1.5 / sqrt(6) = 0.61 px; the pass's Gaussian gets the same width (its default, 1.5 px,
 // is 2.4 times wider: relative L2 0.219 instead of 0.096 on smoke-lens).
-const double MatchedBlurPixels = 1.5 / std::sqrt(6.0);
+const double ReferenceKernelPixels = 1.5;
+const double MatchedBlurPixels = ReferenceKernelPixels / std::sqrt(6.0);
+// The pass's default Gaussian (vtkCausticsVolumeLines::Finish()).
+const double DefaultBlurPixels = 1.5;
+// The reference's volume photons: 200 000 for smoke-lens, where the narrow kernel's
+// comparison holds (its noise at 128^2: docs/technique-volume-caustics.md). Underwater's
+// comparison at 256^2 takes 1 000 000: one seed's noise at the default blur's resolution
+// is then 2.3 % (1.9 % with 2 000 000, 4.2 % with 200 000; scripts/volume-error-map.py),
+// well under the 10 % of issue 14, for about 15-40 s of reference on 2 cores.
+constexpr int ReferenceVolumePhotons = 200000;
+constexpr int UnderwaterVolumePhotons = 1000000;
 
 /** A scene's volume radiance from a technique and the time of its volume stages. */
 struct VolumeFrame
@@ -137,14 +150,14 @@ VolumeFrame RenderPassVolume(vtkOpenGLRenderer* renderer, vtkCausticsRenderPass*
   return frame;
 }
 
-VolumeFrame RenderVolume(
-  vtkOpenGLRenderer* renderer, int subSegments, int size, int photons, double blur = 1.5)
+VolumeFrame RenderVolume(vtkOpenGLRenderer* renderer, int subSegments, int size, int photons,
+  double blur = 1.5, int frames = 2)
 {
   vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
   pass->SetLightBufferResolution(photons);
   pass->SetVolumeSubSegments(subSegments);
   pass->SetGodRayBlurPixels(blur);
-  VolumeFrame frame = RenderPassVolume(renderer, pass, size, "god-ray");
+  VolumeFrame frame = RenderPassVolume(renderer, pass, size, "god-ray", frames);
   EXPECT_NE(frame.Volume, nullptr);
   return frame;
 }
@@ -176,15 +189,83 @@ VolumeFrame RenderCascadedVolume(
   return RenderPassVolume(renderer, pass, size, "cascaded volume", frames, frames > 1);
 }
 
-/** The reference's volume caustic, renamed VolumeRadiance to compare with the pass's. */
-vtkSmartPointer<vtkImageData> ReferenceVolumeCaustic(
-  vtkOpenGLRenderer* renderer, int size = ImageSize)
+/**
+ * The Gaussian that brings the reference's volume caustic to the resolution of the
+ * pass's with a Gaussian of `passBlur` pixels (0 where the pass's is the finer one).
+ * Per axis, the pass's estimate has the variance of its one-pixel line rasterization
+ * (a box, 1/12 px^2) plus its Gaussian's; the reference's, its Epanechnikov kernel's
+ * (radius^2 / 6). Comparing them at the same variance compares what both estimate, the
+ * radiance filtered at one resolution, whatever the scene.
+ */
+double ReferenceMatchingBlur(double passBlur)
+{
+  const double gap =
+    passBlur * passBlur + 1.0 / 12.0 - ReferenceKernelPixels * ReferenceKernelPixels / 6.0;
+  return gap > 0.0 ? std::sqrt(gap) : 0.0;
+}
+
+/**
+ * `values` (rows of `width`) filtered as vtkCausticsVolumeLinesBlurCS.glsl filters the
+ * pass's lines: a separable Gaussian of sigma pixels over ceil(3 sigma) taps, its
+ * weights normalized over the taps inside the image.
+ */
+void BlurLikeThePass(vtkDataArray* values, int width, int height, double sigma)
+{
+  const int radius = static_cast<int>(std::ceil(3.0 * sigma));
+  if (!(sigma > 0.0) || radius < 1)
+  {
+    return;
+  }
+  std::vector<double> weight(2 * radius + 1);
+  for (int k = -radius; k <= radius; ++k)
+  {
+    weight[k + radius] = std::exp(-0.5 * k * k / (sigma * sigma));
+  }
+  const int components = values->GetNumberOfComponents();
+  std::vector<double> source(static_cast<std::size_t>(width) * height * components);
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    for (std::size_t i = 0; i < source.size(); ++i)
+    {
+      source[i] = values->GetComponent(i / components, i % components);
+    }
+    for (int y = 0; y < height; ++y)
+    {
+      for (int x = 0; x < width; ++x)
+      {
+        for (int c = 0; c < components; ++c)
+        {
+          double sum = 0.0, total = 0.0;
+          for (int k = -radius; k <= radius; ++k)
+          {
+            const int qx = axis == 0 ? x + k : x, qy = axis == 0 ? y : y + k;
+            if (qx >= 0 && qx < width && qy >= 0 && qy < height)
+            {
+              total += weight[k + radius];
+              sum += weight[k + radius] * source[(qy * width + qx) * components + c];
+            }
+          }
+          values->SetComponent(y * width + x, c, sum / total);
+        }
+      }
+    }
+  }
+}
+
+/**
+ * The reference's volume caustic, renamed VolumeRadiance to compare with the pass's,
+ * with `volumePhotons` volume photons, at the resolution of a pass whose Gaussian is
+ * `passBlur` pixels (ReferenceMatchingBlur; 0: the reference's own).
+ */
+vtkSmartPointer<vtkImageData> ReferenceVolumeCaustic(vtkOpenGLRenderer* renderer,
+  int size = ImageSize, int volumePhotons = ReferenceVolumePhotons, double passBlur = 0.0)
 {
   vtkNew<vtkCausticsReferenceRenderer> reference;
   reference->SetInputRenderer(renderer);
   reference->SetImageSize(size, size);
   reference->SetPhotonsPerLight(10000); // surfaces: not compared here
-  reference->SetVolumePhotonsPerLight(200000);
+  reference->SetVolumePhotonsPerLight(volumePhotons);
+  reference->SetVolumeKernelRadiusPixels(ReferenceKernelPixels);
   EXPECT_TRUE(reference->Update()) << reference->GetLastError();
   vtkImageData* output = reference->GetOutput();
   auto target = vtkSmartPointer<vtkImageData>::New();
@@ -197,6 +278,7 @@ vtkSmartPointer<vtkImageData> ReferenceVolumeCaustic(
     copy.TakeReference(caustic->NewInstance());
     copy->DeepCopy(caustic);
     copy->SetName("VolumeRadiance");
+    BlurLikeThePass(copy, size, size, ReferenceMatchingBlur(passBlur));
     target->GetPointData()->RemoveArray("VolumeRadiance");
     target->GetPointData()->AddArray(copy);
   }
@@ -239,20 +321,58 @@ enum class Technique
   Cascaded
 };
 
+/** How a volume layer is compared with the reference's. */
+struct Comparison
+{
+  int Size = ImageSize;                       ///< pixels per side
+  int Photons = LightBufferResolution;        ///< photon grid N (N x N)
+  int Frames = 1;                             ///< cascaded: the mean of this many frames
+  int ScreenSpaceFrames = 2;                  ///< screen-space: the last of this many frames
+  double BlurPixels = MatchedBlurPixels;      ///< the pass's Gaussian
+  int VolumePhotons = ReferenceVolumePhotons; ///< the reference's
+  bool MatchResolution = false;               ///< the reference filtered to the pass's resolution
+};
+
+/** 256^2 pixels and photons, the narrow blur (smoke-lens). */
+Comparison At256()
+{
+  Comparison c;
+  c.Size = c.Photons = 256;
+  return c;
+}
+
+/**
+ * Underwater's comparison: 256^2 pixels, the default blur, at the pass's resolution;
+ * `photons`^2 photons, cascaded the mean of `frames` frames.
+ */
+Comparison Underwater(int photons, int frames = 1)
+{
+  Comparison c;
+  c.Size = 256;
+  c.Photons = photons;
+  c.Frames = frames;
+  c.BlurPixels = DefaultBlurPixels;
+  c.VolumePhotons = UnderwaterVolumePhotons;
+  c.MatchResolution = true;
+  c.ScreenSpaceFrames = 1; // deterministic: one 512^2-photon frame costs what two 256^2 did
+  return c;
+}
+
 /** The volume caustic's mean radiance ratio and relative L2 against the reference. */
-vtkCausticsErrorMetrics::Result CompareWithReference(const char* sceneName,
-  Technique technique = Technique::ScreenSpace, int size = ImageSize,
-  int photons = LightBufferResolution, int frames = 1)
+vtkCausticsErrorMetrics::Result CompareWithReference(
+  const char* sceneName, Technique technique, const Comparison& c)
 {
   vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeScene(sceneName);
   const char* names[] = { "screen-space", "caustic maps", "cascaded" };
+  const int size = c.Size, photons = c.Photons, frames = c.Frames;
   const VolumeFrame lines = technique == Technique::ScreenSpace
-    ? RenderVolume(renderer, 8, size, photons, MatchedBlurPixels)
+    ? RenderVolume(renderer, 8, size, photons, c.BlurPixels, c.ScreenSpaceFrames)
     : technique == Technique::CausticMaps
-    ? RenderCausticMapVolume(renderer, size, photons, MatchedBlurPixels)
-    : RenderCascadedVolume(renderer, size, photons, MatchedBlurPixels, frames);
+    ? RenderCausticMapVolume(renderer, size, photons, c.BlurPixels)
+    : RenderCascadedVolume(renderer, size, photons, c.BlurPixels, frames);
   EXPECT_TRUE(lines.StageRan) << sceneName;
-  vtkSmartPointer<vtkImageData> target = ReferenceVolumeCaustic(renderer, size);
+  vtkSmartPointer<vtkImageData> target =
+    ReferenceVolumeCaustic(renderer, size, c.VolumePhotons, c.MatchResolution ? c.BlurPixels : 0.0);
   vtkNew<vtkCausticsErrorMetrics> metrics;
   metrics->SetArrayName("VolumeRadiance");
   if (!lines.Volume)
@@ -265,8 +385,12 @@ vtkCausticsErrorMetrics::Result CompareWithReference(const char* sceneName,
   std::cout << sceneName << " volume caustic (" << names[static_cast<int>(technique)]
             << (frames > 1 ? ", mean of " + std::to_string(frames) + " frames" : std::string())
             << ") at " << size << "^2, " << photons << "^2 photons, 8 sub-segments, blur "
-            << MatchedBlurPixels << " px: " << metrics->GetSummary() << "; volume stages "
-            << lines.GodRayMilliseconds << " ms\n  total ratio per channel:";
+            << c.BlurPixels << " px, reference " << c.VolumePhotons << " volume photons"
+            << (c.MatchResolution ? " at the pass's resolution (+ Gaussian " +
+                     std::to_string(ReferenceMatchingBlur(c.BlurPixels)) + " px)"
+                                  : std::string())
+            << ": " << metrics->GetSummary() << "; volume stages " << lines.GodRayMilliseconds
+            << " ms\n  total ratio per channel:";
   for (int c = 0; c < 3; ++c)
   {
     double sum[2] = { 0.0, 0.0 };
@@ -290,23 +414,25 @@ vtkCausticsErrorMetrics::Result CompareWithReference(const char* sceneName,
 // 5 % and 10 % of issue 14).
 TEST(VolumeLines, SmokeLensMatchesReference)
 {
-  const auto result = CompareWithReference("smoke-lens");
+  const auto result = CompareWithReference("smoke-lens", Technique::ScreenSpace, Comparison());
   EXPECT_NEAR(result.FluxRatio, 1.0, 0.005);
   EXPECT_LT(result.RelativeL2Error, 0.10);
 }
 
 // Underwater: the god rays under the waves, seen by a camera in the murky water (the
-// medium fills the refractors). Reached: mean radiance ratio 1.0042, relative L2 0.386;
-// bounds just above. The L2 is A SHORTFALL against issue 14's 10 %: 128^2 photons are
-// separate lines across the pool; the reference's own noise at 128^2 is 9.4 %
-// (scripts/reference-noise.py; docs/technique-volume-caustics.md, "Underwater"). Before the medium filled the water
-// this compared the light the sheet reflected through the grid's top half voxel, above
-// the troughs: 1.270 and 0.841.
+// medium fills the refractors), at 256^2 pixels with 512^2 photons and the default blur,
+// against the reference (1 000 000 volume photons) at the pass's resolution
+// (ReferenceMatchingBlur; docs/technique-volume-caustics.md, "Accuracy at 256^2").
+// Reached: mean radiance ratio 0.99915, relative L2 0.0602; bounds just above (issue
+// 14: 5 % and 10 %). Screen-space draws the same photon lines as the caustic maps (the
+// same figures to 5 digits). 256^2 photons reach 0.168: the lines' own noise, which
+// falls with the photons (scripts/volume-error-map.py). Before (128^2, 128^2 photons,
+// the 0.61 px blur against the reference's own kernel): 1.0042 and 0.386.
 TEST(VolumeLines, UnderwaterMatchesReference)
 {
-  const auto result = CompareWithReference("underwater");
-  EXPECT_NEAR(result.FluxRatio, 1.0, 0.006);
-  EXPECT_LT(result.RelativeL2Error, 0.40);
+  const auto result = CompareWithReference("underwater", Technique::ScreenSpace, Underwater(512));
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.001);
+  EXPECT_LT(result.RelativeL2Error, 0.062);
 }
 
 // The light-side optical depth re-sampled once per segment (8 sub-segments) against
@@ -330,21 +456,21 @@ TEST(VolumeLines, SubSegmentsMatchTheMarch)
 // mean radiance ratio 0.9972, relative L2 0.0911; bounds just above.
 TEST(VolumeLines, CausticMapsSmokeLensMatchesReference)
 {
-  const auto result = CompareWithReference("smoke-lens", Technique::CausticMaps, 256, 256);
+  const auto result = CompareWithReference("smoke-lens", Technique::CausticMaps, At256());
   EXPECT_NEAR(result.FluxRatio, 1.0, 0.005);
   EXPECT_LT(result.RelativeL2Error, 0.095);
 }
 
 // Underwater's god rays from the caustic maps' pieces under the open sheet (the medium
-// fills the water). Reached: ratio 1.0026, relative L2 0.303; bounds just above. A
-// SHORTFALL on L2: the reference's own noise at 256^2 (200 000 photons) is 11.7 %
-// (scripts/reference-noise.py; docs/technique-volume-caustics.md, "Underwater"); one frame of 256^2 photons draws
-// separate lines.
+// fills the water), as UnderwaterMatchesReference: 512^2 photons, one frame, the default
+// blur against the reference at the pass's resolution. Reached: ratio 0.99915, relative
+// L2 0.0602; bounds just above. Before (256^2 photons, 0.61 px against the reference's
+// own kernel, 200 000 volume photons): 1.0026 and 0.303.
 TEST(VolumeLines, CausticMapsUnderwaterMatchesReference)
 {
-  const auto result = CompareWithReference("underwater", Technique::CausticMaps, 256, 256);
-  EXPECT_NEAR(result.FluxRatio, 1.0, 0.004);
-  EXPECT_LT(result.RelativeL2Error, 0.32);
+  const auto result = CompareWithReference("underwater", Technique::CausticMaps, Underwater(512));
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.001);
+  EXPECT_LT(result.RelativeL2Error, 0.062);
 }
 
 // The cascaded technique's stretches in air (vtkCausticsCascadedTraceCS.glsl appends
@@ -352,20 +478,22 @@ TEST(VolumeLines, CausticMapsUnderwaterMatchesReference)
 // radiance ratio 1.0000, relative L2 0.0909; bounds just above.
 TEST(VolumeLines, CascadedSmokeLensMatchesReference)
 {
-  const auto result = CompareWithReference("smoke-lens", Technique::Cascaded, 256, 256);
+  const auto result = CompareWithReference("smoke-lens", Technique::Cascaded, At256());
   EXPECT_NEAR(result.FluxRatio, 1.0, 0.005);
   EXPECT_LT(result.RelativeL2Error, 0.095);
 }
 
-// Cascaded's stretches under the open sheet, the mean of 8 frames (each a new photon
-// set; the water's god rays come from the refracted branch, which roulette picks for
-// nearly every photon). Reached: ratio 1.0022, relative L2 0.174, bounds just above. A
-// SHORTFALL on L2 against 10 %, mostly the reference's own noise (11.7 % at 256^2).
+// Cascaded's stretches under the open sheet, the mean of 8 frames of 256^2 photons
+// (each a new photon set; the water's god rays come from the refracted branch, which
+// roulette picks for nearly every photon), the default blur against the reference at the
+// pass's resolution. Reached: ratio 0.9979, relative L2 0.0745; bounds just above.
+// Before (0.61 px against the reference's own kernel, 200 000 volume photons): 1.0022
+// and 0.174.
 TEST(VolumeLines, CascadedUnderwaterMatchesReference)
 {
-  const auto result = CompareWithReference("underwater", Technique::Cascaded, 256, 256, 8);
-  EXPECT_NEAR(result.FluxRatio, 1.0, 0.004);
-  EXPECT_LT(result.RelativeL2Error, 0.19);
+  const auto result = CompareWithReference("underwater", Technique::Cascaded, Underwater(256, 8));
+  EXPECT_NEAR(result.FluxRatio, 1.0, 0.0025);
+  EXPECT_LT(result.RelativeL2Error, 0.076);
 }
 
 // Without a medium neither technique runs a volume stage nor writes a volume layer
