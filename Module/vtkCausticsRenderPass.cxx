@@ -315,6 +315,7 @@ struct vtkCausticsRenderPass::Internals
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
   std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
+  std::string ReportedFilledAbsorber; // the absorbing refractor last warned about
   // The density grid CheckMediumDensity() last warned about (a new one is a new medium).
   std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
   caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
@@ -1060,6 +1061,7 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   if (sceneOk)
   {
     this->CheckMediumDensity();
+    this->CheckFilledAbsorbers();
   }
   const bool caustics = sceneOk && this->NeedsCaustics(this->Frame);
   if (caustics)
@@ -1104,6 +1106,37 @@ void vtkCausticsRenderPass::CheckSceneScale()
     this->Internal->ReportedScaleWarning = text.str();
     vtkWarningMacro(<< text.str());
   }
+}
+
+void vtkCausticsRenderPass::CheckFilledAbsorbers()
+{
+  const caustics::SceneData& scene = *this->Frame.Scene;
+  const caustics::Medium& medium = scene.Participating;
+  const bool scatters = medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0;
+  std::string absorber;
+  for (std::size_t i = 0; medium.enabled && medium.fillsRefractors && scatters &&
+       i < scene.Materials.size() && absorber.empty();
+       ++i)
+  {
+    const caustics::Material& material = scene.Materials[i];
+    if (material.role == caustics::Role::Refractor &&
+      (material.attenuation[0] > 0.0 || material.attenuation[1] > 0.0 ||
+        material.attenuation[2] > 0.0))
+    {
+      absorber = i < scene.Meshes.size() && !scene.Meshes[i].name.empty()
+        ? scene.Meshes[i].name
+        : "mesh " + std::to_string(i);
+    }
+  }
+  // Once per refractor, not every frame.
+  if (absorber != this->Internal->ReportedFilledAbsorber && !absorber.empty())
+  {
+    vtkWarningMacro(<< "the medium fills the refractors and refractor '" << absorber
+                    << "' also absorbs: the volume caustic inside it leaves out the "
+                       "refractor's own absorption along each photon piece (the surface "
+                       "caustic is right; docs/technique-volume-caustics.md)");
+  }
+  this->Internal->ReportedFilledAbsorber = absorber;
 }
 
 void vtkCausticsRenderPass::CheckMediumDensity()

@@ -562,6 +562,8 @@ private:
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
+  // Warns once when a scattering medium fills an absorbing refractor (a known limit).
+  void CheckFilledAbsorbers();
   void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
   bool RenderAirlight(); // the medium's single scattering of direct light, into the volume layer

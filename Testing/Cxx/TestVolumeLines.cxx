@@ -16,12 +16,15 @@
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
 #include "vtkCausticsImpostorPhotonPass.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsVolumeSegmentList.h"
 
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -29,6 +32,7 @@
 #include "vtkNew.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkPointData.h"
+#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkSmartPointer.h"
 #include "vtk_glew.h" // For glGetInteger64v
@@ -1077,5 +1081,45 @@ TEST(VolumeLines, MediumFillingAClosedBallSeenFromInside)
     EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << technique.Name;
     EXPECT_NEAR(result.FluxRatio, 1.0, ratioBounds[k]) << technique.Name;
     EXPECT_LT(result.RelativeL2Error, l2Bounds[k]) << technique.Name;
+  }
+}
+
+// The known limit above (an absorbing refractor filled with the medium: the volume
+// caustic inside it leaves out the refractor's own absorption) is said once, naming the
+// refractor; not without the refractor's absorption, nor without fills.
+TEST(VolumeLines, FilledAbsorbingRefractorIsReported)
+{
+  for (int absorbs = 0; absorbs < 2; ++absorbs)
+  {
+    for (int fills = 0; fills < 2; ++fills)
+    {
+      vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeBallInMedium(fills != 0);
+      vtkActorCollection* actors = renderer->GetActors();
+      actors->InitTraversal();
+      const double absorption[3] = { 0.5, 0.5, 0.5 };
+      for (vtkActor* actor = actors->GetNextActor(); actor && absorbs;
+           actor = actors->GetNextActor())
+      {
+        if (vtkCausticsMaterial::Describe(actor).role == caustics::Role::Refractor)
+        {
+          vtkCausticsMaterial::SetAttenuation(actor->GetProperty(), absorption);
+        }
+      }
+      vtkNew<vtkCausticsHierarchicalCausticMapPass> pass;
+      pass->SetLightBufferResolution(32);
+      WarningCounter warnings(pass, "also absorbs");
+      vtkNew<vtkRenderWindow> window;
+      window->SetOffScreenRendering(1);
+      window->SetMultiSamples(0);
+      window->SetSize(32, 32);
+      window->AddRenderer(renderer);
+      renderer->SetPass(pass);
+      window->Render();
+      window->Render();
+      EXPECT_EQ(warnings.Count, absorbs && fills ? 1 : 0)
+        << "absorbs " << absorbs << ", fills " << fills;
+      renderer->SetPass(nullptr);
+      pass->ReleaseGraphicsResources(window);
+    }
   }
 }
