@@ -1112,24 +1112,22 @@ void vtkCausticsRenderPass::CheckFilledAbsorbers()
 {
   const caustics::SceneData& scene = *this->Frame.Scene;
   const caustics::Medium& medium = scene.Participating;
-  const bool scatters = medium.sigmaS[0] > 0.0 || medium.sigmaS[1] > 0.0 || medium.sigmaS[2] > 0.0;
-  std::string absorber;
-  for (std::size_t i = 0; medium.enabled && medium.fillsRefractors && scatters &&
-       i < scene.Materials.size() && absorber.empty();
-       ++i)
+  auto positive = [](const caustics::Vec3& v) { return v[0] > 0.0 || v[1] > 0.0 || v[2] > 0.0; };
+  std::string absorber; // the mesh's name ("actor <index>" when it has none)
+  if (medium.enabled && medium.fillsRefractors && positive(medium.sigmaS))
   {
-    const caustics::Material& material = scene.Materials[i];
-    if (material.role == caustics::Role::Refractor &&
-      (material.attenuation[0] > 0.0 || material.attenuation[1] > 0.0 ||
-        material.attenuation[2] > 0.0))
+    for (std::size_t i = 0; i < scene.Materials.size() && i < scene.Meshes.size(); ++i)
     {
-      absorber = i < scene.Meshes.size() && !scene.Meshes[i].name.empty()
-        ? scene.Meshes[i].name
-        : "mesh " + std::to_string(i);
+      const caustics::Material& material = scene.Materials[i];
+      if (material.role == caustics::Role::Refractor && positive(material.attenuation))
+      {
+        absorber = scene.Meshes[i].name;
+        break;
+      }
     }
   }
   // Once per refractor, not every frame.
-  if (absorber != this->Internal->ReportedFilledAbsorber && !absorber.empty())
+  if (!absorber.empty() && absorber != this->Internal->ReportedFilledAbsorber)
   {
     vtkWarningMacro(<< "the medium fills the refractors and refractor '" << absorber
                     << "' also absorbs: the volume caustic inside it leaves out the "
