@@ -256,7 +256,7 @@ bool vtkCausticsCascadedPhotonPass::DrawVolumeLines(const FrameInputs& in)
   this->BeginStage("cascaded volume lines");
   const bool ok = s.VolumeSegments.Draw(in.Window,
     { in.WorldToClip, in.MediumGrid, in.CameraOpticalDepth, in.CameraGBuffer,
-      in.RefractiveGBuffer },
+      in.RefractiveGBuffer, in.Geometry, in.EyeMaterial },
     this->Settings.VolumeSubSegments);
   this->EndStage("cascaded volume lines");
   return ok;

@@ -300,7 +300,7 @@ bool vtkCausticsHierarchicalCausticMapPass::DrawVolumeLines(const FrameInputs& i
   this->BeginStage("hcm volume lines");
   const bool ok = this->Internal->VolumeSegments.Draw(in.Window,
     { in.WorldToClip, in.MediumGrid, in.CameraOpticalDepth, in.CameraGBuffer,
-      in.RefractiveGBuffer },
+      in.RefractiveGBuffer, in.Geometry, in.EyeMaterial },
     this->Settings.VolumeSubSegments);
   this->EndStage("hcm volume lines");
   return ok;

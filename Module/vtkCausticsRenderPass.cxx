@@ -315,7 +315,6 @@ struct vtkCausticsRenderPass::Internals
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
   std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
-  std::string ReportedFilledAbsorber; // the absorbing refractor last warned about
   // The density grid CheckMediumDensity() last warned about (a new one is a new medium).
   std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
   caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
@@ -570,7 +569,7 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   const caustics::TraceView camera =
     caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
   std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, inputs.ViewOrigin);
-  inputs.EyeMaterial = EyeMaterial(scene, inputs.ViewOrigin);
+  inputs.EyeMaterial = f.EyeMaterial;
   std::copy(scene.Bounds, scene.Bounds + 6, inputs.Bounds);
   std::copy(scene.SpecularBounds, scene.SpecularBounds + 6, inputs.SpecularBounds);
   std::copy(f.Background, f.Background + 3, inputs.Background);
@@ -719,7 +718,11 @@ bool vtkCausticsRenderPass::PrepareScene(vtkRenderer* renderer)
   {
     return false;
   }
-  caustics::gl::ToColumnMajor(extractor->GetScene().View.worldToClip, this->Frame.WorldToClip);
+  const caustics::SceneData& scene = extractor->GetScene();
+  caustics::gl::ToColumnMajor(scene.View.worldToClip, this->Frame.WorldToClip);
+  const caustics::Vec3& eye = scene.View.position;
+  const double viewOrigin[4] = { eye[0], eye[1], eye[2], scene.View.parallel ? 0.0 : 1.0 };
+  this->Frame.EyeMaterial = EyeMaterial(scene, viewOrigin);
   return true;
 }
 
@@ -1061,7 +1064,6 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   if (sceneOk)
   {
     this->CheckMediumDensity();
-    this->CheckFilledAbsorbers();
   }
   const bool caustics = sceneOk && this->NeedsCaustics(this->Frame);
   if (caustics)
@@ -1106,35 +1108,6 @@ void vtkCausticsRenderPass::CheckSceneScale()
     this->Internal->ReportedScaleWarning = text.str();
     vtkWarningMacro(<< text.str());
   }
-}
-
-void vtkCausticsRenderPass::CheckFilledAbsorbers()
-{
-  const caustics::SceneData& scene = *this->Frame.Scene;
-  const caustics::Medium& medium = scene.Participating;
-  auto positive = [](const caustics::Vec3& v) { return v[0] > 0.0 || v[1] > 0.0 || v[2] > 0.0; };
-  std::string absorber; // the mesh's name ("actor <index>" when it has none)
-  if (medium.enabled && medium.fillsRefractors && positive(medium.sigmaS))
-  {
-    for (std::size_t i = 0; i < scene.Materials.size() && i < scene.Meshes.size(); ++i)
-    {
-      const caustics::Material& material = scene.Materials[i];
-      if (material.role == caustics::Role::Refractor && positive(material.attenuation))
-      {
-        absorber = scene.Meshes[i].name;
-        break;
-      }
-    }
-  }
-  // Once per refractor, not every frame.
-  if (!absorber.empty() && absorber != this->Internal->ReportedFilledAbsorber)
-  {
-    vtkWarningMacro(<< "the medium fills the refractors and refractor '" << absorber
-                    << "' also absorbs: the volume caustic inside it leaves out the "
-                       "refractor's own absorption along each photon piece (the surface "
-                       "caustic is right; docs/technique-volume-caustics.md)");
-  }
-  this->Internal->ReportedFilledAbsorber = absorber;
 }
 
 void vtkCausticsRenderPass::CheckMediumDensity()

@@ -402,6 +402,8 @@ protected:
     const caustics::gl::MediumBuffer* MediumGrid = nullptr;
     /** Its optical depth from the camera, built after the camera G-buffers (valid with a grid). */
     vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr;
+    /** The material of the closed refractor the eye is in, or -1 (air, a parallel view). */
+    int EyeMaterial = -1;
   };
 
   /** What the frame produced; reset at the start of every Render(). */
@@ -562,8 +564,6 @@ private:
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
-  // Warns once when a scattering medium fills an absorbing refractor (a known limit).
-  void CheckFilledAbsorbers();
   void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
   bool RenderAirlight(); // the medium's single scattering of direct light, into the volume layer

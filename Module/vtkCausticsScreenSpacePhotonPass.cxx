@@ -389,7 +389,8 @@ bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin
   std::copy(in.CameraOrigin, in.CameraOrigin + 4, camera.ViewOrigin);
   const vtkCausticsVolumeLines::View view = caustics::gl::VolumeSegmentList::MakeView(*f.Scene,
     camera, f.Width, f.Height,
-    { f.WorldToClip, f.MediumGrid, f.CameraOpticalDepth, f.CameraGBuffer, f.RefractiveGBuffer });
+    { f.WorldToClip, f.MediumGrid, f.CameraOpticalDepth, f.CameraGBuffer, f.RefractiveGBuffer,
+      f.Geometry, f.EyeMaterial });
   // One segment per traced ray: the stage's optical depths for all of them, or, where
   // this OpenGL cannot hold them at VolumeSubSegments, what it holds and one warning.
   const int capacity = in.VolumeCapacity.Choose(renWin, this, in.Capacity,

@@ -4,6 +4,7 @@
 #include "vtkCausticsCameraOpticalDepth.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
@@ -49,7 +50,6 @@ vtkCausticsVolumeLines::vtkCausticsVolumeLines()
   in.LineProgram->SetName("volume lines");
   in.LineProgram->SetVertexSource((common + vtkCausticsVolumeLinesVS).c_str());
   in.LineProgram->SetFragmentSource((common + vtkCausticsVolumeLinesFS).c_str());
-  in.LineProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   in.BlurProgram->SetName("volume line blur");
   in.BlurProgram->SetComputeSource(vtkCausticsVolumeLinesBlurCS);
   in.BlurProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
@@ -200,6 +200,12 @@ bool vtkCausticsVolumeLines::DrawLines(
     p->SetUniform3f("sigmaS", static_cast<float>(sigmaS[0]), static_cast<float>(sigmaS[1]),
       static_cast<float>(sigmaS[2]));
     p->SetUniformf("anisotropy", static_cast<float>(medium.g));
+    // Every technique's view carries the table (VolumeSegmentList::MakeView).
+    p->SetUniformi("eyeMaterial", view.Geometry ? view.EyeMaterial : -1);
+    if (view.Geometry)
+    {
+      view.Geometry->BindMaterials();
+    }
     glBindVertexArray(in.EmptyVertexArray);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, in.Arguments.Handle());
     glDrawArraysIndirect(GL_LINES, nullptr);

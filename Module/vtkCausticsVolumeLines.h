@@ -46,6 +46,7 @@
 
 class vtkOpenGLRenderWindow;
 class vtkCausticsCameraOpticalDepth;
+class vtkCausticsSceneGeometry;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -81,6 +82,12 @@ public:
     vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr;
     vtkTextureObject* OpaqueDepth = nullptr;     ///< window depth, receivers and reflectors
     vtkTextureObject* RefractiveDepth = nullptr; ///< window depth, refractors
+    /**
+     * The material table: the absorption of the refractors that pieces lie in when
+     * the medium fills them, and of the eye's refractor (EyeMaterial, -1: none).
+     */
+    vtkCausticsSceneGeometry* Geometry = nullptr;
+    int EyeMaterial = -1;
   };
 
   /**

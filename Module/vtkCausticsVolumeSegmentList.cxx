@@ -191,6 +191,8 @@ vtkCausticsVolumeLines::View VolumeSegmentList::MakeView(
   view.CameraOpticalDepth = frame.CameraOpticalDepth;
   view.OpaqueDepth = frame.Camera ? frame.Camera->GetDepthTexture() : nullptr;
   view.RefractiveDepth = frame.Refractive ? frame.Refractive->GetDepthTexture() : nullptr;
+  view.Geometry = frame.Geometry;
+  view.EyeMaterial = frame.EyeMaterial;
   return view;
 }
 

@@ -37,6 +37,7 @@
 
 class vtkCausticsCameraOpticalDepth;
 class vtkCausticsGBuffer;
+class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkObject;
 class vtkOpenGLRenderWindow;
@@ -113,6 +114,8 @@ public:
     vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr;
     vtkCausticsGBuffer* Camera = nullptr;     ///< receivers and reflectors
     vtkCausticsGBuffer* Refractive = nullptr; ///< refractors
+    vtkCausticsSceneGeometry* Geometry = nullptr; ///< its material table
+    int EyeMaterial = -1; ///< the closed refractor the eye is in (FrameInputs::EyeMaterial)
   };
 
   VolumeSegmentList();

@@ -767,6 +767,12 @@ struct ReferenceTracer::Internals
 
   /** Pixel rays and medium intervals of the view pass, reused by the volume pass. */
   std::vector<double> MediumStart, MediumEnd;
+  /**
+   * Per pixel, with a medium that fills the refractors: the absorption (1/m) of the
+   * refractor the camera ray runs in up to its first surface (that surface seen from
+   * its back side, as CameraPath decides), which the beams' light also crosses.
+   */
+  std::vector<glm::dvec3> CameraGlass;
   /** Per pixel, its camera ray's transmittance (heterogeneous medium only). */
   std::vector<TransmittanceTrack> CameraTracks;
 
@@ -904,6 +910,7 @@ struct ReferenceTracer::Internals
   {
     this->ReleaseEmbree();
     std::vector<double>().swap(this->MediumStart);
+    std::vector<glm::dvec3>().swap(this->CameraGlass);
     std::vector<double>().swap(this->MediumEnd);
     std::vector<TransmittanceTrack>().swap(this->CameraTracks);
     this->Density.reset();
@@ -1529,18 +1536,28 @@ struct ReferenceTracer::Internals
    */
   void Attenuate(Branch& s, double length, Random& random, ChunkResult& out) const
   {
-    if (s.inside >= 0)
+    // The refractor's own absorption, 1/m (0 in air).
+    const glm::dvec3 glass =
+      s.inside >= 0 ? ToGlm(this->MaterialOf(s.inside).attenuation) : glm::dvec3(0.0);
+    if (s.inside < 0 || this->Scene->Participating.fillsRefractors)
     {
-      const glm::dvec3 attenuation = ToGlm(this->MaterialOf(s.inside).attenuation);
-      if (glm::compMax(attenuation) > 0.0)
-      {
-        Absorb(s, s.flux * glm::exp(attenuation * -length), out);
-      }
-      if (!this->Scene->Participating.fillsRefractors)
-      {
-        return;
-      }
+      this->Extinguish(s, length, glass, random, out);
     }
+    if (glm::compMax(glass) > 0.0)
+    {
+      Absorb(s, s.flux * glm::exp(glass * -length), out);
+    }
+  }
+
+  /**
+   * The medium's extinction along the segment (before the refractor's absorption
+   * `glass`, which the caller takes after it), recording the beams in the beam pass:
+   * each beam's flux at its start has lost the refractor's share up to there, and
+   * decays by it along the beam (ReferenceBeam::attenuation).
+   */
+  void Extinguish(
+    Branch& s, double length, const glm::dvec3& glass, Random& random, ChunkResult& out) const
+  {
     double t0, t1;
     if (!this->MediumOn ||
       !ClipToBox(this->MediumBox, s.origin, s.direction, 0.0, length, t0, t1) || !(t1 > t0))
@@ -1552,20 +1569,21 @@ struct ReferenceTracer::Internals
     {
       if (beams)
       {
-        out.beams.push_back(MakeBeam(s, s.flux, t0, t1));
+        out.beams.push_back(MakeBeam(s, s.flux * glm::exp(glass * -t0), t0, t1, glass));
       }
       Absorb(s, s.flux * glm::exp(this->SigmaT * -(t1 - t0)), out);
       return;
     }
     // The residual's estimate is constant between tentative collisions: the segment
-    // becomes one beam per piece, whose flux decays along it by the control only.
+    // becomes one beam per piece, whose flux decays along it by the control (and the
+    // refractor's absorption) only.
     double from = t0;
     glm::dvec3 flux = s.flux;
     auto piece = [&](double to)
     {
       if (beams && glm::compMax(flux) > 0.0)
       {
-        out.beams.push_back(MakeBeam(s, flux, from, to));
+        out.beams.push_back(MakeBeam(s, flux * glm::exp(glass * -from), from, to, glass));
       }
     };
     const glm::dvec3 residual = this->TrackResidual(s.origin, s.direction, t0, t1, random,
@@ -1586,14 +1604,19 @@ struct ReferenceTracer::Internals
     s.flux = kept;
   }
 
-  /** The part [t0, t1] of a branch's segment that lies in the medium, with `flux` at t0. */
-  static ReferenceBeam MakeBeam(const Branch& s, const glm::dvec3& flux, double t0, double t1)
+  /**
+   * The part [t0, t1] of a branch's segment that lies in the medium, with `flux` at t0,
+   * inside a refractor absorbing `glass` (1/m; 0 in air).
+   */
+  static ReferenceBeam MakeBeam(
+    const Branch& s, const glm::dvec3& flux, double t0, double t1, const glm::dvec3& glass)
   {
     ReferenceBeam beam;
     StoreFloat(s.origin + s.direction * t0, beam.start);
     StoreFloat(s.direction, beam.direction);
     beam.length = static_cast<float>(t1 - t0);
     StoreFloat(flux, beam.flux);
+    StoreFloat(glass, beam.attenuation);
     return beam;
   }
 
@@ -1987,6 +2010,8 @@ struct ReferenceTracer::Internals
     image.Resize(view.width, view.height);
     this->MediumStart.assign(pixels, 0.0);
     this->MediumEnd.assign(pixels, 0.0);
+    const bool filled = this->MediumOn && this->Scene->Participating.fillsRefractors;
+    this->CameraGlass.assign(filled ? pixels : 0, glm::dvec3(0.0));
     this->CameraTracks.assign(this->Density ? pixels : 0, TransmittanceTrack());
     std::vector<double> radii(pixels, 0.0);
     std::vector<Hit> hits(pixels);
@@ -2020,6 +2045,12 @@ struct ReferenceTracer::Internals
     const double far = this->FarDistance(i, j, o);
     Hit& hit = hits[id];
     const bool found = this->FirstVisibleSurface(o, v, far, hit);
+    if (found && !this->CameraGlass.empty() &&
+      this->MaterialOf(hit.mesh).role == Role::Refractor &&
+      glm::dot(v, hit.geometricNormal) > 0.0)
+    {
+      this->CameraGlass[id] = ToGlm(this->MaterialOf(hit.mesh).attenuation);
+    }
     if (found)
     {
       this->ShadeSurface(i, j, id, v, hit, radii[id], image);
@@ -2499,6 +2530,8 @@ struct ReferenceTracer::Internals
       sum{ 0.0 };
     double start = 0.0, end = 0.0;             ///< the ray's part in the medium
     const TransmittanceTrack* track = nullptr; ///< heterogeneous medium: its transmittance
+    glm::dvec3 glass{ 0.0 }; ///< the absorption of the refractor it runs in (CameraGlass)
+    double eyeToOrigin = 0.0; ///< m from the eye to `origin` on the near plane (perspective)
   };
 
   /** The camera rays of pixels [x0, x1) x [y0, y1), rows of tileSize. */
@@ -2515,11 +2548,15 @@ struct ReferenceTracer::Internals
         pixel.start = this->MediumStart[id];
         pixel.end = this->MediumEnd[id];
         pixel.track = this->CameraTracks.empty() ? nullptr : &this->CameraTracks[id];
+        pixel.glass = this->CameraGlass.empty() ? glm::dvec3(0.0) : this->CameraGlass[id];
         glm::dvec3 o1, v1;
         this->PixelRay(i, j, pixel.origin, pixel.direction);
         this->PixelRay(i + (i + 1 < width ? 1 : -1), j, o1, v1);
         pixel.spreadOrigin = o1 - pixel.origin;
         pixel.spreadDirection = v1 - pixel.direction;
+        const Camera& view = this->Scene->View;
+        pixel.eyeToOrigin =
+          view.parallel ? 0.0 : glm::distance(pixel.origin, ToGlm(view.position));
       }
     }
   }
@@ -2635,15 +2672,19 @@ struct ReferenceTracer::Internals
       sin2 > 1e-8 ? EpanechnikovKernel1D(std::sqrt(d2), radius) / std::sqrt(sin2) : Infinity;
     const double kernel = std::min(acrossRay, EpanechnikovKernel2D(d2, radius) * along);
     const double phase = HenyeyGreenstein(-a, this->G); // beam along b, out along -v
+    // A refractor's own absorption along the beam, and along the camera ray from the
+    // eye when the eye is in it (0 in air).
+    const glm::dvec3 glass =
+      glm::exp(FromFloat(beam.attenuation) * -t - ray.glass * (ray.eyeToOrigin + s));
     if (ray.track)
     {
       // Heterogeneous: the piece's flux decays by the control along it (the residual
       // is tracked into its flux); the camera side is the pixel's track.
       return this->ScatteringAt(p + b * t) * FromFloat(beam.flux) * glm::exp(this->Control * -t) *
-        ray.track->At(s) * (phase * kernel);
+        ray.track->At(s) * glass * (phase * kernel);
     }
     const glm::dvec3 decay = glm::exp(this->SigmaT * -(t + (s - sa)));
-    return this->SigmaS * FromFloat(beam.flux) * decay * (phase * kernel);
+    return this->SigmaS * FromFloat(beam.flux) * decay * glass * (phase * kernel);
   }
 };
 

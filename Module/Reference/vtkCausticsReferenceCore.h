@@ -123,6 +123,12 @@ struct ReferenceBeam
    * of ratio tracking, whose flux estimate is constant along it.
    */
   float flux[3];
+  /**
+   * 1/m per channel: the Beer-Lambert absorption of the refractor the beam lies in
+   * (a medium that fills the refractors), by which its flux also decays along it;
+   * 0 in air.
+   */
+  float attenuation[3];
 };
 
 /**

@@ -350,12 +350,12 @@ bool underSheet = false;
 // (vtkCausticsCommon.glsl: homogeneous, or a density grid) holds the stretch
 // (CausticsStretchInMedium) it is handed to the volume caustics and the medium takes
 // its share (CausticsMediumStretch).
-void Travel(vec3 a, vec3 b, bool insideRefractor, inout vec3 flux, inout float path)
+void Travel(vec3 a, vec3 b, bool insideRefractor, int absorber, inout vec3 flux, inout float path)
 {
   float length = distance(a, b);
   if (length > 0.0)
   {
-    flux = CausticsMediumStretch(a, (b - a) / length, length, flux, insideRefractor);
+    flux = CausticsMediumStretch(a, (b - a) / length, length, flux, insideRefractor, absorber);
   }
   path += length;
 }
@@ -428,7 +428,7 @@ void main()
       // The medium, when it fills the refractors, then the refractor's own absorption.
       vec3 sigma = causticsMaterials[hitMaterial].attenuation.rgb;
       float chord = length(hitPoint - o);
-      Travel(o, hitPoint, true, flux, path);
+      Travel(o, hitPoint, true, hitMaterial, flux, path);
       flux *= CausticsTransmittance(sigma, chord);
       CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
       o = hitPoint + nudge * d;
@@ -446,7 +446,7 @@ void main()
       if (March(lightView, frontPosition, frontNormal, true, o, d, reach, false) == MARCH_HIT &&
         hitRole == ROLE_REFRACTOR)
       {
-        Travel(o, hitPoint, underSheet, flux, path);
+        Travel(o, hitPoint, underSheet, -1, flux, path);
         CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
         o = hitPoint + nudge * d;
         continue;
@@ -460,7 +460,7 @@ void main()
     {
       // Reprojection into the camera view (§3.2, Fig. 5): march on from the last
       // position the light's view could vouch for.
-      Travel(o, lastPoint, underSheet, flux, path);
+      Travel(o, lastPoint, underSheet, -1, flux, path);
       o = lastPoint;
       result = March(cameraView, cameraPosition, cameraNormal, false, o, d, airLength, false);
     }
@@ -469,11 +469,11 @@ void main()
       if (result != MARCH_BLOCKED)
       {
         // It leaves the views: its scattering up to where it leaves the scene.
-        CausticsAppendVolumeSegment(CausticsMakeMediumSegment(o, d, airLength, flux, underSheet));
+        CausticsAppendVolumeSegment(CausticsMakeMediumSegment(o, d, airLength, flux, underSheet, -1));
       }
       break;
     }
-    Travel(o, hitPoint, underSheet, flux, path);
+    Travel(o, hitPoint, underSheet, -1, flux, path);
     if (hitRole == ROLE_REFLECTOR)
     {
       CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFLECTOR, d, flux, inside, rng);

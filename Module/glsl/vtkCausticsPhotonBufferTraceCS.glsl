@@ -525,10 +525,11 @@ void main()
       LayerAt(photonView, backPosition, backNormal,
         p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
     }
-    CausticsMaterial medium = causticsMaterials[max(int(material + 0.5), 0)];
+    int refractor = max(int(material + 0.5), 0);
+    CausticsMaterial medium = causticsMaterials[refractor];
     // The participating medium when it fills the refractors (its volume caustic and
     // extinction), then the refractor's own absorption.
-    vec3 transmitted = CausticsMediumStretch(p, d, t, flux, true) *
+    vec3 transmitted = CausticsMediumStretch(p, d, t, flux, true, refractor) *
       CausticsTransmittance(medium.attenuation.rgb, t);
     absorbed += Power(flux - transmitted);
     flux = transmitted;
@@ -662,7 +663,7 @@ void main()
     }
     landed = false;
     vec3 x = p + mirrorT * d;
-    vec3 kept = CausticsMediumStretch(p, d, mirrorT, flux4.rgb, underSheet);
+    vec3 kept = CausticsMediumStretch(p, d, mirrorT, flux4.rgb, underSheet, -1);
     vec3 facing = dot(d, mirrorNormal) < 0.0 ? mirrorNormal : -mirrorNormal;
     CausticsMaterial mirror = causticsMaterials[mirrorMaterial];
     if (reflection < maximumReflections)
@@ -689,7 +690,7 @@ void main()
   {
     // The last piece: to the receiver, or across the scene when it escapes.
     CausticsAppendVolumeSegment(
-      CausticsMakeMediumSegment(p, d, landed ? t : airLength, flux4.rgb, underSheet));
+      CausticsMakeMediumSegment(p, d, landed ? t : airLength, flux4.rgb, underSheet, -1));
   }
   vec3 hit = p + t * d;
   path += t;

@@ -36,6 +36,10 @@ void main()
   {
     t1 = t0; // nothing to draw
   }
+  // Inside a refractor, direction.w is the material of the surface the photon last
+  // entered or reflected in (its absorption: vtkCausticsScreenSpacePhotonPassTransferCS).
+  bool inside = r.origin.w > 1.5;
+  int absorber = inside && r.direction.w >= 0.0 ? int(r.direction.w + 0.5) : -1;
   volumeSegments[ray] = CausticsMakeVolumeSegment(
-    r.origin.xyz, r.direction.xyz, t0, t1, payloads[ray].flux.rgb, r.origin.w > 1.5);
+    r.origin.xyz, r.direction.xyz, t0, t1, payloads[ray].flux.rgb, inside, absorber);
 }

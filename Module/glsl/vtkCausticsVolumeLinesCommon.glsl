@@ -5,7 +5,9 @@
 // One photon segment after a specular event, in air (the medium): the photon leaves
 // origin.xyz (m) along direction.xyz (unit) carrying flux.rgb (W) at the origin; the
 // part [t0, t1] (m along the direction) is drawn: origin.w = t0, direction.w = t1
-// (t1 <= t0: nothing). The light-side extinction from the origin is the stage's.
+// (t1 <= t0: nothing). The light-side extinction from the origin is the stage's, and
+// so is the Beer-Lambert absorption of the refractor a piece lies in when the medium
+// fills the refractors: flux.w = 1 + that refractor's material index (0: none).
 struct CausticsVolumeSegment
 {
   vec4 origin;
@@ -21,15 +23,17 @@ struct CausticsVolumeSegment
 // A photon's straight piece after a specular event: it leaves `origin` along the unit
 // `direction` with `flux` (W); [t0, t1] is drawn. A piece inside a refractor (or under
 // an open sheet of water) draws nothing unless the medium fills the refractors
-// (CausticsStretchInMedium, as in the reference renderer).
-CausticsVolumeSegment CausticsMakeVolumeSegment(
-  vec3 origin, vec3 direction, float t0, float t1, vec3 flux, bool insideRefractor)
+// (CausticsStretchInMedium, as in the reference renderer). `absorber`: the material
+// index of the closed refractor the piece lies in, whose own absorption the stage
+// applies along it (-1: none, or not followed: an open sheet's water).
+CausticsVolumeSegment CausticsMakeVolumeSegment(vec3 origin, vec3 direction, float t0,
+  float t1, vec3 flux, bool insideRefractor, int absorber)
 {
   CausticsVolumeSegment s;
   s.origin = vec4(origin, t0);
   s.direction =
     vec4(direction, !CausticsStretchInMedium(insideRefractor) || !(t1 > t0) ? t0 : t1);
-  s.flux = vec4(flux, 0.0);
+  s.flux = vec4(flux, insideRefractor && absorber >= 0 ? float(absorber + 1) : 0.0);
   return s;
 }
 
@@ -37,7 +41,7 @@ CausticsVolumeSegment CausticsMakeVolumeSegment(
 // vtkCausticsCommon.glsl: the scene's bounds, or a density grid's within them), for a
 // tracer whose pieces run from surface to surface: [0, length] of origin + t direction.
 CausticsVolumeSegment CausticsMakeMediumSegment(
-  vec3 origin, vec3 direction, float length, vec3 flux, bool insideRefractor)
+  vec3 origin, vec3 direction, float length, vec3 flux, bool insideRefractor, int absorber)
 {
   float t0 = 0.0, t1 = length;
   if (causticsMediumOn == 0 ||
@@ -45,7 +49,7 @@ CausticsVolumeSegment CausticsMakeMediumSegment(
   {
     t1 = t0;
   }
-  return CausticsMakeVolumeSegment(origin, direction, t0, t1, flux, insideRefractor);
+  return CausticsMakeVolumeSegment(origin, direction, t0, t1, flux, insideRefractor, absorber);
 }
 
 #ifdef CAUSTICS_VOLUME_SEGMENT_APPEND
@@ -87,12 +91,13 @@ void CausticsAppendVolumeSegment(CausticsVolumeSegment s)
 // handed to the volume caustics, and the flux it keeps at the stretch's end after the
 // medium's extinction, when the stretch lies in the medium (CausticsStretchInMedium:
 // in air, or inside a refractor when the medium fills the refractors). A refractor's own
-// Beer-Lambert absorption is the caller's.
+// Beer-Lambert absorption is the caller's; `absorber` names that refractor's material
+// for the stage (CausticsMakeVolumeSegment).
 vec3 CausticsMediumStretch(
-  vec3 origin, vec3 direction, float length, vec3 flux, bool insideRefractor)
+  vec3 origin, vec3 direction, float length, vec3 flux, bool insideRefractor, int absorber)
 {
   CausticsAppendVolumeSegment(
-    CausticsMakeMediumSegment(origin, direction, length, flux, insideRefractor));
+    CausticsMakeMediumSegment(origin, direction, length, flux, insideRefractor, absorber));
   return CausticsStretchInMedium(insideRefractor)
     ? flux * CausticsMediumTransmittance(origin, direction, 0.0, length)
     : flux;

@@ -6,8 +6,11 @@
 // the view): L = sigma_s p flux T_light T_camera dl / A, W/(m^2 sr). T_light comes
 // from the optical depth the re-sampling integrated once per segment, interpolated
 // within the fragment's piece; T_camera from the camera optical-depth volume (one
-// fetch) or, in a homogeneous medium, the closed form. Summed over the image this conserves the
-// scattered power; the Gaussian of Finish() spreads it.
+// fetch) or, in a homogeneous medium, the closed form. When the medium fills the
+// refractors, a piece inside an absorbing refractor also loses that refractor's own
+// Beer-Lambert share from the segment's origin (its entry), and so does the camera's
+// side when the eye is in that refractor (eyeMaterial). Summed over the image this
+// conserves the scattered power; the Gaussian of Finish() spreads it.
 flat in int segmentIndex;
 flat in vec4 segment;
 flat in float majorPixels;
@@ -24,6 +27,7 @@ uniform vec2 viewport;
 uniform vec4 viewOrigin; // camera position (w = 1) or view direction (w = 0)
 uniform vec3 sigmaS;     // 1/m (per unit density with CAUSTICS_MEDIUM_GRID)
 uniform float anisotropy;
+uniform int eyeMaterial; // the closed refractor the eye is in (-1: none)
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -77,6 +81,18 @@ void main()
   // camera rays take it (the march's start when the volume does not serve).
   vec3 transmittance = CausticsTransmittance(causticsSigmaT, along) *
     CausticsMediumTransmittanceToCamera(x, Unproject(gl_FragCoord.xy, -1.0));
+  int absorber = int(s.flux.w + 0.5) - 1;
+  if (absorber >= 0)
+  {
+    transmittance *= CausticsTransmittance(causticsMaterials[absorber].attenuation.rgb, t);
+  }
+  if (eyeMaterial >= 0)
+  {
+    // From the eye, as the camera view of glass takes it (the medium above is taken
+    // from the near plane, as VTK's view and the reference's camera rays begin there).
+    transmittance *= CausticsTransmittance(
+      causticsMaterials[eyeMaterial].attenuation.rgb, distanceToCamera);
+  }
 #ifdef CAUSTICS_MEDIUM_GRID
   vec3 scattering = sigmaS * CausticsMediumDensity(x);
 #else
