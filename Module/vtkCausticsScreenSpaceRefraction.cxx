@@ -143,7 +143,6 @@ bool vtkCausticsScreenSpaceRefraction::Render(
     const int layerUnit = units.Bind(layers->GetPositionTexture());
     p->SetUniformi("refractorPosition", layerUnit);
     p->SetUniformi("refractorNormal", units.Bind(layers->GetNormalTexture()));
-    p->SetUniformi("refractorDepth", units.Bind(layers->GetDepthTexture()));
     p->SetUniformi("gPosition", units.Bind(inputs.Opaque->GetPositionTexture()));
     p->SetUniformi("gNormal", units.Bind(inputs.Opaque->GetNormalTexture()));
     p->SetUniformi("gAlbedo", units.Bind(inputs.Opaque->GetAlbedoTexture()));

@@ -21,7 +21,6 @@ layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTab
 
 uniform sampler2DArray refractorPosition; // xyz, w = material (-1: none)
 uniform sampler2DArray refractorNormal;   // xyz as modelled, w = role
-uniform sampler2DArray refractorDepth;    // window depth, 1 where no surface
 uniform sampler2D gPosition;              // opaque G-buffer
 uniform sampler2D gNormal;
 uniform sampler2D gAlbedo;
@@ -117,81 +116,6 @@ bool InFront(vec3 x, float depth, vec3 p, vec3 n)
   return OnSide(x, depth, p, n, false);
 }
 
-// The march's depth gate: most of its samples lie far in front of (or, inside a
-// refractor, far behind) every surface of their pixel, and neither clause of OnSide
-// can hold there. The gate tells them from the window depth alone (one
-// one-channel fetch per surface) and skips the full test (a position and a normal
-// fetch and a projection per surface). It is conservative: a sample it lets pass is
-// one the full test rejects, so the march finds what it found without it. Set by
-// InitDepthGate(): the view depth is clip w (perspective) or clip z (parallel); with
-// clip z = gateA w + gateB (every perspective projection; else the gate is off) a
-// window depth gives w back; gateL bounds how fast the view depth changes per metre.
-bool gateOn;
-float gateA;
-float gateB;
-float gateL;
-float gateW; // parallel: the constant clip w
-
-void InitDepthGate()
-{
-  vec4 row2 = vec4(worldToClip[0][2], worldToClip[1][2], worldToClip[2][2], worldToClip[3][2]);
-  vec4 row3 = vec4(worldToClip[0][3], worldToClip[1][3], worldToClip[2][3], worldToClip[3][3]);
-  gateA = 0.0;
-  gateB = 0.0;
-  gateW = 1.0;
-  if (viewOrigin.w > 0.0)
-  {
-    float lengthSquared = dot(row3.xyz, row3.xyz);
-    gateA = lengthSquared > 0.0 ? dot(row2.xyz, row3.xyz) / lengthSquared : 0.0;
-    gateB = row2.w - gateA * row3.w;
-    gateL = sqrt(lengthSquared);
-    gateOn = lengthSquared > 0.0 && gateB < 0.0 &&
-      length(cross(row2.xyz, row3.xyz)) <= 1e-5 * length(row2.xyz) * gateL;
-  }
-  else
-  {
-    gateW = row3.w;
-    gateL = length(row2.xyz);
-    gateOn = all(equal(row3.xyz, vec3(0.0))) && gateW > 0.0;
-  }
-}
-
-// Whether the march's sample at view depth `depth` may meet the surface of window
-// depth `window` (1: no surface) in the sense of Beyond (beyond = true) or InFront:
-// false only where the view depths differ by more than OnSide's largest reach (the
-// tolerance and 20 pixel footprints: |view depth difference| <= gateL x distance),
-// with slack for the window depth's rounding.
-bool MayMeet(float window, float depth, bool beyond)
-{
-  if (!gateOn)
-  {
-    return true;
-  }
-  if (window >= 1.0)
-  {
-    return false;
-  }
-  float ndc = 2.0 * window - 1.0;
-  float surface;
-  float w;
-  float slack;
-  if (viewOrigin.w > 0.0)
-  {
-    surface = gateB / (ndc - gateA);
-    w = surface;
-    // dw / d(ndc) = w^2 / |B|; ndc rounds to 2^-23 near 1 (twice that here).
-    slack = 2.4e-7 * surface * surface / abs(gateB);
-  }
-  else
-  {
-    surface = ndc * gateW;
-    w = gateW;
-    slack = 2.4e-7 * gateW;
-  }
-  float margin = 1.01 * gateL * (tolerance + 20.0 * abs(w) * pixelScale) + slack;
-  return (beyond ? surface - depth : depth - surface) <= margin;
-}
-
 // Whether the ray o + t d, at x, is leaving the surface sample (p, n) rather than
 // crossing it: within a few pixel footprints of p, on the camera's side of its tangent
 // plane and moving away from it, as a ray that a mirror standing on the floor sends out
@@ -215,12 +139,11 @@ float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
 }
 
 // Whether the march's sample o + t d (view depth `depth`, pixel q) has passed
-// beyond (beyond = true) or come in front of the refractor's layer `layer`; if
-// so, fills `result` with the crossing refined on the layer's tangent plane.
-bool RefractorLayerHit(
-  vec3 o, vec3 d, float t, float depth, ivec2 q, int layer, bool beyond, inout March result)
+// beyond (beyond = true) or come in front of the refractor's layer `layer`, whose
+// position sample at q is p; if so, fills `result` with the crossing refined on the layer's tangent plane.
+bool RefractorLayerHit(vec3 o, vec3 d, float t, float depth, ivec2 q, int layer, vec4 p,
+  bool beyond, inout March result)
 {
-  vec4 p = texelFetch(refractorPosition, ivec3(q, layer), 0);
   vec3 n = texelFetch(refractorNormal, ivec3(q, layer), 0).xyz;
   vec3 x = o + t * d;
   if (p.w < 0.0 || !(beyond ? Beyond(x, depth, p.xyz, n) : InFront(x, depth, p.xyz, n)))
@@ -287,47 +210,34 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
   float t = SspLineT(line, u);
   bool useNext = next >= 0 && next < layers;
   bool useCurrent = current >= 0 && current < layers;
-  float opaqueWindow = texelFetch(gDepth, q, 0).r;
-  float nextWindow = useNext ? texelFetch(refractorDepth, ivec3(q, max(next, 0)), 0).r : 1.0;
-  float currentWindow =
-    useCurrent ? texelFetch(refractorDepth, ivec3(q, max(current, 0)), 0).r : 1.0;
-  covered = (opaqueWindow < 1.0 ? 1 : 0) + (nextWindow < 1.0 ? 2 : 0) +
-    (currentWindow < 1.0 ? 4 : 0);
+  vec4 opaque = texelFetch(gPosition, q, 0);
+  vec4 nextSample = useNext ? texelFetch(refractorPosition, ivec3(q, max(next, 0)), 0)
+                            : vec4(0.0, 0.0, 0.0, -1.0);
+  vec4 currentSample = useCurrent ? texelFetch(refractorPosition, ivec3(q, max(current, 0)), 0)
+                                  : vec4(0.0, 0.0, 0.0, -1.0);
+  covered = (opaque.w >= 0.0 ? 1 : 0) + (nextSample.w >= 0.0 ? 2 : 0) +
+    (currentSample.w >= 0.0 ? 4 : 0);
   if (t <= tolerance)
   {
     return false;
   }
   vec3 x = o + t * d;
   float depth = depthLine.x + t * depthLine.y; // ViewDepth(x): affine in t
-  // The full tests in loops of at most one pass, not in ifs: llvmpipe runs an if's
-  // body for every pixel of its group (masked) whatever the condition, and leaves a
-  // loop that no pixel of the group is in.
-  bool mayOpaque = MayMeet(opaqueWindow, depth, true);
-  bool mayNext = useNext && MayMeet(nextWindow, depth, true);
-  bool mayCurrent = useCurrent && j > 1 && MayMeet(currentWindow, depth, false);
-  bool hit = false;
-  for (int once = 0; once < 1 && mayOpaque; ++once)
+  vec3 opaqueNormal = texelFetch(gNormal, q, 0).xyz;
+  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal) &&
+    !Leaving(o, d, x, opaque.xyz, opaqueNormal))
   {
-    vec4 opaque = texelFetch(gPosition, q, 0);
-    vec3 opaqueNormal = texelFetch(gNormal, q, 0).xyz;
-    if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal) &&
-      !Leaving(o, d, x, opaque.xyz, opaqueNormal))
-    {
-      result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
-      result.t = t;
-      result.pixel = q;
-      hit = true;
-    }
+    result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
+    result.t = t;
+    result.pixel = q;
+    return true;
   }
-  for (int once = 0; once < 1 && !hit && mayNext; ++once)
+  if (useNext && RefractorLayerHit(o, d, t, depth, q, next, nextSample, true, result))
   {
-    hit = RefractorLayerHit(o, d, t, depth, q, next, true, result);
+    return true;
   }
-  for (int once = 0; once < 1 && !hit && mayCurrent; ++once)
-  {
-    hit = RefractorLayerHit(o, d, t, depth, q, current, false, result);
-  }
-  return hit;
+  return useCurrent && j > 1 &&
+    RefractorLayerHit(o, d, t, depth, q, current, currentSample, false, result);
 }
 
 // Marches o + t d across the screen. next/current: refractor layers whose
@@ -684,7 +594,6 @@ void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   outColor = vec4(0.0);
-  InitDepthGate();
   vec4 opaque = texelFetch(gPosition, pixel, 0);
   vec4 front = ldiObjects[0].y > 0u ? texelFetch(refractorPosition, ivec3(pixel, 0), 0)
                                     : vec4(0.0, 0.0, 0.0, -1.0);
