@@ -1,8 +1,8 @@
 // Screen-space refraction tracing (000_54cf099eeccf42d9.txt §4). For a pixel that
 // sees a refractor, the viewing ray is refracted at the refractor's first layer
-// and marched in screen space, one pixel per step, with one lookup per layer: it
-// leaves the object where its depth passes the next layer's (or falls below the
-// current one's), the "monotonic" assumption that the n-th intersection is in the
+// and marched in screen space (pixel steps, sampled in strides: MarchRay), with one
+// lookup per layer: it leaves the object where its depth passes the next layer's
+// (or falls below the current one's), the "monotonic" assumption that the n-th intersection is in the
 // (n+1)-th layer. There it is refracted out (Fresnel-weighted; total internal
 // reflection keeps it inside) and marched on through the scene: the first opaque
 // surface of the camera's opaque G-buffer it passes gives the colour (the paper's
