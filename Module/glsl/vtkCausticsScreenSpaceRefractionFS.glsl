@@ -2,9 +2,9 @@
 // sees a refractor, the viewing ray is refracted at the refractor's first layer
 // and marched in screen space (pixel steps, sampled in strides: MarchRay), with one
 // lookup per layer: it leaves the object where its depth passes the next layer's
-// (or falls below the current one's), the "monotonic" assumption that the n-th intersection is in the
-// (n+1)-th layer. There it is refracted out (Fresnel-weighted; total internal
-// reflection keeps it inside) and marched on through the scene: the first opaque
+// (or falls below the current one's), the "monotonic" assumption that the n-th
+// intersection is in the (n+1)-th layer. There it is refracted out (Fresnel-weighted;
+// total internal reflection keeps it inside) and marched on through the scene: the first opaque
 // surface of the camera's opaque G-buffer it passes gives the colour (the paper's
 // approximation: only what the camera would see without the refractor, Fig. 10),
 // another layer of the refractor takes it back in, and leaving the view or the
@@ -140,7 +140,8 @@ float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
 
 // Whether the march's sample o + t d (view depth `depth`, pixel q) has passed
 // beyond (beyond = true) or come in front of the refractor's layer `layer`, whose
-// position sample at q is p; if so, fills `result` with the crossing refined on the layer's tangent plane.
+// position sample at q is p; if so, fills `result` with the crossing refined on
+// the layer's tangent plane.
 bool RefractorLayerHit(vec3 o, vec3 d, float t, float depth, ivec2 q, int layer, vec4 p,
   bool beyond, inout March result)
 {
