@@ -1,10 +1,10 @@
 // Screen-space refraction tracing (000_54cf099eeccf42d9.txt §4). For a pixel that
 // sees a refractor, the viewing ray is refracted at the refractor's first layer
-// and marched in screen space, one pixel per step, with one lookup per layer: it
-// leaves the object where its depth passes the next layer's (or falls below the
-// current one's), the "monotonic" assumption that the n-th intersection is in the
-// (n+1)-th layer. There it is refracted out (Fresnel-weighted; total internal
-// reflection keeps it inside) and marched on through the scene: the first opaque
+// and marched in screen space (pixel steps, sampled in strides: MarchRay), with one
+// lookup per layer: it leaves the object where its depth passes the next layer's
+// (or falls below the current one's), the "monotonic" assumption that the n-th
+// intersection is in the (n+1)-th layer. There it is refracted out (Fresnel-weighted;
+// total internal reflection keeps it inside) and marched on through the scene: the first opaque
 // surface of the camera's opaque G-buffer it passes gives the colour (the paper's
 // approximation: only what the camera would see without the refractor, Fig. 10),
 // another layer of the refractor takes it back in, and leaving the view or the
@@ -53,7 +53,7 @@ uniform int viewMethod;
 
 layout(location = 0) out vec4 outColor;
 
-const int MARCH_STRIDE = 4;
+const int MARCH_STRIDE = 8;
 const int MISS = 0;
 const int OPAQUE = 1;
 const int REFRACTOR = 2;
@@ -139,12 +139,12 @@ float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
 }
 
 // Whether the march's sample o + t d (view depth `depth`, pixel q) has passed
-// beyond (beyond = true) or come in front of the refractor's layer `layer`; if
-// so, fills `result` with the crossing refined on the layer's tangent plane.
-bool RefractorLayerHit(
-  vec3 o, vec3 d, float t, float depth, ivec2 q, int layer, bool beyond, inout March result)
+// beyond (beyond = true) or come in front of the refractor's layer `layer`, whose
+// position sample at q is p; if so, fills `result` with the crossing refined on
+// the layer's tangent plane.
+bool RefractorLayerHit(vec3 o, vec3 d, float t, float depth, ivec2 q, int layer, vec4 p,
+  bool beyond, inout March result)
 {
-  vec4 p = texelFetch(refractorPosition, ivec3(q, layer), 0);
   vec3 n = texelFetch(refractorNormal, ivec3(q, layer), 0).xyz;
   vec3 x = o + t * d;
   if (p.w < 0.0 || !(beyond ? Beyond(x, depth, p.xyz, n) : InFront(x, depth, p.xyz, n)))
@@ -199,21 +199,31 @@ void SmoothHitNormal(vec3 o, vec3 d, inout March result)
 
 // The march's sample j of `steps` along `line` (pixel-step centres, the last at the
 // segment's end): true when it meets the opaque G-buffer or a refractor layer
-// (see MarchRay), with `result` filled; untouched otherwise.
+// (see MarchRay), with `result` filled; untouched otherwise. `covered` says which of
+// the surfaces it consults hold a surface at its pixel (bits 1: opaque, 2: next,
+// 4: current).
 bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps, int next,
-  int current, int layers, inout March result)
+  int current, int layers, inout March result, out int covered)
 {
   float u = min(1.0, (float(j) + 0.5) / float(steps));
   vec2 s = mix(line.start.xy, line.end.xy, u);
   ivec2 q = clamp(ivec2(floor(s)), ivec2(0), ivec2(viewport) - 1);
   float t = SspLineT(line, u);
+  bool useNext = next >= 0 && next < layers;
+  bool useCurrent = current >= 0 && current < layers;
+  vec4 opaque = texelFetch(gPosition, q, 0);
+  vec4 nextSample = useNext ? texelFetch(refractorPosition, ivec3(q, max(next, 0)), 0)
+                            : vec4(0.0, 0.0, 0.0, -1.0);
+  vec4 currentSample = useCurrent ? texelFetch(refractorPosition, ivec3(q, max(current, 0)), 0)
+                                  : vec4(0.0, 0.0, 0.0, -1.0);
+  covered = (opaque.w >= 0.0 ? 1 : 0) + (nextSample.w >= 0.0 ? 2 : 0) +
+    (currentSample.w >= 0.0 ? 4 : 0);
   if (t <= tolerance)
   {
     return false;
   }
   vec3 x = o + t * d;
   float depth = depthLine.x + t * depthLine.y; // ViewDepth(x): affine in t
-  vec4 opaque = texelFetch(gPosition, q, 0);
   vec3 opaqueNormal = texelFetch(gNormal, q, 0).xyz;
   if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal) &&
     !Leaving(o, d, x, opaque.xyz, opaqueNormal))
@@ -223,12 +233,12 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
     result.pixel = q;
     return true;
   }
-  if (next >= 0 && next < layers && RefractorLayerHit(o, d, t, depth, q, next, true, result))
+  if (useNext && RefractorLayerHit(o, d, t, depth, q, next, nextSample, true, result))
   {
     return true;
   }
-  return current >= 0 && current < layers && j > 1 &&
-    RefractorLayerHit(o, d, t, depth, q, current, false, result);
+  return useCurrent && j > 1 &&
+    RefractorLayerHit(o, d, t, depth, q, current, currentSample, false, result);
 }
 
 // Marches o + t d across the screen. next/current: refractor layers whose
@@ -278,22 +288,33 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   vec2 depthLine = viewOrigin.w > 0.0 ? vec2(clipOrigin.w, clipDirection.w)
                                       : vec2(clipOrigin.z, clipDirection.z);
   // One sample per pixel step, at the step's centre, and one at the segment's end;
-  // each is compared with the surfaces of the pixel it projects to.
-  int stride = current < 0 ? MARCH_STRIDE : 1;
-  for (int coarse = 0; coarse < steps + stride; coarse += stride)
+  // each is compared with the surfaces of the pixel it projects to. Inside a
+  // refractor too the march strides, and it also walks back where a surface it
+  // consults ends (the stride's sample has left the surface's outline, the ball's
+  // back layer at its rim): a crossing just before the outline would be missed.
+  int wasCovered = 0;
+  for (int coarse = 0; coarse < steps + MARCH_STRIDE; coarse += MARCH_STRIDE)
   {
     int j = min(coarse, steps);
-    if (MarchSample(o, d, line, depthLine, j, steps, next, current, layers, result))
+    int covered;
+    bool hit = MarchSample(o, d, line, depthLine, j, steps, next, current, layers, result, covered);
+    if (hit || (wasCovered & ~covered) != 0)
     {
-      for (int fine = max(j - stride + 1, 0); fine < j; ++fine)
+      // The first sample of the stride that meets a surface replaces the stride's.
+      bool earlier = false;
+      int unused;
+      for (int fine = max(j - MARCH_STRIDE + 1, 0); fine < j && !earlier; ++fine)
       {
-        if (MarchSample(o, d, line, depthLine, fine, steps, next, current, layers, result))
-        {
-          break;
-        }
+        earlier =
+          MarchSample(o, d, line, depthLine, fine, steps, next, current, layers, result, unused);
       }
+      hit = hit || earlier;
+    }
+    if (hit)
+    {
       break;
     }
+    wasCovered = covered;
   }
   RefineOpaqueHit(o, d, result);
   SmoothHitNormal(o, d, result);
