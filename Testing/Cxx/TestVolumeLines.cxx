@@ -1053,6 +1053,31 @@ TEST(VolumeLines, MediumFillingAClosedBallAsTheReference)
   }
 }
 
+/**
+ * Each technique of FillsTechniques' first three against the reference on `renderer`:
+ * the volume caustic's total within ratioBounds[k] and its relative L2 under l2Bounds[k].
+ */
+void ExpectVolumeCausticsAsTheReference(vtkOpenGLRenderer* renderer, const std::string& label,
+  const double ratioBounds[3], const double l2Bounds[3])
+{
+  const CausticLayers reference = ReferenceLayers(renderer);
+  for (int k = 0; k < 3; ++k)
+  {
+    const FillsTechnique& technique = FillsTechniques[k];
+    ASSERT_TRUE(technique.Volume);
+    const CausticLayers layers = TechniqueLayers(renderer, technique);
+    vtkNew<vtkCausticsErrorMetrics> metrics;
+    metrics->SetArrayName("VolumeRadiance");
+    ASSERT_TRUE(metrics->Compute(layers.Volume, reference.Volume)) << technique.Name;
+    const auto result = metrics->GetResult();
+    std::cout << label << ", " << technique.Name << " volume caustic: " << metrics->GetSummary()
+              << "\n";
+    EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << label << ", " << technique.Name;
+    EXPECT_NEAR(result.FluxRatio, 1.0, ratioBounds[k]) << label << ", " << technique.Name;
+    EXPECT_LT(result.RelativeL2Error, l2Bounds[k]) << label << ", " << technique.Name;
+  }
+}
+
 // The same ball, the medium filling it, seen by a camera inside it: the volume caustic
 // is the light converging in the ball, drawn from the pieces caustic maps' phase 1 and
 // cascaded's stretches inside append, and screen-space's. The camera is amid the
@@ -1063,25 +1088,10 @@ TEST(VolumeLines, MediumFillingAClosedBallAsTheReference)
 // 0.124, 0.146, 0.114; bounds just above.
 TEST(VolumeLines, MediumFillingAClosedBallSeenFromInside)
 {
-  vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeBallInMedium(true, true);
-  const CausticLayers reference = ReferenceLayers(renderer);
   const double ratioBounds[] = { 0.025, 0.045, 0.035 }; // FillsTechniques' order
   const double l2Bounds[] = { 0.13, 0.15, 0.12 };
-  for (int k = 0; k < 3; ++k)
-  {
-    const FillsTechnique& technique = FillsTechniques[k];
-    ASSERT_TRUE(technique.Volume);
-    const CausticLayers layers = TechniqueLayers(renderer, technique);
-    vtkNew<vtkCausticsErrorMetrics> metrics;
-    metrics->SetArrayName("VolumeRadiance");
-    ASSERT_TRUE(metrics->Compute(layers.Volume, reference.Volume)) << technique.Name;
-    const auto result = metrics->GetResult();
-    std::cout << "ball in a medium filling it, seen from inside, " << technique.Name
-              << " volume caustic: " << metrics->GetSummary() << "\n";
-    EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << technique.Name;
-    EXPECT_NEAR(result.FluxRatio, 1.0, ratioBounds[k]) << technique.Name;
-    EXPECT_LT(result.RelativeL2Error, l2Bounds[k]) << technique.Name;
-  }
+  ExpectVolumeCausticsAsTheReference(MakeBallInMedium(true, true),
+    "ball in a medium filling it, seen from inside", ratioBounds, l2Bounds);
 }
 
 // An absorbing ball filled with the medium, seen from inside: the light converging in
@@ -1113,22 +1123,8 @@ TEST(VolumeLines, FilledAbsorbingRefractorAsTheReference)
         vtkCausticsMaterial::SetAttenuation(actor->GetProperty(), absorption);
       }
     }
-    const CausticLayers reference = ReferenceLayers(renderer);
-    for (int k = 0; k < 3; ++k)
-    {
-      const FillsTechnique& technique = FillsTechniques[k];
-      ASSERT_TRUE(technique.Volume);
-      const CausticLayers layers = TechniqueLayers(renderer, technique);
-      vtkNew<vtkCausticsErrorMetrics> metrics;
-      metrics->SetArrayName("VolumeRadiance");
-      ASSERT_TRUE(metrics->Compute(layers.Volume, reference.Volume)) << technique.Name;
-      const auto result = metrics->GetResult();
-      std::cout << "absorbing ball (" << absorptions[a] << " 1/m) in a medium filling it, "
-                << "seen from inside, " << technique.Name
-                << " volume caustic: " << metrics->GetSummary() << "\n";
-      EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0) << technique.Name;
-      EXPECT_NEAR(result.FluxRatio, 1.0, ratioBounds[a][k]) << technique.Name;
-      EXPECT_LT(result.RelativeL2Error, l2Bounds[a][k]) << technique.Name;
-    }
+    const std::string label = "absorbing ball (" + std::to_string(absorptions[a]) +
+      " 1/m) in a medium filling it, seen from inside";
+    ExpectVolumeCausticsAsTheReference(renderer, label, ratioBounds[a], l2Bounds[a]);
   }
 }
