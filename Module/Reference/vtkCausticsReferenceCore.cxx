@@ -2242,11 +2242,17 @@ struct ReferenceTracer::Internals
           }
           glm::dvec3 o{ 0.0 }, v{ 0.0 };
           this->PixelRay(i, static_cast<int>(row), o, v);
+          // The camera ray's length to its first surface, from the eye (a parallel
+          // view: from the near plane).
+          const Camera& view = this->Scene->View;
+          const double fromEye = view.parallel
+            ? hits[id].t
+            : glm::distance(ToGlm(view.position), hits[id].position);
           Random random(this->Settings.seed ^ 0x27d4eb2fULL, 0x85ebULL + id, 3);
           glm::dvec3 sum{ 0.0 };
           for (int k = 0; k < samples; ++k)
           {
-            sum += this->CameraPath(v, hits[id], grid, -radii[id], random);
+            sum += this->CameraPath(v, hits[id], fromEye, grid, -radii[id], random);
           }
           StoreFloat(sum * (1.0 / samples), &image.specular[3 * id]);
         }
@@ -2261,13 +2267,20 @@ struct ReferenceTracer::Internals
    * Fresnel reflectance; Beer-Lambert inside glass. It ends on a receiver, with
    * albedo x (direct + caustic irradiance there, the caustic from the photons with
    * kernel radius `radius`), or leaving the scene, with the background; black after
-   * maxBounces events. The medium in air is not applied.
+   * maxBounces events. The medium in air is not applied. A first surface that is a
+   * refractor seen from its back side means the eye is in that refractor (as the GPU's
+   * camera view decides): its absorption over the `fromEye` metres the ray crossed.
    */
-  glm::dvec3 CameraPath(
-    glm::dvec3 v, Hit hit, const PhotonGrid& grid, double radius, Random& random) const
+  glm::dvec3 CameraPath(glm::dvec3 v, Hit hit, double fromEye, const PhotonGrid& grid,
+    double radius, Random& random) const
   {
     glm::dvec3 throughput{ 1.0 };
     int inside = -1;
+    if (this->MaterialOf(hit.mesh).role == Role::Refractor &&
+      glm::dot(v, hit.geometricNormal) > 0.0)
+    {
+      throughput *= glm::exp(ToGlm(this->MaterialOf(hit.mesh).attenuation) * -fromEye);
+    }
     for (int event = 0; event <= this->Settings.maxBounces; ++event)
     {
       const Material& material = this->MaterialOf(hit.mesh);

@@ -3,8 +3,11 @@
 // events, the flux balance, and a conductor mirror against Born & Wolf's Fresnel.
 #include "TestReferenceUtilities.h"
 
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCommand.h"
@@ -294,6 +297,71 @@ TEST(ReferenceRenderer, CausticSeenOnlyInAMirror)
     // holds tens of stratified photons); 1 % leaves room for other seeds.
     EXPECT_NEAR(sum[c] / count / expected, 1.0, 0.01) << "channel " << c;
   }
+}
+
+// An eye inside absorbing glass of index 1 (no bending, no reflection): every camera
+// path crosses the glass straight to the surface it sees first, and, where the floor
+// beyond is lit directly, its colour is the colour without absorption times
+// exp(-sigma d), d the eye's distance to that surface, exactly (same seed, same paths).
+// The floor in the ball's shadow takes photons that crossed the glass too, dimmer
+// still. Until the camera's stretch inside the glass was absorbed, every ratio was 1.
+TEST(ReferenceRenderer, EyeInsideAbsorbingGlass)
+{
+  const double sigma = 0.5;
+  // In the ball, looking down and out at the floor around it (the eye of
+  // TestSpecularAppearance's CameraInsideTheGlass, a wider view).
+  const double eye[3] = { 0.35, 3.4, 0.25 }, focal[3] = { 1.5, 0.0, 1.0 },
+               up[3] = { 0.0, 1.0, 0.0 };
+  vtkSmartPointer<vtkImageData> images[2];
+  for (int absorbs = 0; absorbs < 2; ++absorbs)
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkCausticsBuiltinScene> scene;
+    ASSERT_TRUE(scene->Populate(renderer));
+    vtkActorCollection* actors = renderer->GetActors();
+    actors->InitTraversal();
+    const double attenuation[3] = { absorbs * sigma, absorbs * sigma, absorbs * sigma };
+    for (vtkActor* actor = actors->GetNextActor(); actor; actor = actors->GetNextActor())
+    {
+      if (vtkCausticsMaterial::Describe(actor).role == caustics::Role::Refractor)
+      {
+        vtkCausticsMaterial::MakeGlass(actor->GetProperty(), 1.0);
+        vtkCausticsMaterial::SetAttenuation(actor->GetProperty(), attenuation);
+      }
+    }
+    reftest::SetCamera(renderer, eye, focal, up, 90.0);
+    auto reference = reftest::MakeReference(renderer, 32, 32, 20000);
+    reference->SetSpecularSamples(2);
+    ASSERT_TRUE(reference->Update()) << reference->GetLastError();
+    images[absorbs] = reference->GetOutput();
+  }
+  int lit = 0, compared = 0;
+  for (int j = 0; j < 32; ++j)
+  {
+    for (int i = 0; i < 32; ++i)
+    {
+      const double clear = reftest::At(images[0], "SpecularColor", i, j, 1);
+      if (reftest::At(images[1], "SpecularMask", i, j) != 1.0 || !(clear > 0.0))
+      {
+        continue;
+      }
+      double d2 = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double x = reftest::At(images[1], "Position", i, j, c) - eye[c];
+        d2 += x * x;
+      }
+      const double expected = std::exp(-sigma * std::sqrt(d2));
+      const double ratio = reftest::At(images[1], "SpecularColor", i, j, 1) / clear / expected;
+      ++compared;
+      lit += std::abs(ratio - 1.0) < 1e-4 ? 1 : 0;
+      // Never more than the glass lets through.
+      EXPECT_LT(ratio, 1.0 + 1e-4) << "pixel " << i << ", " << j;
+    }
+  }
+  std::cout << compared << " glass pixels, " << lit << " of them exactly exp(-sigma d)\n";
+  EXPECT_GT(compared, 500);
+  EXPECT_GT(lit, compared / 2);
 }
 
 TEST(ReferenceRenderer, ReportsProgress)
