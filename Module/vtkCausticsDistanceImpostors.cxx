@@ -383,6 +383,7 @@ void vtkCausticsDistanceImpostors::SetUniforms(
   program->SetUniformi("impostorRadiance", units.Bind(in.Radiance.Handle));
   program->SetUniformi("impostorResolution", this->Resolution);
   program->SetUniformf("impostorCausticUnit", static_cast<float>(this->CausticUnit));
+  program->SetUniformi("impostorCausticRadius", this->CausticRadius);
   if (this->CausticUnit > 0.0)
   {
     this->BindCausticImage();
@@ -478,6 +479,7 @@ void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReflectorBounces: " << this->ReflectorBounces << "\n";
   os << indent << "MapRenders: " << this->MapRenders << "\n";
   os << indent << "ReflectorWinding: " << this->Internal->ReflectorWinding << "\n";
+  os << indent << "CausticRadius: " << this->CausticRadius << " texels\n";
   os << indent << "CausticUnit: " << this->CausticUnit << " W per count\n";
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {

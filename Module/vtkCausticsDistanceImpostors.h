@@ -122,6 +122,17 @@ public:
   vtkGetMacro(ReflectorBounces, int);
   ///@}
 
+  ///@{
+  /**
+   * The caustic store's read window: the caustic irradiance at a texel is the stored
+   * flux of the (2 r + 1)^2 texels of its face around it that show the same surface,
+   * over their area (a box density estimate; one texel alone holds about one photon
+   * where the light is spread). In [0, 8], default 2.
+   */
+  vtkSetClampMacro(CausticRadius, int, 0, 8);
+  vtkGetMacro(CausticRadius, int);
+  ///@}
+
   /**
    * The generalized winding number of the triangles of `meshes` (xyz per vertex,
    * three indices per triangle) at `point`: the sum of their signed solid angles
@@ -191,6 +202,7 @@ protected:
   int LinearSteps = 32;
   int SecantSteps = 8;
   int ReflectorBounces = 8;
+  int CausticRadius = 2;
   int MapRenders = 0;
   double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
 

@@ -20,6 +20,7 @@ uniform int impostorReflectorBounces; // mirror-to-mirror reflections in a row, 
 // there, in counts of impostorCausticUnit W (0: no store this frame).
 layout(r32i, binding = CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE) uniform iimage2DArray impostorCaustic;
 uniform float impostorCausticUnit;
+uniform int impostorCausticRadius; // the store's read window: (2 r + 1)^2 texels
 
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
@@ -251,7 +252,12 @@ float ImpostorTexelArea(int map, ivec3 texel)
 
 // The caustic irradiance (W/m^2, net of the direct light the specular objects block;
 // may be negative in a shadow) at the receiver that `texel` of an environment map
-// shows, from the caustic store; zero without one.
+// shows, from the caustic store; zero without one. A density estimate over the
+// (2 impostorCausticRadius + 1)^2 texels of the face around it that show the same
+// surface (same material, normals within 60 degrees, within the window's footprint
+// of its tangent plane): their flux over their area. One texel alone holds about one
+// photon where the light is spread (256^2 photons over a pool, a 256-texel face a
+// metre away: 8 mm each), and its count is that photon's noise.
 vec3 ImpostorCausticIrradiance(ivec3 texel)
 {
   if (!(impostorCausticUnit > 0.0))
@@ -263,10 +269,36 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
   {
     return vec3(0.0); // REFLECTOR_SURFACE holds no receiver
   }
-  vec3 counts = vec3(float(imageLoad(impostorCaustic, texel).x),
-    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, layers)).x),
-    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, 2 * layers)).x));
-  return counts * impostorCausticUnit / ImpostorTexelArea(texel.z / 6, texel);
+  int map = texel.z / 6;
+  vec4 own = texelFetch(impostorPosition, texel, 0);
+  vec3 n = normalize(texelFetch(impostorNormal, texel, 0).xyz);
+  float reach = float(2 * impostorCausticRadius + 1) * 2.0 *
+    distance(own.xyz, impostorCentre[map]) / float(impostorResolution);
+  vec3 counts = vec3(0.0);
+  float area = 0.0;
+  for (int y = -impostorCausticRadius; y <= impostorCausticRadius; ++y)
+  {
+    for (int x = -impostorCausticRadius; x <= impostorCausticRadius; ++x)
+    {
+      ivec3 k = ivec3(texel.xy + ivec2(x, y), texel.z);
+      if (any(lessThan(k.xy, ivec2(0))) || any(greaterThanEqual(k.xy, ivec2(impostorResolution))))
+      {
+        continue;
+      }
+      vec4 s = texelFetch(impostorPosition, k, 0);
+      vec3 m = texelFetch(impostorNormal, k, 0).xyz;
+      if (s.w != own.w || !(dot(m, m) > 0.0) || dot(normalize(m), n) < 0.5 ||
+        abs(dot(s.xyz - own.xyz, n)) > reach)
+      {
+        continue;
+      }
+      counts += vec3(float(imageLoad(impostorCaustic, k).x),
+        float(imageLoad(impostorCaustic, k + ivec3(0, 0, layers)).x),
+        float(imageLoad(impostorCaustic, k + ivec3(0, 0, 2 * layers)).x));
+      area += ImpostorTexelArea(map, k);
+    }
+  }
+  return area > 0.0 ? counts * impostorCausticUnit / area : vec3(0.0);
 }
 
 // Adds `flux` (W per channel, negative for blocked light) landed at h on a receiver
