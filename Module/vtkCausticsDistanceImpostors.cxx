@@ -11,7 +11,12 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkCausticsCausticStoreCS.h"       // the store's fill (shared by the techniques)
+#include "vtkCausticsImpostorCommon.h"        // Hit() over the cube maps
 #include "vtkCausticsImpostorShadeCS.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsPhotonBufferCommon.h"    // AllFinite
+#include "vtkCausticsPhotonGrid.h"
 
 #include <algorithm>
 #include <array>
@@ -106,6 +111,7 @@ struct vtkCausticsDistanceImpostors::Internals
   caustics::ssp::Texture Radiance; // RGBA32F: receivers' albedo x direct irradiance
   caustics::ssp::Texture Caustic;  // R32I, 3 x 18 layers: caustic flux per texel, fixed point
   vtkNew<vtkCausticsShaderProgram> Shade;
+  vtkNew<vtkCausticsShaderProgram> Store; // glsl/vtkCausticsCausticStoreCS.glsl
   std::array<std::array<float, 16>, Faces> Rotation{};
   double Centre[NUMBER_OF_MAPS][3] = {};
   double Reach[NUMBER_OF_MAPS] = {}; // longest ray segment a search needs, m
@@ -125,6 +131,10 @@ vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
   this->Internal->Face->AlbedoOff(); // the arrays take positions and normals
   this->Internal->Shade->SetName("distance impostor shading");
   this->Internal->Shade->SetComputeSource(vtkCausticsImpostorShadeCS);
+  this->Internal->Store->SetName("caustic store");
+  const std::string store = std::string(vtkCausticsPhotonBufferCommon) +
+    vtkCausticsImpostorCommon + vtkCausticsCausticStoreCS;
+  this->Internal->Store->SetComputeSource(store.c_str());
 }
 
 vtkCausticsDistanceImpostors::~vtkCausticsDistanceImpostors()
@@ -433,6 +443,70 @@ void vtkCausticsDistanceImpostors::BeginCaustic(double unit)
   this->CausticUnit = unit > 0.0 && std::isfinite(unit) ? unit : 0.0;
 }
 
+void vtkCausticsDistanceImpostors::ResetCaustic()
+{
+  this->CausticUnit = 0.0;
+}
+
+bool vtkCausticsDistanceImpostors::StoreCaustic(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonRecords& landed, int width, int height, double maximumPhotonFlux,
+  vtkCausticsLightBuffers* lightBuffers, int light, const caustics::SceneData& scene,
+  bool shadow)
+{
+  auto& in = *this->Internal;
+  if (!in.Caustic.Handle || !landed.IsSet() || !lightBuffers || light < 0 ||
+    light >= static_cast<int>(scene.Lights.size()) || !lightBuffers->GetView(light).valid)
+  {
+    return true; // no maps, photons or light: nothing to store
+  }
+  if (!(this->CausticUnit > 0.0))
+  {
+    // Fixed point of the store: 1/4096 of the frame's first light's largest photon.
+    this->BeginCaustic(maximumPhotonFlux / 3.0 / 4096.0);
+    if (!(this->CausticUnit > 0.0))
+    {
+      return true;
+    }
+  }
+  vtkCausticsShaderProgram* p = in.Store;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  const caustics::LightView& view = lightBuffers->GetView(light);
+  const caustics::Light& source = scene.Lights[light];
+  const int resolution =
+    shadow ? lightBuffers->GetGBuffer(light)->GetPositionTexture()->GetWidth() : 0;
+  {
+    caustics::ssp::TextureUnits units(renWin);
+    p->SetUniformi("landedPosition", units.Bind(landed.Position));
+    p->SetUniformi("landedFlux", units.Bind(landed.Flux));
+    p->SetUniform2i("landedGrid", width, height);
+    vtkCausticsGBuffer* seen = lightBuffers->GetGBuffer(light);
+    p->SetUniformi("lightPosition", units.Bind(seen->GetPositionTexture()));
+    p->SetUniformi("lightNormal", units.Bind(seen->GetNormalTexture()));
+    p->SetUniformi("lightFlux", units.Bind(lightBuffers->GetFluxTexture(light)));
+    p->SetUniformi("lightResolution", resolution);
+    p->SetUniformi("lightType", static_cast<int>(source.type));
+    p->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
+      static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
+    p->SetUniform3f("lightAxis", static_cast<float>(view.axis[0]),
+      static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
+    const double* b = scene.Bounds;
+    p->SetUniform3f("boundsMin", static_cast<float>(b[0]), static_cast<float>(b[2]),
+      static_cast<float>(b[4]));
+    p->SetUniform3f("boundsMax", static_cast<float>(b[1]), static_cast<float>(b[3]),
+      static_cast<float>(b[5]));
+    p->SetUniformf("tolerance", static_cast<float>(1e-5 * scene.Scale()));
+    this->SetUniforms(p, units);
+    p->DispatchCovering2D(std::max(width, resolution), std::max(height, resolution), 8, 8);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  p->Unbind(renWin);
+  glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+  return true;
+}
+
 void vtkCausticsDistanceImpostors::BindCausticImage() const
 {
   glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, this->Internal->Caustic.Handle, 0, GL_TRUE,
@@ -464,6 +538,7 @@ void vtkCausticsDistanceImpostors::ReleaseGraphicsResources(vtkWindow* win)
   in.Normal.Release();
   in.Radiance.Release();
   in.Caustic.Release();
+  in.Store->ReleaseGraphicsResources(win);
   this->CausticUnit = 0.0;
   in.Shade->ReleaseGraphicsResources(win);
   in.Key.clear();

@@ -582,6 +582,21 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   return ok;
 }
 
+bool vtkCausticsRenderPass::StoreCaustic(const FrameInputs& f, int light,
+  const caustics::PhotonRecords& landed, int width, int height, double maximumPhotonFlux,
+  bool shadow)
+{
+  if (!this->StoresCaustic)
+  {
+    return true;
+  }
+  this->BeginStage("caustic store");
+  const bool ok = this->Internal->Impostors->StoreCaustic(
+    f.Window, landed, width, height, maximumPhotonFlux, f.LightBuffers, light, *f.Scene, shadow);
+  this->EndStage("caustic store");
+  return ok;
+}
+
 bool vtkCausticsRenderPass::UpdateImpostors(const FrameInputs& f)
 {
   this->BeginStage("distance impostors");
@@ -908,6 +923,13 @@ bool vtkCausticsRenderPass::RenderCaustics()
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_BLEND);
   state->vtkglDisable(GL_SCISSOR_TEST);
+  // The caustic store (StoreCaustic()): filled by the technique's photons only when
+  // the camera view reads map hits; its maps made first (only when the scene changed).
+  in.Impostors->ResetCaustic();
+  this->StoresCaustic = this->RefractionTracing && this->CameraViewMethod != SCREEN_SPACE &&
+    f.Geometry->GetNumberOfTriangles(
+      vtkCausticsSceneGeometry::RoleBit(2) | vtkCausticsSceneGeometry::RoleBit(3)) > 0 &&
+    this->UpdateImpostors(f);
   const bool ok = this->RenderCausticIrradiance(f);
   this->Result.Volume = ok && this->RenderVolumeRadiance(f, in.VolumeTexture);
   state->PopFramebufferBindings();
