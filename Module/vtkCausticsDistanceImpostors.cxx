@@ -109,7 +109,8 @@ struct vtkCausticsDistanceImpostors::Internals
   caustics::ssp::Texture Position; // RGBA32F, layer 6 map + face: world xyz, w = material
   caustics::ssp::Texture Normal;   // RGBA16F: normal as modelled, w = role
   caustics::ssp::Texture Radiance; // RGBA32F: receivers' albedo x direct irradiance
-  caustics::ssp::Texture Caustic;  // R32I, 3 x 18 layers: caustic flux per texel, fixed point
+  caustics::ssp::Texture Caustic;  // R32I, 4 x 18 layers: caustic flux per texel (fixed
+                                   // point), then the deposits per texel
   vtkNew<vtkCausticsShaderProgram> Shade;
   vtkNew<vtkCausticsShaderProgram> Store; // glsl/vtkCausticsCausticStoreCS.glsl
   std::array<std::array<float, 16>, Faces> Rotation{};
@@ -163,7 +164,7 @@ bool vtkCausticsDistanceImpostors::Update(
   in.Position.Ensure(r, r, layers, GL_RGBA32F);
   in.Normal.Ensure(r, r, layers, GL_RGBA16F);
   in.Radiance.Ensure(r, r, layers, GL_RGBA32F);
-  if (in.Caustic.Ensure(r, r, 3 * CausticMaps * Faces, GL_R32I))
+  if (in.Caustic.Ensure(r, r, 4 * CausticMaps * Faces, GL_R32I))
   {
     const int zero = 0;
     glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
@@ -394,6 +395,7 @@ void vtkCausticsDistanceImpostors::SetUniforms(
   program->SetUniformi("impostorResolution", this->Resolution);
   program->SetUniformf("impostorCausticUnit", static_cast<float>(this->CausticUnit));
   program->SetUniformi("impostorCausticRadius", this->CausticRadius);
+  program->SetUniformi("impostorCausticSamples", this->CausticSamples);
   if (this->CausticUnit > 0.0)
   {
     this->BindCausticImage();
@@ -555,6 +557,7 @@ void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MapRenders: " << this->MapRenders << "\n";
   os << indent << "ReflectorWinding: " << this->Internal->ReflectorWinding << "\n";
   os << indent << "CausticRadius: " << this->CausticRadius << " texels\n";
+  os << indent << "CausticSamples: " << this->CausticSamples << "\n";
   os << indent << "CausticUnit: " << this->CausticUnit << " W per count\n";
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {

@@ -126,13 +126,18 @@ public:
 
   ///@{
   /**
-   * The caustic store's read window: the caustic irradiance at a texel is the stored
-   * flux of the (2 r + 1)^2 texels of its face around it that show the same surface,
-   * over their area (a box density estimate; one texel alone holds about one photon
-   * where the light is spread). In [0, 8], default 2.
+   * The caustic store's read: the caustic irradiance at a texel is the stored flux
+   * over the area of the smallest square of texels around it (radius 0 to
+   * CausticRadius, counting only those that show the same surface) that holds
+   * CausticSamples deposits (photons or shadow samples) or more: an adaptive density
+   * estimate, sharp at a focus, smooth where the light is spread (one texel alone
+   * holds about one photon there). CausticRadius in [0, 8], default 3; CausticSamples
+   * in [1, 1024], default 8.
    */
   vtkSetClampMacro(CausticRadius, int, 0, 8);
   vtkGetMacro(CausticRadius, int);
+  vtkSetClampMacro(CausticSamples, int, 1, 1024);
+  vtkGetMacro(CausticSamples, int);
   ///@}
 
   /**
@@ -169,7 +174,8 @@ public:
    * The caustic store: per texel of the environment maps, the caustic flux that
    * landed on the receiver the texel shows, in fixed point (integer atomics: GPUs
    * without float atomics; W per count set by the frame's first StoreCaustic(), per
-   * channel; R32I, layer 18 channel + 6 map + face), so that a camera-view hit the
+   * channel; R32I, layer 18 channel + 6 map + face, then the deposits per texel in
+   * layer 54 + 6 map + face), so that a camera-view hit the
    * camera does not see (in a mirror, through glass, outside the frame) is shaded
    * with albedo x (its caustic irradiance) besides the map's direct light
    * (ImpostorCausticIrradiance() in glsl/vtkCausticsImpostorCommon.glsl, over
@@ -216,7 +222,8 @@ protected:
   int LinearSteps = 32;
   int SecantSteps = 8;
   int ReflectorBounces = 8;
-  int CausticRadius = 2;
+  int CausticRadius = 3;
+  int CausticSamples = 8;
   int MapRenders = 0;
   double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
   void BeginCaustic(double unit); // clears the store, sets its fixed point

@@ -100,9 +100,9 @@ vtkCausticsRenderPass::PhotonStorage vtkCausticsImpostorPhotonPass::GetPhotonSto
 {
   // Per emitter slot: the landed records and radii (52 B). Beside the grid: the
   // three cube maps of the distance impostors (18 layers of 16 + 8 + 16 B texels)
-  // and their caustic store (3 x 4 B per texel).
+  // and their caustic store (4 x 4 B per texel: flux per channel, deposits).
   const double r = this->GetDistanceImpostors()->GetResolution();
-  return { 52.0, 0.0, 18.0 * r * r * 52.0, false };
+  return { 52.0, 0.0, 18.0 * r * r * 56.0, false };
 }
 
 bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& in)

@@ -17,10 +17,12 @@ uniform int impostorReflectorBounces; // mirror-to-mirror reflections in a row, 
 // The caustic store (vtkCausticsDistanceImpostors::BeginCaustic): per environment-map
 // texel and channel (layer 18 channel + 6 map + face), the caustic flux that landed on
 // the receiver the texel shows, less the direct light the specular objects block
-// there, in counts of impostorCausticUnit W (0: no store this frame).
+// there, in counts of impostorCausticUnit W (0: no store this frame); layer
+// 54 + 6 map + face: the number of deposits (photons and shadow samples).
 layout(r32i, binding = CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE) uniform iimage2DArray impostorCaustic;
 uniform float impostorCausticUnit;
-uniform int impostorCausticRadius; // the store's read window: (2 r + 1)^2 texels
+uniform int impostorCausticRadius;  // the store's read window: (2 r + 1)^2 texels at most
+uniform int impostorCausticSamples; // deposits the read window grows to hold
 
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
@@ -252,12 +254,15 @@ float ImpostorTexelArea(int map, ivec3 texel)
 
 // The caustic irradiance (W/m^2, net of the direct light the specular objects block;
 // may be negative in a shadow) at the receiver that `texel` of an environment map
-// shows, from the caustic store; zero without one. A density estimate over the
-// (2 impostorCausticRadius + 1)^2 texels of the face around it that show the same
-// surface (same material, normals within 60 degrees, within the window's footprint
-// of its tangent plane): their flux over their area. One texel alone holds about one
-// photon where the light is spread (256^2 photons over a pool, a 256-texel face a
-// metre away: 8 mm each), and its count is that photon's noise.
+// shows, from the caustic store; zero without one. An adaptive density estimate: the
+// stored flux over the area of the smallest square of texels around it, radius 0 to
+// impostorCausticRadius, of the face that holds impostorCausticSamples deposits or
+// more (the last one otherwise), counting only texels that show the same surface
+// (same material, normals within 60 degrees, within the window's footprint of its
+// tangent plane). One texel alone holds about one photon where the light is spread
+// (256^2 photons over the pool, 8 mm texels a metre away), and its count is that
+// photon's noise; a fixed window wide enough for that blurs a focus seen in a mirror
+// to a quarter of its peak.
 vec3 ImpostorCausticIrradiance(ivec3 texel)
 {
   if (!(impostorCausticUnit > 0.0))
@@ -272,30 +277,40 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
   int map = texel.z / 6;
   vec4 own = texelFetch(impostorPosition, texel, 0);
   vec3 n = normalize(texelFetch(impostorNormal, texel, 0).xyz);
-  float reach = float(2 * impostorCausticRadius + 1) * 2.0 *
-    distance(own.xyz, impostorCentre[map]) / float(impostorResolution);
+  float footprint = 2.0 * distance(own.xyz, impostorCentre[map]) / float(impostorResolution);
   vec3 counts = vec3(0.0);
+  float samples = 0.0;
   float area = 0.0;
-  for (int y = -impostorCausticRadius; y <= impostorCausticRadius; ++y)
+  for (int ring = 0; ring <= impostorCausticRadius; ++ring)
   {
-    for (int x = -impostorCausticRadius; x <= impostorCausticRadius; ++x)
+    float reach = float(2 * ring + 1) * footprint;
+    for (int y = -ring; y <= ring; ++y)
     {
-      ivec3 k = ivec3(texel.xy + ivec2(x, y), texel.z);
-      if (any(lessThan(k.xy, ivec2(0))) || any(greaterThanEqual(k.xy, ivec2(impostorResolution))))
+      for (int x = -ring; x <= ring; ++x)
       {
-        continue;
+        ivec3 k = ivec3(texel.xy + ivec2(x, y), texel.z);
+        if (max(abs(x), abs(y)) != ring || any(lessThan(k.xy, ivec2(0))) ||
+          any(greaterThanEqual(k.xy, ivec2(impostorResolution))))
+        {
+          continue;
+        }
+        vec4 s = texelFetch(impostorPosition, k, 0);
+        vec3 m = texelFetch(impostorNormal, k, 0).xyz;
+        if (s.w != own.w || !(dot(m, m) > 0.0) || dot(normalize(m), n) < 0.5 ||
+          abs(dot(s.xyz - own.xyz, n)) > reach)
+        {
+          continue;
+        }
+        counts += vec3(float(imageLoad(impostorCaustic, k).x),
+          float(imageLoad(impostorCaustic, k + ivec3(0, 0, layers)).x),
+          float(imageLoad(impostorCaustic, k + ivec3(0, 0, 2 * layers)).x));
+        samples += float(imageLoad(impostorCaustic, k + ivec3(0, 0, 3 * layers)).x);
+        area += ImpostorTexelArea(map, k);
       }
-      vec4 s = texelFetch(impostorPosition, k, 0);
-      vec3 m = texelFetch(impostorNormal, k, 0).xyz;
-      if (s.w != own.w || !(dot(m, m) > 0.0) || dot(normalize(m), n) < 0.5 ||
-        abs(dot(s.xyz - own.xyz, n)) > reach)
-      {
-        continue;
-      }
-      counts += vec3(float(imageLoad(impostorCaustic, k).x),
-        float(imageLoad(impostorCaustic, k + ivec3(0, 0, layers)).x),
-        float(imageLoad(impostorCaustic, k + ivec3(0, 0, 2 * layers)).x));
-      area += ImpostorTexelArea(map, k);
+    }
+    if (samples >= float(impostorCausticSamples))
+    {
+      break;
     }
   }
   return area > 0.0 ? counts * impostorCausticUnit / area : vec3(0.0);
@@ -331,5 +346,6 @@ void ImpostorDepositCaustic(vec3 h, vec3 flux)
         imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, c * layers), counts[c]);
       }
     }
+    imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, 3 * layers), 1);
   }
 }
