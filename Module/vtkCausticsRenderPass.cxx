@@ -547,7 +547,9 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   }
   // 2. The distance impostors' cube maps, if the method uses them (only when the
   //    geometry changed: vtkCausticsDistanceImpostors).
-  const bool impostors = this->CameraViewMethod != SCREEN_SPACE && this->UpdateImpostors(f);
+  //    Already brought up to date this frame where the caustic store is filled.
+  const bool impostors =
+    this->CameraViewMethod != SCREEN_SPACE && (this->StoresCaustic || this->UpdateImpostors(f));
   // 3. Surfaces seen only through a refractor are shaded from their irradiance.
   const bool direct = this->EnsureDirectIrradiance("direct irradiance for refraction");
   this->BeginStage("refraction tracing");

@@ -203,6 +203,11 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // 28.3 %, bunny 55.4 % (57.1 % against 64 paths; 58.0 % before Hit() skipped the start
 // of rays starting behind the map's surface); BOTH ball lens 11.2 % (13.1 % against 64
 // paths), ring 23.8 % (33.1 %), pool 30.4 %. Bounds just above.
+// The impostor view's ring and pool with the caustic store, which the screen-space
+// photons fill since it became a shared stage (the floor the ring's wall hides and
+// the pool's near wall, seen only in the mirror or through the water, with their
+// caustic and shadow): ring 19.5 % (21.6 % with the store empty), pool 27.3 % (28.3 %);
+// bounds 0.20 and 0.28, just above.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -214,9 +219,9 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.22);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.20);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.24);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.29);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.28);
   EXPECT_LT(SpecularError("pool", "screen-space", both), 0.31);
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.56);
 }
