@@ -12,6 +12,7 @@
 #include "vtk_glew.h"
 
 #include "vtkCausticsCausticStoreCS.h"       // the store's fill (shared by the techniques)
+#include "vtkCausticsImpostorCausticAreaCS.h" // the store's coarse cells
 #include "vtkCausticsImpostorCommon.h"        // Hit() over the cube maps
 #include "vtkCausticsImpostorShadeCS.h"
 #include "vtkCausticsLightBuffers.h"
@@ -33,6 +34,10 @@ constexpr int Faces = 6;
 // The caustic store covers maps 0-2 (18 layers per channel, as the shaders index
 // it): photons land on receivers, which only the environment maps (0 and 2) show.
 constexpr int CausticMaps = 3;
+// The store's coarse level (glsl/vtkCausticsImpostorCommon.glsl): cells of
+// CoarseCell^2 texels, each channel's faces tiled 8 x 8 in CoarseLayers more layers.
+constexpr int CoarseCell = 8;
+constexpr int CoarseLayers = 2;
 
 // Forward and up axes of the six faces (+x, -x, +y, -y, +z, -z), the GL cube order.
 constexpr double FaceAxes[Faces][2][3] = {
@@ -110,9 +115,13 @@ struct vtkCausticsDistanceImpostors::Internals
   caustics::ssp::Texture Normal;   // RGBA16F: normal as modelled, w = role
   caustics::ssp::Texture Radiance; // RGBA32F: receivers' albedo x direct irradiance
   caustics::ssp::Texture Caustic;  // R32I, 4 x 18 layers: caustic flux per texel (fixed
-                                   // point), then the deposits per texel
+                                   // point), then the deposits per texel; 2 more: the
+                                   // same per coarse cell
+  caustics::ssp::Texture CausticArea; // R32F, a layer per store face: receiver area per
+                                      // coarse cell, m^2 (made with the maps)
   vtkNew<vtkCausticsShaderProgram> Shade;
   vtkNew<vtkCausticsShaderProgram> Store; // glsl/vtkCausticsCausticStoreCS.glsl
+  vtkNew<vtkCausticsShaderProgram> Area;  // glsl/vtkCausticsImpostorCausticAreaCS.glsl
   std::array<std::array<float, 16>, Faces> Rotation{};
   double Centre[NUMBER_OF_MAPS][3] = {};
   double Reach[NUMBER_OF_MAPS] = {}; // longest ray segment a search needs, m
@@ -136,6 +145,10 @@ vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
   const std::string store = std::string(vtkCausticsPhotonBufferCommon) +
     vtkCausticsImpostorCommon + vtkCausticsCausticStoreCS;
   this->Internal->Store->SetComputeSource(store.c_str());
+  this->Internal->Area->SetName("caustic store areas");
+  const std::string area = std::string(vtkCausticsPhotonBufferCommon) +
+    vtkCausticsImpostorCommon + vtkCausticsImpostorCausticAreaCS;
+  this->Internal->Area->SetComputeSource(area.c_str());
 }
 
 vtkCausticsDistanceImpostors::~vtkCausticsDistanceImpostors()
@@ -164,7 +177,7 @@ bool vtkCausticsDistanceImpostors::Update(
   in.Position.Ensure(r, r, layers, GL_RGBA32F);
   in.Normal.Ensure(r, r, layers, GL_RGBA16F);
   in.Radiance.Ensure(r, r, layers, GL_RGBA32F);
-  if (in.Caustic.Ensure(r, r, 4 * CausticMaps * Faces, GL_R32I))
+  if (in.Caustic.Ensure(r, r, 4 * CausticMaps * Faces + CoarseLayers, GL_R32I))
   {
     const int zero = 0;
     glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
@@ -175,7 +188,7 @@ bool vtkCausticsDistanceImpostors::Update(
   {
     ok = !in.Made[map] || this->RenderMap(renWin, geometry, map);
   }
-  ok = ok && this->ShadeMaps(renWin, geometry, scene);
+  ok = ok && this->ShadeMaps(renWin, geometry, scene) && this->MeasureCausticCells(renWin);
   ++this->MapRenders;
   if (!ok)
   {
@@ -380,6 +393,31 @@ bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
   return true;
 }
 
+bool vtkCausticsDistanceImpostors::MeasureCausticCells(vtkOpenGLRenderWindow* renWin)
+{
+  auto& in = *this->Internal;
+  const int cells = this->Resolution / CoarseCell;
+  const int layers = std::min(in.Position.Layers, CausticMaps * Faces);
+  in.CausticArea.Ensure(cells, cells, CausticMaps * Faces, GL_R32F);
+  const float zero = 0.0f;
+  glClearTexImage(in.CausticArea.Handle, 0, GL_RED, GL_FLOAT, &zero);
+  vtkCausticsShaderProgram* p = in.Area;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  {
+    caustics::ssp::TextureUnits units(renWin);
+    this->SetUniforms(p, units);
+    glBindImageTexture(0, in.CausticArea.Handle, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    const unsigned int groups = static_cast<unsigned int>((cells + 7) / 8);
+    p->Dispatch(groups, groups, static_cast<unsigned int>(layers));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  p->Unbind(renWin);
+  return true;
+}
+
 void vtkCausticsDistanceImpostors::SetUniforms(
   vtkCausticsShaderProgram* program, caustics::ssp::TextureUnits& units)
 {
@@ -396,6 +434,10 @@ void vtkCausticsDistanceImpostors::SetUniforms(
   program->SetUniformf("impostorCausticUnit", static_cast<float>(this->CausticUnit));
   program->SetUniformi("impostorCausticRadius", this->CausticRadius);
   program->SetUniformi("impostorCausticSamples", this->CausticSamples);
+  program->SetUniformi("impostorCausticCoarseSamples", this->CausticCoarseSamples);
+  program->SetUniformi("impostorCausticCells", in.CausticArea.Handle ? in.CausticArea.Width : 0);
+  program->SetUniformi("impostorCausticArea",
+    units.Bind(in.CausticArea.Handle ? in.CausticArea.Handle : in.Position.Handle));
   if (this->CausticUnit > 0.0)
   {
     this->BindCausticImage();
@@ -426,6 +468,8 @@ void vtkCausticsDistanceImpostors::SetAbsentUniforms(
   program->SetUniformi("impostorNormal", fallbackArrayUnit);
   program->SetUniformi("impostorRadiance", fallbackArrayUnit);
   program->SetUniformf("impostorCausticUnit", 0.0f);
+  program->SetUniformi("impostorCausticArea", fallbackArrayUnit);
+  program->SetUniformi("impostorCausticCells", 0);
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {
     program->SetUniformi(("impostorValid[" + std::to_string(map) + "]").c_str(), 0);
@@ -540,6 +584,8 @@ void vtkCausticsDistanceImpostors::ReleaseGraphicsResources(vtkWindow* win)
   in.Normal.Release();
   in.Radiance.Release();
   in.Caustic.Release();
+  in.CausticArea.Release();
+  in.Area->ReleaseGraphicsResources(win);
   in.Store->ReleaseGraphicsResources(win);
   this->CausticUnit = 0.0;
   in.Shade->ReleaseGraphicsResources(win);
@@ -558,6 +604,7 @@ void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReflectorWinding: " << this->Internal->ReflectorWinding << "\n";
   os << indent << "CausticRadius: " << this->CausticRadius << " texels\n";
   os << indent << "CausticSamples: " << this->CausticSamples << "\n";
+  os << indent << "CausticCoarseSamples: " << this->CausticCoarseSamples << "\n";
   os << indent << "CausticUnit: " << this->CausticUnit << " W per count\n";
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {

@@ -133,11 +133,21 @@ public:
    * estimate, sharp at a focus, smooth where the light is spread (one texel alone
    * holds about one photon there). CausticRadius in [0, 8], default 3; CausticSamples
    * in [1, 1024], default 8.
+   *
+   * Where even the widest window holds fewer, the light is spread thin (a wide water
+   * sheet: a few thousand photons on a floor the map shows with 65 536 texels), and
+   * photons and shadow samples, two lattices aliasing with the texels, would leave
+   * their difference to that noise. The read then takes the store's coarse level,
+   * cells of 8 x 8 texels summed as they are deposited: the 3 x 3 cells around the
+   * texel, or the 5 x 5 where those hold fewer than CausticCoarseSamples deposits (in
+   * [1, 4096], default 64: about 12 % noise where the light is that thin).
    */
   vtkSetClampMacro(CausticRadius, int, 0, 8);
   vtkGetMacro(CausticRadius, int);
   vtkSetClampMacro(CausticSamples, int, 1, 1024);
   vtkGetMacro(CausticSamples, int);
+  vtkSetClampMacro(CausticCoarseSamples, int, 1, 4096);
+  vtkGetMacro(CausticCoarseSamples, int);
   ///@}
 
   /**
@@ -224,6 +234,7 @@ protected:
   int ReflectorBounces = 8;
   int CausticRadius = 3;
   int CausticSamples = 8;
+  int CausticCoarseSamples = 64;
   int MapRenders = 0;
   double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
   void BeginCaustic(double unit); // clears the store, sets its fixed point
@@ -241,6 +252,8 @@ private:
   bool RenderMap(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, int map);
   bool ShadeMaps(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
     const caustics::SceneData& scene);
+  // The receiver area of each coarse cell of the caustic store (its sparse read).
+  bool MeasureCausticCells(vtkOpenGLRenderWindow* renWin);
 };
 
 #endif

@@ -23,6 +23,15 @@ layout(r32i, binding = CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE) uniform iimage2DArray im
 uniform float impostorCausticUnit;
 uniform int impostorCausticRadius;  // the store's read window: (2 r + 1)^2 texels at most
 uniform int impostorCausticSamples; // deposits the read window grows to hold
+// The store's coarse level, for receivers too sparsely lit for the fine window: the
+// same sums over cells of IMPOSTOR_COARSE^2 texels (impostorCausticCells per side of
+// a face, 0: none), 64 cells' faces tiled per layer from layer 72
+// (ImpostorCoarseTexel), and per cell the area of the receivers its texels show (m^2,
+// impostorCausticArea, layer 6 map + face; vtkCausticsImpostorCausticAreaCS.glsl).
+const int IMPOSTOR_COARSE = 8;
+uniform int impostorCausticCells;
+uniform int impostorCausticCoarseSamples;
+uniform sampler2DArray impostorCausticArea;
 
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
@@ -263,6 +272,21 @@ float ImpostorTexelArea(int map, ivec3 texel)
 // (256^2 photons over the pool, 8 mm texels a metre away), and its count is that
 // photon's noise; a fixed window wide enough for that blurs a focus seen in a mirror
 // to a quarter of its peak.
+// The cell of the store's coarse level that holds `texel` (a layer 6 map + face).
+ivec2 ImpostorCoarseCell(ivec2 texel)
+{
+  return min(texel / IMPOSTOR_COARSE, ivec2(impostorCausticCells - 1));
+}
+
+// Where the coarse level keeps channel c (0-2: flux, 3: deposits) of `cell` of
+// layer 6 map + face: tile 18 c + layer of the 8 x 8 tiles of layers 72 and 73.
+ivec3 ImpostorCoarseTexel(ivec2 cell, int layer, int c)
+{
+  int tile = 18 * c + layer;
+  return ivec3((tile % 8) * impostorCausticCells + cell.x,
+    (tile / 8 % 8) * impostorCausticCells + cell.y, 72 + tile / 64);
+}
+
 vec3 ImpostorCausticIrradiance(ivec3 texel)
 {
   if (!(impostorCausticUnit > 0.0))
@@ -313,6 +337,41 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
       break;
     }
   }
+  if (samples < float(impostorCausticSamples) && impostorCausticCells > 0)
+  {
+    // Too few deposits within the fine window (light spread thin over a receiver the
+    // map sees finely): the 3 x 3, then 5 x 5, cells of the coarse level around it,
+    // whatever surfaces they show. Photons and shadow samples are lattices that
+    // alias with the texels; a window holding too few of either leaves their
+    // difference (a flat water sheet's T - 1 of the direct light) to that noise.
+    ivec2 centre = ImpostorCoarseCell(texel.xy);
+    for (int ring = 1; ring <= 2; ++ring)
+    {
+      counts = vec3(0.0);
+      samples = 0.0;
+      area = 0.0;
+      for (int y = -ring; y <= ring; ++y)
+      {
+        for (int x = -ring; x <= ring; ++x)
+        {
+          ivec2 cell = centre + ivec2(x, y);
+          if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, ivec2(impostorCausticCells))))
+          {
+            continue;
+          }
+          counts += vec3(float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 0)).x),
+            float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 1)).x),
+            float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 2)).x));
+          samples += float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 3)).x);
+          area += texelFetch(impostorCausticArea, ivec3(cell, texel.z), 0).x;
+        }
+      }
+      if (samples >= float(impostorCausticCoarseSamples))
+      {
+        break;
+      }
+    }
+  }
   return area > 0.0 ? counts * impostorCausticUnit / area : vec3(0.0);
 }
 
@@ -347,5 +406,17 @@ void ImpostorDepositCaustic(vec3 h, vec3 flux)
       }
     }
     imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, 3 * layers), 1);
+    if (impostorCausticCells > 0)
+    {
+      ivec2 cell = ImpostorCoarseCell(texel.xy);
+      for (int c = 0; c < 3; ++c)
+      {
+        if (counts[c] != 0)
+        {
+          imageAtomicAdd(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, c), counts[c]);
+        }
+      }
+      imageAtomicAdd(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 3), 1);
+    }
   }
 }
