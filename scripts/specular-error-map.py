@@ -64,7 +64,8 @@ def reference_color(renderer, seed):
         array(out, "SpecularMask", 1)[:, :, 0] > 0
 
 
-def stage(renderer, window, method, name, store_radius=None, store_samples=None):
+def stage(renderer, window, method, name, store_radius=None, store_samples=None,
+          store_coarse_samples=None):
     technique = vtkcaustics.vtkCausticsTechniques.NewPass(name)
     if technique is None:
         raise SystemExit(f"unknown technique {name!r}")
@@ -73,6 +74,8 @@ def stage(renderer, window, method, name, store_radius=None, store_samples=None)
         technique.GetDistanceImpostors().SetCausticRadius(store_radius)
     if store_samples is not None:
         technique.GetDistanceImpostors().SetCausticSamples(store_samples)
+    if store_coarse_samples is not None:
+        technique.GetDistanceImpostors().SetCausticCoarseSamples(store_coarse_samples)
     technique.SetCameraViewMethod(method)
     technique.KeepBuffersOn()
     renderer.SetPass(technique)
@@ -104,6 +107,8 @@ def main():
                         help="the caustic store's read window (texels; default: the class's)")
     parser.add_argument("--store-samples", type=int, default=None,
                         help="deposits the store's read window grows to hold (default: the class's)")
+    parser.add_argument("--store-coarse-samples", type=int, default=None,
+                        help="deposits the store's coarse window grows to hold (default: the class's)")
     parser.add_argument("--no-noise", action="store_true",
                         help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
@@ -131,8 +136,8 @@ def main():
             floor = rel(other, truth, mask) / np.sqrt(2.0)
             print(f"{scene_name}: reference noise floor (seeds 1, 2; /sqrt 2) {100 * floor:.1f} %")
         for name in args.technique.split(","):
-            views = {m: stage(renderer, window, m, name, args.store_radius,
-                                    args.store_samples) for m in sorted(set(methods + [0, 2]))}
+            views = {m: stage(renderer, window, m, name, args.store_radius, args.store_samples,
+                              args.store_coarse_samples) for m in sorted(set(methods + [0, 2]))}
             # Pixels where a march left the view: there the combined view took the impostors.
             left = np.abs(views[0]["TechniqueColor"][:, :, :3] -
                           views[2]["TechniqueColor"][:, :, :3]).max(axis=-1) > 1e-6
