@@ -121,7 +121,11 @@ bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& i
     {
       continue;
     }
+    // The caustic store (shared) after the trace: the landed photons, the light's shadow.
+    auto& s = *this->Internal;
     ok = this->Emit(in, light) && this->RenderLightLayers(in, light) && this->Trace(in, light) &&
+      this->StoreCaustic(in, light, s.Landed.Records(), s.Grid.Width, s.Grid.Height,
+        s.Grid.MaximumPhotonFlux) &&
       this->DrawVolumeLines(in) && this->Splat(in);
   }
   ++this->FrameIndex; // the next frame is a fresh, independent estimate

@@ -11,7 +11,13 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkCausticsCausticStoreCS.h"       // the store's fill (shared by the techniques)
+#include "vtkCausticsImpostorCausticAreaCS.h" // the store's coarse cells
+#include "vtkCausticsImpostorCommon.h"        // Hit() over the cube maps
 #include "vtkCausticsImpostorShadeCS.h"
+#include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsPhotonBufferCommon.h"    // AllFinite
+#include "vtkCausticsPhotonGrid.h"
 
 #include <algorithm>
 #include <array>
@@ -28,6 +34,10 @@ constexpr int Faces = 6;
 // The caustic store covers maps 0-2 (18 layers per channel, as the shaders index
 // it): photons land on receivers, which only the environment maps (0 and 2) show.
 constexpr int CausticMaps = 3;
+// The store's coarse level (glsl/vtkCausticsImpostorCommon.glsl): cells of
+// CoarseCell^2 texels, each channel's faces tiled 8 x 8 in CoarseLayers more layers.
+constexpr int CoarseCell = 8;
+constexpr int CoarseLayers = 2;
 
 // Forward and up axes of the six faces (+x, -x, +y, -y, +z, -z), the GL cube order.
 constexpr double FaceAxes[Faces][2][3] = {
@@ -104,8 +114,14 @@ struct vtkCausticsDistanceImpostors::Internals
   caustics::ssp::Texture Position; // RGBA32F, layer 6 map + face: world xyz, w = material
   caustics::ssp::Texture Normal;   // RGBA16F: normal as modelled, w = role
   caustics::ssp::Texture Radiance; // RGBA32F: receivers' albedo x direct irradiance
-  caustics::ssp::Texture Caustic;  // R32I, 3 x 18 layers: caustic flux per texel, fixed point
+  caustics::ssp::Texture Caustic;  // R32I, 4 x 18 layers: caustic flux per texel (fixed
+                                   // point), then the deposits per texel; 2 more: the
+                                   // same per coarse cell
+  caustics::ssp::Texture CausticArea; // R32F, a layer per store face: receiver area per
+                                      // coarse cell, m^2 (made with the maps)
   vtkNew<vtkCausticsShaderProgram> Shade;
+  vtkNew<vtkCausticsShaderProgram> Store; // glsl/vtkCausticsCausticStoreCS.glsl
+  vtkNew<vtkCausticsShaderProgram> Area;  // glsl/vtkCausticsImpostorCausticAreaCS.glsl
   std::array<std::array<float, 16>, Faces> Rotation{};
   double Centre[NUMBER_OF_MAPS][3] = {};
   double Reach[NUMBER_OF_MAPS] = {}; // longest ray segment a search needs, m
@@ -125,6 +141,14 @@ vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
   this->Internal->Face->AlbedoOff(); // the arrays take positions and normals
   this->Internal->Shade->SetName("distance impostor shading");
   this->Internal->Shade->SetComputeSource(vtkCausticsImpostorShadeCS);
+  this->Internal->Store->SetName("caustic store");
+  const std::string store = std::string(vtkCausticsPhotonBufferCommon) +
+    vtkCausticsImpostorCommon + vtkCausticsCausticStoreCS;
+  this->Internal->Store->SetComputeSource(store.c_str());
+  this->Internal->Area->SetName("caustic store areas");
+  const std::string area = std::string(vtkCausticsPhotonBufferCommon) +
+    vtkCausticsImpostorCommon + vtkCausticsImpostorCausticAreaCS;
+  this->Internal->Area->SetComputeSource(area.c_str());
 }
 
 vtkCausticsDistanceImpostors::~vtkCausticsDistanceImpostors()
@@ -153,7 +177,7 @@ bool vtkCausticsDistanceImpostors::Update(
   in.Position.Ensure(r, r, layers, GL_RGBA32F);
   in.Normal.Ensure(r, r, layers, GL_RGBA16F);
   in.Radiance.Ensure(r, r, layers, GL_RGBA32F);
-  if (in.Caustic.Ensure(r, r, 3 * CausticMaps * Faces, GL_R32I))
+  if (in.Caustic.Ensure(r, r, 4 * CausticMaps * Faces + CoarseLayers, GL_R32I))
   {
     const int zero = 0;
     glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
@@ -164,7 +188,7 @@ bool vtkCausticsDistanceImpostors::Update(
   {
     ok = !in.Made[map] || this->RenderMap(renWin, geometry, map);
   }
-  ok = ok && this->ShadeMaps(renWin, geometry, scene);
+  ok = ok && this->ShadeMaps(renWin, geometry, scene) && this->MeasureCausticCells(renWin);
   ++this->MapRenders;
   if (!ok)
   {
@@ -369,6 +393,31 @@ bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
   return true;
 }
 
+bool vtkCausticsDistanceImpostors::MeasureCausticCells(vtkOpenGLRenderWindow* renWin)
+{
+  auto& in = *this->Internal;
+  const int cells = this->Resolution / CoarseCell;
+  const int layers = std::min(in.Position.Layers, CausticMaps * Faces);
+  in.CausticArea.Ensure(cells, cells, CausticMaps * Faces, GL_R32F);
+  const float zero = 0.0f;
+  glClearTexImage(in.CausticArea.Handle, 0, GL_RED, GL_FLOAT, &zero);
+  vtkCausticsShaderProgram* p = in.Area;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  {
+    caustics::ssp::TextureUnits units(renWin);
+    this->SetUniforms(p, units);
+    glBindImageTexture(0, in.CausticArea.Handle, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    const unsigned int groups = static_cast<unsigned int>((cells + 7) / 8);
+    p->Dispatch(groups, groups, static_cast<unsigned int>(layers));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  p->Unbind(renWin);
+  return true;
+}
+
 void vtkCausticsDistanceImpostors::SetUniforms(
   vtkCausticsShaderProgram* program, caustics::ssp::TextureUnits& units)
 {
@@ -383,6 +432,12 @@ void vtkCausticsDistanceImpostors::SetUniforms(
   program->SetUniformi("impostorRadiance", units.Bind(in.Radiance.Handle));
   program->SetUniformi("impostorResolution", this->Resolution);
   program->SetUniformf("impostorCausticUnit", static_cast<float>(this->CausticUnit));
+  program->SetUniformi("impostorCausticRadius", this->CausticRadius);
+  program->SetUniformi("impostorCausticSamples", this->CausticSamples);
+  program->SetUniformi("impostorCausticCoarseSamples", this->CausticCoarseSamples);
+  program->SetUniformi("impostorCausticCells", in.CausticArea.Handle ? in.CausticArea.Width : 0);
+  program->SetUniformi("impostorCausticArea",
+    units.Bind(in.CausticArea.Handle ? in.CausticArea.Handle : in.Position.Handle));
   if (this->CausticUnit > 0.0)
   {
     this->BindCausticImage();
@@ -413,6 +468,8 @@ void vtkCausticsDistanceImpostors::SetAbsentUniforms(
   program->SetUniformi("impostorNormal", fallbackArrayUnit);
   program->SetUniformi("impostorRadiance", fallbackArrayUnit);
   program->SetUniformf("impostorCausticUnit", 0.0f);
+  program->SetUniformi("impostorCausticArea", fallbackArrayUnit);
+  program->SetUniformi("impostorCausticCells", 0);
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {
     program->SetUniformi(("impostorValid[" + std::to_string(map) + "]").c_str(), 0);
@@ -430,6 +487,70 @@ void vtkCausticsDistanceImpostors::BeginCaustic(double unit)
   const int zero = 0;
   glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
   this->CausticUnit = unit > 0.0 && std::isfinite(unit) ? unit : 0.0;
+}
+
+void vtkCausticsDistanceImpostors::ResetCaustic()
+{
+  this->CausticUnit = 0.0;
+}
+
+bool vtkCausticsDistanceImpostors::StoreCaustic(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonRecords& landed, int width, int height, double maximumPhotonFlux,
+  vtkCausticsLightBuffers* lightBuffers, int light, const caustics::SceneData& scene,
+  bool shadow)
+{
+  auto& in = *this->Internal;
+  if (!in.Caustic.Handle || !landed.IsSet() || !lightBuffers || light < 0 ||
+    light >= static_cast<int>(scene.Lights.size()) || !lightBuffers->GetView(light).valid)
+  {
+    return true; // no maps, photons or light: nothing to store
+  }
+  if (!(this->CausticUnit > 0.0))
+  {
+    // Fixed point of the store: 1/4096 of the frame's first light's largest photon.
+    this->BeginCaustic(maximumPhotonFlux / 3.0 / 4096.0);
+    if (!(this->CausticUnit > 0.0))
+    {
+      return true;
+    }
+  }
+  vtkCausticsShaderProgram* p = in.Store;
+  if (!p->Bind(renWin))
+  {
+    return false;
+  }
+  const caustics::LightView& view = lightBuffers->GetView(light);
+  const caustics::Light& source = scene.Lights[light];
+  const int resolution =
+    shadow ? lightBuffers->GetGBuffer(light)->GetPositionTexture()->GetWidth() : 0;
+  {
+    caustics::ssp::TextureUnits units(renWin);
+    p->SetUniformi("landedPosition", units.Bind(landed.Position));
+    p->SetUniformi("landedFlux", units.Bind(landed.Flux));
+    p->SetUniform2i("landedGrid", width, height);
+    vtkCausticsGBuffer* seen = lightBuffers->GetGBuffer(light);
+    p->SetUniformi("lightPosition", units.Bind(seen->GetPositionTexture()));
+    p->SetUniformi("lightNormal", units.Bind(seen->GetNormalTexture()));
+    p->SetUniformi("lightFlux", units.Bind(lightBuffers->GetFluxTexture(light)));
+    p->SetUniformi("lightResolution", resolution);
+    p->SetUniformi("lightType", static_cast<int>(source.type));
+    p->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
+      static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
+    p->SetUniform3f("lightAxis", static_cast<float>(view.axis[0]),
+      static_cast<float>(view.axis[1]), static_cast<float>(view.axis[2]));
+    const double* b = scene.Bounds;
+    p->SetUniform3f("boundsMin", static_cast<float>(b[0]), static_cast<float>(b[2]),
+      static_cast<float>(b[4]));
+    p->SetUniform3f("boundsMax", static_cast<float>(b[1]), static_cast<float>(b[3]),
+      static_cast<float>(b[5]));
+    p->SetUniformf("tolerance", static_cast<float>(1e-5 * scene.Scale()));
+    this->SetUniforms(p, units);
+    p->DispatchCovering2D(std::max(width, resolution), std::max(height, resolution), 8, 8);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  p->Unbind(renWin);
+  glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+  return true;
 }
 
 void vtkCausticsDistanceImpostors::BindCausticImage() const
@@ -463,6 +584,9 @@ void vtkCausticsDistanceImpostors::ReleaseGraphicsResources(vtkWindow* win)
   in.Normal.Release();
   in.Radiance.Release();
   in.Caustic.Release();
+  in.CausticArea.Release();
+  in.Area->ReleaseGraphicsResources(win);
+  in.Store->ReleaseGraphicsResources(win);
   this->CausticUnit = 0.0;
   in.Shade->ReleaseGraphicsResources(win);
   in.Key.clear();
@@ -478,6 +602,9 @@ void vtkCausticsDistanceImpostors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReflectorBounces: " << this->ReflectorBounces << "\n";
   os << indent << "MapRenders: " << this->MapRenders << "\n";
   os << indent << "ReflectorWinding: " << this->Internal->ReflectorWinding << "\n";
+  os << indent << "CausticRadius: " << this->CausticRadius << " texels\n";
+  os << indent << "CausticSamples: " << this->CausticSamples << "\n";
+  os << indent << "CausticCoarseSamples: " << this->CausticCoarseSamples << "\n";
   os << indent << "CausticUnit: " << this->CausticUnit << " W per count\n";
   for (int map = 0; map < NUMBER_OF_MAPS; ++map)
   {

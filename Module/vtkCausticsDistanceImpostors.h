@@ -26,7 +26,7 @@
  * Then each receiver texel's radiance for hits the camera does not see: albedo x
  *    the direct irradiance of the scene's first 8 lights (physical falloff, no
  *    shadows; glsl/vtkCausticsImpostorShadeCS.glsl), plus, where a photon technique
- *    filled the caustic store this frame (BeginCaustic()), albedo x the caustic
+ *    filled the caustic store this frame (StoreCaustic()), albedo x the caustic
  *    irradiance less the direct irradiance the specular objects block. Hits the
  *    camera sees take the camera's colour (caustics and shadows included) instead.
  * A map whose role group is empty is not made. The distance of a texel is
@@ -58,6 +58,7 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkCausticsLightBuffers;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkOpenGLRenderWindow;
@@ -66,6 +67,7 @@ class vtkWindow;
 namespace caustics
 {
 struct SceneData;
+struct PhotonRecords;
 namespace ssp
 {
 class TextureUnits;
@@ -122,6 +124,32 @@ public:
   vtkGetMacro(ReflectorBounces, int);
   ///@}
 
+  ///@{
+  /**
+   * The caustic store's read: the caustic irradiance at a texel is the stored flux
+   * over the area of the smallest square of texels around it (radius 0 to
+   * CausticRadius, counting only those that show the same surface) that holds
+   * CausticSamples deposits (photons or shadow samples) or more: an adaptive density
+   * estimate, sharp at a focus, smooth where the light is spread (one texel alone
+   * holds about one photon there). CausticRadius in [0, 8], default 3; CausticSamples
+   * in [1, 1024], default 8.
+   *
+   * Where even the widest window holds fewer, the light is spread thin (a wide water
+   * sheet: a few thousand photons on a floor the map shows with 65 536 texels), and
+   * photons and shadow samples, two lattices aliasing with the texels, would leave
+   * their difference to that noise. The read then takes the store's coarse level,
+   * cells of 8 x 8 texels summed as they are deposited: the 3 x 3 cells around the
+   * texel, or the 5 x 5 where those hold fewer than CausticCoarseSamples deposits (in
+   * [1, 4096], default 64: about 12 % noise where the light is that thin).
+   */
+  vtkSetClampMacro(CausticRadius, int, 0, 8);
+  vtkGetMacro(CausticRadius, int);
+  vtkSetClampMacro(CausticSamples, int, 1, 1024);
+  vtkGetMacro(CausticSamples, int);
+  vtkSetClampMacro(CausticCoarseSamples, int, 1, 4096);
+  vtkGetMacro(CausticCoarseSamples, int);
+  ///@}
+
   /**
    * The generalized winding number of the triangles of `meshes` (xyz per vertex,
    * three indices per triangle) at `point`: the sum of their signed solid angles
@@ -154,17 +182,30 @@ public:
 
   /**
    * The caustic store: per texel of the environment maps, the caustic flux that
-   * landed on the receiver the texel shows, in fixed point (`unit` W per count, per
-   * channel; R32I, layer 18 channel + 6 map + face), so that a camera-view hit the
+   * landed on the receiver the texel shows, in fixed point (integer atomics: GPUs
+   * without float atomics; W per count set by the frame's first StoreCaustic(), per
+   * channel; R32I, layer 18 channel + 6 map + face, then the deposits per texel in
+   * layer 54 + 6 map + face), so that a camera-view hit the
    * camera does not see (in a mirror, through glass, outside the frame) is shaded
-   * with albedo x (its caustic irradiance) besides the map's direct light: the flux
-   * over the texel's area on the surface (ImpostorCausticIrradiance() in
-   * glsl/vtkCausticsImpostorCommon.glsl). A photon technique that fills it
-   * (vtkCausticsImpostorPhotonPass) calls BeginCaustic() once per frame, before its
-   * photons, and binds it with BindCausticImage(); without BeginCaustic() in a
-   * frame the store reads as zero. Call after Update().
+   * with albedo x (its caustic irradiance) besides the map's direct light
+   * (ImpostorCausticIrradiance() in glsl/vtkCausticsImpostorCommon.glsl, over
+   * CausticRadius).
+   *
+   * The shared stage of every photon technique (vtkCausticsRenderPass::StoreCaustic()
+   * calls it): ResetCaustic() at the start of a frame (no GL; the store then reads as
+   * zero), then StoreCaustic() once per light after the technique's transport, with
+   * its landed photon records (vtkCausticsPhotonGrid.h layout, `width` x `height`,
+   * position w > 0 for a landed photon) and the light's buffers: each landed photon's
+   * flux goes to the texel showing where it landed, and, with `shadow` (once per
+   * light), each texel of the light's view whose first surface is specular takes its
+   * flux off the texel where it would have landed without the specular object. The frame's first call
+   * clears the store; its fixed point is 1/4096 of `maximumPhotonFlux` / 3. Call
+   * after Update(). Returns false on a GL failure.
    */
-  void BeginCaustic(double unit);
+  void ResetCaustic();
+  bool StoreCaustic(vtkOpenGLRenderWindow* renWin, const caustics::PhotonRecords& landed,
+    int width, int height, double maximumPhotonFlux, vtkCausticsLightBuffers* lightBuffers,
+    int light, const caustics::SceneData& scene, bool shadow = true);
   void BindCausticImage() const;
 #endif
 
@@ -191,8 +232,12 @@ protected:
   int LinearSteps = 32;
   int SecantSteps = 8;
   int ReflectorBounces = 8;
+  int CausticRadius = 3;
+  int CausticSamples = 8;
+  int CausticCoarseSamples = 64;
   int MapRenders = 0;
   double CausticUnit = 0.0; // W per count of the caustic store; 0: none this frame
+  void BeginCaustic(double unit); // clears the store, sets its fixed point
 
 private:
   vtkCausticsDistanceImpostors(const vtkCausticsDistanceImpostors&) = delete;
@@ -207,6 +252,8 @@ private:
   bool RenderMap(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, int map);
   bool ShadeMaps(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
     const caustics::SceneData& scene);
+  // The receiver area of each coarse cell of the caustic store (its sparse read).
+  bool MeasureCausticCells(vtkOpenGLRenderWindow* renWin);
 };
 
 #endif

@@ -286,6 +286,10 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
         light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid,
         &this->Internal->VolumeSegments);
     this->EndStage("hcm trace");
+    // The caustic store (shared): the landed photons and the light's shadow.
+    light.Traced = light.Traced &&
+      this->StoreCaustic(this->GetFrameInputs(), index, light.Photons->GetLanded(), grid.Width,
+        grid.Height, grid.MaximumPhotonFlux);
     ok = ok && light.Traced;
     if (light.Traced && this->Internal->VolumeSegments.IsOn())
     {

@@ -100,34 +100,26 @@ vtkCausticsRenderPass::PhotonStorage vtkCausticsImpostorPhotonPass::GetPhotonSto
 {
   // Per emitter slot: the landed records and radii (52 B). Beside the grid: the
   // three cube maps of the distance impostors (18 layers of 16 + 8 + 16 B texels)
-  // and their caustic store (3 x 4 B per texel).
+  // and their caustic store (4 x 4 B per texel: flux per channel, deposits).
   const double r = this->GetDistanceImpostors()->GetResolution();
-  return { 52.0, 0.0, 18.0 * r * r * 52.0, false };
+  return { 52.0, 0.0, 18.0 * r * r * 56.0, false };
 }
 
 bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
 {
   bool ok = this->UpdateMaps(in);
-  bool stored = false; // the caustic store was cleared for this frame
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
     if (!in.LightBuffers->GetView(light).valid)
     {
       continue;
     }
-    ok = this->Emit(in, light);
-    if (ok && !stored)
-    {
-      // Fixed point of the store: 1/4096 of the first light's largest photon.
-      const double unit = this->Internal->Emitter->GetGrid().MaximumPhotonFlux / 3.0 / 4096.0;
-      this->GetDistanceImpostors()->BeginCaustic(unit);
-      stored = true;
-    }
-    ok = ok && this->Trace(in, light) && this->Spread(in) && this->Splat(in);
-  }
-  if (!stored && ok)
-  {
-    this->GetDistanceImpostors()->BeginCaustic(0.0); // no photons: no stale caustic
+    auto& s = *this->Internal;
+    // 6. The caustic store (shared): the landed photons and the light's shadow.
+    ok = this->Emit(in, light) && this->Trace(in, light) &&
+      this->StoreCaustic(in, light, s.Landed.Records(), s.Grid.Width, s.Grid.Height,
+        s.Grid.MaximumPhotonFlux) &&
+      this->Spread(in) && this->Splat(in);
   }
   ++this->FrameIndex; // the next frame is a fresh, independent estimate
   return ok;
@@ -177,9 +169,7 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
     s.Program->SetUniformi("emitDirection", units.Bind(emitted.Emitted.Direction));
     s.Program->SetUniformi("emitFlux", units.Bind(emitted.Emitted.Flux));
     vtkCausticsGBuffer* seen = in.LightBuffers->GetGBuffer(light);
-    s.Program->SetUniformi("lightPosition", units.Bind(seen->GetPositionTexture()));
     s.Program->SetUniformi("lightNormal", units.Bind(seen->GetNormalTexture()));
-    s.Program->SetUniformi("lightFlux", units.Bind(in.LightBuffers->GetFluxTexture(light)));
     this->GetDistanceImpostors()->SetUniforms(s.Program, units);
     in.Geometry->BindMaterials();
     s.Landed.BindImages(0, GL_WRITE_ONLY);

@@ -547,7 +547,9 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   }
   // 2. The distance impostors' cube maps, if the method uses them (only when the
   //    geometry changed: vtkCausticsDistanceImpostors).
-  const bool impostors = this->CameraViewMethod != SCREEN_SPACE && this->UpdateImpostors(f);
+  //    Already brought up to date this frame where the caustic store is filled.
+  const bool impostors =
+    this->CameraViewMethod != SCREEN_SPACE && (this->StoresCaustic || this->UpdateImpostors(f));
   // 3. Surfaces seen only through a refractor are shaded from their irradiance.
   const bool direct = this->EnsureDirectIrradiance("direct irradiance for refraction");
   this->BeginStage("refraction tracing");
@@ -579,6 +581,21 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   in.Refraction->SetMaximumEvents(this->RefractionEvents);
   const bool ok = in.Refraction->Render(f.Window, inputs, target);
   this->EndStage("refraction tracing");
+  return ok;
+}
+
+bool vtkCausticsRenderPass::StoreCaustic(const FrameInputs& f, int light,
+  const caustics::PhotonRecords& landed, int width, int height, double maximumPhotonFlux,
+  bool shadow)
+{
+  if (!this->StoresCaustic)
+  {
+    return true;
+  }
+  this->BeginStage("caustic store");
+  const bool ok = this->Internal->Impostors->StoreCaustic(
+    f.Window, landed, width, height, maximumPhotonFlux, f.LightBuffers, light, *f.Scene, shadow);
+  this->EndStage("caustic store");
   return ok;
 }
 
@@ -908,6 +925,13 @@ bool vtkCausticsRenderPass::RenderCaustics()
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_BLEND);
   state->vtkglDisable(GL_SCISSOR_TEST);
+  // The caustic store (StoreCaustic()): filled by the technique's photons only when
+  // the camera view reads map hits; its maps made first (only when the scene changed).
+  in.Impostors->ResetCaustic();
+  this->StoresCaustic = this->RefractionTracing && this->CameraViewMethod != SCREEN_SPACE &&
+    f.Geometry->GetNumberOfTriangles(
+      vtkCausticsSceneGeometry::RoleBit(2) | vtkCausticsSceneGeometry::RoleBit(3)) > 0 &&
+    this->UpdateImpostors(f);
   const bool ok = this->RenderCausticIrradiance(f);
   this->Result.Volume = ok && this->RenderVolumeRadiance(f, in.VolumeTexture);
   state->PopFramebufferBindings();

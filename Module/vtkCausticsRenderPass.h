@@ -90,6 +90,7 @@ class vtkTextureObject;
 
 namespace caustics
 {
+struct PhotonRecords;
 struct SceneData;
 namespace gl
 {
@@ -523,6 +524,24 @@ protected:
    */
   bool EnsureDirectIrradiance(const char* stage);
 
+  /**
+   * The shared caustic-store stage (timed "caustic store"): every photon technique
+   * calls it after its transport, with its landed photon records
+   * (vtkCausticsPhotonGrid.h layout, `width` x `height`) and the largest flux one
+   * photon of the grid carries; `shadow` once per light (a technique that lands its
+   * photons bounce after bounce stores every bounce's, the shadow with one of them). Each landed photon's flux and the light's shadow go
+   * to the distance impostors' caustic store
+   * (vtkCausticsDistanceImpostors::StoreCaustic), which the camera view reads at map
+   * hits the camera does not see (a floor seen only in a mirror or through glass).
+   * Nothing runs (and the store reads as zero) in a frame whose camera view reads no
+   * map hit: RefractionTracing off, CameraViewMethod SCREEN_SPACE or no specular
+   * triangles. Returns false on a GL failure.
+   */
+  bool StoreCaustic(const FrameInputs& in, int light, const caustics::PhotonRecords& landed,
+    int width, int height, double maximumPhotonFlux, bool shadow = true);
+  /** Whether this frame's camera view reads the caustic store (StoreCaustic() runs). */
+  bool GetStoresCaustic() const { return this->StoresCaustic; }
+
   ///@{
   /** The last frame's inputs and result (valid after Render(); for later queries). */
   const FrameInputs& GetFrameInputs() const;
@@ -588,6 +607,7 @@ private:
   bool KeepBuffers = false;
   bool SpecularShadows = false; // techniques that carry caustic light turn it on
   bool Denoise = false;         // techniques noisy per frame turn it on
+  bool StoresCaustic = false;   // this frame's camera view reads the caustic store
 
   FrameInputs Frame;
   FrameResult Result;

@@ -347,7 +347,8 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   return true;
 }
 
-bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWin, int, int)
+bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(
+  vtkOpenGLRenderWindow* renWin, int light, int bounce)
 {
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
@@ -372,6 +373,12 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(vtkOpenGLRenderWindow* renWi
     glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     p->Unbind(renWin);
+  }
+  // The caustic store (shared): this bounce's landed photons, the light's shadow once.
+  if (!this->StoreCaustic(f, light, in.Landed.Records(), grid.Width, grid.Height,
+        grid.MaximumPhotonFlux, bounce == 1))
+  {
+    return false;
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
   in.Splatter->SetReconstruction(this->Settings.Reconstruction);

@@ -51,6 +51,8 @@ bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& i
     ok = !in.LightBuffers->GetView(light).valid ||
       (s.Emitter->Emit(in.Window, in.LightBuffers, light, in.Geometry, *in.Scene) &&
         this->Transport(in, light) &&
+        this->StoreCaustic(in, light, s.Landed.Records(), s.Emitter->GetGrid().Width,
+          s.Emitter->GetGrid().Height, s.Emitter->GetGrid().MaximumPhotonFlux) &&
         s.Splatter->Splat(in.Window, s.Emitter->GetGrid(), s.Landed.Records(),
           s.Landed.KernelRadius(), in.CameraGBuffer, in.WorldToClip));
   }

@@ -17,9 +17,15 @@ causes can be told apart:
 
   cd build && PYTHONPATH=lib/python3/dist-packages xvfb-run -n 91 /usr/bin/python3 \\
       ../scripts/specular-error-map.py [--scenes ball-lens,ring,pool,bunny]
-      [--methods 1,2] [--output DIR]
+      [--methods 1,2] [--technique screen-space,impostors] [--output DIR]
 
-Writes DIR/SCENE-METHOD.png: reference | stage | difference (red: extra, blue: missing),
+--technique: the photon technique(s) whose pass draws the camera view (default
+screen-space), each compared with the same reference. The camera view shades a hit the
+camera does not see from the distance impostors' map radiance plus the caustic store,
+which the technique's photons fill.
+
+Writes DIR/SCENE-METHOD.png (DIR/SCENE-TECHNIQUE-METHOD.png for a technique other than
+screen-space): reference | stage | difference (red: extra, blue: missing),
 scaled by the reference's 99th percentile.
 """
 import argparse
@@ -58,9 +64,18 @@ def reference_color(renderer, seed):
         array(out, "SpecularMask", 1)[:, :, 0] > 0
 
 
-def stage(renderer, window, method):
-    technique = vtkcaustics.vtkCausticsTechniques.NewPass("screen-space")
+def stage(renderer, window, method, name, store_radius=None, store_samples=None,
+          store_coarse_samples=None):
+    technique = vtkcaustics.vtkCausticsTechniques.NewPass(name)
+    if technique is None:
+        raise SystemExit(f"unknown technique {name!r}")
     technique.SetLightBufferResolution(256)
+    if store_radius is not None:
+        technique.GetDistanceImpostors().SetCausticRadius(store_radius)
+    if store_samples is not None:
+        technique.GetDistanceImpostors().SetCausticSamples(store_samples)
+    if store_coarse_samples is not None:
+        technique.GetDistanceImpostors().SetCausticCoarseSamples(store_coarse_samples)
     technique.SetCameraViewMethod(method)
     technique.KeepBuffersOn()
     renderer.SetPass(technique)
@@ -86,6 +101,16 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scenes", default="ball-lens,ring,pool,bunny")
     parser.add_argument("--methods", default="1,2")
+    parser.add_argument("--technique", default="screen-space",
+                        help="comma-separated photon techniques (vtkCausticsTechniques names)")
+    parser.add_argument("--store-radius", type=int, default=None,
+                        help="the caustic store's read window (texels; default: the class's)")
+    parser.add_argument("--store-samples", type=int, default=None,
+                        help="deposits the store's read window grows to hold (default: the class's)")
+    parser.add_argument("--store-coarse-samples", type=int, default=None,
+                        help="deposits the store's coarse window grows to hold (default: the class's)")
+    parser.add_argument("--no-noise", action="store_true",
+                        help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
     parser.add_argument("--arrays", action="store_true",
                         help="also write SCENE-METHOD.npz (reference, stage, masks)")
@@ -104,55 +129,61 @@ def main():
         window.SetSize(SIZE, SIZE)
         window.AddRenderer(renderer)
         truth, mask = reference_color(renderer, 1)
-        other, _ = reference_color(renderer, 2)
-        floor = rel(other, truth, mask) / np.sqrt(2.0)
-        print(f"{scene_name}: reference noise floor (seeds 1, 2; /sqrt 2) {100 * floor:.1f} %")
-        views = {m: stage(renderer, window, m) for m in sorted(set(methods + [0, 2]))}
-        # Pixels where a march left the view: there the combined view took the impostors.
-        left = np.abs(views[0]["TechniqueColor"][:, :, :3] -
-                      views[2]["TechniqueColor"][:, :, :3]).max(axis=-1) > 1e-6
-        for method in methods:
-            color = views[method]["TechniqueColor"]
-            shown = color[:, :, :3]
-            drawn = mask & (color[:, :, 3] >= 0.5)
-            mirror = np.rint(views[method]["Normal"][:, :, 3]) == ROLE_REFLECTOR
-            error = rel(shown, truth, drawn)
-            bias = np.sqrt(max(error ** 2 - floor ** 2, 0.0))
-            squared = ((shown - truth) ** 2).sum(axis=-1)
-            total = squared[drawn].sum()
-            missing = (np.minimum(shown - truth, 0.0) ** 2).sum(axis=-1)[drawn].sum() / total
-            ratio = shown[drawn].sum() / truth[drawn].sum()
-            print(f"  {NAMES[method]} view: {int(drawn.sum())} pixels, relative L2 "
-                  f"{100 * error:.1f} % (bias without the reference's noise {100 * bias:.1f} %), "
-                  f"mean ratio {ratio:.3f}, {100 * missing:.0f} % of the squared error missing light")
-            for label, part in (("mirror", drawn & mirror), ("glass", drawn & ~mirror),
-                                ("a march left the view", drawn & left),
-                                ("marches stayed in the view", drawn & ~left)):
-                if part.sum() == 0:
-                    continue
-                share = squared[part].sum() / total
-                r = shown[part].sum() / max(truth[part].sum(), 1e-30)
-                print(f"    {label}: {int(part.sum())} px, {100 * share:.0f} % of the squared "
-                      f"error, own relative L2 {100 * rel(shown, truth, part):.1f} %, "
-                      f"mean ratio {r:.3f}")
-            top = max(float(np.percentile(truth[drawn], 99)), 1e-12)
-            difference = np.where(drawn[:, :, None], shown - truth, 0.0).mean(axis=-1)
-            red = np.clip(difference / (top / 3), 0.0, 1.0)
-            blue = np.clip(-difference / (top / 3), 0.0, 1.0)
-            diff = np.stack([red, np.zeros_like(red), blue], axis=-1)
-            mask3 = drawn[:, :, None]
-            pair = np.concatenate([np.clip(np.where(mask3, truth, 0) / top, 0, 1),
-                                   np.clip(np.where(mask3, shown, 0) / top, 0, 1), diff],
-                                  axis=1)[::-1]
-            path = os.path.join(args.output, f"{scene_name}-{NAMES[method]}.png")
-            out = oiio.ImageOutput.create(path)
-            out.open(path, oiio.ImageSpec(3 * SIZE, SIZE, 3, oiio.UINT8))
-            out.write_image(np.ascontiguousarray((pair * 255).astype(np.uint8)))
-            out.close()
-            if args.arrays:
-                np.savez(os.path.join(args.output, f"{scene_name}-{NAMES[method]}.npz"),
-                         truth=truth, other=other, shown=shown, drawn=drawn, left=left,
-                         mirror=mirror)
+        if args.no_noise:
+            other, floor = truth, 0.0  # the bias below is then the error itself
+        else:
+            other, _ = reference_color(renderer, 2)
+            floor = rel(other, truth, mask) / np.sqrt(2.0)
+            print(f"{scene_name}: reference noise floor (seeds 1, 2; /sqrt 2) {100 * floor:.1f} %")
+        for name in args.technique.split(","):
+            views = {m: stage(renderer, window, m, name, args.store_radius, args.store_samples,
+                              args.store_coarse_samples) for m in sorted(set(methods + [0, 2]))}
+            # Pixels where a march left the view: there the combined view took the impostors.
+            left = np.abs(views[0]["TechniqueColor"][:, :, :3] -
+                          views[2]["TechniqueColor"][:, :, :3]).max(axis=-1) > 1e-6
+            for method in methods:
+                color = views[method]["TechniqueColor"]
+                shown = color[:, :, :3]
+                drawn = mask & (color[:, :, 3] >= 0.5)
+                mirror = np.rint(views[method]["Normal"][:, :, 3]) == ROLE_REFLECTOR
+                error = rel(shown, truth, drawn)
+                bias = np.sqrt(max(error ** 2 - floor ** 2, 0.0))
+                squared = ((shown - truth) ** 2).sum(axis=-1)
+                total = squared[drawn].sum()
+                missing = (np.minimum(shown - truth, 0.0) ** 2).sum(axis=-1)[drawn].sum() / total
+                ratio = shown[drawn].sum() / truth[drawn].sum()
+                print(f"  {name}, {NAMES[method]} view: {int(drawn.sum())} pixels, relative L2 "
+                      f"{100 * error:.1f} % (bias without the reference's noise {100 * bias:.1f} %), "
+                      f"mean ratio {ratio:.3f}, {100 * missing:.0f} % of the squared error missing light")
+                for label, part in (("mirror", drawn & mirror), ("glass", drawn & ~mirror),
+                                    ("a march left the view", drawn & left),
+                                    ("marches stayed in the view", drawn & ~left)):
+                    if part.sum() == 0:
+                        continue
+                    share = squared[part].sum() / total
+                    r = shown[part].sum() / max(truth[part].sum(), 1e-30)
+                    print(f"    {label}: {int(part.sum())} px, {100 * share:.0f} % of the squared "
+                          f"error, own relative L2 {100 * rel(shown, truth, part):.1f} %, "
+                          f"mean ratio {r:.3f}")
+                top = max(float(np.percentile(truth[drawn], 99)), 1e-12)
+                difference = np.where(drawn[:, :, None], shown - truth, 0.0).mean(axis=-1)
+                red = np.clip(difference / (top / 3), 0.0, 1.0)
+                blue = np.clip(-difference / (top / 3), 0.0, 1.0)
+                diff = np.stack([red, np.zeros_like(red), blue], axis=-1)
+                mask3 = drawn[:, :, None]
+                pair = np.concatenate([np.clip(np.where(mask3, truth, 0) / top, 0, 1),
+                                       np.clip(np.where(mask3, shown, 0) / top, 0, 1), diff],
+                                      axis=1)[::-1]
+                stem = scene_name if name == "screen-space" else f"{scene_name}-{name}"
+                path = os.path.join(args.output, f"{stem}-{NAMES[method]}.png")
+                out = oiio.ImageOutput.create(path)
+                out.open(path, oiio.ImageSpec(3 * SIZE, SIZE, 3, oiio.UINT8))
+                out.write_image(np.ascontiguousarray((pair * 255).astype(np.uint8)))
+                out.close()
+                if args.arrays:
+                    np.savez(os.path.join(args.output, f"{stem}-{NAMES[method]}.npz"),
+                             truth=truth, other=other, shown=shown, drawn=drawn, left=left,
+                             mirror=mirror)
     print(f"wrote reference | stage | difference images to {args.output}/")
 
 

@@ -17,9 +17,21 @@ uniform int impostorReflectorBounces; // mirror-to-mirror reflections in a row, 
 // The caustic store (vtkCausticsDistanceImpostors::BeginCaustic): per environment-map
 // texel and channel (layer 18 channel + 6 map + face), the caustic flux that landed on
 // the receiver the texel shows, less the direct light the specular objects block
-// there, in counts of impostorCausticUnit W (0: no store this frame).
+// there, in counts of impostorCausticUnit W (0: no store this frame); layer
+// 54 + 6 map + face: the number of deposits (photons and shadow samples).
 layout(r32i, binding = CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE) uniform iimage2DArray impostorCaustic;
 uniform float impostorCausticUnit;
+uniform int impostorCausticRadius;  // the store's read window: (2 r + 1)^2 texels at most
+uniform int impostorCausticSamples; // deposits the read window grows to hold
+// The store's coarse level, for receivers too sparsely lit for the fine window: the
+// same sums over cells of IMPOSTOR_COARSE^2 texels (impostorCausticCells per side of
+// a face, 0: none), 64 cells' faces tiled per layer from layer 72
+// (ImpostorCoarseTexel), and per cell the area of the receivers its texels show (m^2,
+// impostorCausticArea, layer 6 map + face; vtkCausticsImpostorCausticAreaCS.glsl).
+const int IMPOSTOR_COARSE = 8;
+uniform int impostorCausticCells;
+uniform int impostorCausticCoarseSamples;
+uniform sampler2DArray impostorCausticArea;
 
 const int IMPOSTOR_REFRACTOR_ENVIRONMENT = 0;
 const int IMPOSTOR_REFRACTOR_SURFACE = 1;
@@ -251,7 +263,30 @@ float ImpostorTexelArea(int map, ivec3 texel)
 
 // The caustic irradiance (W/m^2, net of the direct light the specular objects block;
 // may be negative in a shadow) at the receiver that `texel` of an environment map
-// shows, from the caustic store; zero without one.
+// shows, from the caustic store; zero without one. An adaptive density estimate: the
+// stored flux over the area of the smallest square of texels around it, radius 0 to
+// impostorCausticRadius, of the face that holds impostorCausticSamples deposits or
+// more (the last one otherwise), counting only texels that show the same surface
+// (same material, normals within 60 degrees, within the window's footprint of its
+// tangent plane). One texel alone holds about one photon where the light is spread
+// (256^2 photons over the pool, 8 mm texels a metre away), and its count is that
+// photon's noise; a fixed window wide enough for that blurs a focus seen in a mirror
+// to a quarter of its peak.
+// The cell of the store's coarse level that holds `texel` (a layer 6 map + face).
+ivec2 ImpostorCoarseCell(ivec2 texel)
+{
+  return min(texel / IMPOSTOR_COARSE, ivec2(impostorCausticCells - 1));
+}
+
+// Where the coarse level keeps channel c (0-2: flux, 3: deposits) of `cell` of
+// layer 6 map + face: tile 18 c + layer of the 8 x 8 tiles of layers 72 and 73.
+ivec3 ImpostorCoarseTexel(ivec2 cell, int layer, int c)
+{
+  int tile = 18 * c + layer;
+  return ivec3((tile % 8) * impostorCausticCells + cell.x,
+    (tile / 8 % 8) * impostorCausticCells + cell.y, 72 + tile / 64);
+}
+
 vec3 ImpostorCausticIrradiance(ivec3 texel)
 {
   if (!(impostorCausticUnit > 0.0))
@@ -263,10 +298,81 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
   {
     return vec3(0.0); // REFLECTOR_SURFACE holds no receiver
   }
-  vec3 counts = vec3(float(imageLoad(impostorCaustic, texel).x),
-    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, layers)).x),
-    float(imageLoad(impostorCaustic, texel + ivec3(0, 0, 2 * layers)).x));
-  return counts * impostorCausticUnit / ImpostorTexelArea(texel.z / 6, texel);
+  int map = texel.z / 6;
+  vec4 own = texelFetch(impostorPosition, texel, 0);
+  vec3 n = normalize(texelFetch(impostorNormal, texel, 0).xyz);
+  float footprint = 2.0 * distance(own.xyz, impostorCentre[map]) / float(impostorResolution);
+  vec3 counts = vec3(0.0);
+  float samples = 0.0;
+  float area = 0.0;
+  for (int ring = 0; ring <= impostorCausticRadius; ++ring)
+  {
+    float reach = float(2 * ring + 1) * footprint;
+    for (int y = -ring; y <= ring; ++y)
+    {
+      for (int x = -ring; x <= ring; ++x)
+      {
+        ivec3 k = ivec3(texel.xy + ivec2(x, y), texel.z);
+        if (max(abs(x), abs(y)) != ring || any(lessThan(k.xy, ivec2(0))) ||
+          any(greaterThanEqual(k.xy, ivec2(impostorResolution))))
+        {
+          continue;
+        }
+        vec4 s = texelFetch(impostorPosition, k, 0);
+        vec3 m = texelFetch(impostorNormal, k, 0).xyz;
+        if (s.w != own.w || !(dot(m, m) > 0.0) || dot(normalize(m), n) < 0.5 ||
+          abs(dot(s.xyz - own.xyz, n)) > reach)
+        {
+          continue;
+        }
+        counts += vec3(float(imageLoad(impostorCaustic, k).x),
+          float(imageLoad(impostorCaustic, k + ivec3(0, 0, layers)).x),
+          float(imageLoad(impostorCaustic, k + ivec3(0, 0, 2 * layers)).x));
+        samples += float(imageLoad(impostorCaustic, k + ivec3(0, 0, 3 * layers)).x);
+        area += ImpostorTexelArea(map, k);
+      }
+    }
+    if (samples >= float(impostorCausticSamples))
+    {
+      break;
+    }
+  }
+  if (samples < float(impostorCausticSamples) && impostorCausticCells > 0)
+  {
+    // Too few deposits within the fine window (light spread thin over a receiver the
+    // map sees finely): the 3 x 3, then 5 x 5, cells of the coarse level around it,
+    // whatever surfaces they show. Photons and shadow samples are lattices that
+    // alias with the texels; a window holding too few of either leaves their
+    // difference (a flat water sheet's T - 1 of the direct light) to that noise.
+    ivec2 centre = ImpostorCoarseCell(texel.xy);
+    for (int ring = 1; ring <= 2; ++ring)
+    {
+      counts = vec3(0.0);
+      samples = 0.0;
+      area = 0.0;
+      for (int y = -ring; y <= ring; ++y)
+      {
+        for (int x = -ring; x <= ring; ++x)
+        {
+          ivec2 cell = centre + ivec2(x, y);
+          if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, ivec2(impostorCausticCells))))
+          {
+            continue;
+          }
+          counts += vec3(float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 0)).x),
+            float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 1)).x),
+            float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 2)).x));
+          samples += float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 3)).x);
+          area += texelFetch(impostorCausticArea, ivec3(cell, texel.z), 0).x;
+        }
+      }
+      if (samples >= float(impostorCausticCoarseSamples))
+      {
+        break;
+      }
+    }
+  }
+  return area > 0.0 ? counts * impostorCausticUnit / area : vec3(0.0);
 }
 
 // Adds `flux` (W per channel, negative for blocked light) landed at h on a receiver
@@ -298,6 +404,19 @@ void ImpostorDepositCaustic(vec3 h, vec3 flux)
       {
         imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, c * layers), counts[c]);
       }
+    }
+    imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, 3 * layers), 1);
+    if (impostorCausticCells > 0)
+    {
+      ivec2 cell = ImpostorCoarseCell(texel.xy);
+      for (int c = 0; c < 3; ++c)
+      {
+        if (counts[c] != 0)
+        {
+          imageAtomicAdd(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, c), counts[c]);
+        }
+      }
+      imageAtomicAdd(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 3), 1);
     }
   }
 }

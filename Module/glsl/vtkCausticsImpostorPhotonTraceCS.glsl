@@ -19,20 +19,14 @@
 //    record layout, vtkCausticsCommon.glsl) and its kernel radius, for
 //    vtkCausticsPhotonSplatter (§5: the hits are splatted). The maps hold world
 //    positions, so the receiver need not be in the camera's or the light's view;
-// 5. the caustic store (vtkCausticsDistanceImpostors::BeginCaustic): every landed
-//    photon's flux goes to the environment-map texel that shows where it landed,
-//    and the direct light the specular object blocks (the texel's flux, continued
-//    along the light's ray past it) comes off the texel where it would have landed,
-//    so that the camera view shades a receiver it sees only in a mirror or through
-//    glass with its caustic and its shadow (E-S-D-S-L paths).
+// The caustic store is filled from the landed records afterwards by the shared
+// stage of every technique (glsl/vtkCausticsCausticStoreCS.glsl).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform sampler2D emitPosition;  // xyz, w = 0 none, 1 in air, 2 inside a refractor
 uniform sampler2D emitDirection; // xyz unit, w = texel measure
 uniform sampler2D emitFlux;      // rgb W
-uniform sampler2D lightPosition; // the light's G-buffer: the first surface (w < 0: none)
-uniform sampler2D lightNormal;   // w = role of the first surface
-uniform sampler2D lightFlux;     // rgb: W through the texel
+uniform sampler2D lightNormal;   // the light's G-buffer: w = role of the first surface
 uniform int emitResolution;      // N: rows of one branch
 uniform ivec2 photonGrid;        // the emitter's grid (= the output grid)
 uniform uint frameSeed;          // seed of the Russian roulette
@@ -81,37 +75,12 @@ bool NextSurface(
     boundsMax, tolerance, t, texel);
 }
 
-// 5. The light that texel `t` of the light's view would have brought past the
-// specular surface it meets, taken off where it would have landed.
-void DepositShadow(ivec2 t)
-{
-  vec4 first = texelFetch(lightPosition, t, 0);
-  int role = int(texelFetch(lightNormal, t, 0).w + 0.5);
-  if (first.w < 0.0 || (role != ROLE_REFLECTOR && role != ROLE_REFRACTOR))
-  {
-    return;
-  }
-  vec3 d = lightType == 0 ? normalize(lightAxis) : normalize(first.xyz - lightOrigin);
-  float t1;
-  ivec3 texel;
-  int map = role == ROLE_REFLECTOR ? IMPOSTOR_REFLECTOR_ENVIRONMENT : IMPOSTOR_REFRACTOR_ENVIRONMENT;
-  if (ImpostorSearch(map, first.xyz, d, boundsMin, boundsMax, tolerance, t1, texel) &&
-    int(texelFetch(impostorNormal, texel, 0).w + 0.5) == ROLE_RECEIVER)
-  {
-    ImpostorDepositCaustic(first.xyz + t1 * d, -texelFetch(lightFlux, t, 0).rgb);
-  }
-}
-
 void main()
 {
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(g, photonGrid)))
   {
     return;
-  }
-  if (g.y < emitResolution)
-  {
-    DepositShadow(g);
   }
   vec4 p = texelFetch(emitPosition, g, 0);
   vec4 e = texelFetch(emitDirection, g, 0);
@@ -202,7 +171,6 @@ void main()
     imageStore(outNormal, g, vec4(n, abs(dot(n, d))));
     imageStore(outFlux, g, vec4(flux, measure));
     imageStore(outRadius, g, vec4(radius));
-    ImpostorDepositCaustic(h, flux);
     return;
   }
   NoPhoton(g);

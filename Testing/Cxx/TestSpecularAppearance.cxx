@@ -203,6 +203,12 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // 28.3 %, bunny 55.4 % (57.1 % against 64 paths; 58.0 % before Hit() skipped the start
 // of rays starting behind the map's surface); BOTH ball lens 11.2 % (13.1 % against 64
 // paths), ring 23.8 % (33.1 %), pool 30.4 %. Bounds just above.
+// The impostor view's ring and pool with the caustic store, which the screen-space
+// photons fill since it became a shared stage (the floor the ring's wall hides and
+// the pool's near wall, seen only in the mirror or through the water, with their
+// caustic and shadow): ring 19.5 % (21.6 % with the store empty), pool 28.0 % (28.3 %;
+// 27.3 % before the store's coarse level, which CameraBesideTheWaterSheet needs);
+// bounds 0.20 and 0.285, just above.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -214,9 +220,9 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.22);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.20);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.24);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.29);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.285);
   EXPECT_LT(SpecularError("pool", "screen-space", both), 0.31);
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.56);
 }
@@ -317,8 +323,11 @@ TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
 // is modelled around the eye (the rule reads the sheet's facing, not a volume). Before
 // the per-pixel rule: 86.2 % (screen-space view) and 85.6 % (impostor view); reached:
 // 22.8 % and 14.4 %. Above the plane it sees the front, an entry from air, unchanged by
-// the rule: 15.4 % and 17.5 % (16.6 % and 18.7 % against the 64-path reference). Bounds
-// just above.
+// the rule: 15.4 % and 17.5 % (16.6 % and 18.7 % against the 64-path reference). With
+// the caustic store filled by the screen-space photons, the impostor view gives 14.7 %
+// below and 16.7 % above (18.7 % and 26.0 % when the store was read through its fine
+// window alone: a few thousand photons and shadow samples over 65 536 floor texels).
+// Bounds just above.
 TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 {
   const int screen = vtkCausticsRenderPass::SCREEN_SPACE;
@@ -337,5 +346,5 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
     0.16);
   EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
               PopulateWideSheet),
-    0.18);
+    0.17);
 }
