@@ -847,16 +847,26 @@ namespace
  * refracted photons cross about 1.75 m of the ball: filling it takes 35 % of the
  * floor's caustic (the reference's 0.6445).
  */
-vtkSmartPointer<vtkOpenGLRenderer> MakeBallInMedium(bool fills, bool cameraInside = false)
+enum class BallCamera
+{
+  Outside,    ///< ball-lens's own camera
+  InsideBall, ///< amid the light converging in the ball
+  UnderFocus  ///< in air, in the cone of light under the ball's focus
+};
+
+vtkSmartPointer<vtkOpenGLRenderer> MakeBallInMedium(
+  bool fills, BallCamera where = BallCamera::Outside)
 {
   vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeScene("ball-lens");
-  if (cameraInside)
+  if (where != BallCamera::Outside)
   {
     // In the ball, 0.87 m from its centre, looking down through the light converging
     // in it; the ball's surface hides the rest (003 §5.3, and the reference's camera).
+    // Or under the focus, looking up into the light coming down at the eye.
+    const bool ball = where == BallCamera::InsideBall;
     vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(0.0, 3.2, 0.85);
-    camera->SetFocalPoint(0.0, 2.3, 0.0);
+    camera->SetPosition(0.0, ball ? 3.2 : 0.9, ball ? 0.85 : 0.25);
+    camera->SetFocalPoint(0.0, ball ? 2.3 : 1.8, 0.0);
     camera->SetViewAngle(70.0);
     camera->OrthogonalizeViewUp();
     renderer->ResetCameraClippingRange();
@@ -1095,8 +1105,24 @@ TEST(VolumeLines, MediumFillingAClosedBallSeenFromInside)
 {
   const double ratioBounds[] = { 0.003, 0.011, 0.002 }; // FillsTechniques' order
   const double l2Bounds[] = { 0.105, 0.14, 0.11 };
-  ExpectVolumeCausticsAsTheReference(MakeBallInMedium(true, true),
+  ExpectVolumeCausticsAsTheReference(MakeBallInMedium(true, BallCamera::InsideBall),
     "ball in a medium filling it, seen from inside", ratioBounds, l2Bounds);
+}
+
+// The same ball in air under its focus, looking up into the light that comes down at the
+// eye: the pieces reach behind the eye at their far end. Until the fragments took their
+// optical depth on the record's pieces rather than on the part in front of the near
+// plane, such a piece was read as if it ended at the near plane: too much extinction
+// along it, and the three techniques were 0.859, 0.861 and 0.864 times the reference's
+// total (the opposite of a piece clipped at its start, MediumFillingAClosedBallSeenFromInside).
+// Reached: caustic maps 1.0009, cascaded 0.9959, screen-space 1.0013, relative L2 0.066,
+// 0.107, 0.072; bounds just above.
+TEST(VolumeLines, MediumSeenFromUnderTheFocus)
+{
+  const double ratioBounds[] = { 0.002, 0.005, 0.002 }; // FillsTechniques' order
+  const double l2Bounds[] = { 0.07, 0.11, 0.075 };
+  ExpectVolumeCausticsAsTheReference(MakeBallInMedium(true, BallCamera::UnderFocus),
+    "ball in a medium, seen from under its focus", ratioBounds, l2Bounds);
 }
 
 // An absorbing ball filled with the medium, seen from inside: the light converging in
@@ -1120,7 +1146,7 @@ TEST(VolumeLines, FilledAbsorbingRefractorAsTheReference)
   const double l2Bounds[2][3] = { { 0.19, 0.235, 0.19 }, { 0.30, 0.365, 0.30 } };
   for (int a = 0; a < 2; ++a)
   {
-    vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeBallInMedium(true, true);
+    vtkSmartPointer<vtkOpenGLRenderer> renderer = MakeBallInMedium(true, BallCamera::InsideBall);
     vtkActorCollection* actors = renderer->GetActors();
     actors->InitTraversal();
     const double absorption[3] = { absorptions[a], absorptions[a], absorptions[a] };
