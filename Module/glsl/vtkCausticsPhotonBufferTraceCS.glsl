@@ -552,8 +552,11 @@ void main()
     state = 1;
     underSheet = true;
   }
-  vec3 entered = flux;
-  // The part reflected back inside at the exit (the echo).
+  // The part reflected back inside at the exit (the echo), followed below for the
+  // volume caustic by Russian roulette: with probability R (stratified over the
+  // photons, a fixed rotation, so the frame stays deterministic) and the flux the
+  // photon brought to the exit, which keeps its mean (flux x R) without a piece per photon.
+  bool echo = false;
   vec3 echoFlux = vec3(0.0), echoPosition = p, echoDirection = d;
   int event = 0;
   for (; event < maximumInternalEvents && state == 2; ++event)
@@ -571,7 +574,8 @@ void main()
     if (transmits)
     {
       reflected += Power(flux) * reflectance;
-      echoFlux = flux * reflectance;
+      echo = CausticsGridStratified(texel, 0x68e31da4u) < reflectance;
+      echoFlux = flux;
       echoPosition = p;
       echoDirection = mirrored;
       flux *= 1.0 - reflectance;
@@ -585,26 +589,25 @@ void main()
   }
 #ifdef CAUSTICS_VOLUME_SEGMENT_APPEND
   // When the medium fills the refractors the echo's light scatters inside too (the
-  // reference follows it: 5 % of the volume caustic seen from inside the filled ball):
-  // followed for its volume pieces only, reflecting on at each interface (what leaves
-  // there is not followed, as the echo itself is not for the surfaces), within the
-  // same maximumInternalEvents pieces per photon (the list's capacity), while it holds
-  // 1 % of the flux that entered or more: the first echo, mostly (what is left out is
-  // 0.03 % of that volume caustic, for 25 % fewer pieces than a floor of 1e-4).
-  if (state == 1 && CausticsStretchInMedium(true))
+  // reference follows it: 5 % of the volume caustic seen from inside the filled ball).
+  // It is followed for its volume pieces only (what leaves at an interface is not
+  // followed, as the echo itself is not for the surfaces), on by Russian roulette again
+  // at each partial exit (total internal reflection keeps it), within the same
+  // maximumInternalEvents pieces per photon (the list's capacity).
+  if (echo && state == 1 && CausticsStretchInMedium(true))
   {
-    float least = 1e-2 * Power(entered);
-    for (; event < maximumInternalEvents && Power(echoFlux) > least; ++event)
+    uint rng = CausticsHash(uint(texel.x) * 0x9e3779b9u ^ uint(texel.y));
+    for (; event < maximumInternalEvents; ++event)
     {
       float t, reflectance;
       vec3 mirrored, refracted;
       bool transmits;
       if (!InsideStretch(
-            echoPosition, echoDirection, echoFlux, t, reflectance, mirrored, refracted, transmits))
+            echoPosition, echoDirection, echoFlux, t, reflectance, mirrored, refracted, transmits) ||
+        (transmits && !(CausticsRandom(rng) < reflectance)))
       {
         break;
       }
-      echoFlux *= transmits ? reflectance : 1.0;
       echoDirection = mirrored;
     }
   }
