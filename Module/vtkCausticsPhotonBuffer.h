@@ -17,8 +17,9 @@
  * 3. a photon inside a refractor finds its exit on the back faces (front faces if
  *    it heads back towards the light), loses Beer-Lambert absorption on the way,
  *    and refracts out with exact Fresnel; the part reflected back inside is not
- *    followed (its flux is counted), total internal reflection continues inside
- *    up to MaximumInternalEvents interfaces. Where neither layer holds the exit (a
+ *    followed to the surfaces (its flux is counted; with a medium filling the
+ *    refractors its stretches inside are appended for the volume caustics), total
+ *    internal reflection continues inside up to MaximumInternalEvents interfaces. Where neither layer holds the exit (a
  *    concave refractor), the refractor is the slab between the two layers and the
  *    photon leaves it where the march finds it outside;
  * 4. in air, the photon finds the receiver it lands on in `receivers`, a G-buffer

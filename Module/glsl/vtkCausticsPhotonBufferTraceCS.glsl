@@ -8,9 +8,10 @@
 //    the light sees them, Beer-Lambert absorption applies on the way, and the
 //    photon refracts out with exact Fresnel; total internal reflection continues
 //    inside, up to maximumInternalEvents interfaces. The part reflected back
-//    inside at a partial exit is not followed (counted). A medium that fills the
-//    refractors takes its share on each stretch and, when it scatters, the stretch
-//    is appended for the volume caustics (as phase 2's);
+//    inside at a partial exit is not followed to the surfaces (counted). A medium
+//    that fills the refractors takes its share on each stretch and, when it
+//    scatters, the stretch is appended for the volume caustics (as phase 2's), and so
+//    are the stretches of that reflected part (its volume light only);
 // 2. in air, one thread per listed photon: the hit is found on the receivers as
 //    the caustic map's view sees them (a receiver-only depth layer); a mirror met
 //    before it (a mirror-only layer of the same view) reflects the photon with the
@@ -473,6 +474,53 @@ void main()
   Append(1, texel);
 }
 #elif PHASE == 1
+// One stretch of a photon inside a refractor: to the interface it meets as the light
+// sees the refractor (SlabExit), losing the participating medium's share when the
+// medium fills the refractors (the stretch is appended for the volume caustics) and
+// the refractor's own absorption. On return p is that interface and flux what arrives
+// there; `transmits` whether part of it leaves into air (along `refracted`, the part
+// `reflectance` back along `mirrored`), else all of it reflects along `mirrored`
+// (total internal reflection or a grazing exit). False when no exit is found.
+bool InsideStretch(inout vec3 p, vec3 d, inout vec3 flux, out float t, out float reflectance,
+  out vec3 mirrored, out vec3 refracted, out bool transmits)
+{
+  int kind;
+  vec3 n;
+  if (!SlabExit(p, d, t, kind, n))
+  {
+    return false;
+  }
+  vec3 x = p + t * d;
+  vec3 s, nearest;
+  float material;
+  bool onLayer = kind == 2
+    ? LayerAt(photonView, frontPosition, frontNormal, x, s, nearest, material)
+    : LayerAt(photonView, backPosition, backNormal, x, s, nearest, material);
+  if (!onLayer)
+  {
+    // The silhouette: the material of the last texel inside.
+    LayerAt(photonView, backPosition, backNormal,
+      p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
+  }
+  int refractor = max(int(material + 0.5), 0);
+  CausticsMaterial medium = causticsMaterials[refractor];
+  // The participating medium when it fills the refractors (its volume caustic and
+  // extinction), then the refractor's own absorption.
+  flux = CausticsMediumStretch(p, d, t, flux, true, refractor) *
+    CausticsTransmittance(medium.attenuation.rgb, t);
+  p = x;
+  // Leaving the medium: the normal facing the photon is the inward one. A normal
+  // that faces the photon already belongs to a surface the slab model puts on the
+  // wrong side (a concavity between the two layers): the photon leaves through it.
+  n = dot(d, n) < 0.0 ? -n : n;
+  float ior = max(medium.params.x, 1.0);
+  // Always from inside into air, so CausticsDielectric with the two indices, and
+  // the cosine dot(d, n) as it is (this trace never clamped it).
+  transmits = CausticsDielectric(d, -n, dot(d, n), ior, 1.0, reflectance, mirrored, refracted) &&
+    dot(d, n) > 1e-4;
+  return true;
+}
+
 // Phase 1: photons inside a refractor go from interface to interface until they
 // leave it; those that do are listed for phase 2.
 void main()
@@ -504,51 +552,32 @@ void main()
     state = 1;
     underSheet = true;
   }
-  for (int event = 0; event < maximumInternalEvents && state == 2; ++event)
+  // The part reflected back inside at the exit (the echo), followed below for the
+  // volume caustic by Russian roulette: with probability R (stratified over the
+  // photons, a fixed rotation, so the frame stays deterministic) and the flux the
+  // photon brought to the exit, which keeps its mean (flux x R) without a piece per photon.
+  bool echo = false;
+  vec3 echoFlux = vec3(0.0), echoPosition = p, echoDirection = d;
+  int event = 0;
+  for (; event < maximumInternalEvents && state == 2; ++event)
   {
-    float t;
-    int kind;
-    vec3 n;
-    if (!SlabExit(p, d, t, kind, n))
+    float t, reflectance;
+    vec3 mirrored, refracted;
+    bool transmits;
+    vec3 arriving = flux;
+    if (!InsideStretch(p, d, flux, t, reflectance, mirrored, refracted, transmits))
     {
       break;
     }
-    vec3 x = p + t * d;
-    vec3 s, nearest;
-    float material;
-    bool onLayer = kind == 2
-      ? LayerAt(photonView, frontPosition, frontNormal, x, s, nearest, material)
-      : LayerAt(photonView, backPosition, backNormal, x, s, nearest, material);
-    if (!onLayer)
-    {
-      // The silhouette: the material of the last texel inside.
-      LayerAt(photonView, backPosition, backNormal,
-        p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
-    }
-    int refractor = max(int(material + 0.5), 0);
-    CausticsMaterial medium = causticsMaterials[refractor];
-    // The participating medium when it fills the refractors (its volume caustic and
-    // extinction), then the refractor's own absorption.
-    vec3 transmitted = CausticsMediumStretch(p, d, t, flux, true, refractor) *
-      CausticsTransmittance(medium.attenuation.rgb, t);
-    absorbed += Power(flux - transmitted);
-    flux = transmitted;
+    absorbed += Power(arriving - flux);
     path += t;
-    p = x;
-    // Leaving the medium: the normal facing the photon is the inward one. A normal
-    // that faces the photon already belongs to a surface the slab model puts on the
-    // wrong side (a concavity between the two layers): the photon leaves through it.
-    n = dot(d, n) < 0.0 ? -n : n;
-    float ior = max(medium.params.x, 1.0);
-    float reflectance;
-    vec3 mirrored, refracted;
-    // Always from inside into air, so CausticsDielectric with the two indices, and
-    // the cosine dot(d, n) as it is (this trace never clamped it).
-    bool transmits =
-      CausticsDielectric(d, -n, dot(d, n), ior, 1.0, reflectance, mirrored, refracted);
-    if (dot(d, n) > 1e-4 && transmits)
+    if (transmits)
     {
       reflected += Power(flux) * reflectance;
+      echo = CausticsGridStratified(texel, 0x68e31da4u) < reflectance;
+      echoFlux = flux;
+      echoPosition = p;
+      echoDirection = mirrored;
       flux *= 1.0 - reflectance;
       d = refracted;
       state = 1;
@@ -558,6 +587,31 @@ void main()
       d = mirrored; // total internal reflection (or a grazing exit)
     }
   }
+#ifdef CAUSTICS_VOLUME_SEGMENT_APPEND
+  // When the medium fills the refractors the echo's light scatters inside too (the
+  // reference follows it: 5 % of the volume caustic seen from inside the filled ball).
+  // It is followed for its volume pieces only (what leaves at an interface is not
+  // followed, as the echo itself is not for the surfaces), on by Russian roulette again
+  // at each partial exit (total internal reflection keeps it), within the same
+  // maximumInternalEvents pieces per photon (the list's capacity).
+  if (echo && state == 1 && CausticsStretchInMedium(true))
+  {
+    uint rng = CausticsHash(uint(texel.x) * 0x9e3779b9u ^ uint(texel.y));
+    for (; event < maximumInternalEvents; ++event)
+    {
+      float t, reflectance;
+      vec3 mirrored, refracted;
+      bool transmits;
+      if (!InsideStretch(
+            echoPosition, echoDirection, echoFlux, t, reflectance, mirrored, refracted, transmits) ||
+        (transmits && !(CausticsRandom(rng) < reflectance)))
+      {
+        break;
+      }
+      echoDirection = mirrored;
+    }
+  }
+#endif
   AddFlux(STAT_FLUX_ABSORBED, absorbed);
   AddFlux(STAT_FLUX_INTERNAL_REFLECTION, reflected);
   if (state == 2 || !AllFinite(p) || !AllFinite(d))

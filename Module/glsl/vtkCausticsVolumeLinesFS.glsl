@@ -66,9 +66,11 @@ void main()
     ? CausticsMediumOpticalDepth(o, d, m0, m1)
     : 0.0;
 #else
-  // The optical depth along the photon, linear within the fragment's piece.
-  float h = (segment.y - segment.x) / float(pieces);
-  float f = clamp((t - segment.x) / max(h, 1e-30), 0.0, float(pieces));
+  // The optical depth along the photon, linear within the fragment's piece: the pieces
+  // of the record's whole drawn part (CausticsVolumePiece, as the re-sampling stored
+  // them), not of the part in front of the near plane that `segment` holds.
+  float h = (s.direction.w - s.origin.w) / float(pieces);
+  float f = clamp((t - s.origin.w) / max(h, 1e-30), 0.0, float(pieces));
   int k = min(int(f), pieces - 1);
   int base = segmentIndex * (pieces + 1) + k;
   float along = mix(volumeDepths[base], volumeDepths[base + 1], f - float(k));
