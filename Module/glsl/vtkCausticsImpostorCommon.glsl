@@ -272,19 +272,61 @@ float ImpostorTexelArea(int map, ivec3 texel)
 // (256^2 photons over the pool, 8 mm texels a metre away), and its count is that
 // photon's noise; a fixed window wide enough for that blurs a focus seen in a mirror
 // to a quarter of its peak.
+const int IMPOSTOR_STORE_FACES = 18; // 3 maps x 6 faces per channel
+
 // The cell of the store's coarse level that holds `texel` (a layer 6 map + face).
 ivec2 ImpostorCoarseCell(ivec2 texel)
 {
   return min(texel / IMPOSTOR_COARSE, ivec2(impostorCausticCells - 1));
 }
 
-// Where the coarse level keeps channel c (0-2: flux, 3: deposits) of `cell` of
-// layer 6 map + face: tile 18 c + layer of the 8 x 8 tiles of layers 72 and 73.
+// Where the store keeps channel c (0-2: flux, 3: deposits) of `texel`: layer
+// 18 c + 6 map + face.
+ivec3 ImpostorStoreTexel(ivec3 texel, int c)
+{
+  return texel + ivec3(0, 0, IMPOSTOR_STORE_FACES * c);
+}
+
+// Where the coarse level keeps channel c of `cell` of layer 6 map + face: tile
+// 18 c + layer of the 8 x 8 tiles of layers 72 and 73.
 ivec3 ImpostorCoarseTexel(ivec2 cell, int layer, int c)
 {
-  int tile = 18 * c + layer;
+  int tile = IMPOSTOR_STORE_FACES * c + layer;
   return ivec3((tile % 8) * impostorCausticCells + cell.x,
-    (tile / 8 % 8) * impostorCausticCells + cell.y, 72 + tile / 64);
+    (tile / 8 % 8) * impostorCausticCells + cell.y, 4 * IMPOSTOR_STORE_FACES + tile / 64);
+}
+
+// The flux counts (xyz) and deposits (w) one texel or cell of the store holds
+// (`at`: its four channels' texels, ImpostorStoreTexel or ImpostorCoarseTexel).
+vec4 ImpostorStoreLoad(ivec3 at[4])
+{
+  return vec4(float(imageLoad(impostorCaustic, at[0]).x), float(imageLoad(impostorCaustic, at[1]).x),
+    float(imageLoad(impostorCaustic, at[2]).x), float(imageLoad(impostorCaustic, at[3]).x));
+}
+
+// Adds `counts` (flux in units of impostorCausticUnit) and one deposit there.
+void ImpostorStoreAdd(ivec3 at[4], ivec3 counts)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    if (counts[c] != 0)
+    {
+      imageAtomicAdd(impostorCaustic, at[c], counts[c]);
+    }
+  }
+  imageAtomicAdd(impostorCaustic, at[3], 1);
+}
+
+ivec3[4] ImpostorStoreTexels(ivec3 texel)
+{
+  return ivec3[4](ImpostorStoreTexel(texel, 0), ImpostorStoreTexel(texel, 1),
+    ImpostorStoreTexel(texel, 2), ImpostorStoreTexel(texel, 3));
+}
+
+ivec3[4] ImpostorCoarseTexels(ivec2 cell, int layer)
+{
+  return ivec3[4](ImpostorCoarseTexel(cell, layer, 0), ImpostorCoarseTexel(cell, layer, 1),
+    ImpostorCoarseTexel(cell, layer, 2), ImpostorCoarseTexel(cell, layer, 3));
 }
 
 vec3 ImpostorCausticIrradiance(ivec3 texel)
@@ -293,8 +335,7 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
   {
     return vec3(0.0);
   }
-  const int layers = 18; // 3 maps x 6 faces per channel
-  if (texel.z >= layers)
+  if (texel.z >= IMPOSTOR_STORE_FACES)
   {
     return vec3(0.0); // REFLECTOR_SURFACE holds no receiver
   }
@@ -325,10 +366,9 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
         {
           continue;
         }
-        counts += vec3(float(imageLoad(impostorCaustic, k).x),
-          float(imageLoad(impostorCaustic, k + ivec3(0, 0, layers)).x),
-          float(imageLoad(impostorCaustic, k + ivec3(0, 0, 2 * layers)).x));
-        samples += float(imageLoad(impostorCaustic, k + ivec3(0, 0, 3 * layers)).x);
+        vec4 stored = ImpostorStoreLoad(ImpostorStoreTexels(k));
+        counts += stored.xyz;
+        samples += stored.w;
         area += ImpostorTexelArea(map, k);
       }
     }
@@ -359,10 +399,9 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
           {
             continue;
           }
-          counts += vec3(float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 0)).x),
-            float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 1)).x),
-            float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 2)).x));
-          samples += float(imageLoad(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 3)).x);
+          vec4 stored = ImpostorStoreLoad(ImpostorCoarseTexels(cell, texel.z));
+          counts += stored.xyz;
+          samples += stored.w;
           area += texelFetch(impostorCausticArea, ivec3(cell, texel.z), 0).x;
         }
       }
@@ -384,7 +423,6 @@ void ImpostorDepositCaustic(vec3 h, vec3 flux)
   {
     return;
   }
-  const int layers = 18;
   ivec3 counts = ivec3(round(flux / impostorCausticUnit));
   for (int map = IMPOSTOR_REFRACTOR_ENVIRONMENT; map <= IMPOSTOR_REFLECTOR_ENVIRONMENT; map += 2)
   {
@@ -398,25 +436,10 @@ void ImpostorDepositCaustic(vec3 h, vec3 flux)
     {
       continue;
     }
-    for (int c = 0; c < 3; ++c)
-    {
-      if (counts[c] != 0)
-      {
-        imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, c * layers), counts[c]);
-      }
-    }
-    imageAtomicAdd(impostorCaustic, texel + ivec3(0, 0, 3 * layers), 1);
+    ImpostorStoreAdd(ImpostorStoreTexels(texel), counts);
     if (impostorCausticCells > 0)
     {
-      ivec2 cell = ImpostorCoarseCell(texel.xy);
-      for (int c = 0; c < 3; ++c)
-      {
-        if (counts[c] != 0)
-        {
-          imageAtomicAdd(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, c), counts[c]);
-        }
-      }
-      imageAtomicAdd(impostorCaustic, ImpostorCoarseTexel(cell, texel.z, 3), 1);
+      ImpostorStoreAdd(ImpostorCoarseTexels(ImpostorCoarseCell(texel.xy), texel.z), counts);
     }
   }
 }
