@@ -198,9 +198,9 @@ public:
    * position w > 0 for a landed photon) and the light's buffers: each landed photon's
    * flux goes to the texel showing where it landed, and, with `shadow` (once per
    * light), each texel of the light's view whose first surface is specular takes its
-   * flux off the texel where it would have landed without the specular object. The frame's first call
-   * clears the store; its fixed point is 1/4096 of `maximumPhotonFlux` / 3. Call
-   * after Update(). Returns false on a GL failure.
+   * flux off the texel where it would have landed without the specular object. The
+   * frame's first call clears the store; its fixed point is 1/4096 of
+   * `maximumPhotonFlux` / 3. Call after Update(). Returns false on a GL failure.
    */
   void ResetCaustic();
   bool StoreCaustic(vtkOpenGLRenderWindow* renWin, const caustics::PhotonRecords& landed,

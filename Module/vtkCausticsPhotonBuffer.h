@@ -19,9 +19,10 @@
  *    and refracts out with exact Fresnel; the part reflected back inside is not
  *    followed to the surfaces (its flux is counted; with a medium filling the
  *    refractors its stretches inside are appended for the volume caustics), total
- *    internal reflection continues inside up to MaximumInternalEvents interfaces. Where neither layer holds the exit (a
- *    concave refractor), the refractor is the slab between the two layers and the
- *    photon leaves it where the march finds it outside;
+ *    internal reflection continues inside up to MaximumInternalEvents interfaces.
+ *    Where neither layer holds the exit (a concave refractor), the refractor is the
+ *    slab between the two layers and the photon leaves it where the march finds it
+ *    outside;
  * 4. in air, the photon finds the receiver it lands on in `receivers`, a G-buffer
  *    of the receivers alone as the caustic map's view sees them (the finest level
  *    of vtkCausticsCausticMap), so that caustics can land where the specular

@@ -529,8 +529,9 @@ protected:
    * calls it after its transport, with its landed photon records
    * (vtkCausticsPhotonGrid.h layout, `width` x `height`) and the largest flux one
    * photon of the grid carries; `shadow` once per light (a technique that lands its
-   * photons bounce after bounce stores every bounce's, the shadow with one of them). Each landed photon's flux and the light's shadow go
-   * to the distance impostors' caustic store
+   * photons bounce after bounce stores every bounce's, the shadow with one of them).
+   * Each landed photon's flux and the light's shadow go to the distance impostors'
+   * caustic store
    * (vtkCausticsDistanceImpostors::StoreCaustic), which the camera view reads at map
    * hits the camera does not see (a floor seen only in a mirror or through glass).
    * Nothing runs (and the store reads as zero) in a frame whose camera view reads no

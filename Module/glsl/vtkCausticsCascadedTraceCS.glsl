@@ -469,7 +469,8 @@ void main()
       if (result != MARCH_BLOCKED)
       {
         // It leaves the views: its scattering up to where it leaves the scene.
-        CausticsAppendVolumeSegment(CausticsMakeMediumSegment(o, d, airLength, flux, underSheet, -1));
+        CausticsAppendVolumeSegment(
+          CausticsMakeMediumSegment(o, d, airLength, flux, underSheet, -1));
       }
       break;
     }

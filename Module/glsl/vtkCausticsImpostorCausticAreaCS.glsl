@@ -17,8 +17,9 @@ void main()
   // The last cell of a row also takes the texels beyond the last whole cell
   // (ImpostorCoarseCell clamps them there).
   ivec2 first = cell.xy * IMPOSTOR_COARSE;
-  ivec2 last = ivec2(cell.x == impostorCausticCells - 1 ? impostorResolution : first.x + IMPOSTOR_COARSE,
-    cell.y == impostorCausticCells - 1 ? impostorResolution : first.y + IMPOSTOR_COARSE);
+  ivec2 end = first + IMPOSTOR_COARSE;
+  ivec2 last = ivec2(cell.x == impostorCausticCells - 1 ? impostorResolution : end.x,
+    cell.y == impostorCausticCells - 1 ? impostorResolution : end.y);
   float area = 0.0;
   for (int y = first.y; y < last.y; ++y)
   {

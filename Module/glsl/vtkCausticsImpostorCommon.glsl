@@ -395,7 +395,8 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
         for (int x = -ring; x <= ring; ++x)
         {
           ivec2 cell = centre + ivec2(x, y);
-          if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, ivec2(impostorCausticCells))))
+          if (any(lessThan(cell, ivec2(0))) ||
+            any(greaterThanEqual(cell, ivec2(impostorCausticCells))))
           {
             continue;
           }
