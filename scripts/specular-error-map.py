@@ -109,6 +109,9 @@ def main():
                         help="deposits the store's read window grows to hold (default: the class's)")
     parser.add_argument("--store-coarse-samples", type=int, default=None,
                         help="deposits the store's coarse window grows to hold (default: the class's)")
+    parser.add_argument("--camera", default=None,
+                        help="EYE:FOCAL, e.g. 2.5,2,2.5:0,0.2,0 (view up +y): a framing "
+                             "other than the scene's own")
     parser.add_argument("--no-noise", action="store_true",
                         help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
@@ -128,6 +131,13 @@ def main():
         window.SetMultiSamples(0)
         window.SetSize(SIZE, SIZE)
         window.AddRenderer(renderer)
+        if args.camera:
+            eye, focal = ([float(v) for v in part.split(",")] for part in args.camera.split(":"))
+            camera = renderer.GetActiveCamera()
+            camera.SetPosition(*eye)
+            camera.SetFocalPoint(*focal)
+            camera.SetViewUp(0.0, 1.0, 0.0)
+            renderer.ResetCameraClippingRange()
         truth, mask = reference_color(renderer, 1)
         if args.no_noise:
             other, floor = truth, 0.0  # the bias below is then the error itself
