@@ -1,6 +1,7 @@
 #include "vtkCausticsSceneData.h"
 
 #include "vtkCausticsDensityGrid.h"
+#include "vtkCausticsPhotonFocus.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp> // For glm::pi
@@ -326,12 +327,58 @@ LightView AimLightView(
 }
 }
 
+namespace
+{
+/**
+ * Narrows an orthographic view to the square around the box's outline across it,
+ * instead of the box's bounding sphere: a sheet seen obliquely fills its frustum.
+ */
+void FitOrthographic(LightView& view, const double box[6])
+{
+  double low[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double high[2] = { -low[0], -low[1] };
+  for (int c = 0; c < 8; ++c)
+  {
+    const Vec3 offset{ { box[c & 1] - view.eye[0], box[2 + ((c >> 1) & 1)] - view.eye[1],
+      box[4 + ((c >> 2) & 1)] - view.eye[2] } };
+    const double across[2] = { Dot(offset, view.right), Dot(offset, view.up) };
+    for (int k = 0; k < 2; ++k)
+    {
+      low[k] = std::min(low[k], across[k]);
+      high[k] = std::max(high[k], across[k]);
+    }
+  }
+  const double half = 0.5 * std::max(high[0] - low[0], high[1] - low[1]) * 1.0001;
+  if (!(half > 0.0) || !(half < view.halfExtent))
+  {
+    return;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    view.eye[i] += 0.5 * (low[0] + high[0]) * view.right[i] + 0.5 * (low[1] + high[1]) * view.up[i];
+  }
+  view.halfExtent = half;
+  SetViewTransforms(view);
+}
+}
+
 LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus focus)
 {
   if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
   {
     LightView view;
     view.light = index;
+    return view;
+  }
+  if (focus == LightView::Focus::SeenSpecular)
+  {
+    double seen[6];
+    const bool narrowed = PhotonFocusBounds(scene, index, seen);
+    LightView view = AimLightView(scene, scene.Lights[index], index, seen);
+    if (narrowed && !view.perspective && view.valid)
+    {
+      FitOrthographic(view, seen);
+    }
     return view;
   }
   const bool specular = focus == LightView::Focus::Specular && scene.HasSpecular;

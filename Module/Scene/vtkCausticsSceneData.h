@@ -152,7 +152,10 @@ struct LightView
   enum class Focus : int
   {
     Specular = 0, ///< bounding sphere of reflectors and refractors
-    Scene = 1     ///< bounding sphere of every mesh
+    Scene = 1,    ///< bounding sphere of every mesh
+    /** Bounding sphere of the specular surfaces whose light can reach what the
+     * camera sees (PhotonFocusBounds, vtkCausticsPhotonFocus.h): Specular, narrowed. */
+    SeenSpecular = 2
   };
   int light = 0;            ///< index into SceneData::Lights
   bool perspective = false; ///< point/spot: true

@@ -1,0 +1,267 @@
+// caustics::PhotonFocusBounds: the specular surfaces a light's photons are aimed at,
+// narrowed to those whose light can reach what the camera sees. Checked on the CPU
+// against rays traced exactly from a fine sampling of a wavy water sheet: every
+// sample whose refracted light lands where the camera sees the floor must lie in
+// the box, and the box must be much smaller than the sheet when the camera frames a
+// small part of the floor under it.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsMaterial.h"
+#include "vtkCausticsMedium.h"
+#include "vtkCausticsPhotonFocus.h"
+#include "vtkCausticsSceneData.h"
+#include "vtkCausticsSceneExtractor.h"
+#include "TestWaterSheetUtilities.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+namespace
+{
+using namespace watersheet;
+constexpr double FloorHalf = 3.0;
+
+/** The sheet as a glass actor, moved by `offsetX` along x. */
+vtkSmartPointer<vtkActor> MakeWater(int resolution, double offsetX = 0.0)
+{
+  auto actor = MakeActor(watersheet::MakeSheet(resolution));
+  actor->SetPosition(offsetX, 0.0, 0.0);
+  vtkCausticsMaterial::MakeGlass(actor->GetProperty(), WaterIndex);
+  return actor;
+}
+
+/** A floor, the water sheet over it and a sun `elevation` degrees up, travelling to +x. */
+struct SheetScene
+{
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkLight> Sun;
+  vtkNew<vtkCausticsSceneExtractor> Extractor;
+
+  explicit SheetScene(double elevation)
+  {
+    vtkNew<vtkPlaneSource> floor;
+    floor->SetOrigin(-FloorHalf, 0, FloorHalf);
+    floor->SetPoint1(FloorHalf, 0, FloorHalf);
+    floor->SetPoint2(-FloorHalf, 0, -FloorHalf);
+    floor->Update();
+    this->Renderer->AddActor(MakeActor(floor->GetOutput()));
+    this->Renderer->AddActor(MakeWater(96));
+    const double e = elevation * M_PI / 180.0;
+    this->Sun->SetLightTypeToSceneLight();
+    this->Sun->SetPositional(false);
+    this->Sun->SetFocalPoint(0, 0, 0);
+    this->Sun->SetPosition(-std::cos(e), std::sin(e), 0.0);
+    this->Renderer->AddLight(this->Sun);
+  }
+
+  const caustics::SceneData& Extract()
+  {
+    EXPECT_TRUE(this->Extractor->Update(this->Renderer, 256, 256));
+    return this->Extractor->GetScene();
+  }
+};
+
+bool Inside(const double box[6], double x, double y, double z, double tolerance)
+{
+  return x >= box[0] - tolerance && x <= box[1] + tolerance && y >= box[2] - tolerance &&
+    y <= box[3] + tolerance && z >= box[4] - tolerance && z <= box[5] + tolerance;
+}
+
+/**
+ * Traces the sun's light refracted at a fine sampling of the sheet (exact normals, not
+ * the mesh's) to the floor. Every sample whose light lands where the camera sees the
+ * floor must lie in `box`. Returns how many did (the check is empty without any).
+ */
+int CheckHoldsTheSeenLight(const caustics::SceneData& scene, double elevation, const double box[6])
+{
+  const double e = elevation * M_PI / 180.0;
+  const double ix = std::cos(e), iy = -std::sin(e);
+  int seen = 0, outside = 0;
+  const int samples = 1200;
+  for (int i = 0; i < samples; ++i)
+  {
+    const double x = -SheetHalf + 2.0 * SheetHalf * (i + 0.5) / samples;
+    const double nx = -Slope(x) / std::sqrt(1.0 + Slope(x) * Slope(x));
+    const double ny = 1.0 / std::sqrt(1.0 + Slope(x) * Slope(x));
+    const double cosI = -(ix * nx + iy * ny), eta = 1.0 / WaterIndex;
+    const double cosT = std::sqrt(std::max(0.0, 1.0 - eta * eta * (1.0 - cosI * cosI)));
+    const double tx = eta * ix + (eta * cosI - cosT) * nx, ty = eta * iy + (eta * cosI - cosT) * ny;
+    const double landedX = x + Surface(x) * tx / -ty;
+    if (std::abs(landedX) > FloorHalf)
+    {
+      continue; // off the floor: lands nowhere
+    }
+    for (int k = 0; k < 120; ++k)
+    {
+      const double z = -SheetHalf + 2.0 * SheetHalf * (k + 0.5) / 120;
+      double px, py;
+      if (!scene.View.WorldToPixel({ { landedX, 0.0, z } }, px, py) || px < 0.0 || py < 0.0 ||
+        px > scene.View.width || py > scene.View.height)
+      {
+        continue;
+      }
+      ++seen;
+      if (!Inside(box, x, Surface(x), z, 1e-9))
+      {
+        if (++outside <= 5)
+        {
+          ADD_FAILURE() << "the sheet at x " << x << ", z " << z << " lights the floor seen at "
+                        << landedX << " but lies outside the focus " << box[0] << " " << box[1]
+                        << ", " << box[4] << " " << box[5];
+        }
+      }
+    }
+  }
+  return seen;
+}
+
+double AreaXZ(const double box[6])
+{
+  return (box[1] - box[0]) * (box[5] - box[4]);
+}
+}
+
+// Looking straight down at 2 m of floor under a 6 m sheet: the photons need only the
+// part of the sheet over that floor and up-sun of it, whatever the sun's elevation.
+TEST(PhotonFocus, NarrowsToTheSheetWhoseLightTheCameraSees)
+{
+  for (double elevation : { 90.0, 60.0, 30.0 })
+  {
+    SheetScene s(elevation);
+    vtkCamera* camera = s.Renderer->GetActiveCamera();
+    camera->ParallelProjectionOn();
+    camera->SetPosition(0, 5, 0);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 0, -1);
+    camera->SetParallelScale(1.0);
+    camera->SetClippingRange(1, 10);
+    const caustics::SceneData& scene = s.Extract();
+    double box[6];
+    ASSERT_TRUE(caustics::PhotonFocusBounds(scene, 0, box)) << elevation;
+    const double* whole = scene.SpecularBounds;
+    std::cout << "sun at " << elevation << " degrees: focus x " << box[0] << " to " << box[1]
+              << ", z " << box[4] << " to " << box[5] << ": " << AreaXZ(box) / AreaXZ(whole)
+              << " of the sheet\n";
+    EXPECT_LT(AreaXZ(box), 0.3 * AreaXZ(whole)) << elevation;
+    EXPECT_GT(CheckHoldsTheSeenLight(scene, elevation, box), 1000) << elevation;
+    // The view the photons are emitted through is aimed at it.
+    const caustics::LightView narrow =
+      caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::SeenSpecular);
+    const caustics::LightView wide =
+      caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::Specular);
+    ASSERT_TRUE(narrow.valid);
+    EXPECT_LT(narrow.halfExtent, 0.6 * wide.halfExtent) << elevation;
+    std::cout << "  the light's frustum: half width " << narrow.halfExtent << " m against "
+              << wide.halfExtent << " m aimed at the whole sheet ("
+              << std::pow(wide.halfExtent / narrow.halfExtent, 2) << " times the photons per m^2)\n";
+  }
+}
+
+// A perspective camera close to the floor, zoomed in on the caustic at a slant, from
+// several azimuths and elevations; and a camera seeing the sheet itself at a grazing
+// angle. The light of every sample landing in view stays in the box.
+TEST(PhotonFocus, HoldsEveryPathToWhatIsSeenFromAnyCamera)
+{
+  const double views[][6] = {
+    { 0.5, 1.6, 0.8, 0.2, 0.0, 0.1 },  // close over the floor, under the sheet's edge of view
+    { -1.5, 0.5, -1.0, 0.5, 0.0, 0.5 }, // under the water, looking along the floor
+    { 0.0, 3.0, 5.0, 0.0, 0.0, 0.0 },  // the whole scene, obliquely
+    { 4.0, 1.3, 0.0, -2.0, 0.9, 0.0 }, // beside the sheet, grazing it
+  };
+  for (double elevation : { 80.0, 45.0 })
+  {
+    for (const auto& v : views)
+    {
+      SheetScene s(elevation);
+      vtkCamera* camera = s.Renderer->GetActiveCamera();
+      camera->SetPosition(v[0], v[1], v[2]);
+      camera->SetFocalPoint(v[3], v[4], v[5]);
+      camera->SetViewUp(0, 1, 0);
+      camera->SetViewAngle(25.0);
+      camera->SetClippingRange(0.05, 50.0);
+      const caustics::SceneData& scene = s.Extract();
+      double box[6];
+      caustics::PhotonFocusBounds(scene, 0, box);
+      CheckHoldsTheSeenLight(scene, elevation, box);
+    }
+  }
+}
+
+// Where one specular event does not bound the paths, the focus is every specular
+// actor: a closed ball, two specular meshes, a participating medium, a camera that
+// sees nothing.
+TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
+{
+  auto expectWhole = [](const caustics::SceneData& scene, const char* what) {
+    double box[6];
+    EXPECT_FALSE(caustics::PhotonFocusBounds(scene, 0, box)) << what;
+    for (int k = 0; k < 6; ++k)
+    {
+      EXPECT_EQ(box[k], scene.SpecularBounds[k]) << what;
+    }
+  };
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkCausticsBuiltinScene> builtin;
+    builtin->SetSceneName("ball-lens");
+    ASSERT_TRUE(builtin->Populate(renderer));
+    vtkNew<vtkCausticsSceneExtractor> extractor;
+    ASSERT_TRUE(extractor->Update(renderer, 256, 256));
+    expectWhole(extractor->GetScene(), "a closed ball");
+  }
+  auto zoomIn = [](vtkRenderer* renderer) {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(0.3, 1.5, 0.3);
+    camera->SetFocalPoint(0.3, 0.0, 0.0);
+    camera->SetViewUp(0, 0, -1);
+    camera->SetClippingRange(0.05, 50.0);
+  };
+  {
+    SheetScene s(60.0);
+    zoomIn(s.Renderer);
+    double box[6];
+    EXPECT_TRUE(caustics::PhotonFocusBounds(s.Extract(), 0, box)) << "the sheet alone narrows";
+  }
+  {
+    SheetScene s(60.0);
+    zoomIn(s.Renderer);
+    auto second = MakeWater(8);
+    second->SetPosition(0.0, 0.5, 0.0);
+    s.Renderer->AddActor(second);
+    expectWhole(s.Extract(), "two specular sheets");
+  }
+  {
+    SheetScene s(60.0);
+    zoomIn(s.Renderer);
+    vtkNew<vtkCausticsMedium> medium;
+    medium->SetScatteringCoefficient(0.1, 0.1, 0.1);
+    vtkCausticsMedium::AttachTo(s.Renderer, medium);
+    expectWhole(s.Extract(), "a medium");
+  }
+  {
+    SheetScene s(60.0);
+    vtkCamera* camera = s.Renderer->GetActiveCamera();
+    camera->SetPosition(0.0, 20.0, 0.0);
+    camera->SetFocalPoint(0.0, 40.0, 0.0);
+    camera->SetViewUp(0, 0, -1);
+    camera->SetClippingRange(0.05, 10.0);
+    expectWhole(s.Extract(), "a camera that sees nothing");
+  }
+}
+

@@ -1,0 +1,84 @@
+// The sinusoidal water sheet of issue 13's fold test, shared by TestWaterSheet (its
+// exact caustic) and TestPhotonFocus (the photons' focus on it): water of index 1.33
+// whose surface is y = Height + Amplitude sin(k x) (2 cm, wavelength 0.5 m, 1 m up),
+// 2 SheetHalf = 6 m wide, with its exact normals at the vertices.
+#ifndef TestWaterSheetUtilities_h
+#define TestWaterSheetUtilities_h
+
+#include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkSmartPointer.h"
+
+#include <cmath>
+
+namespace watersheet
+{
+constexpr double Amplitude = 0.02, Wavelength = 0.5, Height = 1.0, WaterIndex = 1.33;
+constexpr double SheetHalf = 3.0;
+const double WaveNumber = 2.0 * M_PI / Wavelength;
+
+inline double Surface(double x)
+{
+  return Height + Amplitude * std::sin(WaveNumber * x);
+}
+
+/** dy/dx of the surface. */
+inline double Slope(double x)
+{
+  return Amplitude * WaveNumber * std::cos(WaveNumber * x);
+}
+
+/** An actor drawing `data`. */
+inline vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data)
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/** The sheet over [-SheetHalf, SheetHalf]^2, resolution x resolution quads in triangles. */
+inline vtkSmartPointer<vtkPolyData> MakeSheet(int resolution)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> normals;
+  normals->SetNumberOfComponents(3);
+  normals->SetName("Normals");
+  for (int j = 0; j <= resolution; ++j)
+  {
+    const double z = -SheetHalf + 2.0 * SheetHalf * j / resolution;
+    for (int i = 0; i <= resolution; ++i)
+    {
+      const double x = -SheetHalf + 2.0 * SheetHalf * i / resolution;
+      points->InsertNextPoint(x, Surface(x), z);
+      const double length = std::sqrt(1.0 + Slope(x) * Slope(x));
+      normals->InsertNextTuple3(-Slope(x) / length, 1.0 / length, 0.0);
+    }
+  }
+  vtkNew<vtkCellArray> triangles;
+  for (int j = 0; j < resolution; ++j)
+  {
+    for (int i = 0; i < resolution; ++i)
+    {
+      const vtkIdType a = j * (resolution + 1) + i, b = a + 1, c = a + resolution + 1, d = c + 1;
+      const vtkIdType t1[3] = { a, c, b }, t2[3] = { b, c, d };
+      triangles->InsertNextCell(3, t1);
+      triangles->InsertNextCell(3, t2);
+    }
+  }
+  auto sheet = vtkSmartPointer<vtkPolyData>::New();
+  sheet->SetPoints(points);
+  sheet->SetPolys(triangles);
+  sheet->GetPointData()->SetNormals(normals);
+  return sheet;
+}
+}
+
+#endif
