@@ -100,6 +100,8 @@ struct vtkCausticsLightBuffers::Internals
   caustics::gl::FullScreenTriangle Triangle;
   caustics::LightView Invalid;
   std::vector<std::uint64_t> Key; // ContentKey() of the buffers held; empty: none
+  std::vector<std::uint64_t> ViewsKey;   // what the Views were computed from
+  std::vector<caustics::LightView> Views; // the last ComputeViews()
   bool Reused = false;            // the last Render() kept the buffers held
 
   void SetNumberOfLights(vtkOpenGLRenderWindow* renWin, int count);
@@ -221,21 +223,42 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
 std::vector<caustics::LightView> vtkCausticsLightBuffers::ComputeViews(
   const caustics::SceneData& scene)
 {
+  // The views are a function of these alone; FOCUS_SEEN scans the specular sheet's
+  // triangles (caustics::PhotonFocusBounds), so they are kept while none changes.
+  auto& in = *this->Internal;
+  std::vector<std::uint64_t> key{ static_cast<std::uint64_t>(this->Focus) };
+  caustics::gl::AppendMeshesKey(key, scene);
+  const std::vector<double> lightField = caustics::gl::LightFieldSignature(scene);
+  caustics::gl::AppendKey(key, lightField.data(), static_cast<int>(lightField.size()));
+  caustics::gl::AppendKey(key, scene.Bounds, 6);
+  if (this->Focus == FOCUS_SEEN)
+  {
+    const caustics::Camera& camera = scene.View;
+    caustics::gl::AppendKey(key, camera.worldToClip, 16);
+    caustics::gl::AppendKey(key, camera.position.data(), 3);
+    caustics::gl::AppendKey(key, camera.focalPoint.data(), 3);
+    key.push_back(camera.parallel);
+  }
+  if (key == in.ViewsKey)
+  {
+    return in.Views;
+  }
   std::vector<caustics::LightView> views;
   for (int i = 0; i < static_cast<int>(scene.Lights.size()); ++i)
   {
-    views.push_back(caustics::ComputeLightView(scene, i,
-      this->Focus == FOCUS_SCENE ? caustics::LightView::Focus::Scene
-                                 : caustics::LightView::Focus::Specular));
+    views.push_back(
+      caustics::ComputeLightView(scene, i, static_cast<caustics::LightView::Focus>(this->Focus)));
     // Shadow maps (FOCUS_SCENE) of a lamp inside a room are clamped as a rule; what
     // they miss counts as lit. Photons that are not traced are worth a warning.
-    if (views.back().clamped && this->Focus == FOCUS_SPECULAR)
+    if (views.back().clamped && this->Focus != FOCUS_SCENE)
     {
       vtkWarningMacro(<< "light " << i
                       << " is inside the bounds it must light; its buffers cover only a "
                          "150 degree cone towards the scene's centre");
     }
   }
+  in.ViewsKey = std::move(key);
+  in.Views = views;
   return views;
 }
 
@@ -288,7 +311,8 @@ void vtkCausticsLightBuffers::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
-  os << indent << "Focus: " << (this->Focus == FOCUS_SCENE ? "scene" : "specular") << "\n";
+  const char* focus[] = { "specular", "scene", "seen specular" };
+  os << indent << "Focus: " << focus[this->Focus] << "\n";
   os << indent << "ShadowMapsOnly: " << this->ShadowMapsOnly << "\n";
   os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
   os << indent << "LastRenderReused: " << this->Internal->Reused << "\n";

@@ -5,8 +5,9 @@
  * For every light of the scene snapshot:
  * 1. caustics::ComputeLightView() gives the frustum: orthographic along a
  *    directional light, perspective from a point or spot light, aimed at the
- *    focus (the specular objects, where photons are useful, or the whole scene,
- *    for shadow maps) with a depth range that holds the whole scene;
+ *    focus (the specular objects, where photons are useful, narrowed to those whose
+ *    light can reach what the camera sees; or the whole scene, for shadow maps) with
+ *    a depth range that holds the whole scene;
  * 2. a vtkCausticsGBuffer renders every role from the light (position, normal,
  *    material, depth: the first surface each light ray meets);
  * 3. a full-screen pass writes the flux each texel carries, from the light's
@@ -28,7 +29,9 @@
  * - the lights: their number, and per light its type, position, direction,
  *   emission and spot cone, and the view computed from them and the scene's bounds;
  * - ReleaseGraphicsResources() was called.
- * Nothing else is read: the camera in particular is not. A failed Render() keeps
+ * Nothing else is read. The camera is read only through the views: with FOCUS_SEEN
+ * a camera that moves what it sees of a specular sheet moves the photons' frustum
+ * (caustics::PhotonFocusBounds); otherwise it is not read. A failed Render() keeps
  * nothing, so the next one draws.
  */
 #ifndef vtkCausticsLightBuffers_h
@@ -57,8 +60,12 @@ public:
 
   enum FocusType
   {
-    FOCUS_SPECULAR = 0,
-    FOCUS_SCENE = 1
+    FOCUS_SPECULAR = 0, ///< every reflector and refractor
+    FOCUS_SCENE = 1,    ///< every mesh (shadow maps)
+    /** The specular surfaces whose light can reach what the camera sees
+     * (caustics::PhotonFocusBounds): a camera zoomed in on a part of a large water
+     * surface gets its photons there. FOCUS_SPECULAR where that cannot be told. */
+    FOCUS_SEEN = 2
   };
 
   ///@{
@@ -68,8 +75,8 @@ public:
   ///@}
 
   ///@{
-  /** What the frusta are aimed at. Default FOCUS_SPECULAR. */
-  vtkSetClampMacro(Focus, int, FOCUS_SPECULAR, FOCUS_SCENE);
+  /** What the frusta are aimed at. Default FOCUS_SEEN. */
+  vtkSetClampMacro(Focus, int, FOCUS_SPECULAR, FOCUS_SEEN);
   vtkGetMacro(Focus, int);
   ///@}
 
@@ -126,7 +133,7 @@ protected:
   ~vtkCausticsLightBuffers() override;
 
   int Resolution = 512;
-  int Focus = FOCUS_SPECULAR;
+  int Focus = FOCUS_SEEN;
   bool ShadowMapsOnly = false;
   bool ReuseUnchanged = true;
 

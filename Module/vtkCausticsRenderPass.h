@@ -23,7 +23,7 @@
  *    RenderCameraGBuffers: camera G-buffers of the opaque roles (receivers,
  *    reflectors) and of the refractors (vtkCausticsGBuffer).
  * 6. If caustics are needed: RenderLightBuffers (per-light reflective shadow maps
- *    aimed at the specular actors, vtkCausticsLightBuffers FOCUS_SPECULAR), then
+ *    aimed at the specular actors, vtkCausticsLightBuffers FOCUS_SEEN), then
  *    with CausticFramebuffer bound and cleared the technique's hooks
  *    RenderCausticIrradiance (transport and reconstruction: W/m^2 at each
  *    pixel's visible opaque surface point before albedo) and

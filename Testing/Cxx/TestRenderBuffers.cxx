@@ -278,7 +278,7 @@ TEST(LightBuffers, DirectionalFluxSumsToPowerInFrustum)
   auto flux = f.Read("LightFlux:0");
   // Orthographic frustum around the ball's bounding sphere: power = E x (2R)^2.
   const caustics::LightView view =
-    caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::Specular);
+    caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::SeenSpecular);
   const caustics::Vec3 power = view.FrustumPower(scene.Lights[0]);
   for (int c = 0; c < 3; ++c)
   {
@@ -301,7 +301,7 @@ TEST(LightBuffers, PointAndSpotFluxSumsToPowerInFrustum)
   const caustics::Light& spot = scene.Lights[0];
   ASSERT_EQ(spot.type, caustics::Light::Type::Spot);
   const caustics::LightView view =
-    caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::Specular);
+    caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::SeenSpecular);
   ASSERT_TRUE(view.perspective);
   // Expected power: I x integral of the spot falloff over the frustum's solid
   // angle, by a fine midpoint sum on the image plane (independent of the shader's
