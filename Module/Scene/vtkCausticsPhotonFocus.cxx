@@ -184,12 +184,12 @@ bool Reaches(const Cone& cone, const Box& region)
   double farthest = 0.0;
   for (int c = 0; c < 8; ++c)
   {
-    const glm::dvec3 corner(region[(c & 1)], region[2 + ((c >> 1) & 1)], region[4 + ((c >> 2) & 1)]);
+    const glm::dvec3 corner(
+      region[(c & 1)], region[2 + ((c >> 1) & 1)], region[4 + ((c >> 2) & 1)]);
     farthest = std::max(farthest, glm::length(corner - cone.origin));
   }
-  auto gap = [&](double t) {
-    return Distance(cone.origin + t * cone.direction, region) - cone.radius - t * cone.spread;
-  };
+  auto gap = [&](double t)
+  { return Distance(cone.origin + t * cone.direction, region) - cone.radius - t * cone.spread; };
   // Beyond b the point is farther from every corner than the cone is wide.
   double a = 0.0, b = (farthest + cone.radius) / (1.0 - std::min(cone.spread, 0.9));
   if (gap(a) <= 0.0 || gap(b) <= 0.0)
@@ -320,9 +320,11 @@ Triangles Gather(const Mesh& mesh)
       ok = v < vertices;
       if (ok)
       {
-        x[k] = glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
-        n[k] = normals ? glm::dvec3(mesh.normals[3 * v], mesh.normals[3 * v + 1], mesh.normals[3 * v + 2])
-                       : glm::dvec3(0.0);
+        x[k] =
+          glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+        n[k] = normals
+          ? glm::dvec3(mesh.normals[3 * v], mesh.normals[3 * v + 1], mesh.normals[3 * v + 2])
+          : glm::dvec3(0.0);
         ok = std::isfinite(x[k].x) && std::isfinite(x[k].y) && std::isfinite(x[k].z);
       }
     }
@@ -356,14 +358,14 @@ bool IsSheet(const Triangles& t)
   }
   mean = glm::normalize(mean);
   const double cos45 = std::sqrt(0.5);
-  return std::all_of(
-    t.Normals.begin(), t.Normals.end(), [&](const glm::dvec3& n) { return glm::dot(n, mean) >= cos45; });
+  return std::all_of(t.Normals.begin(), t.Normals.end(),
+    [&](const glm::dvec3& n) { return glm::dot(n, mean) >= cos45; });
 }
 
 /** The cones of triangle `i` for light arriving along `incoming(x)`: reflected, refracted. */
 template <typename Incoming>
-void Cones(const Triangles& t, std::size_t i, double ior, bool refractor, Incoming incoming,
-  Cone cones[2])
+void Cones(
+  const Triangles& t, std::size_t i, double ior, bool refractor, Incoming incoming, Cone cones[2])
 {
   const glm::dvec3* x = &t.Corners[3 * i];
   const glm::dvec3* n = &t.Normals[3 * i];
@@ -424,9 +426,8 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   const glm::dvec3 eye(camera.position[0], camera.position[1], camera.position[2]);
   const glm::dvec3 viewDirection = glm::normalize(
     glm::dvec3(camera.focalPoint[0], camera.focalPoint[1], camera.focalPoint[2]) - eye);
-  auto fromCamera = [&](const glm::dvec3& x) {
-    return camera.parallel ? viewDirection : glm::normalize(x - eye);
-  };
+  auto fromCamera = [&](const glm::dvec3& x)
+  { return camera.parallel ? viewDirection : glm::normalize(x - eye); };
   for (std::size_t i = 0; i < count; ++i)
   {
     Box triangle = EmptyBox();
@@ -461,15 +462,18 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   const glm::dvec3 lightPosition(light.position[0], light.position[1], light.position[2]);
   const glm::dvec3 lightDirection =
     glm::normalize(glm::dvec3(light.direction[0], light.direction[1], light.direction[2]));
-  auto fromLight = [&](const glm::dvec3& x) {
-    return light.type == Light::Type::Directional ? lightDirection : glm::normalize(x - lightPosition);
+  auto fromLight = [&](const glm::dvec3& x)
+  {
+    return light.type == Light::Type::Directional ? lightDirection
+                                                  : glm::normalize(x - lightPosition);
   };
   Box focus = EmptyBox();
   for (std::size_t i = 0; i < count; ++i)
   {
     Cone cones[2];
     Cones(triangles, i, material.ior, refractor, fromLight, cones);
-    if ((cones[0].valid && Reaches(cones[0], region)) || (cones[1].valid && Reaches(cones[1], region)))
+    if ((cones[0].valid && Reaches(cones[0], region)) ||
+      (cones[1].valid && Reaches(cones[1], region)))
     {
       for (int k = 0; k < 3; ++k)
       {

@@ -335,8 +335,9 @@ namespace
  */
 void FitOrthographic(LightView& view, const double box[6])
 {
-  double low[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
-  double high[2] = { -low[0], -low[1] };
+  const double infinity = std::numeric_limits<double>::infinity();
+  double low[2] = { infinity, infinity };
+  double high[2] = { -infinity, -infinity };
   for (int c = 0; c < 8; ++c)
   {
     const Vec3 offset{ { box[c & 1] - view.eye[0], box[2 + ((c >> 1) & 1)] - view.eye[1],

@@ -4,13 +4,13 @@
 // sample whose refracted light lands where the camera sees the floor must lie in
 // the box, and the box must be much smaller than the sheet when the camera frames a
 // small part of the floor under it.
+#include "TestWaterSheetUtilities.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsPhotonFocus.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneExtractor.h"
-#include "TestWaterSheetUtilities.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -169,7 +169,8 @@ TEST(PhotonFocus, NarrowsToTheSheetWhoseLightTheCameraSees)
     EXPECT_LT(narrow.halfExtent, 0.6 * wide.halfExtent) << elevation;
     std::cout << "  the light's frustum: half width " << narrow.halfExtent << " m against "
               << wide.halfExtent << " m aimed at the whole sheet ("
-              << std::pow(wide.halfExtent / narrow.halfExtent, 2) << " times the photons per m^2)\n";
+              << std::pow(wide.halfExtent / narrow.halfExtent, 2)
+              << " times the photons per m^2)\n";
   }
 }
 
@@ -179,10 +180,10 @@ TEST(PhotonFocus, NarrowsToTheSheetWhoseLightTheCameraSees)
 TEST(PhotonFocus, HoldsEveryPathToWhatIsSeenFromAnyCamera)
 {
   const double views[][6] = {
-    { 0.5, 1.6, 0.8, 0.2, 0.0, 0.1 },  // close over the floor, under the sheet's edge of view
+    { 0.5, 1.6, 0.8, 0.2, 0.0, 0.1 },   // close over the floor, under the sheet's edge of view
     { -1.5, 0.5, -1.0, 0.5, 0.0, 0.5 }, // under the water, looking along the floor
-    { 0.0, 3.0, 5.0, 0.0, 0.0, 0.0 },  // the whole scene, obliquely
-    { 4.0, 1.3, 0.0, -2.0, 0.9, 0.0 }, // beside the sheet, grazing it
+    { 0.0, 3.0, 5.0, 0.0, 0.0, 0.0 },   // the whole scene, obliquely
+    { 4.0, 1.3, 0.0, -2.0, 0.9, 0.0 },  // beside the sheet, grazing it
   };
   for (double elevation : { 80.0, 45.0 })
   {
@@ -208,7 +209,8 @@ TEST(PhotonFocus, HoldsEveryPathToWhatIsSeenFromAnyCamera)
 // sees nothing.
 TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
 {
-  auto expectWhole = [](const caustics::SceneData& scene, const char* what) {
+  auto expectWhole = [](const caustics::SceneData& scene, const char* what)
+  {
     double box[6];
     EXPECT_FALSE(caustics::PhotonFocusBounds(scene, 0, box)) << what;
     for (int k = 0; k < 6; ++k)
@@ -225,7 +227,8 @@ TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
     ASSERT_TRUE(extractor->Update(renderer, 256, 256));
     expectWhole(extractor->GetScene(), "a closed ball");
   }
-  auto zoomIn = [](vtkRenderer* renderer) {
+  auto zoomIn = [](vtkRenderer* renderer)
+  {
     vtkCamera* camera = renderer->GetActiveCamera();
     camera->SetPosition(0.3, 1.5, 0.3);
     camera->SetFocalPoint(0.3, 0.0, 0.0);
@@ -264,4 +267,3 @@ TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
     expectWhole(s.Extract(), "a camera that sees nothing");
   }
 }
-
