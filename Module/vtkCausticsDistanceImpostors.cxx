@@ -2,6 +2,7 @@
 
 #include "vtkCausticsBindings.h" // CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE
 #include "vtkCausticsGBuffer.h"
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
@@ -133,6 +134,9 @@ struct vtkCausticsDistanceImpostors::Internals
   std::vector<double> LightKey;
   int KeyResolution = 0;
   bool KeySelf = false; // ReflectorBounces > 0
+  // The shadow maps the radiance was shaded with (compared only; null: none).
+  const vtkCausticsLightBuffers* ShadedWith = nullptr;
+  bool Shadowed = false;
 };
 
 vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
@@ -159,12 +163,26 @@ vtkCausticsDistanceImpostors::~vtkCausticsDistanceImpostors()
   }
 }
 
-bool vtkCausticsDistanceImpostors::Update(
-  vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene)
+bool vtkCausticsDistanceImpostors::Update(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+  vtkCausticsLightBuffers* shadowMaps)
 {
+  auto& maps = *this->Internal;
+  const bool shadowsChanged =
+    shadowMaps != maps.ShadedWith || (shadowMaps && !shadowMaps->GetLastRenderReused());
   if (!this->SceneChanged(scene))
   {
-    return true;
+    if (!shadowsChanged)
+    {
+      return true;
+    }
+    // The maps stand; only the lights' shadows moved (or came, or went).
+    const bool ok = this->ShadeMaps(renWin, geometry, scene, shadowMaps);
+    if (!ok)
+    {
+      maps.Key.clear(); // try again next frame
+    }
+    return ok;
   }
   this->ChooseReferencePoints(scene);
   auto& in = *this->Internal;
@@ -188,7 +206,8 @@ bool vtkCausticsDistanceImpostors::Update(
   {
     ok = !in.Made[map] || this->RenderMap(renWin, geometry, map);
   }
-  ok = ok && this->ShadeMaps(renWin, geometry, scene) && this->MeasureCausticCells(renWin);
+  ok = ok && this->ShadeMaps(renWin, geometry, scene, shadowMaps) &&
+    this->MeasureCausticCells(renWin);
   ++this->MapRenders;
   if (!ok)
   {
@@ -342,21 +361,26 @@ bool vtkCausticsDistanceImpostors::RenderMap(
 }
 
 bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene)
+  vtkCausticsSceneGeometry* geometry, const caustics::SceneData& scene,
+  vtkCausticsLightBuffers* shadowMaps)
 {
   auto& in = *this->Internal;
+  in.ShadedWith = nullptr;
+  in.Shadowed = false;
   vtkCausticsShaderProgram* p = in.Shade;
   if (!p->Bind(renWin))
   {
     return false;
   }
-  constexpr int maxLights = 8; // MAX_LIGHTS of the shader
+  constexpr int maxLights = 8;
   const int lights = std::min(static_cast<int>(scene.Lights.size()), maxLights);
   if (static_cast<int>(scene.Lights.size()) > maxLights)
   {
     vtkWarningMacro(<< "distance impostors shade with the first " << maxLights << " of "
                     << scene.Lights.size() << " lights");
   }
+  // Shadows only when every light shaded has its shadow map.
+  const bool shadowed = shadowMaps && shadowMaps->GetNumberOfLights() >= lights;
   {
     caustics::ssp::TextureUnits units(renWin);
     p->SetUniformi("impostorPosition", units.Bind(in.Position.Handle));
@@ -367,30 +391,67 @@ bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
       p->SetUniform3f(("impostorCentre[" + std::to_string(map) + "]").c_str(),
         static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]));
     }
-    p->SetUniformi("lightCount", lights);
-    for (int i = 0; i < lights; ++i)
-    {
-      const caustics::Light& light = scene.Lights[i];
-      const std::string index = "[" + std::to_string(i) + "]";
-      const auto set3 = [&](const char* name, const caustics::Vec3& v) {
-        p->SetUniform3f((name + index).c_str(), static_cast<float>(v[0]),
-          static_cast<float>(v[1]), static_cast<float>(v[2]));
-      };
-      p->SetUniformi(("lightType" + index).c_str(), static_cast<int>(light.type));
-      set3("lightPosition", light.position);
-      set3("lightDirection", light.direction);
-      set3("lightRadiometric", light.radiometric);
-      p->SetUniformf(("lightCosOuter" + index).c_str(), static_cast<float>(light.cosOuter));
-      p->SetUniformf(("lightCosInner" + index).c_str(), static_cast<float>(light.cosInner));
-    }
     geometry->BindMaterials();
-    glBindImageTexture(0, in.Radiance.Handle, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(0, in.Radiance.Handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     const unsigned int groups = static_cast<unsigned int>((this->Resolution + 7) / 8);
-    p->Dispatch(groups, groups, static_cast<unsigned int>(in.Position.Layers));
+    // One dispatch per light, each adding to the last (a light's shadow map is one
+    // texture pair); without lights one that clears.
+    for (int i = 0; i < std::max(lights, 1); ++i)
+    {
+      p->SetUniformi("accumulate", i > 0 ? 1 : 0);
+      p->SetUniformi("lightOn", i < lights ? 1 : 0);
+      p->SetUniformi("shadowed", shadowed ? 1 : 0);
+      // The shadow samplers always name 2D textures (GL refuses two sampler types on
+      // one unit): the light's shadow map, or unread, the face target's.
+      const bool lit = shadowed && i < lights;
+      vtkCausticsGBuffer* shadowSource = lit ? shadowMaps->GetGBuffer(i) : in.Face.GetPointer();
+      p->SetUniformi("shadowPosition", units.Bind(shadowSource->GetPositionTexture()));
+      p->SetUniformi("shadowNormal", units.Bind(shadowSource->GetNormalTexture()));
+      if (i < lights)
+      {
+        const caustics::Light& light = scene.Lights[i];
+        const caustics::Vec3* origin = &light.position;
+        if (shadowed)
+        {
+          const caustics::LightView& view = shadowMaps->GetView(i);
+          float matrix[16];
+          caustics::gl::ToColumnMajor(view.worldToClip, matrix);
+          p->SetUniformMatrix4("lightWorldToClip", matrix);
+          const int resolution =
+            std::max(static_cast<int>(shadowMaps->GetGBuffer(i)->GetPositionTexture()->GetWidth()), 1);
+          p->SetUniformf(
+            "texelWorldSize", static_cast<float>(2.0 * view.halfExtent / resolution));
+          // Directional lights measure distance along the axis from the view's eye.
+          if (light.type == caustics::Light::Type::Directional)
+          {
+            origin = &view.eye;
+          }
+        }
+        p->SetUniformi("lightType", static_cast<int>(light.type));
+        const auto set3 = [&](const char* name, const caustics::Vec3& v) {
+          p->SetUniform3f(name, static_cast<float>(v[0]), static_cast<float>(v[1]),
+            static_cast<float>(v[2]));
+        };
+        set3("lightOrigin", *origin);
+        set3("lightDirection", light.direction);
+        set3("lightRadiometric", light.radiometric);
+        p->SetUniformf("lightCosOuter", static_cast<float>(light.cosOuter));
+        p->SetUniformf("lightCosInner", static_cast<float>(light.cosInner));
+      }
+      p->Dispatch(groups, groups, static_cast<unsigned int>(in.Position.Layers));
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
   p->Unbind(renWin);
+  in.ShadedWith = shadowMaps;
+  in.Shadowed = shadowed;
   return true;
+}
+
+bool vtkCausticsDistanceImpostors::GetRadianceShadowed() const
+{
+  return this->Internal->Shadowed;
 }
 
 bool vtkCausticsDistanceImpostors::MeasureCausticCells(vtkOpenGLRenderWindow* renWin)

@@ -24,11 +24,14 @@
  *    mirror ball) and the group's box is not flat (its thinnest side over 1e-3 of
  *    its diagonal: a flat mirror cannot see itself).
  * Then each receiver texel's radiance for hits the camera does not see: albedo x
- *    the direct irradiance of the scene's first 8 lights (physical falloff, no
- *    shadows; glsl/vtkCausticsImpostorShadeCS.glsl), plus, where a photon technique
- *    filled the caustic store this frame (StoreCaustic()), albedo x the caustic
- *    irradiance less the direct irradiance the specular objects block. Hits the
- *    camera sees take the camera's colour (caustics and shadows included) instead.
+ *    the direct irradiance of the scene's first 8 lights (physical falloff;
+ *    glsl/vtkCausticsImpostorShadeCS.glsl), with the shadows of the lights' shadow
+ *    maps when Update() is given them (specular objects block the direct light too),
+ *    plus, where a photon technique filled the caustic store this frame
+ *    (StoreCaustic()), albedo x the caustic irradiance (and, without shadow maps,
+ *    less the direct irradiance the specular objects block, which the store then
+ *    takes off itself). Hits the camera sees take the camera's colour (caustics and
+ *    shadows included) instead.
  * A map whose role group is empty is not made. The distance of a texel is
  * |position - reference point|, computed in the lookup (so the maps hold exact
  * world positions, not a depth); the shaders' Hit() search
@@ -37,7 +40,9 @@
  *
  * Invalidation: the maps are rendered again only when a mesh's version, its
  * material index or role, a light, an albedo or Resolution change
- * (GetMapRenders() counts the renders). The other material parameters (IOR,
+ * (GetMapRenders() counts the renders); their radiance is shaded again, without
+ * rendering them, when the shadow maps given to Update() were drawn again or
+ * another (or none) is given. The other material parameters (IOR,
  * metal n and k, absorption) do not invalidate them: the shaders read the
  * material table live.
  *
@@ -166,10 +171,19 @@ public:
 #ifndef __VTK_WRAP__
   /**
    * Renders the maps if the scene changed since the last call (see above).
-   * Returns false if a map could not be made (GL failure).
+   * `shadowMaps`: the lights' shadow maps of this frame (vtkCausticsLightBuffers
+   * aimed at the scene, already rendered), whose shadows the maps' radiance takes;
+   * null: unshadowed radiance. Returns false if a map could not be made (GL failure).
    */
   bool Update(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene);
+    const caustics::SceneData& scene, vtkCausticsLightBuffers* shadowMaps = nullptr);
+
+  /**
+   * Whether the maps' radiance holds the specular objects' shadows (the last Update()
+   * had shadow maps): the caustic store must then hold the photons' light alone
+   * (StoreCaustic() with `shadow` false).
+   */
+  bool GetRadianceShadowed() const;
 
   /**
    * Sets the uniforms of glsl/vtkCausticsImpostorCommon.glsl on a bound program.
@@ -251,7 +265,7 @@ private:
   void ChooseReferencePoints(const caustics::SceneData& scene);
   bool RenderMap(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry, int map);
   bool ShadeMaps(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneGeometry* geometry,
-    const caustics::SceneData& scene);
+    const caustics::SceneData& scene, vtkCausticsLightBuffers* shadowMaps);
   // The receiver area of each coarse cell of the caustic store (its sparse read).
   bool MeasureCausticCells(vtkOpenGLRenderWindow* renWin);
 };

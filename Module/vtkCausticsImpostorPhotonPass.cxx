@@ -127,10 +127,7 @@ bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& i
 
 bool vtkCausticsImpostorPhotonPass::UpdateMaps(const FrameInputs& in)
 {
-  this->BeginStage("distance impostors");
-  const bool ok = this->GetDistanceImpostors()->Update(in.Window, in.Geometry, *in.Scene);
-  this->EndStage("distance impostors");
-  return ok;
+  return this->UpdateImpostors(in);
 }
 
 bool vtkCausticsImpostorPhotonPass::Emit(const FrameInputs& in, int light)

@@ -593,16 +593,25 @@ bool vtkCausticsRenderPass::StoreCaustic(const FrameInputs& f, int light,
     return true;
   }
   this->BeginStage("caustic store");
-  const bool ok = this->Internal->Impostors->StoreCaustic(
-    f.Window, landed, width, height, maximumPhotonFlux, f.LightBuffers, light, *f.Scene, shadow);
+  // Where the maps' radiance holds the lights' shadows, the store holds the photons alone.
+  vtkCausticsDistanceImpostors* impostors = this->Internal->Impostors;
+  const bool ok = impostors->StoreCaustic(f.Window, landed, width, height, maximumPhotonFlux,
+    f.LightBuffers, light, *f.Scene, shadow && !impostors->GetRadianceShadowed());
   this->EndStage("caustic store");
   return ok;
 }
 
 bool vtkCausticsRenderPass::UpdateImpostors(const FrameInputs& f)
 {
+  auto& in = *this->Internal;
   this->BeginStage("distance impostors");
-  const bool ok = this->Internal->Impostors->Update(f.Window, f.Geometry, *f.Scene);
+  // The maps' radiance takes the lights' shadows, specular objects' included, from the
+  // direct irradiance stage's shadow maps (drawn here first; that stage keeps them),
+  // so that the caustic store holds the photons' light alone: nothing to cancel.
+  in.ShadowBuffers->SetResolution(this->ShadowMapResolution);
+  const bool shadows = in.ShadowBuffers->Render(f.Window, f.Geometry, *f.Scene);
+  const bool ok = in.Impostors->Update(
+    f.Window, f.Geometry, *f.Scene, shadows ? in.ShadowBuffers.GetPointer() : nullptr);
   this->EndStage("distance impostors");
   return ok;
 }

@@ -530,7 +530,8 @@ protected:
    * (vtkCausticsPhotonGrid.h layout, `width` x `height`) and the largest flux one
    * photon of the grid carries; `shadow` once per light (a technique that lands its
    * photons bounce after bounce stores every bounce's, the shadow with one of them).
-   * Each landed photon's flux and the light's shadow go to the distance impostors'
+   * Each landed photon's flux (and the light's shadow, only where the maps' radiance
+   * could not take it from the shadow maps) goes to the distance impostors'
    * caustic store
    * (vtkCausticsDistanceImpostors::StoreCaustic), which the camera view reads at map
    * hits the camera does not see (a floor seen only in a mirror or through glass).
@@ -542,6 +543,13 @@ protected:
     int width, int height, double maximumPhotonFlux, bool shadow = true);
   /** Whether this frame's camera view reads the caustic store (StoreCaustic() runs). */
   bool GetStoresCaustic() const { return this->StoresCaustic; }
+  /**
+   * Brings the distance impostors' maps up to date (only when the scene changed),
+   * their radiance shadowed by the direct irradiance stage's shadow maps, which it
+   * draws first if they are not: the one way every technique updates them, timed as
+   * "distance impostors". False on a GL failure.
+   */
+  bool UpdateImpostors(const FrameInputs& f);
 
   ///@{
   /** The last frame's inputs and result (valid after Render(); for later queries). */
@@ -587,7 +595,6 @@ private:
   void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
   bool RenderAirlight(); // the medium's single scattering of direct light, into the volume layer
-  bool UpdateImpostors(const FrameInputs& f); // CameraViewMethod's maps, timed
   bool DrawDirectIrradiance();
   void SetDirectLightUniforms(int light);
   void Composite(bool toFinalTexture);

@@ -207,8 +207,12 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // photons fill since it became a shared stage (the floor the ring's wall hides and
 // the pool's near wall, seen only in the mirror or through the water, with their
 // caustic and shadow): ring 19.5 % (21.6 % with the store empty), pool 28.0 % (28.3 %;
-// 27.3 % before the store's coarse level, which CameraBesideTheWaterSheet needs);
-// bounds 0.20 and 0.285, just above.
+// 27.3 % before the store's coarse level, which CameraBesideTheWaterSheet needs).
+// Since the maps' radiance takes the lights' shadows from the shadow maps and the store
+// holds the photons alone (nothing to cancel): pool 22.6 %, ring 20.15 % (its map hits
+// 6 % too bright on average: the photons' adaptive windows spread light into the
+// shadow, which the store's own shadow samples used to spread back; not verified
+// further). Bounds 0.205 and 0.23, just above.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -220,9 +224,9 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.20);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.205);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.24);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.285);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.23);
   EXPECT_LT(SpecularError("pool", "screen-space", both), 0.31);
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.56);
 }
@@ -335,8 +339,8 @@ TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
 // noise: 16.7 % below and 19.1 % above in the impostor view (the screen-space view
 // is unchanged). More samples per window trade it against the ring's sharp caustic
 // (CausticSamples 24: 15.5 %, 17.5 %, ring 19.9 %; 48: 14.9 %, 16.8 %, ring 20.0 %).
-// The fix is the shadow out of the store (docs/technique-distance-impostors.md).
-// Bounds just above.
+// With the shadow out of the store (the maps' radiance shadowed by the shadow maps, the
+// store holding the photons alone): 15.6 % and 18.2 %. Bounds just above.
 TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 {
   const int screen = vtkCausticsRenderPass::SCREEN_SPACE;
@@ -348,12 +352,12 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
     0.23);
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", impostors, below, towardsTheSheet,
               up, PopulateWideSheet),
-    0.175);
+    0.16);
   const double above[3] = { 4.0, 1.6, 0.3 }, origin[3] = { 0.0, 0.0, 0.0 };
   EXPECT_LT(SpecularError(
               "sheet, beside above", "screen-space", screen, above, origin, up, PopulateWideSheet),
     0.16);
   EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
               PopulateWideSheet),
-    0.195);
+    0.185);
 }
