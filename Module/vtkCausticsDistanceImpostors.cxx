@@ -417,8 +417,8 @@ bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
           float matrix[16];
           caustics::gl::ToColumnMajor(view.worldToClip, matrix);
           p->SetUniformMatrix4("lightWorldToClip", matrix);
-          const int resolution =
-            std::max(static_cast<int>(shadowMaps->GetGBuffer(i)->GetPositionTexture()->GetWidth()), 1);
+          vtkTextureObject* shadowMap = shadowMaps->GetGBuffer(i)->GetPositionTexture();
+          const int resolution = std::max(static_cast<int>(shadowMap->GetWidth()), 1);
           p->SetUniformf(
             "texelWorldSize", static_cast<float>(2.0 * view.halfExtent / resolution));
           // Directional lights measure distance along the axis from the view's eye.
