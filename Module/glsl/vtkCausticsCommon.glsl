@@ -318,6 +318,18 @@ float CausticsLightDistance(vec3 p, int lightType, vec3 origin, vec3 axis)
   return lightType == 0 ? dot(p - origin, axis) : length(p - origin);
 }
 
+// The depth bias of a surface point's shadow test, `distance` from the light
+// (CausticsLightDistance), its normal at `cosine` to the light: two texels of the
+// shadow map's lateral size (texelWorldSize: absolute for a sun, at unit distance
+// otherwise), tilted by the surface, plus float noise.
+float CausticsSurfaceShadowBias(
+  float texelWorldSize, int lightType, float distance, float cosine)
+{
+  float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
+  float tangent = sqrt(max(1.0 - cosine * cosine, 0.0)) / max(cosine, 0.05);
+  return 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
+}
+
 // A light's shadow map (vtkCausticsLightBuffers aimed at the scene: world positions seen
 // from the light, w = material, -1: none; normals with w = role) at a point `clip` in the
 // light's clip space, `distance` from it (CausticsLightDistance): the lit fraction by 2x2

@@ -101,11 +101,8 @@ void main()
     return;
   }
 
-  // Bias: two texels of lateral size, tilted by the surface, plus float noise.
   float distance = CausticsLightDistance(p, lightType, lightPosition, lightDirection);
-  float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
-  float tangent = sqrt(max(1.0 - cosine * cosine, 0.0)) / max(cosine, 0.05);
-  float bias = 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
+  float bias = CausticsSurfaceShadowBias(texelWorldSize, lightType, distance, cosine);
   float specularShadow; // the part of the light that a reflector or refractor blocks
   float visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
     lightWorldToClip * vec4(p, 1.0), distance, bias, bias, lightType, lightPosition,

@@ -52,11 +52,8 @@ vec3 DirectIrradiance(vec3 p, vec3 n)
   float visibility = 1.0;
   if (shadowed != 0)
   {
-    // Bias as the direct irradiance stage's: two texels, tilted by the surface.
     float distance = CausticsLightDistance(p, lightType, lightOrigin, lightDirection);
-    float texel = lightType == 0 ? texelWorldSize : texelWorldSize * distance;
-    float tangent = sqrt(max(1.0 - cosine * cosine, 0.0)) / max(cosine, 0.05);
-    float bias = 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
+    float bias = CausticsSurfaceShadowBias(texelWorldSize, lightType, distance, cosine);
     float specular;
     visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
       lightWorldToClip * vec4(p, 1.0), distance, bias, bias, lightType, lightOrigin,
