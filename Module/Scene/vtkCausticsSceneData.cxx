@@ -748,7 +748,7 @@ double VisibleOverSpecular(const SceneData& scene)
 }
 
 LightView ComputeReceiverMapView(const SceneData& scene, int index,
-  const ReceiverIncidence& incidence, double minimumIncidence)
+  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline)
 {
   if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
   {
@@ -789,7 +789,38 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
       }
     }
   }
-  return AimLightView(scene, light, index, focus);
+  LightView view = AimLightView(scene, light, index, focus);
+  if (fitOutline && !view.perspective && view.valid && !scene.Participating.enabled)
+  {
+    // The map holds the receivers photons land on and the mirrors they meet on the
+    // way (the caustic maps' trace searches both in it): the square around the seen
+    // part and every mirror is enough, and finer than the seen box's sphere. With a
+    // medium the photons' paths are seen beyond where they land: the sphere stays.
+    double fit[6];
+    std::copy(focus, focus + 6, fit);
+    for (const Mesh& mesh : scene.Meshes)
+    {
+      if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.Materials.size()) ||
+        scene.Materials[mesh.material].role != Role::Reflector)
+      {
+        continue;
+      }
+      for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const double x = mesh.positions[i + k];
+          if (std::isfinite(x))
+          {
+            fit[2 * k] = std::min(fit[2 * k], x);
+            fit[2 * k + 1] = std::max(fit[2 * k + 1], x);
+          }
+        }
+      }
+    }
+    FitOrthographic(view, fit);
+  }
+  return view;
 }
 
 double Medium::MeanDensity() const

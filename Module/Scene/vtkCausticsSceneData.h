@@ -265,10 +265,14 @@ double WindingNumber(const Mesh& mesh, const double point[3]);
  * while the light and meshes stay),
  * the view is turned about that point, towards the receiver's normal, until it
  * sees them at `minimumIncidence`: a surface the light sees edge-on has no texels
- * in the light's view. The depth range holds the whole scene, as for every light view.
+ * in the light's view. With `fitOutline`, a directional light's square view is then
+ * narrowed to the outline of that box and every mirror across the light (not their
+ * bounding sphere), except with a participating medium: finer texels where the map's
+ * texels bound the detail (caustic triangles). The depth range holds the whole scene,
+ * as for every light view.
  */
 LightView ComputeReceiverMapView(const SceneData& scene, int index,
-  const ReceiverIncidence& incidence, double minimumIncidence);
+  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline = false);
 }
 
 #endif
