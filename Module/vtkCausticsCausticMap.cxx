@@ -34,6 +34,9 @@ struct vtkCausticsCausticMap::Internals
 {
   caustics::LightView View;
   bool HasView = false;
+  // The finest level holds each texel's exact mean (caustic triangles), not a
+  // kernel estimate at its centre: Apply() averages it over each pixel's footprint.
+  bool TexelMeans = false;
 };
 
 vtkCausticsCausticMap::vtkCausticsCausticMap()
@@ -113,6 +116,7 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
     vtkErrorMacro(<< "Splat needs RenderReceivers() first, a photon buffer and its hierarchy");
     return false;
   }
+  this->Internal->TexelMeans = false;
   vtkOpenGLState* state = renWin->GetState();
   state->PushFramebufferBindings();
   vtkOpenGLState::ScopedglViewport viewport(state);
@@ -187,6 +191,8 @@ bool vtkCausticsCausticMap::SplatWith(vtkOpenGLRenderWindow* renWin,
   caustics::gl::ToColumnMajor(this->Internal->View.worldToClip, matrix);
   const bool ok = splatter->Splat(renWin, grid, landed, kernelRadius, this->Receivers[0], matrix);
   state->PopFramebufferBindings();
+  this->Internal->TexelMeans =
+    splatter->GetReconstruction() == vtkCausticsPhotonSplatter::TRIANGLES;
   return ok;
 }
 
@@ -264,7 +270,8 @@ void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderP
   }
 }
 
-bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera)
+bool vtkCausticsCausticMap::Apply(
+  vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera, const caustics::Camera& view)
 {
   if (!this->Internal->HasView || !camera)
   {
@@ -303,6 +310,8 @@ bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuf
     caustics::hcm::SetViewUniforms(program, "mapViews" + index, this->Internal->View, size, size);
   }
   program->SetUniformi("levels", this->NumberOfLevels);
+  caustics::hcm::SetCameraViewUniforms(program, "cameraView", view);
+  program->SetUniformi("averageFootprint", this->Internal->TexelMeans ? 1 : 0);
   this->Triangle->Draw();
   for (vtkTextureObject* texture : bound)
   {

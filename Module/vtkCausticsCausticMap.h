@@ -19,7 +19,8 @@
  *    W/m^2 and every splat deposits exactly its flux.
  * 3. Apply: a full-screen pass over the camera's G-buffer adds, at every receiver
  *    pixel the finest level sees, the sum over the levels of their bilinear
- *    irradiance (taps that show another surface are left out). Eq. 3's (1/4)^i
+ *    irradiance (taps that show another surface are left out); caustic triangles'
+ *    finest level is averaged over the pixel's footprint. Eq. 3's (1/4)^i
  *    weights renormalize energy counted per texel; per unit area, as stored here,
  *    they are already applied, and the sum of the levels is the irradiance.
  * Textures are allocated when the resolution changes, never per frame.
@@ -97,9 +98,16 @@ public:
 
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of
-   * the opaque roles) into the bound framebuffer, additively. False on failure.
+   * the opaque roles, drawn with `view`) into the bound framebuffer, additively.
+   * After SplatWith() caustic triangles, whose texels hold the exact mean irradiance
+   * over their area, each pixel gets the finest level's mean over its footprint on
+   * its receiver: map texels finer than the camera's pixels are averaged, not
+   * point-sampled. After Splat() the kernels are at least a pixel footprint wide
+   * (MinimumCameraSplatRadius) and each pixel takes them at its centre. False on
+   * failure.
    */
-  bool Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera);
+  bool Apply(
+    vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera, const caustics::Camera& view);
 #endif
 
   /**

@@ -134,6 +134,47 @@ float CausticsHenyeyGreenstein(float cosTheta, float g)
   return (1.0 - g * g) / (4.0 * CAUSTICS_PI * denominator * sqrt(max(denominator, 1e-12)));
 }
 
+// Area of the convex polygon (its first `count` vertices, in order around it, at most
+// 4) inside the unit square [0, 1]^2 (Sutherland-Hodgman against the square's sides):
+// the share of a pixel or texel a caustic triangle or a pixel's footprint covers.
+float CausticsAreaInUnitSquare(vec2 polygon[9], int count)
+{
+  for (int side = 0; side < 4 && count > 0; ++side)
+  {
+    int axis = side / 2;
+    float sense = side % 2 == 0 ? 1.0 : -1.0; // keep x >= 0, then x <= 1, ...
+    float bound = side % 2 == 0 ? 0.0 : 1.0;
+    vec2 clipped[9]; // four sides cut a quadrilateral to at most 8 vertices
+    int kept = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      vec2 p = polygon[i];
+      vec2 q = polygon[(i + 1) % count];
+      float dp = sense * (p[axis] - bound), dq = sense * (q[axis] - bound);
+      if (dp >= 0.0)
+      {
+        clipped[kept++] = p;
+      }
+      if ((dp >= 0.0) != (dq >= 0.0))
+      {
+        clipped[kept++] = mix(p, q, dp / (dp - dq));
+      }
+    }
+    for (int i = 0; i < kept; ++i)
+    {
+      polygon[i] = clipped[i];
+    }
+    count = kept;
+  }
+  float twice = 0.0;
+  for (int i = 0; i < count; ++i)
+  {
+    vec2 p = polygon[i], q = polygon[(i + 1) % count];
+    twice += p.x * q.y - p.y * q.x;
+  }
+  return 0.5 * abs(twice);
+}
+
 // Clips o + t d, t in [t0, t1], to an axis-aligned box; false if it misses.
 bool CausticsClipToBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, inout float t0, inout float t1)
 {

@@ -18,50 +18,6 @@ flat in float halfSet;
 
 layout(location = 0) out vec4 outIrradiance;
 
-// Area of the triangle (a, b, c) inside the unit square [0, 1]^2 (Sutherland-Hodgman).
-float AreaInUnitSquare(vec2 a, vec2 b, vec2 c)
-{
-  vec2 polygon[9];
-  polygon[0] = a;
-  polygon[1] = b;
-  polygon[2] = c;
-  int count = 3;
-  for (int side = 0; side < 4 && count > 0; ++side)
-  {
-    int axis = side / 2;
-    float sense = side % 2 == 0 ? 1.0 : -1.0; // keep x >= 0, then x <= 1, ...
-    float bound = side % 2 == 0 ? 0.0 : 1.0;
-    vec2 clipped[9];
-    int kept = 0;
-    for (int i = 0; i < count; ++i)
-    {
-      vec2 p = polygon[i];
-      vec2 q = polygon[(i + 1) % count];
-      float dp = sense * (p[axis] - bound), dq = sense * (q[axis] - bound);
-      if (dp >= 0.0)
-      {
-        clipped[kept++] = p;
-      }
-      if ((dp >= 0.0) != (dq >= 0.0))
-      {
-        clipped[kept++] = mix(p, q, dp / (dp - dq));
-      }
-    }
-    for (int i = 0; i < kept; ++i)
-    {
-      polygon[i] = clipped[i];
-    }
-    count = kept;
-  }
-  float twice = 0.0;
-  for (int i = 0; i < count; ++i)
-  {
-    vec2 p = polygon[i], q = polygon[(i + 1) % count];
-    twice += p.x * q.y - p.y * q.x;
-  }
-  return 0.5 * abs(twice);
-}
-
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -74,8 +30,12 @@ void main()
     discard;
   }
   vec2 low = vec2(pixel);
-  float covered =
-    AreaInUnitSquare(cornerPixels[0] - low, cornerPixels[1] - low, cornerPixels[2] - low);
+  vec2 corners[9];
+  for (int k = 0; k < 3; ++k)
+  {
+    corners[k] = cornerPixels[k] - low;
+  }
+  float covered = CausticsAreaInUnitSquare(corners, 3);
   if (!(covered > 0.0))
   {
     discard;
