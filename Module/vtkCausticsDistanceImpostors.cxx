@@ -278,21 +278,9 @@ void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneDa
     double box[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
     for (const caustics::Mesh& mesh : scene.Meshes)
     {
-      if (!HasRole(scene, mesh, MapGroup[map]))
+      if (HasRole(scene, mesh, MapGroup[map]))
       {
-        continue;
-      }
-      for (std::size_t v = 0; v + 2 < mesh.positions.size(); v += 3)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          const double x = mesh.positions[v + a];
-          if (std::isfinite(x))
-          {
-            box[2 * a] = std::min(box[2 * a], x);
-            box[2 * a + 1] = std::max(box[2 * a + 1], x);
-          }
-        }
+        caustics::GrowBounds(mesh, box);
       }
     }
     in.Made[map] = box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5];

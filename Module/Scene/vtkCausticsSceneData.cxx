@@ -692,6 +692,22 @@ bool VisibleBounds(const SceneData& scene, double box[6])
   return true;
 }
 
+void GrowBounds(const Mesh& mesh, double box[6])
+{
+  for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double x = mesh.positions[i + k];
+      if (std::isfinite(x))
+      {
+        box[2 * k] = std::min(box[2 * k], x);
+        box[2 * k + 1] = std::max(box[2 * k + 1], x);
+      }
+    }
+  }
+}
+
 double WindingNumber(const Mesh& mesh, const double point[3])
 {
   const glm::dvec3 x(point[0], point[1], point[2]);
@@ -805,18 +821,7 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
       {
         continue;
       }
-      for (std::size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          const double x = mesh.positions[i + k];
-          if (std::isfinite(x))
-          {
-            fit[2 * k] = std::min(fit[2 * k], x);
-            fit[2 * k + 1] = std::max(fit[2 * k + 1], x);
-          }
-        }
-      }
+      GrowBounds(mesh, fit);
     }
     FitOrthographic(view, fit);
   }

@@ -248,6 +248,12 @@ double VisibleScale(const SceneData& scene);
 double VisibleOverSpecular(const SceneData& scene);
 
 /**
+ * Widens `box` (xmin, xmax, ymin, ymax, zmin, zmax) to hold `mesh`'s vertex
+ * positions; non-finite coordinates are skipped.
+ */
+void GrowBounds(const Mesh& mesh, double box[6]);
+
+/**
  * The generalized winding number of `mesh` at `point`: the signed solid angle of its
  * triangles over 4 pi (Van Oosterom and Strackee). About 1 inside a closed mesh whose
  * triangles face outward, 0 outside, fractions for open meshes; triangles with an
