@@ -15,6 +15,8 @@
 #include "vtkCausticsFullScreenVS.h"
 #include "vtkCausticsLightFluxFS.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
 #include <vector>
@@ -178,7 +180,11 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
 {
   auto& in = *this->Internal;
   const int count = static_cast<int>(scene.Lights.size());
-  const std::vector<caustics::LightView> views = this->ComputeViews(scene);
+  std::vector<caustics::LightView> views = this->ComputeViews(scene);
+  for (caustics::LightView& view : views)
+  {
+    caustics::OffsetLightView(view, this->GridOffset[0], this->GridOffset[1], this->Resolution);
+  }
   // Nothing the buffers depend on changed: they are still right (no GL work at all).
   std::vector<std::uint64_t> key = ContentKey(renWin, geometry, scene, views,
     { static_cast<std::uint64_t>(this->Resolution), static_cast<std::uint64_t>(this->Focus),
@@ -262,6 +268,21 @@ std::vector<caustics::LightView> vtkCausticsLightBuffers::ComputeViews(
   return views;
 }
 
+void vtkCausticsLightBuffers::SetGridOffset(double u, double v)
+{
+  const double asked[2] = { u, v };
+  for (int k = 0; k < 2; ++k)
+  {
+    // NaN means no offset.
+    const double value = std::isnan(asked[k]) ? 0.0 : std::max(-0.5, std::min(0.5, asked[k]));
+    if (value != this->GridOffset[k])
+    {
+      this->GridOffset[k] = value;
+      this->Modified();
+    }
+  }
+}
+
 bool vtkCausticsLightBuffers::GetLastRenderReused() const
 {
   return this->Internal->Reused;
@@ -315,6 +336,7 @@ void vtkCausticsLightBuffers::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Focus: " << focus[this->Focus] << "\n";
   os << indent << "ShadowMapsOnly: " << this->ShadowMapsOnly << "\n";
   os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
+  os << indent << "GridOffset: " << this->GridOffset[0] << ", " << this->GridOffset[1] << "\n";
   os << indent << "LastRenderReused: " << this->Internal->Reused << "\n";
   os << indent << "Lights: " << this->Internal->ActiveLights << "\n";
   for (int i = 0; i < this->Internal->ActiveLights; ++i)

@@ -27,7 +27,8 @@
  *   vtkCausticsSceneExtractor when its triangles or its actor's matrix change),
  *   material slot, role and material properties (the G-buffer stores albedo and IOR);
  * - the lights: their number, and per light its type, position, direction,
- *   emission and spot cone, and the view computed from them and the scene's bounds;
+ *   emission and spot cone, and the view computed from them and the scene's bounds
+ *   (moved by GridOffset);
  * - ReleaseGraphicsResources() was called.
  * Nothing else is read. The camera is read only through the views: with FOCUS_SEEN
  * a camera that moves what it sees of a specular sheet moves the photons' frustum
@@ -104,6 +105,18 @@ public:
   vtkBooleanMacro(ReuseUnchanged, bool);
   ///@}
 
+  ///@{
+  /**
+   * Moves every light's texel grid by (u, v) texels, each clamped to [-0.5, 0.5]
+   * (caustics::OffsetLightView): the photons are then another regular set of each
+   * light's flux. vtkCausticsRenderPass's ProgressiveFrames moves it every frame of a
+   * still scene and averages the frames. A new offset draws the buffers again (the
+   * views are part of what they depend on). Default (0, 0).
+   */
+  void SetGridOffset(double u, double v);
+  const double* GetGridOffset() const { return this->GridOffset; }
+  ///@}
+
   /** Whether the last Render() kept the buffers it already held (nothing changed). */
   bool GetLastRenderReused() const;
 
@@ -136,6 +149,7 @@ protected:
   int Focus = FOCUS_SEEN;
   bool ShadowMapsOnly = false;
   bool ReuseUnchanged = true;
+  double GridOffset[2] = { 0.0, 0.0 };
 
 private:
   vtkCausticsLightBuffers(const vtkCausticsLightBuffers&) = delete;

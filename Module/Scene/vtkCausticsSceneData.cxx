@@ -387,6 +387,34 @@ LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus f
     scene, scene.Lights[index], index, specular ? scene.SpecularBounds : scene.Bounds);
 }
 
+void OffsetLightView(LightView& view, double u, double v, int resolution)
+{
+  if (!view.valid || resolution < 1 || !(std::abs(u) <= 0.5) || !(std::abs(v) <= 0.5) ||
+    (u == 0.0 && v == 0.0))
+  {
+    return;
+  }
+  // One texel: 2 halfExtent / resolution, in metres (orthographic) or in the tangent
+  // of the angle off the axis (perspective).
+  const double step = 2.0 * view.halfExtent / resolution;
+  const Vec3 across{ { u * step * view.right[0] + v * step * view.up[0],
+    u * step * view.right[1] + v * step * view.up[1],
+    u * step * view.right[2] + v * step * view.up[2] } };
+  if (view.perspective)
+  {
+    view.axis = Normalize(
+      Vec3{ { view.axis[0] + across[0], view.axis[1] + across[1], view.axis[2] + across[2] } });
+  }
+  else
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      view.eye[i] += across[i];
+    }
+  }
+  SetViewTransforms(view);
+}
+
 bool LightReachesSpecular(const Light& light, const double specularBounds[6])
 {
   if (!(light.radiometric[0] > 0.0 || light.radiometric[1] > 0.0 || light.radiometric[2] > 0.0))

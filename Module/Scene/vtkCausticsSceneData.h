@@ -180,6 +180,15 @@ struct LightView
 /** Computes the view of light `index` aimed at `focus`. Invalid if the scene is empty. */
 LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus focus);
 
+/**
+ * Moves the view's texel grid by (u, v) texels of a `resolution`-texel buffer, each
+ * in [-0.5, 0.5]: an orthographic view slides across the light, a perspective one turns
+ * by that much about its eye (the light stays where it is). The photons of a buffer
+ * drawn from the moved view are another regular set of the same light: frames drawn
+ * with different offsets average towards the light's continuous flux.
+ */
+void OffsetLightView(LightView& view, double u, double v, int resolution);
+
 struct SceneData
 {
   std::vector<Mesh> Meshes;
