@@ -14,6 +14,7 @@
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsProgressiveMean.h"
 #include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -320,6 +321,8 @@ struct vtkCausticsRenderPass::Internals
   caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
   vtkNew<vtkCausticsCameraOpticalDepth> CameraOpticalDepth; // its optical depth from the camera
   vtkNew<vtkCausticsAirlight> Airlight; // single scattering of the direct light (volume layer)
+  vtkNew<vtkCausticsProgressiveMean> Progressive; // ProgressiveFrames' mean of still frames
+  FrameResult Held; // what the frame that completed the mean made (a held frame's result)
 };
 
 vtkCausticsRenderPass::vtkCausticsRenderPass()
@@ -977,6 +980,67 @@ bool vtkCausticsRenderPass::DenoiseCaustics()
   return in.Denoiser->Denoise(inputs);
 }
 
+int vtkCausticsRenderPass::BeginProgressiveFrame()
+{
+  auto& in = *this->Internal;
+  const FrameInputs& f = this->Frame;
+  const bool averages = this->ProgressiveFrames > 1 && !this->AveragesFramesItself();
+  in.Progressive->SetFrames(averages ? this->ProgressiveFrames : 1);
+  std::vector<std::uint64_t> key;
+  if (averages)
+  {
+    // Everything the caustic and volume layers depend on: the scene (as the light
+    // buffers key it), the camera and viewport, and the settings.
+    caustics::gl::AppendMeshesKey(key, *f.Scene);
+    const std::vector<double> lightField = caustics::gl::LightFieldSignature(*f.Scene);
+    caustics::gl::AppendKey(key, lightField.data(), static_cast<int>(lightField.size()));
+    for (const caustics::Material& m : f.Scene->Materials)
+    {
+      caustics::gl::AppendKey(key, m.albedo.data(), 3);
+    }
+    key.push_back(reinterpret_cast<std::uintptr_t>(f.Scene->Participating.density.get()));
+    const double view[] = { static_cast<double>(f.Width), static_cast<double>(f.Height) };
+    caustics::gl::AppendKey(key, view, 2);
+    caustics::gl::AppendKey(key, f.WorldToClip, 16);
+    key.push_back(reinterpret_cast<std::uintptr_t>(f.Window));
+    key.push_back(this->GetMTime());
+    for (vtkObject* stage : { static_cast<vtkObject*>(in.Denoiser.GetPointer()),
+           static_cast<vtkObject*>(in.Impostors.GetPointer()),
+           static_cast<vtkObject*>(in.Refraction.GetPointer()),
+           static_cast<vtkObject*>(in.Airlight.GetPointer()),
+           static_cast<vtkObject*>(in.CameraOpticalDepth.GetPointer()) })
+    {
+      key.push_back(stage->GetMTime());
+    }
+    this->AppendProgressiveKey(key);
+  }
+  const int frame = in.Progressive->Begin(key);
+  double offset[2] = { 0.0, 0.0 };
+  vtkCausticsProgressiveMean::GridOffset(std::max(frame, 0), offset);
+  if (frame >= 0)
+  {
+    in.LightBuffers->SetGridOffset(offset[0], offset[1]);
+  }
+  return frame;
+}
+
+int vtkCausticsRenderPass::GetFramesAveraged() const
+{
+  if (!this->Result.Caustics)
+  {
+    return 0;
+  }
+  const int averaged = this->Internal->Progressive->GetFramesAveraged();
+  return std::max(averaged, 1);
+}
+
+void vtkCausticsRenderPass::ResetProgressive()
+{
+  this->Internal->Progressive->Reset();
+}
+
+void vtkCausticsRenderPass::AppendProgressiveKey(std::vector<std::uint64_t>&) {}
+
 bool vtkCausticsRenderPass::CorrectsVTKShading() const
 {
   return this->SpecularShadows || this->Frame.Scene->Participating.enabled;
@@ -1025,7 +1089,16 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
     f.CameraOpticalDepth->Invalidate();
   }
 
-  if (caustics && ok)
+  // ProgressiveFrames: -1 once a still scene's mean is complete (the textures hold it).
+  const int progressive = caustics && ok ? this->BeginProgressiveFrame() : 0;
+  if (caustics && ok && progressive < 0)
+  {
+    const FrameResult& held = this->Internal->Held;
+    this->Result.Caustics = true;
+    this->Result.Volume = held.Volume;
+    this->Result.Denoised = held.Denoised;
+  }
+  else if (caustics && ok)
   {
     if (this->GetCausticNeeds().LightBuffers)
     {
@@ -1052,12 +1125,21 @@ void vtkCausticsRenderPass::RenderFrame(const vtkRenderState* s, bool caustics)
   }
   // The medium's own glow: airlight and volume shadows of the direct light, added to
   // the technique's volume caustic (003 §3: the composition is a sum).
-  if (this->Result.Caustics && this->Result.Direct &&
+  if (this->Result.Caustics && progressive >= 0 && this->Result.Direct &&
     this->Internal->Airlight->IsNeeded(*f.Scene))
   {
     this->BeginStage("airlight");
     this->Result.Volume = this->RenderAirlight() || this->Result.Volume;
     this->EndStage("airlight");
+  }
+  if (this->Result.Caustics && progressive >= 0 && this->Internal->Progressive->GetFrames() > 1)
+  {
+    auto& in = *this->Internal;
+    this->BeginStage("progressive mean");
+    in.Progressive->Add(
+      f.Window, in.CausticTexture, this->Result.Volume ? in.VolumeTexture.GetPointer() : nullptr);
+    this->EndStage("progressive mean");
+    in.Held = this->Result;
   }
   if (this->Result.Caustics)
   {
@@ -1607,6 +1689,7 @@ void vtkCausticsRenderPass::ReleaseGraphicsResources(vtkWindow* w)
   in.Refraction->ReleaseGraphicsResources(w);
   in.Denoiser->ReleaseGraphicsResources(w);
   in.Impostors->ReleaseGraphicsResources(w);
+  in.Progressive->ReleaseGraphicsResources(w);
   vtkTextureObject* textures[] = { in.CausticTexture, in.DirectTexture, in.LostShadingTexture,
     in.VolumeTexture, in.DelegateColorTexture, in.DelegateDepthTexture, in.FinalTexture,
     in.TechniqueColorTexture };
@@ -1641,6 +1724,7 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RefractionTracing: " << this->RefractionTracing << "\n";
   os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";
   os << indent << "Denoise: " << this->Denoise << "\n";
+  os << indent << "ProgressiveFrames: " << this->ProgressiveFrames << "\n";
   os << indent << "Denoiser:\n";
   this->Internal->Denoiser->PrintSelf(os, indent.GetNextIndent());
   os << indent << "CameraViewMethod: " << this->CameraViewMethod << "\n";

@@ -68,8 +68,10 @@
 #include "vtkNew.h"         // For vtkNew members
 #include "vtkWeakPointer.h" // For the last window
 
-#include <memory> // For std::unique_ptr
-#include <string> // For std::string
+#include <cstdint> // For std::uint64_t
+#include <memory>  // For std::unique_ptr
+#include <string>  // For std::string
+#include <vector>  // For std::vector
 
 class vtkCausticsAirlight;
 class vtkCausticsCameraOpticalDepth;
@@ -179,6 +181,27 @@ public:
   vtkCausticsSVGFDenoiser* GetDenoiser();
   /** Drops the denoiser's history: the next frame starts afresh (e.g. a scripted cut). */
   void ResetDenoiserHistory();
+  ///@}
+
+  ///@{
+  /**
+   * Average the caustic over the frames of a still scene (vtkCausticsProgressiveMean):
+   * while nothing a frame depends on changes (meshes, materials, lights, medium, the
+   * camera and viewport, this pass's settings), frame k moves the light buffers' texel
+   * grid by a sub-texel offset, so that its photons are a new set, and the caustic
+   * irradiance and the volume radiance are the mean of the frames so far. After
+   * ProgressiveFrames frames the mean is held and the caustic stages are skipped.
+   * The first frame after a change is the same image as with 1. A change made through
+   * a stage object (GetDenoiser(), a technique's splatter, ...) is not seen: call
+   * ResetProgressive() after one. Techniques that accumulate by themselves
+   * (cpu-progressive) ignore it. In [1, 4096]; 1: off. Default 1.
+   */
+  vtkSetClampMacro(ProgressiveFrames, int, 1, 4096);
+  vtkGetMacro(ProgressiveFrames, int);
+  /** Frames in the mean of the last frame (1 without averaging, 0 without caustics). */
+  int GetFramesAveraged() const;
+  /** Drops the mean: the next frame starts a new one. */
+  void ResetProgressive();
   ///@}
 
   ///@{
@@ -505,6 +528,19 @@ protected:
    */
   virtual double GetSceneScaleLimit() { return 0.0; }
 
+  /**
+   * Hook: whether the technique averages a still scene's frames by itself (its own
+   * progressive accumulation); ProgressiveFrames then leaves its frames alone. Default false.
+   */
+  virtual bool AveragesFramesItself() const { return false; }
+
+  /**
+   * Hook: appends to `key` the settings of the technique's own stage objects that
+   * ProgressiveFrames must restart on (the pass's own settings are in it already:
+   * its modification time). Default: nothing.
+   */
+  virtual void AppendProgressiveKey(std::vector<std::uint64_t>& key);
+
   /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);
 
@@ -589,6 +625,8 @@ private:
   bool RenderLightBuffers();
   bool RenderCaustics();
   bool DenoiseCaustics();
+  // ProgressiveFrames: the frame's place in the run (-1: the mean is complete).
+  int BeginProgressiveFrame();
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
@@ -615,6 +653,7 @@ private:
   bool KeepBuffers = false;
   bool SpecularShadows = false; // techniques that carry caustic light turn it on
   bool Denoise = false;         // techniques noisy per frame turn it on
+  int ProgressiveFrames = 1;    // SetProgressiveFrames(): 1 is off
   bool StoresCaustic = false;   // this frame's camera view reads the caustic store
 
   FrameInputs Frame;

@@ -92,6 +92,7 @@ protected:
   ~vtkCausticsProgressivePhotonPass() override;
 
   CausticNeeds GetCausticNeeds() override;
+  bool AveragesFramesItself() const override { return true; } // its own accumulation
   bool RenderCausticIrradiance(const FrameInputs& in) override;
   bool RenderVolumeRadiance(const FrameInputs& in, vtkTextureObject* target) override;
 
