@@ -93,6 +93,10 @@ std::string QualityUsage()
   --denoise [on|off]         denoise the caustic irradiance over space and time
                              (SVGF, docs/denoising.md) or not; --denoise alone
                              is on (default: the technique's; cascaded: on)
+  --progressive N            average the caustic and volume layers over N frames
+                             of a still scene and camera, each with new photons
+                             (1..4096, default 1: off); any change restarts it,
+                             a complete mean is held (docs/architecture.md)
   --camera-view MODE         how glass and mirrors show the scene: screen-space,
                              impostors (distance impostors, paper 004) or both
                              (default: screen-space, impostors where rays leave
@@ -291,6 +295,9 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
     { options.Photons = ParseInteger(option, value, 1, 8192); });
   arguments.OptionalChoice("--denoise", { "on", "off" }, "on",
     [&options](const std::string&, const std::string& value) { options.Denoise = value == "on"; });
+  arguments.Value("--progressive",
+    [&options](const std::string& option, const std::string& value)
+    { options.ProgressiveFrames = ParseInteger(option, value, 1, 4096); });
   arguments.Value("--camera-view",
     [&options](const std::string& option, const std::string& value)
     { options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" }); });
@@ -696,6 +703,7 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   {
     pass->SetDenoise(options.Denoise == 1); // else the technique's default
   }
+  pass->SetProgressiveFrames(options.ProgressiveFrames);
   if (options.CameraView >= 0)
   {
     pass->SetCameraViewMethod(options.CameraView); // the same order as CameraViewMethods

@@ -38,6 +38,7 @@ struct SceneOptions
   int Width = 512, Height = 512;
   int Denoise =
     -1; ///< --denoise [on|off]: 1 SVGF on the caustic irradiance, 0 off, -1 the technique's
+  int ProgressiveFrames = 1; ///< --progressive N: the pass's mean of N still frames (1: off)
   /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
   int CameraView = -1;
   bool Airlight = true; ///< --airlight off: no airlight stage (vtkCausticsAirlight)

@@ -187,6 +187,7 @@ bool CausticsViewer::InstallPass(vtkSmartPointer<vtkCausticsRenderPass> pass)
   if (this->Pass)
   {
     pass->SetLightBufferResolution(this->Pass->GetLightBufferResolution());
+    pass->SetProgressiveFrames(this->Pass->GetProgressiveFrames());
   }
   auto* layered = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass);
   if (layered && this->Layers > 0)
@@ -364,6 +365,11 @@ std::string CausticsViewer::DescribeSettings() const
   {
     text << "layers: " << layered->GetMaximumNumberOfLayers() << "\n";
   }
+  if (this->Pass->GetProgressiveFrames() > 1)
+  {
+    text << "frames averaged: " << this->Pass->GetFramesAveraged() << " of "
+         << this->Pass->GetProgressiveFrames() << "\n";
+  }
   return text.str();
 }
 
@@ -444,10 +450,33 @@ void CausticsViewer::WriteScreenshot(const std::string& path)
   }
 }
 
+bool CausticsViewer::RefineStillFrame()
+{
+  auto* style = vtkInteractorStyle::SafeDownCast(this->Interactor->GetInteractorStyle());
+  const int frames = this->Pass->GetProgressiveFrames();
+  if (!this->CausticsOn || frames <= 1 || this->Pass->GetFramesAveraged() >= frames ||
+    (style && style->GetState() != VTKIS_NONE))
+  {
+    return false;
+  }
+  this->Render();
+  return true;
+}
+
 void CausticsViewer::Start()
 {
   this->Interactor->Initialize();
   this->Render();
+  // A still view refines by itself (--progressive): one more frame per tick.
+  vtkNew<vtkCallbackCommand> refine;
+  refine->SetClientData(this);
+  refine->SetCallback([](vtkObject*, unsigned long, void* data, void*)
+    { static_cast<CausticsViewer*>(data)->RefineStillFrame(); });
+  this->Interactor->AddObserver(vtkCommand::TimerEvent, refine);
+  if (this->Pass->GetProgressiveFrames() > 1)
+  {
+    this->Interactor->CreateRepeatingTimer(30);
+  }
   this->Interactor->Start();
 }
 

@@ -62,6 +62,12 @@ public:
   void Play(const std::string& eventLog);
   /** Renders the window and writes it to `path` (PNG). */
   void WriteScreenshot(const std::string& path);
+  /**
+   * With --progressive N: renders one more frame while the pass's mean of a still
+   * scene is not complete and no one is moving the camera; true when it rendered.
+   * Start() calls it from a repeating timer, so a still view refines by itself.
+   */
+  bool RefineStillFrame();
   /** Renders, then hands control to the user until the window closes ('q'). */
   void Start();
   void Render();

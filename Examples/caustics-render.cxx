@@ -147,6 +147,8 @@ Options Parse(int argc, char* argv[], bool& help)
   DeclareOutputOptions(arguments, options);
   DeclareReferenceOptions(arguments, options);
   caustics_cli::FinishSceneOptions(arguments.Parse(argc, argv), options, sceneGiven);
+  // The output of --progressive N is the mean of N frames: render them all.
+  options.Frames = std::max(options.Frames, options.ProgressiveFrames);
   return options;
 }
 
@@ -326,6 +328,11 @@ void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std
                      : "the camera's view")
               << "\n";
   }
+  if (pass->GetProgressiveFrames() > 1 && pass->GetLastFrameHadCaustics())
+  {
+    std::cout << "caustics-render: caustic and volume layers are the mean of "
+              << pass->GetFramesAveraged() << " frame(s)\n";
+  }
   std::cout << "wrote " << options.Output << ".png and " << options.Output << ".exr\n";
 }
 
@@ -462,7 +469,8 @@ std::string UsageText()
 {
   return std::string(UsageHead) + "\n" + caustics_cli::SceneUsage + "\nTechnique and quality:\n" +
     caustics_cli::QualityUsage() +
-    "  --frames N                 frames rendered; timings are their median (default 1)\n\n" +
+    "  --frames N                 frames rendered; timings are their median (default 1;\n"
+    "                             at least N with --progressive N)\n\n" +
     caustics_cli::OverridesUsage + UsageTail;
 }
 }

@@ -3,10 +3,12 @@
 // screen-space to caustic-maps. The image after the playback, without the overlay
 // (its times change from run to run), is compared with the baseline
 // TestCausticsViewerPlayback.png (vtkRegressionTestImage: -V BASELINE -T OUTPUT_DIR).
-// The overlay's text must name the new technique and carry no -1 time.
+// The overlay's text must name the new technique and carry no -1 time. With
+// --progressive a still view refines itself to the mean of its frames, then stops.
 #include "CausticsViewer.h"
 
 #include "vtkCamera.h"
+#include "vtkCausticsRenderPass.h"
 #include "vtkMath.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
@@ -72,6 +74,21 @@ int main(int argc, char* argv[])
   viewer.SetOverlayVisible(false); // renders: the compared image has no text
   const int result = vtkRegressionTestImage(viewer.GetRenderWindow());
   ok &= Check(result == vtkTesting::PASSED, "the image differs from the baseline");
+  // --progressive 3: a still view refines by itself (Start()'s timer calls
+  // RefineStillFrame()) until the mean holds 3 frames, then stops rendering.
+  options.ProgressiveFrames = 3;
+  caustics_cli::CausticsViewer still(options);
+  still.Render();
+  int refined = 0;
+  while (refined < 10 && still.RefineStillFrame())
+  {
+    ++refined;
+  }
+  ok &= Check(refined == 2 && still.GetPass()->GetFramesAveraged() == 3,
+    "--progressive 3 refined " + std::to_string(refined) + " times to " +
+      std::to_string(still.GetPass()->GetFramesAveraged()) + " frames, not 2 to 3");
+  ok &= Check(still.GetOverlayText().find("frames averaged: 3 of 3") != std::string::npos,
+    "unexpected overlay:\n" + still.GetOverlayText());
   if (ok)
   {
     std::cout << "TestCausticsViewer: ok\n";
