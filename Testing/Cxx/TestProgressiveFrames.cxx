@@ -10,6 +10,7 @@
 #include "vtkDataArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 
 #include <gtest/gtest.h>
@@ -94,9 +95,11 @@ void ExpectARun(const char* technique, int frames, double fluxTolerance = 0.01)
   Frame run(technique);
   run.Pass->SetProgressiveFrames(frames);
   vtkSmartPointer<vtkImageData> first, mean;
+  vtkNew<vtkImageData> lastColor, heldColor;
   for (int k = 1; k <= frames; ++k)
   {
     mean = run.Caustic();
+    EXPECT_TRUE(run.Pass->ReadBuffer("FinalColor", lastColor));
     ASSERT_NE(mean, nullptr);
     EXPECT_EQ(run.Pass->GetFramesAveraged(), k);
     EXPECT_TRUE(StageRan(run.Pass, "caustic irradiance")) << "frame " << k;
@@ -110,6 +113,8 @@ void ExpectARun(const char* technique, int frames, double fluxTolerance = 0.01)
   EXPECT_NEAR(Total(mean) / Total(one), 1.0, fluxTolerance);
 
   const vtkSmartPointer<vtkImageData> held = run.Caustic();
+  EXPECT_TRUE(run.Pass->ReadBuffer("FinalColor", heldColor));
+  EXPECT_LT(Difference(heldColor, lastColor), 1e-6) << "the held frame shows the last image";
   EXPECT_EQ(run.Pass->GetFramesAveraged(), frames);
   EXPECT_FALSE(StageRan(run.Pass, "caustic irradiance")) << "a complete mean is held";
   EXPECT_FALSE(StageRan(run.Pass, "light buffers"));
