@@ -133,6 +133,70 @@ VolumeRun Render(const VolumeSettings& settings, vtkRenderWindow* window,
   return run;
 }
 
+/** One mean of ProgressiveFrames: its frames, the wall time to make it, its error. */
+struct ProgressiveRow
+{
+  int Frames = 0;
+  double Milliseconds = 0.0; ///< wall, every frame of the run up to this one
+  double RelativeL2 = 0.0;
+  double TotalRatio = 0.0;
+};
+
+/**
+ * `technique` (`grid`, 8 sub-segments) averaging a still view (ProgressiveFrames, the
+ * largest of `settings.Progressive`): after settings.Warmup frames without averaging,
+ * a run whose mean after each listed frame count is compared with `truth`.
+ */
+std::vector<ProgressiveRow> RenderProgressive(const VolumeSettings& settings,
+  vtkRenderWindow* window, vtkOpenGLRenderer* renderer, const std::string& technique, int grid,
+  vtkImageData* truth)
+{
+  vtkSmartPointer<vtkCausticsRenderPass> pass = MakePass(technique, grid, 8);
+  pass->GetAirlight()->EnabledOff();
+  pass->KeepBuffersOn();
+  renderer->SetPass(pass);
+  window->SetSize(settings.Size, settings.Size);
+  window->AddRenderer(renderer);
+  for (int frame = 0; frame < settings.Warmup; ++frame)
+  {
+    window->Render(); // programs compiled, buffers made
+  }
+  const int frames = *std::max_element(settings.Progressive.begin(), settings.Progressive.end());
+  pass->SetProgressiveFrames(frames); // a new setting: the run starts at the next frame
+  std::vector<ProgressiveRow> rows;
+  double elapsed = 0.0;
+  for (int frame = 1; frame <= frames; ++frame)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    window->WaitForCompletion();
+    elapsed +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (std::find(settings.Progressive.begin(), settings.Progressive.end(), frame) ==
+      settings.Progressive.end())
+    {
+      continue;
+    }
+    vtkNew<vtkImageData> volume;
+    vtkNew<vtkCausticsErrorMetrics> metrics;
+    metrics->SetArrayName("VolumeRadiance");
+    if (!pass->ReadBuffer("VolumeRadiance", volume) || !metrics->Compute(volume, truth))
+    {
+      throw std::runtime_error("no volume radiance to compare (is there a medium?)");
+    }
+    if (pass->GetFramesAveraged() != frame)
+    {
+      throw std::runtime_error("the mean holds " + std::to_string(pass->GetFramesAveraged()) +
+        " frames, not " + std::to_string(frame) + " (did the view change?)");
+    }
+    rows.push_back({ frame, elapsed, metrics->GetRelativeL2Error(), metrics->GetFluxRatio() });
+  }
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  window->RemoveRenderer(renderer);
+  return rows;
+}
+
 /** The reference's volume caustic at size x size, named VolumeRadiance. */
 vtkSmartPointer<vtkImageData> Reference(
   const VolumeSettings& settings, vtkOpenGLRenderer* renderer, int size)
@@ -221,6 +285,32 @@ std::string RunVolumeTables(
             Fixed(metrics->GetFluxRatio(), 3) + " |\n";
           md << row;
           progress << row << std::flush;
+        }
+      }
+    }
+  }
+  if (!settings.Progressive.empty())
+  {
+    const int grid = *std::max_element(settings.Grids.begin(), settings.Grids.end());
+    md << "\nProgressive mean (`ProgressiveFrames`, `--progressive`) of a still view at "
+       << settings.Size << "², " << grid << "² photons, 8 sub-segments: the error of the mean "
+       << "of the first k frames, and the wall time of those k frames:\n\n"
+       << "| scene | technique | frames | time to the mean (ms) | rel. L2 | total ratio |\n"
+       << "|---|---|--:|--:|--:|--:|\n";
+    for (const std::string& name : settings.Scenes)
+    {
+      vtkSmartPointer<vtkOpenGLRenderer> renderer = Scene(name);
+      vtkSmartPointer<vtkImageData> truth = Reference(settings, renderer, settings.Size);
+      for (const std::string& technique : settings.Techniques)
+      {
+        for (const ProgressiveRow& r :
+          RenderProgressive(settings, window, renderer, technique, grid, truth))
+        {
+          const std::string row = "| " + name + " | " + technique + " | " +
+            std::to_string(r.Frames) + " | " + Fixed(r.Milliseconds, 0) + " | " +
+            Fixed(r.RelativeL2, 3) + " | " + Fixed(r.TotalRatio, 3) + " |\n";
+          md << row;
+          progress << "progressive: " << row << std::flush;
         }
       }
     }

@@ -2,7 +2,8 @@
 // 003) of each technique that writes volume lines (screen-space, caustic-maps, cascaded)
 // on the media scenes: frame time against the volume caustic's error for photon counts
 // and sub-segment counts, and the analogue of 003's Table 2 (caustic-buffer size x
-// screen size -> frame time) per technique, as Markdown
+// screen size -> frame time) per technique, and the error of ProgressiveFrames' mean of a
+// still view against the time to make it, as Markdown
 // (docs/technique-volume-caustics.md shows a generated run).
 #ifndef CausticsBenchVolume_h
 #define CausticsBenchVolume_h
@@ -25,6 +26,8 @@ struct VolumeSettings
   std::vector<int> Grids{ 64, 128, 256 };   ///< light-buffer side N: N x N photons
   std::vector<int> SubSegments{ 1, 8, 32 }; ///< VolumeSubSegments (0: per-fragment march)
   std::vector<int> Sizes{ 64, 128, 256 };   ///< screen sizes of the Table 2 analogue
+  /** ProgressiveFrames' means reported, at the largest grid (empty: no such table). */
+  std::vector<int> Progressive{ 1, 2, 4, 8 };
   int Size = 128;                           ///< screen size of the time-against-error rows
   int Frames = 3;                           ///< timed frames (median)
   int Warmup = 1;                           ///< untimed frames first

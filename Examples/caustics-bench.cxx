@@ -359,6 +359,9 @@ Volume caustics (docs/technique-volume-caustics.md):
   --volume-grids A,B,...     photon grids N (N x N photons; default 64,128,256)
   --volume-sub-segments A,.. sub-segment counts, 0 = per-fragment march (default 1,8,32)
   --volume-sizes A,B,...     screen sizes of the Table 2 analogue (default 64,128,256)
+  --volume-progressive A,..  frame counts whose ProgressiveFrames mean is compared
+                             with the reference, at the largest grid (default
+                             1,2,4,8; 0: no such table)
 
 Temporal stability:
   --animate N                instead of the sweep: render N frames (4..1000) of each
@@ -607,6 +610,17 @@ void DeclareOutputOptions(caustics_cli::Arguments& arguments, Options& options)
   arguments.Value("--volume-grids", integers(options.VolumeTables.Grids, 8, 1182));
   arguments.Value("--volume-sub-segments", integers(options.VolumeTables.SubSegments, 0, 64));
   arguments.Value("--volume-sizes", integers(options.VolumeTables.Sizes, 16, 4096));
+  arguments.Value("--volume-progressive",
+    [&options](const std::string& option, const std::string& value)
+    {
+      std::vector<int>& counts = options.VolumeTables.Progressive;
+      counts.clear();
+      for (const std::string& part : SplitList(option, value))
+      {
+        counts.push_back(caustics_cli::ParseInteger(option, part, 0, 4096));
+      }
+      counts.erase(std::remove(counts.begin(), counts.end(), 0), counts.end());
+    });
 }
 
 void DeclareTemporalOptions(caustics_cli::Arguments& arguments, Options& options)
