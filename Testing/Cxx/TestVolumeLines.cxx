@@ -367,6 +367,14 @@ Comparison Underwater(int photons, int frames = 1)
   return c;
 }
 
+/** Underwater(256) averaged by the pass over `frames` still frames (ProgressiveFrames). */
+Comparison UnderwaterProgressive(int frames)
+{
+  Comparison c = Underwater(256);
+  c.ProgressiveFrames = frames;
+  return c;
+}
+
 /** The volume caustic's mean radiance ratio and relative L2 against the reference. */
 vtkCausticsErrorMetrics::Result CompareWithReference(
   const char* sceneName, Technique technique, const Comparison& c)
@@ -457,9 +465,8 @@ TEST(VolumeLines, UnderwaterMatchesReference)
 // bounds just above. 4 frames: 0.0591 (the caustic maps' test below).
 TEST(VolumeLines, UnderwaterProgressiveMatchesReference)
 {
-  Comparison c = Underwater(256);
-  c.ProgressiveFrames = 8;
-  const auto result = CompareWithReference("underwater", Technique::ScreenSpace, c);
+  const auto result =
+    CompareWithReference("underwater", Technique::ScreenSpace, UnderwaterProgressive(8));
   EXPECT_NEAR(result.FluxRatio, 1.0, 0.0025);
   EXPECT_LT(result.RelativeL2Error, 0.04);
 }
@@ -509,9 +516,8 @@ TEST(VolumeLines, CausticMapsUnderwaterMatchesReference)
 // relative L2 0.0591 (8 frames: 0.0363, as screen-space's); bounds just above.
 TEST(VolumeLines, CausticMapsUnderwaterProgressiveMatchesReference)
 {
-  Comparison c = Underwater(256);
-  c.ProgressiveFrames = 4;
-  const auto result = CompareWithReference("underwater", Technique::CausticMaps, c);
+  const auto result =
+    CompareWithReference("underwater", Technique::CausticMaps, UnderwaterProgressive(4));
   EXPECT_NEAR(result.FluxRatio, 1.0, 0.0025);
   EXPECT_LT(result.RelativeL2Error, 0.065);
 }
