@@ -29,6 +29,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 
@@ -265,5 +267,77 @@ TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
     camera->SetViewUp(0, 0, -1);
     camera->SetClippingRange(0.05, 10.0);
     expectWhole(s.Extract(), "a camera that sees nothing");
+  }
+}
+
+namespace
+{
+/** Clip-space x / w and y / w of world point p under a row-major worldToClip. */
+std::array<double, 2> ProjectToClip(const double m[16], const caustics::Vec3& p)
+{
+  double c[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    c[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+  }
+  return { { c[0] / c[3], c[1] / c[3] } };
+}
+}
+
+// ProgressiveFrames moves the light's texel grid by a sub-texel offset each frame
+// (caustics::OffsetLightView): the sun's orthographic view slides across the light by
+// that many texels, a spot light's perspective view turns about its eye; both keep
+// their size, and the transforms follow. Out-of-range or NaN offsets change nothing.
+TEST(LightView, OffsetMovesTheTexelGrid)
+{
+  for (bool spot : { false, true })
+  {
+    SCOPED_TRACE(spot ? "spot light" : "sun");
+    SheetScene s(60.0);
+    if (spot)
+    {
+      s.Sun->SetPositional(true);
+      s.Sun->SetPosition(0.5, 3.0, 0.0);
+      s.Sun->SetConeAngle(40.0);
+    }
+    const caustics::LightView base =
+      caustics::ComputeLightView(s.Extract(), 0, caustics::LightView::Focus::Specular);
+    ASSERT_TRUE(base.valid);
+    ASSERT_EQ(base.perspective, spot);
+    caustics::LightView moved = base;
+    caustics::OffsetLightView(moved, 0.5, -0.25, 16);
+    const double step = 2.0 * base.halfExtent / 16; // one texel (m, or tangent units)
+    EXPECT_DOUBLE_EQ(moved.halfExtent, base.halfExtent);
+    if (spot)
+    {
+      const double cosine = base.axis[0] * moved.axis[0] + base.axis[1] * moved.axis[1] +
+        base.axis[2] * moved.axis[2];
+      EXPECT_NEAR(std::tan(std::acos(std::min(cosine, 1.0))), std::hypot(0.5, 0.25) * step, 1e-9);
+      EXPECT_EQ(moved.eye, base.eye);
+    }
+    else
+    {
+      const double shift[3] = { moved.eye[0] - base.eye[0], moved.eye[1] - base.eye[1],
+        moved.eye[2] - base.eye[2] };
+      auto along = [&shift](const caustics::Vec3& d)
+      { return shift[0] * d[0] + shift[1] * d[1] + shift[2] * d[2]; };
+      EXPECT_NEAR(along(base.right), 0.5 * step, 1e-12);
+      EXPECT_NEAR(along(base.up), -0.25 * step, 1e-12);
+      EXPECT_NEAR(along(base.axis), 0.0, 1e-12);
+    }
+    // The moved view's centre lies on its axis: clip (0, 0).
+    const caustics::Vec3 ahead{ { moved.eye[0] + 2.0 * moved.axis[0],
+      moved.eye[1] + 2.0 * moved.axis[1], moved.eye[2] + 2.0 * moved.axis[2] } };
+    const std::array<double, 2> clip = ProjectToClip(moved.worldToClip, ahead);
+    EXPECT_NEAR(clip[0], 0.0, 1e-9);
+    EXPECT_NEAR(clip[1], 0.0, 1e-9);
+
+    for (double bad : { std::nan(""), 0.75, -3.0 })
+    {
+      caustics::LightView same = base;
+      caustics::OffsetLightView(same, bad, 0.0, 16);
+      EXPECT_EQ(same.eye, base.eye);
+      EXPECT_EQ(same.axis, base.axis);
+    }
   }
 }
