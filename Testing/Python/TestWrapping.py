@@ -72,6 +72,14 @@ def main():
         peak = max(values.GetComponent(i, 0) for i in range(values.GetNumberOfTuples()))
         if not 0.5 < peak < 10.0:
             return "%s: peak caustic irradiance %g W/m^2, expected 0.5..10" % (name, peak)
+        # A still view's mean (ProgressiveFrames) grows a frame at a time; its
+        # textures are released with the pass's (the bookkeeping below).
+        pass_.SetProgressiveFrames(3)
+        for frame in range(1, 4):
+            window.Render()
+            if pass_.GetFramesAveraged() != frame:
+                return "%s: frame %d holds the mean of %d" % (
+                    name, frame, pass_.GetFramesAveraged())
         # The GPU bookkeeping (vtkCausticsRenderPass.GetGraphicsMemory in C++).
         if vtkcaustics.vtkCausticsRenderPass.GetGraphicsObjects() <= 0 or \
                 vtkcaustics.vtkCausticsRenderPass.GetGraphicsBytes() <= 0:
