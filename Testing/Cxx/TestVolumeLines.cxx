@@ -431,7 +431,8 @@ TEST(VolumeLines, UnderwaterMatchesReference)
 // with the light buffers' texel grid moved by a sub-texel offset (R2 sequence: a new,
 // stratified set of photon lines). Reached: mean radiance ratio 0.9985, relative L2
 // 0.0363 (one frame of 512^2 photons: 0.0602; the reference's own noise is 2.3 %);
-// bounds just above. 4 frames: 0.0591 (the caustic maps' test below, the same lines).
+// bounds just above. 4 frames: 0.0591 (the caustic maps' test below, the same lines,
+// disabled in CI).
 TEST(VolumeLines, UnderwaterProgressiveMatchesReference)
 {
   const auto result =
@@ -483,7 +484,11 @@ TEST(VolumeLines, CausticMapsUnderwaterMatchesReference)
 // The caustic maps' god rays under the open sheet, averaged by the pass over 4 frames
 // (ProgressiveFrames), as UnderwaterProgressiveMatchesReference. Reached: ratio 0.9988,
 // relative L2 0.0591 (8 frames: 0.0363, as screen-space's); bounds just above.
-TEST(VolumeLines, CausticMapsUnderwaterProgressiveMatchesReference)
+// Disabled in CI (23 s there): the caustic maps draw the same lines as screen-space
+// (the figures agree to five digits), whose 8-frame test runs, and
+// TestProgressiveFrames.CausticMapsRun checks their run. Run it with
+// --gtest_also_run_disabled_tests.
+TEST(VolumeLines, DISABLED_CausticMapsUnderwaterProgressiveMatchesReference)
 {
   const auto result =
     CompareWithReference("underwater", Technique::CausticMaps, Underwater(256, 4));
