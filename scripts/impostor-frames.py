@@ -7,9 +7,12 @@ photons, cached; receiver pixels, pixel areas for the flux). What falls with the
 frames is the roulette's noise; what stays is the same every frame.
 
     PYTHONPATH=build/lib/python3/dist-packages xvfb-run -a /usr/bin/python3 \\
-        scripts/impostor-frames.py [SCENE] [KERNEL_SPACINGS[,...]] [FRAMES]
+        scripts/impostor-frames.py [SCENE] [KERNEL_SPACINGS[,...]] [FRAMES] [--progressive]
 
-Defaults: ball-lens, 2 (the default kernel), 4 frames. Needs the Python wrapping
+Defaults: ball-lens, 2 (the default kernel), 4 frames. Without --progressive the script
+averages frames of one light grid itself; with it, it reads the pass's own mean
+(ProgressiveFrames = FRAMES), whose frames move the light grid by sub-texel offsets, as
+TestImpostorPhotonPass does. Needs the Python wrapping
 (-DCAUSTICS_WRAP_PYTHON=ON) and a display or EGL.
 """
 import argparse
@@ -33,6 +36,8 @@ def main():
     parser.add_argument("scene", nargs="?", default="ball-lens")
     parser.add_argument("spacings", nargs="?", default="2", help="KernelSpacings, comma-separated")
     parser.add_argument("frames", nargs="?", type=int, default=4)
+    parser.add_argument("--progressive", action="store_true",
+                        help="the pass's mean (ProgressiveFrames) instead of the script's")
     args = parser.parse_args()
 
     window = vtkcaustics.vtkCausticsWindowFactory().NewWindow(True)
@@ -62,6 +67,8 @@ def main():
         caustics.KeepBuffersOn()
         caustics.SetLightBufferResolution(SIZE)
         caustics.SetKernelSpacings(spacings)
+        if args.progressive:
+            caustics.SetProgressiveFrames(args.frames)
         renderer.SetPass(caustics)
         total = numpy.zeros_like(expected)
         for frame in range(1, args.frames + 1):
@@ -69,8 +76,11 @@ def main():
             image = vtkImageData()
             if not caustics.ReadBuffer("CausticIrradiance", image):
                 raise SystemExit("impostor-frames: frame %d has no caustic" % frame)
-            total += array(image, "CausticIrradiance", 3)[mask]
-            mean = total / frame
+            if args.progressive:
+                mean = array(image, "CausticIrradiance", 3)[mask]  # the pass's mean
+            else:
+                total += array(image, "CausticIrradiance", 3)[mask]
+                mean = total / frame
             l2 = numpy.sqrt(((mean - expected) ** 2).sum() / (expected ** 2).sum())
             flux = (mean.sum(1) * area).sum() / (expected.sum(1) * area).sum()
             print("%s KernelSpacings %g: mean of %d frame(s): relative L2 %.4f, flux %.4f"

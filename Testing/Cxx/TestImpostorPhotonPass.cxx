@@ -2,8 +2,10 @@
 // 004_4da4b323b51d1415.txt §5) against the CPU reference renderer
 // (vtkCausticsReferenceRenderer, cached; docs/accuracy.md metrics): 256^2 images,
 // 256^2 light-buffer texels (one photon per texel and Fresnel branch), 10^6 reference
-// photons, receiver pixels only, two frames averaged (the later Fresnel events are
-// chosen by Russian roulette, a fresh seed per frame). The issue asks for flux within
+// photons, receiver pixels only, the pass's mean of four frames of the still view
+// (ProgressiveFrames: each frame's light grid moved by a sub-texel offset, and the
+// later Fresnel events chosen by Russian roulette with a fresh seed; the bunny
+// eight). The issue asks for flux within
 // 3 % and relative L2 at most 10 %; each bound is the figure reached (printed, and in
 // docs/technique-distance-impostors.md) plus a small margin for the reference's own
 // noise (TestCausticMapReference: 0.9 % ball lens, 0.8 % ring, 4.5 % bunny between
@@ -42,7 +44,7 @@
 
 namespace
 {
-constexpr int Frames = 2;
+constexpr int Frames = 4;
 
 /** A scene rendered by the impostor pass (a built-in one, or empty for nullptr). */
 struct Impostors
@@ -86,35 +88,25 @@ struct Impostors
       ? image
       : nullptr;
   }
-  /** Averages the caustic irradiance of `frames` frames into Caustic. */
+  /**
+   * The pass's mean of `frames` frames of the still view (ProgressiveFrames: each
+   * frame's light grid moved by a sub-texel offset) into Caustic.
+   */
   bool RenderFrames(int frames = Frames)
   {
-    vtkDataArray* sum = nullptr;
+    this->Pass->SetProgressiveFrames(frames);
+    vtkSmartPointer<vtkImageData> image;
     for (int frame = 0; frame < frames; ++frame)
     {
-      auto image = this->Render();
+      image = this->Render();
       if (!image)
       {
         return false;
       }
-      vtkDataArray* add = image->GetPointData()->GetArray("CausticIrradiance");
-      if (frame == 0)
-      {
-        this->Caustic->DeepCopy(image);
-        sum = this->Caustic->GetPointData()->GetArray("CausticIrradiance");
-        continue;
-      }
-      for (vtkIdType i = 0; i < sum->GetNumberOfValues(); ++i)
-      {
-        sum->SetVariantValue(
-          i, sum->GetVariantValue(i).ToDouble() + add->GetVariantValue(i).ToDouble());
-      }
     }
-    for (vtkIdType i = 0; sum && i < sum->GetNumberOfValues(); ++i)
-    {
-      sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() / frames);
-    }
-    return sum != nullptr;
+    EXPECT_EQ(this->Pass->GetFramesAveraged(), frames);
+    this->Caustic->DeepCopy(image);
+    return true;
   }
   /** Caustic against the reference of the renderer as it is (cached). */
   bool Compare(const char* what, vtkCausticsErrorMetrics* metrics)
@@ -310,18 +302,21 @@ TEST(ImpostorPhotonPass, IsRegistered)
 
 TEST(ImpostorPhotonPass, BallLensMatchesReference)
 {
-  // Reached: flux ratio 0.9981, relative L2 0.0947, the issue's 3 % and 10 % (0.1003
-  // while the exit's roulette drew white noise, whose clumps of internally reflected
-  // photons speckled the focus; 0.244 before the kernel radii followed the landed
-  // neighbours, SpreadStretch). What is left is mostly the light buffer's texel grid,
-  // the same every frame (0.090 after 4 frames). Bounds: 3 %, 0.10.
+  // Reached (the pass's mean of 4 frames): flux ratio 0.9986, relative L2 0.0486, the
+  // issue's 3 % and 10 %. The halo far from the focus holds a few photons per pixel
+  // and showed the light buffer's texel grid, the same every frame: the test's own
+  // average of 2 frames on one grid gave 0.0947 (0.090 after 4 frames); the pass's
+  // mean, whose frames move the grid, 0.0715 after 2 and 0.0350 after 8
+  // (scripts/impostor-frames.py --progressive). Before: 0.1003 while the exit's
+  // roulette drew white noise, 0.244 before the kernel radii followed the landed
+  // neighbours (SpreadStretch). Bounds: 3 %, 0.052.
   Impostors c("ball-lens");
   ASSERT_TRUE(c.RenderFrames());
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(c.Compare("ball lens", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.10);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.052);
 }
 
 TEST(ImpostorPhotonPass, RingMatchesReference)
@@ -329,17 +324,18 @@ TEST(ImpostorPhotonPass, RingMatchesReference)
   // The nephroid of a silver ring; the photons it reflects go out of the light's
   // view, which the maps do not care about. A photon the inner wall sends towards
   // the wall again meets it in the mirrors' own map (REFLECTOR_SURFACE) and is
-  // reflected again (up to ReflectorBounces, 8, times in a row). Reached: flux ratio
-  // 0.9907, relative L2 0.0977, the issue's 3 % and 10 % (1.0076 and 0.213 while such
-  // photons passed through the wall and lit a crescent along it inside; 0.1005 with
-  // ReflectorBounces 4). Bounds: 3 %, 0.10.
+  // reflected again (up to ReflectorBounces, 8, times in a row). Reached (mean of 4
+  // frames): flux ratio 0.9935, relative L2 0.0866, the issue's 3 % and 10 % (the
+  // test's own average of 2 frames on one grid: 0.9907 and 0.0977; 1.0076 and 0.213
+  // while such photons passed through the wall and lit a crescent along it inside;
+  // 0.1005 with ReflectorBounces 4). Bounds: 3 %, 0.09.
   Impostors c("ring");
   ASSERT_TRUE(c.RenderFrames());
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(c.Compare("ring", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.10);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.09);
 }
 
 namespace
@@ -367,10 +363,12 @@ TEST(ImpostorPhotonPass, MirrorCupMatchesReference)
   // The mirror cup of TestMirrorCup (reftest::MirrorCupScene, sun 30 degrees up):
   // the cusp inside, the light the inner wall sends to the wall again (second
   // reflections, through the mirrors' own map REFLECTOR_SURFACE), the wedge the
-  // outer wall throws outside. Reached from above: flux ratio 1.0024, relative L2
-  // 0.1237; without the mirrors' map (ReflectorBounces 0) 0.911 and 0.252, the
-  // second reflections passing through the wall. Obliquely: 0.965 and 0.241 (1.268
-  // and 0.599 without): the issue's 3 % and 10 % are not reached there. About a third of the
+  // outer wall throws outside. Reached from above (mean of 4 frames): flux ratio
+  // 0.9986, relative L2 0.1189 (the test's own average of 2 frames on one grid:
+  // 1.0024 and 0.1237); without the mirrors' map (ReflectorBounces 0) 0.913 and
+  // 0.251, the second reflections passing through the wall. Obliquely: 0.9707 and
+  // 0.180 (was 0.965 and 0.241; 1.268 and 0.599 without the map): the issue's 10 %
+  // is not reached there. About a third of the
   // squared error is the one-pixel bright line the reference has on the floor along
   // the wall's foot, spread by the splats over a few pixels; about another third the
   // outer wall's wedge on the floor outside, streaked where the reference is smooth
@@ -379,35 +377,36 @@ TEST(ImpostorPhotonPass, MirrorCupMatchesReference)
   double l2 = 1.0, flux = 0.0, plainL2 = 0.0, plainFlux = 0.0;
   MirrorCupError(0, 8, l2, flux);
   EXPECT_NEAR(flux, 1.0, 0.01);
-  EXPECT_LT(l2, 0.127);
+  EXPECT_LT(l2, 0.122);
   MirrorCupError(0, 0, plainL2, plainFlux);
   EXPECT_LT(l2, 0.6 * plainL2) << "the mirrors' own map must matter";
   MirrorCupError(1, 8, l2, flux);
-  EXPECT_NEAR(flux, 0.965, 0.01);
-  EXPECT_LT(l2, 0.245);
+  EXPECT_NEAR(flux, 0.97, 0.01);
+  EXPECT_LT(l2, 0.185);
 }
 
 TEST(ImpostorPhotonPass, BunnyMatchesReference)
 {
-  // A glass bunny under a spot light in a Cornell box. Reached (8 frames): flux
-  // ratio 1.0284, relative L2 0.751, peak 1 px off: the issue's 3 % met, its 10 % not. The bunny is
-  // not convex: its refractor map, seen from the centre of its box, misses the ears
-  // and the hollows (the paper's "view dependent occlusions"), so photons inside
-  // leave through the wrong face. Before Hit() skipped the start of a ray that starts
-  // behind the map's surface (a photon entering a face the map does not hold), such
-  // a photon "left" where it entered: 1.092 and 1.51, one bright band beside the
-  // base. Bounds just past what is reached, so that it cannot get worse unseen.
-  // The flux's excess, 2.85-2.9 % (the mean of 8 frames, either roulette), is at the
-  // issue's bound, and one frame's roulette moves it by 0.2-0.4 %: 8 frames, so that
-  // the check measures the technique rather than a frame's luck (2 frames gave
-  // 1.028 with white-noise roulette, 1.031 with the stratified one).
+  // A glass bunny under a spot light in a Cornell box. Reached (the pass's mean of
+  // 8 frames): flux ratio 1.0244, relative L2 0.721, peak 1 px off (the test's own
+  // average of 8 frames on one grid: 1.0284 and 0.751): the issue's 3 % met, its
+  // 10 % not. The bunny is not convex: its refractor map, seen from the centre of its
+  // box, misses the ears and the hollows (the paper's "view dependent occlusions"),
+  // so photons inside leave through the wrong face. Before Hit() skipped the start of
+  // a ray that starts behind the map's surface (a photon entering a face the map does
+  // not hold), such a photon "left" where it entered: 1.092 and 1.51, one bright band
+  // beside the base. Bounds just past what is reached, so that it cannot get worse
+  // unseen. The flux's excess, 2.4 % (2.85-2.9 % averaged on one grid, either
+  // roulette), is near the issue's bound, and one frame's roulette moves it by
+  // 0.2-0.4 %: 8 frames, so that the check measures the technique rather than a
+  // frame's luck.
   Impostors c("bunny");
   ASSERT_TRUE(c.RenderFrames(8));
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(c.Compare("bunny", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.78);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.73);
 }
 
 TEST(ImpostorPhotonPass, Stress)
