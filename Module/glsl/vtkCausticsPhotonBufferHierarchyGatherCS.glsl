@@ -110,8 +110,10 @@ int TransformPhoton(
   power = flux.r + flux.g + flux.b;
   // Footprint of the unoccluded beam on the receiver, omega_i d_i^2 / (N.D_i)
   // (omega_i is an area for directional lights: no d_i^2).
+  // (omega_i is negated on a photon that landed on a hidden receiver.)
   float cosine = max(normal.w, 1e-3);
-  float footprint = (lightType == 0 ? flux.a : flux.a * hit.w * hit.w) / cosine;
+  float measure = abs(flux.a);
+  float footprint = (lightType == 0 ? measure : measure * hit.w * hit.w) / cosine;
   // Max-distance approximation of the beam's area A_i: the largest distance to
   // the adjacent photons (same branch) that reached the same receiver, squared.
   int branch = photon.y / branchRows;
@@ -133,7 +135,10 @@ int TransformPhoton(
       // landed elsewhere still spread at least that far.
       float gap = distance(neighbour.xyz, hit.xyz);
       anySurface = max(anySurface, gap);
-      if (dot(texelFetch(hitNormal, q, 0).xyz, normal.xyz) > 0.9)
+      // ... on a parallel surface elsewhere (a wall's top over the floor it shadows)
+      // is another beam too: the same surface holds it near the photon's tangent plane.
+      if (dot(texelFetch(hitNormal, q, 0).xyz, normal.xyz) > 0.9 &&
+        abs(dot(neighbour.xyz - hit.xyz, normalize(normal.xyz))) <= 0.25 * gap)
       {
         spacing = max(spacing, gap);
       }
