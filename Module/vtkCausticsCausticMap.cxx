@@ -87,7 +87,7 @@ vtkCausticsGBuffer* vtkCausticsCausticMap::GetReceivers(int j)
 
 bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, vtkCausticsSceneGeometry* geometry,
-  const caustics::LightView& view)
+  const caustics::LightView& view, vtkCausticsCausticMap* front)
 {
   this->Resolution = settings.CausticMapResolution;
   this->NumberOfLevels = settings.NumberOfLevels();
@@ -95,10 +95,22 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
   this->Internal->HasView = true;
   float matrix[16];
   caustics::gl::ToColumnMajor(view.worldToClip, matrix);
+  // The view's eye, or its direction of sight: which receivers face it.
+  const double viewOrigin[4] = { view.perspective ? view.eye[0] : view.axis[0],
+    view.perspective ? view.eye[1] : view.axis[1], view.perspective ? view.eye[2] : view.axis[2],
+    view.perspective ? 1.0 : 0.0 };
   bool ok = true;
   for (int j = 0; j < this->NumberOfLevels; ++j)
   {
     const int size = this->GetLevelResolution(j);
+    if (front)
+    {
+      this->Receivers[j]->SetPeelBehind(front->Receivers[j], viewOrigin);
+    }
+    else
+    {
+      this->Receivers[j]->ClearPeel();
+    }
     ok = this->Receivers[j]->Render(
            renWin, geometry, matrix, size, size, vtkCausticsSceneGeometry::RoleBit(1)) &&
       ok;
@@ -109,7 +121,7 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
 bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
   const caustics::PhotonRecords& landed, vtkCausticsPhotonBufferHierarchy* hierarchy,
-  const caustics::Camera* camera)
+  const caustics::Camera* camera, bool hiddenOnly)
 {
   if (!this->Internal->HasView || !landed.IsSet() || !hierarchy)
   {
@@ -151,6 +163,7 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
       program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
     }
     this->SetSplatUniforms(program, settings, grid, hierarchy, camera);
+    program->SetUniformi("hiddenOnly", hiddenOnly ? 1 : 0);
     hierarchy->GetNodeBuffer().BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_NODES_BINDING);
     hierarchy->GetSplatBuffer().BindBase(
       GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_SPLATS_BINDING);
@@ -270,8 +283,9 @@ void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderP
   }
 }
 
-bool vtkCausticsCausticMap::Apply(
-  vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera, const caustics::Camera& view)
+bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera,
+  const caustics::Camera& view, vtkCausticsCausticMap* front,
+  const caustics::gl::StorageBuffer* drawArguments, std::size_t drawOffset)
 {
   if (!this->Internal->HasView || !camera)
   {
@@ -312,7 +326,19 @@ bool vtkCausticsCausticMap::Apply(
   program->SetUniformi("levels", this->NumberOfLevels);
   caustics::hcm::SetCameraViewUniforms(program, "cameraView", view);
   program->SetUniformi("averageFootprint", this->Internal->TexelMeans ? 1 : 0);
-  this->Triangle->Draw();
+  // Without a front map its samplers still need textures: the map's own stand in.
+  vtkCausticsGBuffer* frontReceivers = front ? front->Receivers[0] : this->Receivers[0];
+  bind(frontReceivers->GetPositionTexture(), "frontPosition");
+  bind(frontReceivers->GetNormalTexture(), "frontNormal");
+  program->SetUniformi("hasFront", front ? 1 : 0);
+  if (drawArguments)
+  {
+    this->Triangle->DrawIndirect(*drawArguments, drawOffset);
+  }
+  else
+  {
+    this->Triangle->Draw();
+  }
   for (vtkTextureObject* texture : bound)
   {
     texture->Deactivate();

@@ -23,6 +23,13 @@
  *    finest level is averaged over the pixel's footprint. Eq. 3's (1/4)^i
  *    weights renormalize energy counted per texel; per unit area, as stored here,
  *    they are already applied, and the sum of the levels is the irradiance.
+ * A second map of the same view holds the receivers hidden from the light by nearer
+ * receivers (RenderReceivers with `front`: each level peeled behind the front map's,
+ * vtkCausticsGBuffer::SetPeelBehind), e.g. the floor along a pool's sunlit wall that
+ * refraction bends light onto. Its Splat() draws only the photons that landed there
+ * (`hiddenOnly`); its Apply() adds them where the camera sees those receivers. Every
+ * surface point is in one map's receivers, so a kernel split across the two maps
+ * deposits its flux once.
  * Textures are allocated when the resolution changes, never per frame.
  */
 #ifndef vtkCausticsCausticMap_h
@@ -57,6 +64,7 @@ struct PhotonRecords;
 namespace gl
 {
 class FullScreenTriangle;
+class StorageBuffer;
 }
 }
 
@@ -79,10 +87,13 @@ public:
 #ifndef __VTK_WRAP__
   /**
    * Renders the receivers of every level (the settings' CausticMapResolution and
-   * NumberOfLevels()) as `view` sees them.
+   * NumberOfLevels()) as `view` sees them; with `front` (a map whose receivers were
+   * rendered with the same settings and view), the receivers behind `front`'s that
+   * face the light: the hidden receivers' map.
    */
   bool RenderReceivers(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
-    vtkCausticsSceneGeometry* geometry, const caustics::LightView& view);
+    vtkCausticsSceneGeometry* geometry, const caustics::LightView& view,
+    vtkCausticsCausticMap* front = nullptr);
 
   /**
    * Clears the levels and draws the splat lists of `hierarchy` (gathered from the
@@ -90,11 +101,14 @@ public:
    * vtkCausticsPhotonGrid.h)) into them, each kernel's radius within
    * the settings' MinimumSplatRadius and MaximumSplatRadius. Clusters get the
    * settings' ClusterRadius(), and no less than MinimumCameraSplatRadius pixel
-   * footprints of `camera` (may be null: no floor). False if a program failed.
+   * footprints of `camera` (may be null: no floor). `hiddenOnly`: only the photons
+   * the trace marked as landed on a hidden receiver (a negative measure, see
+   * vtkCausticsPhotonBuffer), for the hidden receivers' map. False if a program failed.
    */
   bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
     const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
-    vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
+    vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera,
+    bool hiddenOnly = false);
 
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of
@@ -103,11 +117,16 @@ public:
    * over their area, each pixel gets the finest level's mean over its footprint on
    * its receiver: map texels finer than the camera's pixels are averaged, not
    * point-sampled. After Splat() the kernels are at least a pixel footprint wide
-   * (MinimumCameraSplatRadius) and each pixel takes them at its centre. False on
+   * (MinimumCameraSplatRadius) and each pixel takes them at its centre. With
+   * `front` (the hidden receivers' map, rendered behind `front`), only the pixels
+   * `front`'s finest level does not see. With `drawArguments`, the draw's arguments
+   * are read there on the GPU at `drawOffset` (vtkCausticsPhotonBuffer's hidden
+   * draw: nothing is drawn when no photon landed on a hidden receiver). False on
    * failure.
    */
-  bool Apply(
-    vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera, const caustics::Camera& view);
+  bool Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera,
+    const caustics::Camera& view, vtkCausticsCausticMap* front = nullptr,
+    const caustics::gl::StorageBuffer* drawArguments = nullptr, std::size_t drawOffset = 0);
 #endif
 
   /**

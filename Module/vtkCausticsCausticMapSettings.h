@@ -53,6 +53,7 @@ struct CausticMapSettings
   int Reconstruction = 0; ///< vtkCausticsPhotonSplatter::Reconstructions: 0 hierarchical splats,
                           ///< 1 caustic triangles into the finest level
   bool SplitFresnel = true;               ///< emit a refractor's reflected part too
+  bool HiddenReceivers = true;            ///< a second map of receivers hidden by nearer ones
   double MinimumMapIncidence = 45.0;      ///< degrees, [0, 90]; the map's view turns to it
   double VolumeBlurPixels = 1.5; ///< volume caustics' Gaussian, pixels, [0, 16] (vtkCausticsVolumeLines)
   int VolumeSubSegments = 8;     ///< volume caustics' pieces per segment in a density grid, [0, 64]

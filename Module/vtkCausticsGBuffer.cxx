@@ -37,6 +37,13 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
     static_cast<std::uint64_t>(roleMask), static_cast<std::uint64_t>(this->KeepFarthest),
     static_cast<std::uint64_t>(this->Albedo) };
   caustics::gl::AppendKey(key, worldToClip, 16);
+  if (this->PeelFront)
+  {
+    // The front layer's own key stands for its content.
+    key.push_back(reinterpret_cast<std::uintptr_t>(this->PeelFront));
+    key.insert(key.end(), this->PeelFront->Key.begin(), this->PeelFront->Key.end());
+    caustics::gl::AppendKey(key, this->PeelViewOrigin, 4);
+  }
   this->LastRenderReused = this->ReuseUnchanged && key == this->Key;
   if (this->LastRenderReused)
   {
@@ -110,12 +117,35 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
   }
   glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
-  bool ok = this->Program->Bind(renWin);
+  vtkTextureObject* front = this->PeelFront ? this->PeelFront->GetPositionTexture() : nullptr;
+  bool ok = !this->PeelFront ||
+    (this->PeelFront->Size[0] == width && this->PeelFront->Size[1] == height &&
+      !this->PeelFront->Key.empty());
+  if (!ok)
+  {
+    vtkErrorMacro(<< "the layer to peel behind must be rendered first, at " << width << " x "
+                  << height);
+  }
+  ok = ok && this->Program->Bind(renWin);
   if (ok)
   {
     this->Program->SetUniformMatrix4("worldToClip", worldToClip);
+    this->Program->SetUniformi("peel", front ? 1 : 0);
+    if (front)
+    {
+      front->Activate();
+      this->Program->SetUniformi("peelFront", front->GetTextureUnit());
+      const float origin[4] = { static_cast<float>(this->PeelViewOrigin[0]),
+        static_cast<float>(this->PeelViewOrigin[1]), static_cast<float>(this->PeelViewOrigin[2]),
+        static_cast<float>(this->PeelViewOrigin[3]) };
+      this->Program->SetUniform4f("peelViewOrigin", origin);
+    }
     geometry->BindMaterials();
     geometry->Draw(roleMask);
+    if (front)
+    {
+      front->Deactivate();
+    }
     this->Program->Unbind(renWin);
   }
   state->PopFramebufferBindings();
@@ -124,6 +154,15 @@ bool vtkCausticsGBuffer::Render(vtkOpenGLRenderWindow* renWin, vtkCausticsSceneG
     this->Key = std::move(key);
   }
   return ok;
+}
+
+void vtkCausticsGBuffer::SetPeelBehind(vtkCausticsGBuffer* front, const double viewOrigin[4])
+{
+  this->PeelFront = front != this ? front : nullptr;
+  for (int i = 0; i < 4; ++i)
+  {
+    this->PeelViewOrigin[i] = viewOrigin[i];
+  }
 }
 
 void vtkCausticsGBuffer::ReleaseGraphicsResources(vtkWindow* win)
@@ -146,6 +185,7 @@ void vtkCausticsGBuffer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Program ready: " << this->Program->IsReady() << "\n";
   os << indent << "KeepFarthest: " << this->KeepFarthest << "\n";
   os << indent << "Albedo: " << this->Albedo << "\n";
+  os << indent << "PeelFront: " << this->PeelFront << "\n";
   os << indent << "ReuseUnchanged: " << this->ReuseUnchanged << "\n";
   os << indent << "LastRenderReused: " << this->LastRenderReused << "\n";
 }

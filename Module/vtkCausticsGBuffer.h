@@ -15,7 +15,14 @@
  * nothing (ReuseUnchanged, on by default): the same window, geometry object and
  * geometry content (vtkCausticsSceneGeometry::GetContentVersion(), renewed when a
  * mesh, the layout or a material changes), world-to-clip matrix, size, role mask,
- * KeepFarthest and Albedo. ReleaseGraphicsResources() and a failed Render() keep nothing.
+ * KeepFarthest, Albedo and the peel. ReleaseGraphicsResources() and a failed Render()
+ * keep nothing.
+ *
+ * SetPeelBehind() makes it a second layer: of each pixel, the nearest surface behind
+ * the one another G-buffer of the same view and size shows there, among the surfaces
+ * that face the view (a depth peel, as vtkCausticsLayeredDepth's, but of one layer and
+ * facing ones only). The caustic map uses it for receivers hidden from the light by
+ * nearer receivers.
  */
 #ifndef vtkCausticsGBuffer_h
 #define vtkCausticsGBuffer_h
@@ -96,6 +103,16 @@ public:
   vtkBooleanMacro(Albedo, bool);
   ///@}
 
+  /**
+   * Peel behind `front` (a G-buffer of the same view and size, rendered first; null:
+   * no peel, the default): keep, at each pixel, the nearest surface farther than
+   * `front`'s there whose modelled normal faces the view. `viewOrigin` is the view's
+   * eye (w = 1) or, for an orthographic view, its direction of sight (w = 0).
+   * `front` must outlive the peel (ClearPeel() forgets it).
+   */
+  void SetPeelBehind(vtkCausticsGBuffer* front, const double viewOrigin[4]);
+  void ClearPeel() { this->PeelFront = nullptr; }
+
   /** Whether the last Render() kept the targets it already held (nothing changed). */
   vtkGetMacro(LastRenderReused, bool);
 
@@ -116,6 +133,8 @@ protected:
   bool Albedo = true;
   bool ReuseUnchanged = true;
   bool LastRenderReused = false;
+  vtkCausticsGBuffer* PeelFront = nullptr; // not owned
+  double PeelViewOrigin[4] = { 0, 0, 0, 1 };
   std::vector<std::uint64_t> Key; // the inputs of the targets held; empty: none
 
 private:

@@ -597,6 +597,20 @@ void FullScreenTriangle::Draw()
   glBindVertexArray(0);
 }
 
+void FullScreenTriangle::DrawIndirect(const StorageBuffer& buffer, std::size_t offset)
+{
+  if (!this->VertexArray)
+  {
+    glCreateVertexArrays(1, &this->VertexArray);
+  }
+  glBindVertexArray(this->VertexArray);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffer.Handle());
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+  glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(offset));
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  glBindVertexArray(0);
+}
+
 void FullScreenTriangle::Release()
 {
   if (this->VertexArray)

@@ -289,6 +289,12 @@ public:
   ~FullScreenTriangle();
   /** Draws 3 vertices (glsl/vtkCausticsFullScreenVS.glsl makes the triangle). */
   void Draw();
+  /**
+   * The same draw with its arguments read on the GPU (glDrawArraysIndirect) from
+   * `buffer` at byte `offset`: { 3, instances, 0, 0 }, instances 0 drawing nothing.
+   * A stage gated by what an earlier GPU stage found, without a read-back.
+   */
+  void DrawIndirect(const StorageBuffer& buffer, std::size_t offset);
   void Release();
 
 private:

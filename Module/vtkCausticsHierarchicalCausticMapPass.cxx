@@ -41,6 +41,7 @@ struct PerLight
   vtkNew<vtkCausticsPhotonBuffer> Photons;
   vtkNew<vtkCausticsPhotonBufferHierarchy> Hierarchy;
   vtkNew<vtkCausticsCausticMap> Map;
+  vtkNew<vtkCausticsCausticMap> HiddenMap; // receivers behind Map's (HiddenReceivers)
   caustics::LightView MapView;
   bool Traced = false;
   // Where the light meets the receivers beyond the specular actors, and what it
@@ -57,6 +58,7 @@ struct PerLight
     this->Photons->ReleaseGraphicsResources(w);
     this->Hierarchy->ReleaseGraphicsResources(w);
     this->Map->ReleaseGraphicsResources(w);
+    this->HiddenMap->ReleaseGraphicsResources(w);
     this->Traced = false;
     this->IncidenceKey.clear();
     this->LayersKey.clear();
@@ -168,7 +170,7 @@ std::string LayersKey(const caustics::SceneData& scene, const caustics::LightVie
   std::ostringstream key;
   key.precision(17);
   key << geometry << ' ' << gridWidth << ' ' << settings.CausticMapResolution << ' '
-      << settings.NumberOfLevels();
+      << settings.NumberOfLevels() << ' ' << settings.HiddenReceivers;
   for (const caustics::LightView* view : { &photonView, &mapView })
   {
     key << " | " << view->light << ' ' << view->perspective << ' ' << view->valid << ' '
@@ -279,14 +281,19 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     this->BeginStage("hcm light layers");
     std::string layersKey =
       LayersKey(scene, photonView, light.MapView, grid.Width, this->Settings, this->GetGeometry());
+    const bool hidden = this->Settings.HiddenReceivers;
     light.Traced = light.Traced &&
       (layersKey == light.LayersKey ||
         (light.Map->RenderReceivers(renWin, this->Settings, this->GetGeometry(), light.MapView) &&
+          (!hidden ||
+            light.HiddenMap->RenderReceivers(
+              renWin, this->Settings, this->GetGeometry(), light.MapView, light.Map)) &&
           light.Photons->RenderLayers(renWin, this->GetGeometry(), photonView, grid)));
     light.LayersKey = light.Traced ? std::move(layersKey) : std::string();
     this->EndStage("hcm light layers");
     // Where each photon lands.
     this->BeginStage("hcm trace");
+    light.Photons->SetHiddenReceivers(hidden ? light.HiddenMap->GetReceivers(0) : nullptr);
     light.Traced = light.Traced &&
       light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
         light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid,
@@ -364,6 +371,16 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
         light.Map->Splat(
           renWin, this->Settings, grid, light.Photons->GetLanded(), light.Hierarchy, &scene.View);
     }
+    // The photons that landed on hidden receivers, into their own map (splats in
+    // either reconstruction: a triangle never spans the two layers).
+    if (this->Settings.HiddenReceivers)
+    {
+      this->BeginStage("hcm hidden splat");
+      light.Traced = light.Traced &&
+        light.HiddenMap->Splat(renWin, this->Settings, grid, light.Photons->GetLanded(),
+          light.Hierarchy, &scene.View, true);
+      this->EndStage("hcm hidden splat");
+    }
     this->EndStage("hcm splat");
     ok = ok && light.Traced;
   }
@@ -379,6 +396,16 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderFinal(vtkOpenGLRenderWindow* r
     if (light->Traced)
     {
       ok = light->Map->Apply(renWin, this->GetCameraGBuffer(), camera) && ok;
+      if (this->Settings.HiddenReceivers)
+      {
+        // Drawn only when a photon landed there (the trace sets the draw's count).
+        this->BeginStage("hcm hidden final render");
+        ok = light->HiddenMap->Apply(renWin, this->GetCameraGBuffer(), camera, light->Map,
+               &light->Photons->GetStatisticsBuffer(),
+               vtkCausticsPhotonBuffer::GetHiddenDrawOffset()) &&
+          ok;
+        this->EndStage("hcm hidden final render");
+      }
     }
   }
   return ok;
@@ -424,6 +451,7 @@ bool vtkCausticsHierarchicalCausticMapPass::GetCounters(int i, Counters& counter
   }
   counters.Photons = statistics.Photons;
   counters.Hits = statistics.Hits;
+  counters.HiddenHits = statistics.HiddenHits;
   counters.LostInside = statistics.LostInside;
   counters.Escaped = statistics.Escaped;
   counters.FluxIn = statistics.FluxIn;
@@ -557,6 +585,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "Reconstruction: "
      << (knobs.Reconstruction == RECONSTRUCTION_TRIANGLES ? "triangles" : "splats") << "\n";
   os << indent << "SplitFresnel: " << knobs.SplitFresnel << "\n";
+  os << indent << "HiddenReceivers: " << knobs.HiddenReceivers << "\n";
   os << indent << "MinimumMapIncidence: " << knobs.MinimumMapIncidence << " degrees\n";
   os << indent << "VolumeBlurPixels: " << knobs.VolumeBlurPixels << " px\n";
   os << indent << "VolumeSubSegments: " << knobs.VolumeSubSegments << "\n";

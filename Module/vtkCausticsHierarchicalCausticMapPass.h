@@ -245,6 +245,18 @@ public:
   ///@}
 
   ///@{
+  /**
+   * A second caustic map for the receivers hidden from the light by nearer receivers
+   * (vtkCausticsCausticMap, peeled behind the first map's): refraction and mirrors
+   * bend light onto them, e.g. the floor along a pool's sunlit wall. Off, photons
+   * bound there are lost (counted as escaped). Costs a second set of receiver levels,
+   * a splat of the photons that land there and a second final-render pass. Default on.
+   */
+  vtkCausticsSettingMacro(Settings, HiddenReceivers, bool);
+  vtkBooleanMacro(HiddenReceivers, bool);
+  ///@}
+
+  ///@{
   /** Emit a refractor's Fresnel-reflected part as a second photon branch. Default on. */
   vtkCausticsSettingMacro(Settings, SplitFresnel, bool);
   vtkBooleanMacro(SplitFresnel, bool);
@@ -297,6 +309,7 @@ public:
   {
     long long Photons = 0;    ///< photons emitted
     long long Hits = 0;       ///< photons that landed on a receiver (valid photons)
+    long long HiddenHits = 0; ///< of them, on a hidden receiver (HiddenReceivers)
     long long LostInside = 0; ///< no exit found inside a refractor
     long long Escaped = 0;    ///< left the caustic map's view
     double FluxIn = 0.0;      ///< W emitted (summed over RGB)

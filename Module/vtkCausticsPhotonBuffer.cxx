@@ -52,17 +52,18 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   double ChordLength = 0.0, AirLength = 0.0, FluxUnit = 1.0;
   double ReceiverLow[3] = { 0, 0, 0 }, ReceiverHigh[3] = { 0, 0, 0 };
   bool Reflectors = false; // the reflector layer holds the scene's mirrors
+  bool Hidden = false;     // a hidden receivers' layer is searched
   const caustics::gl::MediumBuffer* MediumGrid = nullptr;    // the medium's density, if any
   caustics::gl::VolumeSegmentList* VolumeSegments = nullptr; // phase 2 appends, when on
   bool InsideAppends = false; // phase 1 appends too (the medium fills the refractors)
-  vtkTextureObject* Inputs[11] = { nullptr };
+  vtkTextureObject* Inputs[13] = { nullptr };
 };
 
 namespace
 {
-const char* const TraceInputNames[11] = { "photonPosition", "photonDirection", "photonFlux",
+const char* const TraceInputNames[13] = { "photonPosition", "photonDirection", "photonFlux",
   "frontPosition", "frontNormal", "backPosition", "backNormal", "receiverPosition",
-  "receiverNormal", "reflectorPosition", "reflectorNormal" };
+  "receiverNormal", "reflectorPosition", "reflectorNormal", "hiddenPosition", "hiddenNormal" };
 
 /** Whether a mesh of the scene is a reflector (a mirror). */
 bool HasReflectors(const caustics::SceneData& scene)
@@ -78,11 +79,12 @@ bool HasReflectors(const caustics::SceneData& scene)
 void SetTraceUniforms(
   vtkCausticsShaderProgram* program, const vtkCausticsPhotonBuffer::TraceUniforms& trace)
 {
-  for (int i = 0; i < 11; ++i)
+  for (int i = 0; i < 13; ++i)
   {
     program->SetUniformi(TraceInputNames[i], trace.Inputs[i]->GetTextureUnit());
   }
   program->SetUniformi("hasReflectors", trace.Reflectors ? 1 : 0);
+  program->SetUniformi("hasHiddenReceivers", trace.Hidden ? 1 : 0);
   program->SetUniformi("maximumReflections", trace.Settings->MaximumReflections);
   const caustics::Light& source = *trace.Source;
   caustics::hcm::SetViewUniforms(
@@ -348,6 +350,11 @@ std::size_t vtkCausticsPhotonBuffer::AllocateOutputs(
   using Usage = caustics::gl::StorageBuffer::Usage;
   this->Internal->Statistics.Allocate(caustics::hcm::StatSize * sizeof(std::uint32_t), Usage::Copy);
   this->Internal->Statistics.Clear();
+  // The hidden receivers' final render draws its triangle only if the trace finds a
+  // photon that lands there (it sets the instance count).
+  const std::uint32_t hiddenDraw[4] = { 3u, 0u, 0u, 0u };
+  this->Internal->Statistics.Write(
+    caustics::hcm::StatHiddenDraw * sizeof(std::uint32_t), sizeof(hiddenDraw), hiddenDraw);
   // Work lists (control words, then two lists of up to one entry per texel).
   const std::size_t capacity = static_cast<std::size_t>(width) * height;
   const std::size_t listBytes = (caustics::hcm::ControlSize + 2 * capacity) * sizeof(std::uint32_t);
@@ -367,6 +374,9 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
   trace.PhotonView = &photonView;
   trace.MapView = &mapView;
   trace.MapSize = receivers->GetSize();
+  trace.Hidden = this->HiddenReceivers &&
+    this->HiddenReceivers->GetSize()[0] == trace.MapSize[0] &&
+    this->HiddenReceivers->GetSize()[1] == trace.MapSize[1];
   trace.Width = grid.Width;
   trace.Height = grid.Height;
   // Longest straight paths: across the refractors' bounds, and across the scene.
@@ -379,8 +389,11 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
     receivers->GetPositionTexture(), receivers->GetNormalTexture(),
     // Without mirrors the receivers stand in (never read: hasReflectors is 0).
     trace.Reflectors ? this->ReflectorLayer->GetPositionTexture() : receivers->GetPositionTexture(),
-    trace.Reflectors ? this->ReflectorLayer->GetNormalTexture() : receivers->GetNormalTexture() };
-  std::copy(inputs, inputs + 11, trace.Inputs);
+    trace.Reflectors ? this->ReflectorLayer->GetNormalTexture() : receivers->GetNormalTexture(),
+    // Without hidden receivers the receivers stand in (never read).
+    trace.Hidden ? this->HiddenReceivers->GetPositionTexture() : receivers->GetPositionTexture(),
+    trace.Hidden ? this->HiddenReceivers->GetNormalTexture() : receivers->GetNormalTexture() };
+  std::copy(inputs, inputs + 13, trace.Inputs);
   // Photons in air can only land inside the receivers' bounds: the search is
   // clipped to them (photons that never enter them cost one box test).
   double receiverBounds[6];
@@ -405,6 +418,16 @@ void vtkCausticsPhotonBuffer::BindTraceOutputs(vtkCausticsSceneGeometry* geometr
   geometry->BindMaterials();
 }
 
+const caustics::gl::StorageBuffer& vtkCausticsPhotonBuffer::GetStatisticsBuffer() const
+{
+  return this->Internal->Statistics;
+}
+
+std::size_t vtkCausticsPhotonBuffer::GetHiddenDrawOffset()
+{
+  return caustics::hcm::StatHiddenDraw * sizeof(std::uint32_t);
+}
+
 caustics::PhotonRecords vtkCausticsPhotonBuffer::GetLanded() const
 {
   return this->Internal->Landed.Records();
@@ -422,6 +445,7 @@ bool vtkCausticsPhotonBuffer::GetStatistics(Statistics& statistics)
   this->Internal->Statistics.Read(0, words.size() * sizeof(std::uint32_t), words.data());
   statistics.Photons = words[caustics::hcm::StatPhotons];
   statistics.Hits = words[caustics::hcm::StatHits];
+  statistics.HiddenHits = words[caustics::hcm::StatHiddenHits];
   statistics.LostInside = words[caustics::hcm::StatLostInside];
   statistics.Escaped = words[caustics::hcm::StatEscaped];
   const double unit = this->FluxUnit;

@@ -73,6 +73,7 @@ struct SceneData;
 namespace gl
 {
 class MediumBuffer;
+class StorageBuffer;
 class VolumeSegmentList;
 }
 }
@@ -115,11 +116,22 @@ public:
     caustics::gl::VolumeSegmentList* volumeSegments = nullptr);
   ///@}
 
+  /**
+   * A second receiver layer of the same view and size as `receivers`: the receivers
+   * hidden from the light by nearer ones (vtkCausticsCausticMap's hidden receivers).
+   * A photon in air that finds no receiver in the first layer is searched in it; one
+   * that lands there keeps the record layout with its measure (flux.a) negated, so
+   * that the hidden receivers' map splats it. Null (the default): first layer only.
+   * Not owned; it must stay alive through Trace().
+   */
+  void SetHiddenReceivers(vtkCausticsGBuffer* hidden) { this->HiddenReceivers = hidden; }
+
   /** GPU counters of the last Render(); flux in W summed over RGB. */
   struct Statistics
   {
     long long Photons = 0;    ///< photons the emitter made
     long long Hits = 0;       ///< photons that landed on a receiver (valid photons)
+    long long HiddenHits = 0; ///< of them, on a hidden receiver (SetHiddenReceivers)
     long long LostInside = 0; ///< exit not found within MaximumInternalEvents
     long long Escaped = 0;    ///< left the caustic map's view or hit a receiver's back
     double FluxIn = 0.0;
@@ -138,9 +150,18 @@ public:
   /**
    * The photons of the last Render() that landed on a receiver, in the photon record
    * layout of vtkCausticsPhotonGrid.h (one texel per photon of the grid; position.w
-   * > 0 marks a landed photon).
+   * > 0 marks a landed photon; flux.a < 0 one landed on a hidden receiver, whose
+   * measure is -flux.a).
    */
   caustics::PhotonRecords GetLanded() const;
+
+  /**
+   * The trace's counters on the GPU, and the byte offset in it of the hidden
+   * receivers' final-render draw arguments ({ 3, 1 if a photon landed on a hidden
+   * receiver else 0, 0, 0 }, for vtkCausticsCausticMap::Apply).
+   */
+  const caustics::gl::StorageBuffer& GetStatisticsBuffer() const;
+  static std::size_t GetHiddenDrawOffset();
 #endif
 
   ///@{
@@ -165,6 +186,7 @@ protected:
   vtkNew<vtkCausticsGBuffer> FrontLayer;
   vtkNew<vtkCausticsGBuffer> BackLayer;
   vtkNew<vtkCausticsGBuffer> ReflectorLayer; // mirrors as the caustic map's view sees them
+  vtkCausticsGBuffer* HiddenReceivers = nullptr; // not owned (SetHiddenReceivers)
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;

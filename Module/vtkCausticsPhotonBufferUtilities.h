@@ -38,7 +38,9 @@ constexpr int StatFluxLostInside = 8;
 constexpr int StatFluxEscaped = 10;
 constexpr int StatFluxInternalReflection = 12;
 constexpr int StatFluxAbsorbed = 14;
-constexpr int StatSize = 16;
+constexpr int StatHiddenHits = 16;
+constexpr int StatHiddenDraw = 17; // 4 words: { 3, any hidden hit ? 1 : 0, 0, 0 }
+constexpr int StatSize = 21;
 
 // Hierarchy control block words (CONTROL_*).
 constexpr int ControlDispatch = 0;

@@ -24,6 +24,13 @@ uniform CausticsView mapViews[4];
 uniform int levels;
 uniform CausticsView cameraView; // the camera the G-buffer was drawn with
 uniform int averageFootprint;    // 1: the finest level holds texel means (triangles)
+// The hidden receivers' map (vtkCausticsCausticMap::Apply with a front map): a pixel
+// the front map's finest level sees is the front map's, wholly; this map adds only
+// where it does not, so that along the edge between the two layers (coplanar
+// receivers, e.g. a floor half in a wall's shadow) no pixel takes both.
+uniform bool hasFront;
+uniform sampler2D frontPosition; // the front map's finest receivers (same view and size)
+uniform sampler2D frontNormal;
 
 const int MAXIMUM_FOOTPRINT_TEXELS = 12; // per axis of the pixel's footprint in the map
 
@@ -74,6 +81,31 @@ vec4 SampleLevel(int i, vec3 x, vec3 n, out bool seen)
   }
   seen = weights > 0.0;
   return seen ? sum / weights : vec4(0.0);
+}
+
+// Whether a bilinear tap of the front map's finest level shows x's surface (its
+// SampleLevel(0) test, on its receivers).
+bool FrontSees(vec3 x, vec3 n)
+{
+  vec2 pixel;
+  if (!ViewProject(mapViews[0], x, pixel))
+  {
+    return false;
+  }
+  float tolerance = 1.5 * ViewTexelSize(mapViews[0], x);
+  ivec2 base = ivec2(floor(pixel - 0.5));
+  ivec2 last = ivec2(mapViews[0].size) - 1;
+  for (int k = 0; k < 4; ++k)
+  {
+    ivec2 texel = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), last);
+    vec4 s = texelFetch(frontPosition, texel, 0);
+    vec4 sn = texelFetch(frontNormal, texel, 0);
+    if (s.w >= 0.0 && dot(sn.xyz, n) >= 0.8 && abs(dot(x - s.xyz, sn.xyz)) <= tolerance)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 // Where the camera's ray through `pixel` (continuous pixel coordinates) meets the
@@ -159,6 +191,10 @@ void main()
   }
   vec3 x = position.xyz;
   vec3 n = normalize(normalRole.xyz);
+  if (hasFront && FrontSees(x, n))
+  {
+    discard; // the front map's pixel
+  }
   bool seen;
   vec4 total = SampleFootprint(pixel, x, n, seen);
   if (!seen)

@@ -20,6 +20,14 @@ uniform float maximumRadiusPixels;
 uniform float clusterRadiusPixels;
 uniform CausticsView cameraView;
 uniform float minimumCameraRadiusPixels; // clusters' floor in camera pixel footprints (0: none)
+// The hidden receivers' map (vtkCausticsCausticMap): the photons that landed on a
+// hidden receiver (the trace makes their measure, hitFlux.a, negative; a cluster
+// goes by its representative photon), and those whose kernel reaches one of its
+// receivers on their plane (a photon beside the edge of a wall's shadow lights both
+// sides; the others would be drawn for nothing).
+uniform bool hiddenOnly;
+uniform sampler2D targetPosition; // the level's receivers (the fragment shader's test)
+uniform float planeTolerance;
 
 struct Node
 {
@@ -102,6 +110,25 @@ float DiscreteKernelSum(vec2 centre, vec3 c, vec3 n, float r, float reach)
   return sum * 2.0 / (CAUSTICS_PI * r2) * area;
 }
 
+// Whether the target level shows a receiver on the plane (p, n) at the kernel's
+// centre or at the four ends of its reach (pixels of the level).
+bool ReachesReceiver(vec2 centre, float reach, vec3 p, vec3 n, float tolerance)
+{
+  const vec2 offsets[5] =
+    vec2[5](vec2(0.0), vec2(1.0, 0.0), vec2(-1.0, 0.0), vec2(0.0, 1.0), vec2(0.0, -1.0));
+  ivec2 last = ivec2(targetView.size) - 1;
+  for (int k = 0; k < 5; ++k)
+  {
+    ivec2 texel = clamp(ivec2(floor(centre + reach * offsets[k])), ivec2(0), last);
+    vec4 s = texelFetch(targetPosition, texel, 0);
+    if (s.w >= 0.0 && abs(dot(s.xyz - p, n)) <= tolerance)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void main()
 {
   uint entry = splats[listOffset + uint(gl_VertexID)];
@@ -165,6 +192,12 @@ void main()
   vec2 extent = scale * sqrt(a * a + b * b);
   float reach = max(extent.x, extent.y);
   splatRadius = probe * scale;
+  if (hiddenOnly && !(texelFetch(hitFlux, texel, 0).a < 0.0) &&
+    !ReachesReceiver(centre, reach, position, n, planeTolerance * splatRadius))
+  {
+    Discard();
+    return;
+  }
   // Small kernels: normalized over the pixel centres they actually cover.
   float deposit = clamped < 4.0 ? DiscreteKernelSum(centre, position, n, splatRadius, reach) : 1.0;
   splatCentre = position;

@@ -18,7 +18,9 @@
 #define STAT_FLUX_ESCAPED 10
 #define STAT_FLUX_INTERNAL_REFLECTION 12
 #define STAT_FLUX_ABSORBED 14
-#define STAT_SIZE 16
+#define STAT_HIDDEN_HITS 16 // of STAT_HITS, on the hidden receivers' layer
+#define STAT_HIDDEN_DRAW 17 // the hidden map's final-render draw: 3, 1 if any such hit, 0, 0
+#define STAT_SIZE 21
 
 // Hierarchy control block (uint words): indirect arguments and counters.
 #define CONTROL_DISPATCH 0           // 3 words per traversal level, 16 levels

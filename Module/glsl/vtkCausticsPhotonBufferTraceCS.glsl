@@ -13,7 +13,9 @@
 //    scatters, the stretch is appended for the volume caustics (as phase 2's), and so
 //    are the stretches of that reflected part (its volume light only);
 // 2. in air, one thread per listed photon: the hit is found on the receivers as
-//    the caustic map's view sees them (a receiver-only depth layer); a mirror met
+//    the caustic map's view sees them (a receiver-only depth layer), else on the
+//    receivers hidden behind them (a second, peeled layer, when the technique has
+//    one: its photons' measure is negated for the hidden receivers' map); a mirror met
 //    before it (a mirror-only layer of the same view) reflects the photon with the
 //    conductor's Fresnel reflectance, up to maximumReflections times, after which
 //    a mirror in the way stops it (it no longer passes through).
@@ -50,6 +52,9 @@ uniform sampler2D receiverNormal;
 uniform sampler2D reflectorPosition; // mirrors seen by the caustic map's view
 uniform sampler2D reflectorNormal;
 uniform int hasReflectors;           // 0: the scene has no mirror (the layer is not read)
+uniform sampler2D hiddenPosition;    // receivers behind the first ones, facing the light
+uniform sampler2D hiddenNormal;      // (the hidden receivers' map; same view and size)
+uniform int hasHiddenReceivers;      // 0: no such layer (not read)
 uniform int maximumReflections;      // mirrors a photon in air may meet
 uniform CausticsView photonView;    // the view the emitter's texels come from
 uniform CausticsView mapView;
@@ -633,8 +638,10 @@ void main()
 // a mirror cup) and the search starts again from the mirror.
 
 // The first receiver along p + t d, t in the receivers' bounds: true with t and
-// the receiver's normal.
-bool FindReceiver(vec3 p, vec3 d, out float t, out vec3 n)
+// the receiver's normal. One the first layer does not show (the ray passes behind
+// it) is searched in the hidden receivers' layer, up to where the ray meets the
+// first layer's back if it does: `hidden` then.
+bool FindReceiver(vec3 p, vec3 d, out float t, out vec3 n, out bool hidden)
 {
   vec3 inverse = 1.0 / d;
   vec3 near = (receiverLow - p) * inverse, far = (receiverHigh - p) * inverse;
@@ -647,10 +654,33 @@ bool FindReceiver(vec3 p, vec3 d, out float t, out vec3 n)
   float material;
   t = -1.0;
   n = vec3(0.0, 0.0, 1.0);
-  return end > start &&
-    LayerHit(mapView, receiverPosition, receiverNormal, p, d, start, end, -1.0, t) &&
-    LayerAt(mapView, receiverPosition, receiverNormal, p + t * d, s, n, material) &&
-    dot(d, n) < 0.0; // a receiver reached from behind shows nothing
+  hidden = false;
+  if (!(end > start))
+  {
+    return false;
+  }
+  float first;
+  if (LayerHit(mapView, receiverPosition, receiverNormal, p, d, start, end, -1.0, first))
+  {
+    t = first;
+    if (LayerAt(mapView, receiverPosition, receiverNormal, p + t * d, s, n, material) &&
+      dot(d, n) < 0.0)
+    {
+      return true;
+    }
+    end = first; // a receiver reached from behind shows nothing, nor lets light through
+  }
+  float behind;
+  if (hasHiddenReceivers != 0 && end > start &&
+    LayerHit(mapView, hiddenPosition, hiddenNormal, p, d, start, end, -1.0, behind) &&
+    LayerAt(mapView, hiddenPosition, hiddenNormal, p + behind * d, s, n, material) &&
+    dot(d, n) < 0.0)
+  {
+    t = behind;
+    hidden = true;
+    return true;
+  }
+  return false;
 }
 
 // The first mirror along p + t d before `limit`, away from the mirror the photon
@@ -704,10 +734,10 @@ void main()
   bool inMedium = CausticsStretchInMedium(underSheet);
   float t = -1.0;
   vec3 n = vec3(0.0);
-  bool landed = false;
+  bool landed = false, hidden = false;
   for (int reflection = 0; reflection <= maximumReflections; ++reflection)
   {
-    landed = FindReceiver(p, d, t, n);
+    landed = FindReceiver(p, d, t, n, hidden);
     float mirrorT;
     vec3 mirrorNormal;
     int mirrorMaterial;
@@ -768,6 +798,12 @@ void main()
   }
   atomicAdd(statistics[STAT_HITS], 1u);
   AddFlux(STAT_FLUX_HITS, power);
+  if (hidden)
+  {
+    atomicAdd(statistics[STAT_HIDDEN_HITS], 1u);
+    atomicOr(statistics[STAT_HIDDEN_DRAW + 1], 1u); // the hidden map has a caustic to show
+    flux4.a = -flux4.a; // the hidden receivers' map's photon
+  }
   imageStore(outPosition, texel, vec4(hit, path));
   imageStore(outNormal, texel, vec4(n, abs(dot(n, d))));
   imageStore(outFlux, texel, flux4);
