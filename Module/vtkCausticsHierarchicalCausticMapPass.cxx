@@ -371,8 +371,8 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
         light.Map->Splat(
           renWin, this->Settings, grid, light.Photons->GetLanded(), light.Hierarchy, &scene.View);
     }
-    // The photons that landed on hidden receivers, into their own map (splats in
-    // either reconstruction: a triangle never spans the two layers).
+    // The photons that landed on hidden receivers, and those whose kernel reaches
+    // them, into their own map (splats in either reconstruction).
     if (this->Settings.HiddenReceivers)
     {
       this->BeginStage("hcm hidden splat");

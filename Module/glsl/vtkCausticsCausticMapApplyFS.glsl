@@ -36,13 +36,18 @@ const int MAXIMUM_FOOTPRINT_TEXELS = 12; // per axis of the pixel's footprint in
 
 layout(location = 0) out vec4 outIrradiance;
 
-// Whether texel `texel` of map level i shows the surface (x, n): surfaces closer
-// than `tolerance` to x's tangent plane count as x's own.
+// Whether a map texel's receiver (position s, normal sn) is the surface (x, n):
+// surfaces closer than `tolerance` to x's tangent plane count as x's own.
+bool ShowsSurface(vec4 s, vec4 sn, vec3 x, vec3 n, float tolerance)
+{
+  return s.w >= 0.0 && dot(sn.xyz, n) >= 0.8 && abs(dot(x - s.xyz, sn.xyz)) <= tolerance;
+}
+
+// The same for texel `texel` of map level i.
 bool TexelShows(int i, ivec2 texel, vec3 x, vec3 n, float tolerance)
 {
-  vec4 s = texelFetch(receiverPosition[i], texel, 0);
-  vec4 sn = texelFetch(receiverNormal[i], texel, 0);
-  return s.w >= 0.0 && dot(sn.xyz, n) >= 0.8 && abs(dot(x - s.xyz, sn.xyz)) <= tolerance;
+  return ShowsSurface(texelFetch(receiverPosition[i], texel, 0),
+    texelFetch(receiverNormal[i], texel, 0), x, n, tolerance);
 }
 
 // Bilinear irradiance of map level i at x, over the taps that show x's surface,
@@ -98,9 +103,8 @@ bool FrontSees(vec3 x, vec3 n)
   for (int k = 0; k < 4; ++k)
   {
     ivec2 texel = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), last);
-    vec4 s = texelFetch(frontPosition, texel, 0);
-    vec4 sn = texelFetch(frontNormal, texel, 0);
-    if (s.w >= 0.0 && dot(sn.xyz, n) >= 0.8 && abs(dot(x - s.xyz, sn.xyz)) <= tolerance)
+    if (ShowsSurface(texelFetch(frontPosition, texel, 0), texelFetch(frontNormal, texel, 0),
+          x, n, tolerance))
     {
       return true;
     }
