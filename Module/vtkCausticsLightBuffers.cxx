@@ -229,7 +229,7 @@ bool vtkCausticsLightBuffers::Render(vtkOpenGLRenderWindow* renWin,
 std::vector<caustics::LightView> vtkCausticsLightBuffers::ComputeViews(
   const caustics::SceneData& scene)
 {
-  // The views are a function of these alone; FOCUS_SEEN scans the specular sheet's
+  // The views are a function of these alone; FOCUS_SEEN scans the specular sheets'
   // triangles (caustics::PhotonFocusBounds), so they are kept while none changes.
   auto& in = *this->Internal;
   std::vector<std::uint64_t> key{ static_cast<std::uint64_t>(this->Focus) };

@@ -6,8 +6,11 @@
 #include <glm/gtc/constants.hpp> // For glm::pi
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace caustics
 {
@@ -16,6 +19,9 @@ namespace
 using Box = std::array<double, 6>;
 
 constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+/** Cone-against-mesh tests PhotonFocusBounds may make across several meshes. */
+constexpr double MaximumPairTests = 2e6;
 
 Box EmptyBox()
 {
@@ -279,25 +285,6 @@ Box Intersection(const Box& a, const Box& b)
   return both;
 }
 
-/** The one specular mesh of the scene, or -1 when there are none or several. */
-int SoleSpecularMesh(const SceneData& scene)
-{
-  int found = -1;
-  for (int m = 0; m < static_cast<int>(scene.Meshes.size()); ++m)
-  {
-    const Role role = scene.Materials[scene.Meshes[m].material].role;
-    if (role == Role::Reflector || role == Role::Refractor)
-    {
-      if (found >= 0)
-      {
-        return -1;
-      }
-      found = m;
-    }
-  }
-  return found;
-}
-
 /** The mesh's triangles with their corners and unit normals (per vertex, else per face). */
 struct Triangles
 {
@@ -385,14 +372,64 @@ void Cones(
     cones[branch] = MakeCone(x, leaving, valid);
   }
 }
+
+/** A specular mesh as the focus sees it. */
+struct SpecularMesh
+{
+  const Material* material = nullptr;
+  Triangles triangles;
+  Box bounds = EmptyBox();
+  bool sheet = false;
+  std::size_t Count() const { return this->triangles.Corners.size() / 3; }
+  bool Refracts() const { return this->material->role == Role::Refractor; }
+};
+
+/** The scene's reflectors and refractors that have a triangle. */
+std::vector<SpecularMesh> GatherSpecular(const SceneData& scene)
+{
+  std::vector<SpecularMesh> meshes;
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    const Material& material = scene.Materials[mesh.material];
+    if (material.role != Role::Reflector && material.role != Role::Refractor)
+    {
+      continue;
+    }
+    SpecularMesh m;
+    m.material = &material;
+    m.triangles = Gather(mesh);
+    for (const glm::dvec3& x : m.triangles.Corners)
+    {
+      Include(m.bounds, x);
+    }
+    m.sheet = IsSheet(m.triangles);
+    if (m.Count() > 0)
+    {
+      meshes.push_back(std::move(m));
+    }
+  }
+  return meshes;
+}
+
+/** Whether light along `cone` can reach a specular mesh other than `self`. */
+bool ReachesAnother(const Cone& cone, const std::vector<SpecularMesh>& meshes, std::size_t self)
+{
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    if (m != self && Reaches(cone, meshes[m].bounds))
+    {
+      return true;
+    }
+  }
+  return false;
+}
 }
 
 bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
 {
   const double* whole = scene.HasSpecular ? scene.SpecularBounds : scene.Bounds;
   std::copy(whole, whole + 6, box);
-  const int sole = SoleSpecularMesh(scene);
-  if (!scene.HasSpecular || scene.Participating.enabled || sole < 0 || index < 0 ||
+  if (!scene.HasSpecular || scene.Participating.enabled || index < 0 ||
     index >= static_cast<int>(scene.Lights.size()))
   {
     return false;
@@ -402,15 +439,22 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   {
     return false;
   }
-  const Mesh& mesh = scene.Meshes[sole];
-  const Material& material = scene.Materials[mesh.material];
-  const bool refractor = material.role == Role::Refractor;
-  const Triangles triangles = Gather(mesh);
-  if (!IsSheet(triangles))
+  const std::vector<SpecularMesh> meshes = GatherSpecular(scene);
+  if (meshes.empty())
   {
     return false;
   }
-  const std::size_t count = triangles.Corners.size() / 3;
+  // Each sheet triangle's cones are tested against every other mesh: past a budget
+  // of such tests (about a second's work) the whole box is kept rather than stall.
+  double pairTests = 0.0;
+  for (const SpecularMesh& mesh : meshes)
+  {
+    pairTests += mesh.sheet ? static_cast<double>(mesh.Count()) * (meshes.size() - 1) : 0.0;
+  }
+  if (pairTests > MaximumPairTests)
+  {
+    return false;
+  }
   // Caustics are seen on receivers: the receivers inside the camera's clip volume...
   const Box receivers = ReceiverBounds(scene);
   Box visible;
@@ -420,31 +464,51 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   {
     region = EmptyBox();
   }
-  // ...and those it sees through the sheet or in it: its rays, reflected and
-  // refracted at the triangles inside the clip volume, swept across the receivers.
+  // ...and those it sees through a sheet or in it: its rays, reflected and refracted at
+  // the triangles inside the clip volume, swept across the receivers. A ray that can
+  // meet another specular mesh, or that enters a closed or curved one, may go on
+  // anywhere: then every receiver counts.
   const Camera& camera = scene.View;
   const glm::dvec3 eye(camera.position[0], camera.position[1], camera.position[2]);
   const glm::dvec3 viewDirection = glm::normalize(
     glm::dvec3(camera.focalPoint[0], camera.focalPoint[1], camera.focalPoint[2]) - eye);
   auto fromCamera = [&](const glm::dvec3& x)
   { return camera.parallel ? viewDirection : glm::normalize(x - eye); };
-  for (std::size_t i = 0; i < count; ++i)
+  for (std::size_t m = 0; m < meshes.size(); ++m)
   {
-    Box triangle = EmptyBox();
-    for (int k = 0; k < 3; ++k)
-    {
-      Include(triangle, triangles.Corners[3 * i + k]);
-    }
-    if (!Overlap(triangle, visible))
+    const SpecularMesh& mesh = meshes[m];
+    if (!Overlap(mesh.bounds, visible))
     {
       continue;
     }
-    Cone cones[2];
-    Cones(triangles, i, material.ior, refractor, fromCamera, cones);
-    for (const Cone& cone : cones)
+    if (!mesh.sheet)
     {
-      if (cone.valid)
+      Include(region, receivers);
+      continue;
+    }
+    for (std::size_t i = 0; i < mesh.Count(); ++i)
+    {
+      Box triangle = EmptyBox();
+      for (int k = 0; k < 3; ++k)
       {
+        Include(triangle, mesh.triangles.Corners[3 * i + k]);
+      }
+      if (!Overlap(triangle, visible))
+      {
+        continue;
+      }
+      Cone cones[2];
+      Cones(mesh.triangles, i, mesh.material->ior, mesh.Refracts(), fromCamera, cones);
+      for (const Cone& cone : cones)
+      {
+        if (!cone.valid)
+        {
+          continue;
+        }
+        if (ReachesAnother(cone, meshes, m))
+        {
+          Include(region, receivers);
+        }
         const Box swept = Swept(cone, receivers);
         if (!IsEmpty(swept))
         {
@@ -457,7 +521,7 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   {
     return false; // no receiver in view: nothing to aim at
   }
-  // The triangles whose light can reach that region.
+  // The light leaving each sheet triangle, straight from the light.
   const Light& light = scene.Lights[index];
   const glm::dvec3 lightPosition(light.position[0], light.position[1], light.position[2]);
   const glm::dvec3 lightDirection =
@@ -467,23 +531,66 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
     return light.type == Light::Type::Directional ? lightDirection
                                                   : glm::normalize(x - lightPosition);
   };
-  Box focus = EmptyBox();
-  for (std::size_t i = 0; i < count; ++i)
+  auto leaving = [&](const SpecularMesh& mesh, std::size_t i, Cone cones[2])
+  { Cones(mesh.triangles, i, mesh.material->ior, mesh.Refracts(), fromLight, cones); };
+  // A mesh that another one's specular light can reach gets light from directions its
+  // own cones do not follow, and sends it on anywhere: it counts whole. A closed or
+  // curved mesh's light may go anywhere.
+  std::vector<bool> litByAnother(meshes.size(), false);
+  for (std::size_t n = 0; n < meshes.size(); ++n)
   {
-    Cone cones[2];
-    Cones(triangles, i, material.ior, refractor, fromLight, cones);
-    if ((cones[0].valid && Reaches(cones[0], region)) ||
-      (cones[1].valid && Reaches(cones[1], region)))
+    for (std::size_t m = 0; m < meshes.size(); ++m)
     {
-      for (int k = 0; k < 3; ++k)
+      if (m == n || litByAnother[m])
       {
-        Include(focus, triangles.Corners[3 * i + k]);
+        continue;
+      }
+      if (!meshes[n].sheet)
+      {
+        litByAnother[m] = true;
+        continue;
+      }
+      for (std::size_t i = 0; i < meshes[n].Count() && !litByAnother[m]; ++i)
+      {
+        Cone cones[2];
+        leaving(meshes[n], i, cones);
+        litByAnother[m] = (cones[0].valid && Reaches(cones[0], meshes[m].bounds)) ||
+          (cones[1].valid && Reaches(cones[1], meshes[m].bounds));
+      }
+    }
+  }
+  // The triangles whose light can reach that region, or another specular mesh (whose
+  // light may then reach it).
+  Box focus = EmptyBox();
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    const SpecularMesh& mesh = meshes[m];
+    if (!mesh.sheet || litByAnother[m])
+    {
+      Include(focus, mesh.bounds);
+      continue;
+    }
+    for (std::size_t i = 0; i < mesh.Count(); ++i)
+    {
+      Cone cones[2];
+      leaving(mesh, i, cones);
+      bool kept = false;
+      for (const Cone& cone : cones)
+      {
+        kept = kept || (cone.valid && (Reaches(cone, region) || ReachesAnother(cone, meshes, m)));
+      }
+      if (kept)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          Include(focus, mesh.triangles.Corners[3 * i + k]);
+        }
       }
     }
   }
   if (IsEmpty(focus))
   {
-    return false; // no light of the sheet reaches what is seen: keep the whole
+    return false; // no specular light reaches what is seen: keep the whole
   }
   bool narrower = false;
   for (int k = 0; k < 3; ++k)

@@ -12,21 +12,28 @@
  * widened by where the camera's own rays go after reflecting or refracting at those
  * surfaces (a floor seen through water, a wall seen in a mirror).
  *
- * The test follows one specular event per path, so it narrows only where a path meets
- * one: the scene has exactly one specular mesh (light leaving one could be sent on by
- * another), its normals lie within 45 degrees of their mean (a sheet: water, a flat or
- * gently curved mirror; a closed or strongly curved surface sends light on to itself),
- * and there is no participating medium (volume caustics are seen along the photons'
- * paths, not only where they land). Otherwise, and where the camera sees nothing or no
- * triangle's light reaches what it sees, the box is SceneData::SpecularBounds.
+ * The test follows one specular event per path, so it narrows only the meshes where a
+ * path meets one: a sheet (normals within 45 degrees of their mean: water, a flat or
+ * gently curved mirror; a closed or strongly curved surface sends light on to itself)
+ * that no other specular mesh's light can reach (light arriving from another mesh comes
+ * from directions its cones do not follow). Such a sheet keeps the triangles whose light
+ * can reach what the camera sees or another specular mesh; every other specular mesh
+ * counts whole, and the box holds them all. Where the camera's rays, reflected or
+ * refracted at a sheet in view, can meet another specular mesh, or where the camera
+ * sees a closed or curved one, every receiver counts as seen. Nothing narrows with a
+ * participating medium (volume caustics are seen along the photons' paths, not only
+ * where they land), where the camera sees nothing, or where no light reaches what it
+ * sees: the box is then SceneData::SpecularBounds.
  *
  * Each triangle's outgoing directions (the vertex normals' reflection and refraction
  * of the incoming light) are bounded by a cone around their mean, widened by a tenth
  * and half a degree for the interpolated normals between vertices; a triangle
  * is kept when that cone, started from anywhere on the triangle, can meet the region.
  * So the box only ever holds more than the exact answer. A CPU pass over the specular
- * mesh's triangles (a few ms for 10^5 triangles); callers keep its result while the
- * camera, the light and the meshes stay.
+ * meshes' triangles (a few ms for 10^5 triangles; with several meshes each sheet
+ * triangle is also tested against every other mesh, and past 2 * 10^6 such tests the box
+ * is SceneData::SpecularBounds); callers keep its result while the camera, the light
+ * and the meshes stay.
  */
 #ifndef vtkCausticsPhotonFocus_h
 #define vtkCausticsPhotonFocus_h

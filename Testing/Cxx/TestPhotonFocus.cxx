@@ -206,9 +206,117 @@ TEST(PhotonFocus, HoldsEveryPathToWhatIsSeenFromAnyCamera)
   }
 }
 
+/** A flat silver rectangle from `origin` along `u` and `v`. */
+vtkSmartPointer<vtkActor> MakeMirror(const double origin[3], const double u[3], const double v[3])
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(origin[0], origin[1], origin[2]);
+  plane->SetPoint1(origin[0] + u[0], origin[1] + u[1], origin[2] + u[2]);
+  plane->SetPoint2(origin[0] + v[0], origin[1] + v[1], origin[2] + v[2]);
+  plane->SetResolution(8, 8);
+  plane->Update();
+  auto actor = MakeActor(plane->GetOutput());
+  const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 };
+  vtkCausticsMaterial::MakeMirror(actor->GetProperty(), n, k);
+  return actor;
+}
+
+// Several specular meshes: each sheet that no other one lights is narrowed on its own.
+// A mirror whose light goes nowhere the camera looks adds nothing to the box: beside
+// the water, the focus is the one the water alone has. Two mirrors over a floor, one
+// throwing the sun onto the floor in view and one sending it to the sky: the box holds
+// the first one's light that lands in view (traced exactly) and not the second.
+TEST(PhotonFocus, NarrowsEachSheetNoOtherLights)
+{
+  auto zoomIn = [](vtkRenderer* renderer, double x)
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(x, 1.5, 0.3);
+    camera->SetFocalPoint(x, 0.0, 0.0);
+    camera->SetViewUp(0, 0, -1);
+    camera->SetClippingRange(0.05, 50.0);
+  };
+  {
+    SheetScene alone(60.0);
+    zoomIn(alone.Renderer, 0.3);
+    double sheet[6];
+    ASSERT_TRUE(caustics::PhotonFocusBounds(alone.Extract(), 0, sheet));
+    SheetScene s(60.0);
+    zoomIn(s.Renderer, 0.3);
+    // Beyond the floor's edge, facing up: the sun's reflection leaves up and away.
+    const double origin[3] = { 3.5, 0.5, -0.5 }, u[3] = { 1.0, 0.0, 0.0 }, v[3] = { 0.0, 0.0, 1.0 };
+    s.Renderer->AddActor(MakeMirror(origin, u, v));
+    const caustics::SceneData& scene = s.Extract();
+    double box[6];
+    ASSERT_TRUE(caustics::PhotonFocusBounds(scene, 0, box));
+    for (int k = 0; k < 6; ++k)
+    {
+      EXPECT_NEAR(box[k], sheet[k], 1e-9) << "beside an idle mirror, bound " << k;
+    }
+    EXPECT_GT(CheckHoldsTheSeenLight(scene, 60.0, box), 1000);
+  }
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkPlaneSource> floor;
+    floor->SetOrigin(-FloorHalf, 0, FloorHalf);
+    floor->SetPoint1(FloorHalf, 0, FloorHalf);
+    floor->SetPoint2(-FloorHalf, 0, -FloorHalf);
+    floor->Update();
+    renderer->AddActor(MakeActor(floor->GetOutput()));
+    // A wall mirror facing the sun, which travels to +x 60 degrees down: its light falls
+    // back onto the floor at x 0.63 to 1.33 m.
+    const double wallOrigin[3] = { 1.5, 0.3, -1.0 }, wallU[3] = { 0.0, 1.2, 0.0 },
+                 wallV[3] = { 0.0, 0.0, 2.0 };
+    renderer->AddActor(MakeMirror(wallOrigin, wallU, wallV));
+    // A mirror on the floor far up-sun: its light goes to the sky.
+    const double padOrigin[3] = { -2.8, 0.2, -0.3 }, padU[3] = { 0.6, 0.0, 0.0 },
+                 padV[3] = { 0.0, 0.0, 0.6 };
+    renderer->AddActor(MakeMirror(padOrigin, padU, padV));
+    vtkNew<vtkLight> sun;
+    sun->SetLightTypeToSceneLight();
+    sun->SetPositional(false);
+    sun->SetFocalPoint(0, 0, 0);
+    sun->SetPosition(-std::cos(M_PI / 3.0), std::sin(M_PI / 3.0), 0.0);
+    renderer->AddLight(sun);
+    zoomIn(renderer, 1.0);
+    vtkNew<vtkCausticsSceneExtractor> extractor;
+    ASSERT_TRUE(extractor->Update(renderer, 256, 256));
+    const caustics::SceneData& scene = extractor->GetScene();
+    double box[6];
+    ASSERT_TRUE(caustics::PhotonFocusBounds(scene, 0, box));
+    std::cout << "two mirrors: focus x " << box[0] << " to " << box[1] << ", y " << box[2]
+              << " to " << box[3] << ", z " << box[4] << " to " << box[5] << " (both: x "
+              << scene.SpecularBounds[0] << " to " << scene.SpecularBounds[1] << ")\n";
+    EXPECT_GT(box[0], -2.2) << "the mirror lighting the sky is left out";
+    int seen = 0, outside = 0;
+    for (int i = 0; i < 60; ++i)
+    {
+      const double y = 0.3 + 1.2 * (i + 0.5) / 60;
+      const double landedX = 1.5 - y * std::cos(M_PI / 3.0) / std::sin(M_PI / 3.0);
+      for (int k = 0; k < 100; ++k)
+      {
+        const double z = -1.0 + 2.0 * (k + 0.5) / 100;
+        double px, py;
+        if (!scene.View.WorldToPixel({ { landedX, 0.0, z } }, px, py) || px < 0.0 || py < 0.0 ||
+          px > scene.View.width || py > scene.View.height)
+        {
+          continue;
+        }
+        ++seen;
+        if (!Inside(box, 1.5, y, z, 1e-9) && ++outside <= 5)
+        {
+          ADD_FAILURE() << "the wall mirror at y " << y << ", z " << z
+                        << " lights the floor in view but lies outside the focus";
+        }
+      }
+    }
+    EXPECT_GT(seen, 500);
+  }
+}
+
 // Where one specular event does not bound the paths, the focus is every specular
-// actor: a closed ball, two specular meshes, a participating medium, a camera that
-// sees nothing.
+// actor: a closed ball, two sheets one of which lights the other, a participating
+// medium, a camera that sees nothing.
 TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
 {
   auto expectWhole = [](const caustics::SceneData& scene, const char* what)
@@ -249,7 +357,7 @@ TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
     auto second = MakeWater(8);
     second->SetPosition(0.0, 0.5, 0.0);
     s.Renderer->AddActor(second);
-    expectWhole(s.Extract(), "two specular sheets");
+    expectWhole(s.Extract(), "two sheets, one lighting the other");
   }
   {
     SheetScene s(60.0);

@@ -124,6 +124,23 @@ struct SheetFrame
     this->Window->SetSize(Size, Size);
     this->Window->AddRenderer(this->Renderer);
   }
+  /**
+   * A silver square beyond the floor's edge, facing up: the sun's light it reflects
+   * leaves up and away, and it is out of the camera's view. It must change nothing.
+   */
+  void AddIdleMirror()
+  {
+    vtkNew<vtkPlaneSource> plane;
+    plane->SetOrigin(3.5, 0.5, -0.5);
+    plane->SetPoint1(4.5, 0.5, -0.5);
+    plane->SetPoint2(3.5, 0.5, 0.5);
+    plane->Update();
+    auto mirror = MakeActor(plane->GetOutput());
+    const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 };
+    vtkCausticsMaterial::MakeMirror(mirror->GetProperty(), n, k);
+    this->Renderer->AddActor(mirror);
+  }
+
   ~SheetFrame()
   {
     this->Renderer->SetPass(nullptr);
@@ -334,6 +351,18 @@ TEST(WaterSheet, CausticDoesNotDependOnTheZoom)
     std::cout << "screen-space triangles, sun at 60 degrees, " << width
               << " m of floor in view: relative L2 " << 100.0 * seen.RelativeL2 << " %, flux "
               << seen.Flux << "; aimed at the whole sheet " << 100.0 * whole.RelativeL2 << " %\n";
+    if (zoom.ViewHalf == 0.5)
+    {
+      // A second specular mesh whose light goes nowhere in view leaves the water's
+      // photons where they were (caustics::PhotonFocusBounds narrows each sheet).
+      frame.Pass->GetLightBuffers()->SetFocus(vtkCausticsLightBuffers::FOCUS_SEEN);
+      frame.AddIdleMirror();
+      const auto beside = frame.Compare(60.0, 1);
+      EXPECT_LT(beside.RelativeL2, zoom.Bound) << "beside an idle mirror";
+      EXPECT_NEAR(beside.Flux, 1.0, 0.005) << "beside an idle mirror";
+      std::cout << "  beside a mirror that lights nothing in view: relative L2 "
+                << 100.0 * beside.RelativeL2 << " %, flux " << beside.Flux << "\n";
+    }
   }
 }
 
