@@ -164,22 +164,33 @@ struct Variant
 /**
  * A caustic-map configuration. map: caustic-map resolution (0: the pass's default);
  * cameraFloor: its MinimumCameraSplatRadius (the default 1 is not named in the knobs);
- * incidence: its MinimumMapIncidence in degrees (negative: the default, not named).
+ * incidence: its MinimumMapIncidence in degrees (negative: the default, not named);
+ * maxDistance: its MaxDistanceFraction (negative: the default, not named).
  */
 void AddCausticMap(std::vector<Configuration>& table, int grid, const Variant& variant, int map = 0,
-  double cameraFloor = 1.0, int incidence = -1)
+  double cameraFloor = 1.0, int incidence = -1, double maxDistance = -1.0)
 {
   std::string knobs = "grid=" + std::to_string(grid) + " variant=" + variant.Name;
   knobs += map > 0 ? " map=" + std::to_string(map) : "";
   knobs += cameraFloor == 0.0 ? " camera-floor=off" : "";
   knobs += incidence >= 0 ? " map-incidence=" + std::to_string(incidence) : "";
+  if (maxDistance >= 0.0)
+  {
+    std::ostringstream fraction; // 1, 0.5: the shortest form
+    fraction << maxDistance;
+    knobs += " max-distance=" + fraction.str();
+  }
   table.push_back({ "caustic-maps", knobs,
     Set<HCM>(
-      [grid, variant, map, cameraFloor, incidence](HCM* pass)
+      [grid, variant, map, cameraFloor, incidence, maxDistance](HCM* pass)
       {
         if (incidence >= 0)
         {
           pass->SetMinimumMapIncidence(incidence);
+        }
+        if (maxDistance >= 0.0)
+        {
+          pass->SetMaxDistanceFraction(maxDistance);
         }
         pass->SetLightBufferResolution(grid);
         pass->SetGatherMode(variant.Gather);
@@ -241,6 +252,12 @@ void AddCausticMapConfigurations(std::vector<Configuration>& table)
   for (int incidence : { 0, 20, 45, 60 })
   {
     AddCausticMap(table, 256, defaultVariant, 0, 1.0, incidence);
+  }
+  // Eq. 2's spacing: the paper's max distance (1) against the beam's mean width
+  // (MaxDistanceFraction, default 0.5), which keeps folds and cusps sharp.
+  for (int grid : { 256, 1024 })
+  {
+    AddCausticMap(table, grid, defaultVariant, 0, 1.0, -1, 1.0);
   }
 }
 

@@ -42,6 +42,9 @@ struct CausticMapSettings
   int CausticMapResolution = 512;         ///< texels per side of the finest level, [16, 8192]
   int TraversalStartResolution = 16;      ///< nodes per side of the first level, [1, 4096]
   double SplatScale = 2.0;                ///< Eq. 2 radius / photon spacing, [0.25, 16]
+  /** Eq. 2's spacing: the beam's mean width along the grid's two axes, at least this
+   * fraction of its largest neighbour distance (1: the paper's max distance), [0.05, 1] */
+  double MaxDistanceFraction = 0.5;
   double ConstantSplatRadius = 1.5;       ///< SPLAT_CONSTANT radius, finest pixels, [0.5, 64]
   double SplatSizeThreshold = 5.0;        ///< diameter, level pixels, before the next, [1, 64]
   double MinimumSplatRadius = 1.5;        ///< level pixels, [1, 16]

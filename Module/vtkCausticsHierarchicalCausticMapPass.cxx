@@ -573,6 +573,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrintSelf(ostream& os, vtkIndent ind
   os << indent << "CausticMapResolution: " << knobs.CausticMapResolution << "\n";
   os << indent << "TraversalStartResolution: " << knobs.TraversalStartResolution << "\n";
   os << indent << "SplatScale: " << knobs.SplatScale << "\n";
+  os << indent << "MaxDistanceFraction: " << knobs.MaxDistanceFraction << "\n";
   os << indent << "ConstantSplatRadius: " << knobs.ConstantSplatRadius << " px\n";
   os << indent << "SplatSizeThreshold: " << knobs.SplatSizeThreshold << " px\n";
   os << indent << "MinimumSplatRadius: " << knobs.MinimumSplatRadius << " px\n";

@@ -162,6 +162,19 @@ public:
 
   ///@{
   /**
+   * The photon spacing of Eq. 2 (beyond the paper). The paper takes the largest
+   * distance to the four adjacent photons on the same receiver, which is right for a
+   * beam spread evenly but makes a beam squeezed along one axis (a fold, a mirror's
+   * nephroid) as wide as its long axis: the caustic is blurred across. The spacing is
+   * the beam's mean width, the geometric mean of its largest distances along the
+   * grid's two axes, but at least this fraction of the largest distance, so that kernels still overlap along the long axis. In [0.05, 1];
+   * 1 is the paper's max distance. Default 0.5 (docs/technique-caustic-maps.md, §4).
+   */
+  vtkCausticsSettingClampMacro(Settings, MaxDistanceFraction, double, 0.05, 1.0);
+  ///@}
+
+  ///@{
+  /**
    * Kernel radius of SPLAT_CONSTANT, in finest-level caustic map pixels, in
    * [0.5, 64]. Default 1.5 (the paper's 3^2-pixel splats).
    */

@@ -327,6 +327,7 @@ void vtkCausticsPhotonBufferHierarchy::SetGatherUniforms(vtkCausticsShaderProgra
   gather->SetUniformi("lightType", lightType);
   gather->SetUniformi("splatMode", settings.SplatMode);
   gather->SetUniformf("splatScale", static_cast<float>(settings.SplatScale));
+  gather->SetUniformf("maxDistanceFraction", static_cast<float>(settings.MaxDistanceFraction));
   gather->SetUniformf("constantRadiusPixels", static_cast<float>(settings.ConstantSplatRadius));
   gather->SetUniformf("splatSizeThreshold", static_cast<float>(settings.SplatSizeThreshold));
   gather->SetUniformi("dropCoarseSplats", settings.DropCoarseSplats ? 1 : 0);

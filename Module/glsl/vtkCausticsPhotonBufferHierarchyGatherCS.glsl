@@ -40,6 +40,7 @@ uniform uint splatRegion;     // entries per caustic map level in the splat list
 uniform int lightType;        // 0 directional (measure in m^2), else point/spot (sr)
 uniform int splatMode;
 uniform float splatScale;         // kernel radius / photon spacing
+uniform float maxDistanceFraction; // least spacing / the largest neighbour distance
 uniform float constantRadiusPixels;
 uniform float splatSizeThreshold; // largest splat diameter per level, in that level's pixels
 uniform int dropCoarseSplats;     // 1: as the paper, drop splats needing level >= 4
@@ -114,10 +115,14 @@ int TransformPhoton(
   float cosine = max(normal.w, 1e-3);
   float measure = abs(flux.a);
   float footprint = (lightType == 0 ? measure : measure * hit.w * hit.w) / cosine;
-  // Max-distance approximation of the beam's area A_i: the largest distance to
-  // the adjacent photons (same branch) that reached the same receiver, squared.
+  // The beam's area A_i from the adjacent photons (same branch) that reached the
+  // same receiver: the paper's max-distance approximation is the largest distance,
+  // squared; a beam squeezed along one axis (a fold) is narrower than that, so its
+  // width is the geometric mean of the largest distances along the grid's two axes,
+  // kept above a fraction of the largest so that kernels still overlap along it.
   int branch = photon.y / branchRows;
   float spacing = 0.0, anySurface = 0.0;
+  vec2 axes = vec2(0.0); // largest distance along the grid's x and y
   const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
   for (int i = 0; i < 4; ++i)
   {
@@ -141,8 +146,13 @@ int TransformPhoton(
         abs(dot(neighbour.xyz - hit.xyz, normalize(normal.xyz))) <= 0.25 * gap)
       {
         spacing = max(spacing, gap);
+        axes[i / 2] = max(axes[i / 2], gap);
       }
     }
+  }
+  if (axes.x > 0.0 && axes.y > 0.0)
+  {
+    spacing = max(sqrt(axes.x * axes.y), maxDistanceFraction * spacing);
   }
   spacing = spacing > 0.0 ? spacing : anySurface;
   // Eq. 2: r_i = sqrt(A_i (N.D_i) / (omega_i d_i^2)) = sqrt(A_i / footprint), the
