@@ -57,12 +57,7 @@ struct SheetScene
 
   explicit SheetScene(double elevation)
   {
-    vtkNew<vtkPlaneSource> floor;
-    floor->SetOrigin(-FloorHalf, 0, FloorHalf);
-    floor->SetPoint1(FloorHalf, 0, FloorHalf);
-    floor->SetPoint2(-FloorHalf, 0, -FloorHalf);
-    floor->Update();
-    this->Renderer->AddActor(MakeActor(floor->GetOutput()));
+    this->Renderer->AddActor(MakeFloor(FloorHalf));
     this->Renderer->AddActor(MakeWater(96));
     const double e = elevation * M_PI / 180.0;
     this->Sun->SetLightTypeToSceneLight();
@@ -206,21 +201,6 @@ TEST(PhotonFocus, HoldsEveryPathToWhatIsSeenFromAnyCamera)
   }
 }
 
-/** A flat silver rectangle from `origin` along `u` and `v`. */
-vtkSmartPointer<vtkActor> MakeMirror(const double origin[3], const double u[3], const double v[3])
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(origin[0], origin[1], origin[2]);
-  plane->SetPoint1(origin[0] + u[0], origin[1] + u[1], origin[2] + u[2]);
-  plane->SetPoint2(origin[0] + v[0], origin[1] + v[1], origin[2] + v[2]);
-  plane->SetResolution(8, 8);
-  plane->Update();
-  auto actor = MakeActor(plane->GetOutput());
-  const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 };
-  vtkCausticsMaterial::MakeMirror(actor->GetProperty(), n, k);
-  return actor;
-}
-
 // Several specular meshes: each sheet that no other one lights is narrowed on its own.
 // A mirror whose light goes nowhere the camera looks adds nothing to the box: beside
 // the water, the focus is the one the water alone has. Two mirrors over a floor, one
@@ -257,12 +237,7 @@ TEST(PhotonFocus, NarrowsEachSheetNoOtherLights)
   }
   {
     vtkNew<vtkRenderer> renderer;
-    vtkNew<vtkPlaneSource> floor;
-    floor->SetOrigin(-FloorHalf, 0, FloorHalf);
-    floor->SetPoint1(FloorHalf, 0, FloorHalf);
-    floor->SetPoint2(-FloorHalf, 0, -FloorHalf);
-    floor->Update();
-    renderer->AddActor(MakeActor(floor->GetOutput()));
+    renderer->AddActor(MakeFloor(FloorHalf));
     // A wall mirror facing the sun, which travels to +x 60 degrees down: its light falls
     // back onto the floor at x 0.63 to 1.33 m.
     const double wallOrigin[3] = { 1.5, 0.3, -1.0 }, wallU[3] = { 0.0, 1.2, 0.0 },

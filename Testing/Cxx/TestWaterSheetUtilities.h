@@ -12,8 +12,11 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkSmartPointer.h"
+
+#include "vtkCausticsMaterial.h"
 
 #include <cmath>
 
@@ -41,6 +44,36 @@ inline vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data)
   mapper->SetInputData(data);
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
+  return actor;
+}
+
+/** A rectangle from `origin` along `u` and `v`, `resolution` quads per side. */
+inline vtkSmartPointer<vtkActor> MakeRectangle(
+  const double origin[3], const double u[3], const double v[3], int resolution = 1)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(origin[0], origin[1], origin[2]);
+  plane->SetPoint1(origin[0] + u[0], origin[1] + u[1], origin[2] + u[2]);
+  plane->SetPoint2(origin[0] + v[0], origin[1] + v[1], origin[2] + v[2]);
+  plane->SetResolution(resolution, resolution);
+  plane->Update();
+  return MakeActor(plane->GetOutput());
+}
+
+/** The floor y = 0 over [-half, half]^2, its normal up. */
+inline vtkSmartPointer<vtkActor> MakeFloor(double half)
+{
+  const double origin[3] = { -half, 0.0, half }, u[3] = { 2.0 * half, 0.0, 0.0 },
+               v[3] = { 0.0, 0.0, -2.0 * half };
+  return MakeRectangle(origin, u, v);
+}
+
+/** A flat silver rectangle (n 0.15, k 3.5) from `origin` along `u` and `v`. */
+inline vtkSmartPointer<vtkActor> MakeMirror(const double origin[3], const double u[3], const double v[3])
+{
+  auto actor = MakeRectangle(origin, u, v, 8);
+  const double n[3] = { 0.15, 0.15, 0.15 }, k[3] = { 3.5, 3.5, 3.5 };
+  vtkCausticsMaterial::MakeMirror(actor->GetProperty(), n, k);
   return actor;
 }
 
