@@ -411,6 +411,49 @@ std::vector<SpecularMesh> GatherSpecular(const SceneData& scene)
   return meshes;
 }
 
+/**
+ * The cone of light reflected at triangle `i` that arrives from anywhere in `source`
+ * (another specular mesh's bounds): the directions from the source's bounding sphere
+ * to the triangle's bounding sphere lie within alpha of the line between their
+ * centres, the smoothed normals within beta of their mean, and a reflection turns by
+ * at most alpha + 2 beta when its direction turns by alpha and its normal by beta.
+ * Any direction (spread 1e3) where the spheres overlap.
+ */
+Cone ReflectedFrom(const Triangles& t, std::size_t i, const Box& source)
+{
+  const glm::dvec3* x = &t.Corners[3 * i];
+  const glm::dvec3* n = &t.Normals[3 * i];
+  Cone cone;
+  cone.valid = true;
+  cone.origin = (x[0] + x[1] + x[2]) / 3.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    cone.radius = std::max(cone.radius, glm::length(x[k] - cone.origin));
+  }
+  const glm::dvec3 centre(
+    0.5 * (source[0] + source[1]), 0.5 * (source[2] + source[3]), 0.5 * (source[4] + source[5]));
+  const double sourceRadius =
+    0.5 * glm::length(glm::dvec3(source[1] - source[0], source[3] - source[2], source[5] - source[4]));
+  const glm::dvec3 mean = n[0] + n[1] + n[2];
+  const double distance = glm::length(cone.origin - centre);
+  cone.spread = 1e3;
+  if (!(distance > sourceRadius + cone.radius) || !(glm::length(mean) > 1e-9))
+  {
+    return cone;
+  }
+  const glm::dvec3 normal = glm::normalize(mean);
+  double beta = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    beta = std::max(beta, std::acos(std::max(-1.0, std::min(1.0, glm::dot(n[k], normal)))));
+  }
+  const double alpha = std::asin((sourceRadius + cone.radius) / distance);
+  const double angle = alpha + 2.0 * beta + 0.5 * glm::pi<double>() / 180.0;
+  cone.direction = glm::reflect((cone.origin - centre) / distance, normal);
+  cone.spread = angle < 0.49 * glm::pi<double>() ? std::tan(angle) : 1e3;
+  return cone;
+}
+
 /** Whether light along `cone` can reach a specular mesh other than `self`. */
 bool ReachesAnother(const Cone& cone, const std::vector<SpecularMesh>& meshes, std::size_t self)
 {
@@ -449,7 +492,10 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   double pairTests = 0.0;
   for (const SpecularMesh& mesh : meshes)
   {
-    pairTests += mesh.sheet ? static_cast<double>(mesh.Count()) * (meshes.size() - 1) : 0.0;
+    // Its cones against every other mesh, and (a mirror lit by the others) theirs.
+    pairTests += mesh.sheet ? static_cast<double>(mesh.Count()) * (meshes.size() - 1) *
+        (mesh.Refracts() ? 1.0 : static_cast<double>(meshes.size()))
+                            : 0.0;
   }
   if (pairTests > MaximumPairTests)
   {
@@ -533,39 +579,37 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
   };
   auto leaving = [&](const SpecularMesh& mesh, std::size_t i, Cone cones[2])
   { Cones(mesh.triangles, i, mesh.material->ior, mesh.Refracts(), fromLight, cones); };
-  // A mesh that another one's specular light can reach gets light from directions its
-  // own cones do not follow, and sends it on anywhere: it counts whole. A closed or
-  // curved mesh's light may go anywhere.
-  std::vector<bool> litByAnother(meshes.size(), false);
+  // The meshes whose specular light can reach each mesh: it gets light from directions
+  // its own cones do not follow. A closed or curved mesh's light may go anywhere.
+  std::vector<std::vector<std::size_t>> sources(meshes.size());
   for (std::size_t n = 0; n < meshes.size(); ++n)
   {
     for (std::size_t m = 0; m < meshes.size(); ++m)
     {
-      if (m == n || litByAnother[m])
-      {
-        continue;
-      }
-      if (!meshes[n].sheet)
-      {
-        litByAnother[m] = true;
-        continue;
-      }
-      for (std::size_t i = 0; i < meshes[n].Count() && !litByAnother[m]; ++i)
+      bool reaches = m != n && !meshes[n].sheet;
+      for (std::size_t i = 0; m != n && i < meshes[n].Count() && !reaches; ++i)
       {
         Cone cones[2];
         leaving(meshes[n], i, cones);
-        litByAnother[m] = (cones[0].valid && Reaches(cones[0], meshes[m].bounds)) ||
+        reaches = (cones[0].valid && Reaches(cones[0], meshes[m].bounds)) ||
           (cones[1].valid && Reaches(cones[1], meshes[m].bounds));
+      }
+      if (reaches)
+      {
+        sources[m].push_back(n);
       }
     }
   }
   // The triangles whose light can reach that region, or another specular mesh (whose
-  // light may then reach it).
+  // light may then reach it). A mirror sheet lit by other meshes follows their light
+  // too, from anywhere in their bounds (ReflectedFrom): a mirror far off that the glass
+  // lights faintly and that sends that light to the sky stays out. A refracting sheet
+  // lit by another mesh counts whole.
   Box focus = EmptyBox();
   for (std::size_t m = 0; m < meshes.size(); ++m)
   {
     const SpecularMesh& mesh = meshes[m];
-    if (!mesh.sheet || litByAnother[m])
+    if (!mesh.sheet || (!sources[m].empty() && mesh.Refracts()))
     {
       Include(focus, mesh.bounds);
       continue;
@@ -578,6 +622,11 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
       for (const Cone& cone : cones)
       {
         kept = kept || (cone.valid && (Reaches(cone, region) || ReachesAnother(cone, meshes, m)));
+      }
+      for (std::size_t n = 0; n < sources[m].size() && !kept; ++n)
+      {
+        const Cone reflected = ReflectedFrom(mesh.triangles, i, meshes[sources[m][n]].bounds);
+        kept = Reaches(reflected, region) || ReachesAnother(reflected, meshes, m);
       }
       if (kept)
       {

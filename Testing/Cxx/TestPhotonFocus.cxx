@@ -289,6 +289,41 @@ TEST(PhotonFocus, NarrowsEachSheetNoOtherLights)
   }
 }
 
+// A mirror sheet that a closed ball's light can reach follows that light from anywhere
+// in the ball's bounds: kept where it sends it back towards what is seen, left out where
+// it sends it to the sky.
+TEST(PhotonFocus, FollowsTheLightAMirrorGetsFromAnotherMesh)
+{
+  auto focusBeside = [](const double origin[3], const double u[3], const double v[3], double box[6])
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkCausticsBuiltinScene> builtin;
+    builtin->SetSceneName("ball-lens"); // glass ball of radius 1 at (0, 3, 0), sun straight down
+    EXPECT_TRUE(builtin->Populate(renderer));
+    renderer->AddActor(MakeMirror(origin, u, v));
+    renderer->GetActiveCamera()->SetViewAngle(12.0);
+    renderer->ResetCameraClippingRange();
+    vtkNew<vtkCausticsSceneExtractor> extractor;
+    EXPECT_TRUE(extractor->Update(renderer, 256, 256));
+    return caustics::PhotonFocusBounds(extractor->GetScene(), 0, box);
+  };
+  // 12 m off, facing up: the sun's light and the ball's both leave it upwards, away.
+  const double farOrigin[3] = { 12.0, 0.5, -0.5 }, u[3] = { 1.0, 0.0, 0.0 }, v[3] = { 0.0, 0.0, 1.0 };
+  double box[6];
+  EXPECT_TRUE(focusBeside(farOrigin, u, v, box));
+  EXPECT_NEAR(box[0], -1.0, 0.01) << "only the ball";
+  EXPECT_NEAR(box[1], 1.0, 0.01) << "only the ball";
+  EXPECT_LT(box[3], 4.01) << "only the ball";
+  // Over the ball, 2 m wide: the sun reaches its back only, but the light the ball
+  // sends up comes down again onto the ball and the floor.
+  const double overOrigin[3] = { -1.0, 5.0, 1.0 }, overU[3] = { 2.0, 0.0, 0.0 },
+               overV[3] = { 0.0, 0.0, -2.0 };
+  focusBeside(overOrigin, overU, overV, box);
+  EXPECT_GE(box[3], 5.0) << "the mirror over the ball is kept";
+  EXPECT_LE(box[0], -1.0);
+  EXPECT_GE(box[1], 1.0);
+}
+
 // Where one specular event does not bound the paths, the focus is every specular
 // actor: a closed ball, two sheets one of which lights the other, a participating
 // medium, a camera that sees nothing.
