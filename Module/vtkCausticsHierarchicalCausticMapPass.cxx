@@ -139,8 +139,8 @@ vtkCausticsRenderPass::CausticNeeds vtkCausticsHierarchicalCausticMapPass::GetCa
 
 namespace
 {
-/** What FindReceiverIncidence() depends on: the light and every mesh's version. */
-std::string IncidenceKey(const caustics::SceneData& scene, int index)
+/** What FindReceiverIncidence() depends on: the light, every mesh's version and the focus. */
+std::string IncidenceKey(const caustics::SceneData& scene, int index, const double* focus)
 {
   const caustics::Light& light = scene.Lights[index];
   std::ostringstream key;
@@ -151,6 +151,10 @@ std::string IncidenceKey(const caustics::SceneData& scene, int index)
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
     key << ' ' << mesh.version;
+  }
+  for (int k = 0; focus && k < 6; ++k)
+  {
+    key << ' ' << focus[k];
   }
   return key.str();
 }
@@ -222,11 +226,18 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     // The map's view: the light's, on what the camera sees, turned towards
     // receivers the light grazes (found by a CPU scan of the receivers, redone
     // only when the light or the meshes change).
-    std::string key = IncidenceKey(scene, index);
+    // The light's ray is followed from the centre of what its photons are aimed at
+    // (the photon frustum's focus): a mirror far off, whose light reaches nothing in
+    // view, must not move it onto another receiver.
+    const double* focus = index < this->GetLightBuffers()->GetNumberOfLights() &&
+        this->GetLightBuffers()->GetView(index).valid
+      ? this->GetLightBuffers()->GetView(index).focus
+      : nullptr;
+    std::string key = IncidenceKey(scene, index, focus);
     if (key != light.IncidenceKey)
     {
       light.IncidenceKey = std::move(key);
-      light.Incidence = caustics::FindReceiverIncidence(scene, index);
+      light.Incidence = caustics::FindReceiverIncidence(scene, index, focus);
     }
     // Caustic triangles store each texel's exact mean, so the texels bound their
     // detail: their map fits the outline of what it must hold. Splats' kernels are
@@ -235,7 +246,7 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
     // sphere, 13.5 % fitted), so they keep the seen box's sphere.
     const bool fitOutline = this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES;
     light.MapView = caustics::ComputeReceiverMapView(
-      scene, index, light.Incidence, this->Settings.MinimumMapIncidence, fitOutline);
+      scene, index, light.Incidence, this->Settings.MinimumMapIncidence, fitOutline, focus);
     light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
       this->GetLightBuffers()->GetView(index).valid && light.MapView.valid && scene.HasSpecular &&
       caustics::LightReachesSpecular(scene.Lights[i], scene.SpecularBounds);

@@ -379,8 +379,11 @@ void vtkCausticsPhotonBuffer::DescribeTrace(const caustics::CausticMapSettings& 
     this->HiddenReceivers->GetSize()[1] == trace.MapSize[1];
   trace.Width = grid.Width;
   trace.Height = grid.Height;
-  // Longest straight paths: across the refractors' bounds, and across the scene.
-  trace.ChordLength = 1.01 * Diagonal(scene.SpecularBounds);
+  // Longest straight paths: across one refractor, and across the scene. (The
+  // march inside glass takes its steps over the chord: a mirror far away must not
+  // make them coarser.)
+  trace.ChordLength =
+    1.01 * (scene.RefractorChord > 0.0 ? scene.RefractorChord : Diagonal(scene.SpecularBounds));
   trace.AirLength = 1.01 * Diagonal(scene.Bounds);
   trace.FluxUnit = this->FluxUnit;
   vtkTextureObject* inputs[] = { grid.Emitted.Position, grid.Emitted.Direction, grid.Emitted.Flux,

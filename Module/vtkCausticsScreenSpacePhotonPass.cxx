@@ -451,17 +451,43 @@ void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
     caustics::ChooseTraceView(scene, caustics::TraceViewMode::Camera, f.Width, f.Height);
   std::copy(camera.ClipToWorld, camera.ClipToWorld + 16, in.ClipToWorld);
   std::copy(camera.ViewOrigin, camera.ViewOrigin + 4, in.CameraOrigin);
-  // Photons are traced where every specular actor is (see vtkCausticsTraceView.h).
-  in.Traced = caustics::ChooseTraceView(
-    scene, static_cast<caustics::TraceViewMode>(this->Settings.TraceView), f.Width, f.Height);
+  // Photons are traced where the specular surfaces they can meet are: those the
+  // photon frusta are aimed at (see vtkCausticsTraceView.h).
+  double specular[6];
+  const bool aimed = this->PhotonFocus(f, specular);
+  in.Traced = caustics::ChooseTraceView(scene,
+    static_cast<caustics::TraceViewMode>(this->Settings.TraceView), f.Width, f.Height,
+    aimed ? specular : nullptr);
   this->LastTraceViewFitted = in.Traced.Fitted;
   in.View.Layers = in.SceneLayers;
   in.View.WorldToClip = in.Traced.WorldToClip;
   std::copy(scene.Bounds, scene.Bounds + 6, in.View.Bounds);
   std::copy(in.Traced.ViewOrigin, in.Traced.ViewOrigin + 4, in.View.ViewOrigin);
-  this->LastTolerance = this->Settings.Tolerance(caustics::VisibleScale(scene));
+  this->LastTolerance = this->Settings.Tolerance(caustics::VisibleScale(scene, aimed ? specular : nullptr));
   in.View.Tolerance = this->LastTolerance;
   in.Tracer->SetTimings(this->GetTimings());
+}
+
+bool vtkCausticsScreenSpacePhotonPass::PhotonFocus(const FrameInputs& f, double box[6]) const
+{
+  const caustics::SceneData& scene = *f.Scene;
+  bool any = false;
+  const int lights = std::min(f.LightBuffers->GetNumberOfLights(), static_cast<int>(scene.Lights.size()));
+  for (int light = 0; light < lights; ++light)
+  {
+    const caustics::LightView& view = f.LightBuffers->GetView(light);
+    if (!view.valid || !caustics::LightReachesSpecular(scene.Lights[light], scene.SpecularBounds))
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      box[2 * k] = any ? std::min(box[2 * k], view.focus[2 * k]) : view.focus[2 * k];
+      box[2 * k + 1] = any ? std::max(box[2 * k + 1], view.focus[2 * k + 1]) : view.focus[2 * k + 1];
+    }
+    any = true;
+  }
+  return any;
 }
 
 bool vtkCausticsScreenSpacePhotonPass::TraceLight(const FrameInputs& f, int light, bool godRays)

@@ -251,6 +251,9 @@ protected:
 
   // Steps (see the class description).
   void PrepareView(const FrameInputs& in);
+  /** The union of the photon frusta's focus boxes (LightView::focus) over the lights
+   * that reach a specular actor; false when there is none. */
+  bool PhotonFocus(const FrameInputs& in, double box[6]) const;
   bool TraceLight(const FrameInputs& in, int light, bool godRays);
   bool RenderLayers(vtkOpenGLRenderWindow* renWin);
   bool EmitPhotons(vtkOpenGLRenderWindow* renWin, int light);

@@ -35,17 +35,16 @@ glm::dvec4 Transform(const double rowMajor[16], const glm::dvec4& p)
   return q;
 }
 
-/** The box the fitted view must hold: specular actors and the scene the camera sees. */
-void FittedBox(const SceneData& scene, double box[6])
+/** The box the fitted view must hold: the specular box and the scene the camera sees. */
+void FittedBox(const SceneData& scene, const double specular[6], double box[6])
 {
   double seen[6];
   const bool any = VisibleBounds(scene, seen);
   for (int k = 0; k < 3; ++k)
   {
     // An empty cut (the camera sees none of the scene) leaves the specular box alone.
-    box[2 * k] = any ? std::min(seen[2 * k], scene.SpecularBounds[2 * k]) : scene.SpecularBounds[2 * k];
-    box[2 * k + 1] =
-      any ? std::max(seen[2 * k + 1], scene.SpecularBounds[2 * k + 1]) : scene.SpecularBounds[2 * k + 1];
+    box[2 * k] = any ? std::min(seen[2 * k], specular[2 * k]) : specular[2 * k];
+    box[2 * k + 1] = any ? std::max(seen[2 * k + 1], specular[2 * k + 1]) : specular[2 * k + 1];
   }
 }
 
@@ -205,8 +204,15 @@ bool FrustumHoldsSpecular(const SceneData& scene)
   return true;
 }
 
-TraceView ChooseTraceView(const SceneData& scene, TraceViewMode mode, int width, int height)
+TraceView ChooseTraceView(
+  const SceneData& scene, TraceViewMode mode, int width, int height, const double* specular)
 {
+  // The camera's view only where it holds every specular actor: a camera beside a
+  // wide sheet may hold the part whose light it sees but see it nearly edge-on, and
+  // the fitted view, which looks half-way to the light, samples it better (the sheet
+  // seen from beside and below: 24.3 % against the reference's camera paths traced in
+  // the camera's view, 22.8 % in the fitted one). Fitted, it holds `specular` and
+  // what the camera sees.
   const bool fitted = mode == TraceViewMode::Fitted ||
     (mode == TraceViewMode::Automatic && !FrustumHoldsSpecular(scene));
   if (!fitted || width < 1 || height < 1)
@@ -214,7 +220,7 @@ TraceView ChooseTraceView(const SceneData& scene, TraceViewMode mode, int width,
     return CameraView(scene.View);
   }
   double box[6];
-  FittedBox(scene, box);
+  FittedBox(scene, specular ? specular : scene.SpecularBounds, box);
   return FitOrthographic(scene, box, width, height);
 }
 }

@@ -53,11 +53,18 @@ struct TraceView
 };
 
 /**
- * The view to trace in for this frame's camera (scene.View) and specular actors
- * (scene.SpecularBounds), at width x height pixels.
+ * The view to trace in for this frame's camera (scene.View), at width x height
+ * pixels. `specular` is the box (xmin, xmax, ymin, ymax, zmin, zmax) of the specular
+ * surfaces the photons can meet: the union of the photon frusta's LightView::focus,
+ * which leaves out a mirror whose light reaches nothing in view. The fitted view
+ * holds it and what the camera sees; stretched to hold such a mirror too it spread
+ * its pixels over empty space (the ball lens zoomed to 12 degrees: its caustic with a
+ * mirror 12 m away and 30 m away differed by 49 %). nullptr: every specular actor
+ * (scene.SpecularBounds). Whether the camera's own view will do is decided on every
+ * specular actor either way (FrustumHoldsSpecular()).
  */
-VTKRENDERINGCAUSTICS_EXPORT TraceView ChooseTraceView(
-  const SceneData& scene, TraceViewMode mode, int width, int height);
+VTKRENDERINGCAUSTICS_EXPORT TraceView ChooseTraceView(const SceneData& scene,
+  TraceViewMode mode, int width, int height, const double* specular = nullptr);
 
 /**
  * True when every vertex of every reflector and refractor lies inside the

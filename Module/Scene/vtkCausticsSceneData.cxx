@@ -298,6 +298,7 @@ LightView AimLightView(
 {
   LightView view;
   view.light = index;
+  std::copy(focusBounds, focusBounds + 6, view.focus);
   Vec3 sceneCenter, focusCenter;
   double sceneRadius, focusRadius;
   BoundingSphere(scene.Bounds, sceneCenter, sceneRadius);
@@ -500,7 +501,7 @@ struct Candidate
 };
 }
 
-ReceiverIncidence FindReceiverIncidence(const SceneData& scene, int index)
+ReceiverIncidence FindReceiverIncidence(const SceneData& scene, int index, const double* focus)
 {
   ReceiverIncidence result;
   if (!scene.HasSpecular || index < 0 || index >= static_cast<int>(scene.Lights.size()))
@@ -508,7 +509,7 @@ ReceiverIncidence FindReceiverIncidence(const SceneData& scene, int index)
     return result;
   }
   const Light& light = scene.Lights[index];
-  const double* sb = scene.SpecularBounds;
+  const double* sb = focus ? focus : scene.SpecularBounds;
   const Vec3 origin{ { 0.5 * (sb[0] + sb[1]), 0.5 * (sb[2] + sb[3]), 0.5 * (sb[4] + sb[5]) } };
   Vec3 direction = Normalize(light.direction);
   if (light.type != Light::Type::Directional)
@@ -770,16 +771,17 @@ double WindingNumber(const Mesh& mesh, const double point[3])
   return sum / (4.0 * glm::pi<double>());
 }
 
-double VisibleScale(const SceneData& scene)
+double VisibleScale(const SceneData& scene, const double* specular)
 {
   double seen[6];
   VisibleBounds(scene, seen);
   if (scene.HasSpecular)
   {
+    const double* box = specular ? specular : scene.SpecularBounds;
     for (int k = 0; k < 3; ++k)
     {
-      seen[2 * k] = std::min(seen[2 * k], scene.SpecularBounds[2 * k]);
-      seen[2 * k + 1] = std::max(seen[2 * k + 1], scene.SpecularBounds[2 * k + 1]);
+      seen[2 * k] = std::min(seen[2 * k], box[2 * k]);
+      seen[2 * k + 1] = std::max(seen[2 * k + 1], box[2 * k + 1]);
     }
   }
   return Diagonal(seen);
@@ -792,7 +794,8 @@ double VisibleOverSpecular(const SceneData& scene)
 }
 
 LightView ComputeReceiverMapView(const SceneData& scene, int index,
-  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline)
+  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline,
+  const double* photonFocus)
 {
   if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
   {
@@ -849,7 +852,18 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
       {
         continue;
       }
-      GrowBounds(mesh, fit);
+      const double inf = std::numeric_limits<double>::infinity();
+      double own[6] = { inf, -inf, inf, -inf, inf, -inf };
+      GrowBounds(mesh, own);
+      bool meets = true;
+      for (int k = 0; photonFocus && k < 3; ++k)
+      {
+        meets = meets && own[2 * k] <= photonFocus[2 * k + 1] && own[2 * k + 1] >= photonFocus[2 * k];
+      }
+      if (meets)
+      {
+        GrowBounds(mesh, fit);
+      }
     }
     FitOrthographic(view, fit);
   }

@@ -166,6 +166,10 @@ struct LightView
   double nearPlane = 0.01, farPlane = 1.0;
   double worldToClip[16]; ///< row-major, OpenGL clip conventions
   double clipToWorld[16];
+  /** The box the view is aimed at (xmin, xmax, ymin, ymax, zmin, zmax): for Focus::
+   * SeenSpecular the specular surfaces whose light can reach what the camera sees,
+   * which hold every reflection and refraction its photons can meet. */
+  double focus[6] = { 0, 0, 0, 0, 0, 0 };
 
   /**
    * Flux leaving the light through the frustum (W, per channel): irradiance x
@@ -199,6 +203,10 @@ struct SceneData
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };         ///< all participating meshes
   double SpecularBounds[6] = { 0, 0, 0, 0, 0, 0 }; ///< reflectors and refractors only
   bool HasSpecular = false;
+  /** The longest straight path inside one refractor (m): the largest diagonal of a
+   * refractor mesh's own bounds (0 without refractors). A mirror far away leaves it
+   * alone, where the diagonal of SpecularBounds would grow with it. */
+  double RefractorChord = 0.0;
 
   /** Length of the bounds' diagonal: the scene's size for relative tolerances. */
   double Scale() const;
@@ -236,7 +244,10 @@ struct ReceiverIncidence
   Vec3 normal{ { 0, 1, 0 } };         ///< that triangle's unit normal, facing the light
   Vec3 direction{ { 0, 0, -1 } };     ///< the light's unit direction there
 };
-ReceiverIncidence FindReceiverIncidence(const SceneData& scene, int index);
+/** With `focus` (a box: what the light's photons are aimed at, LightView::focus) the
+ * light's ray goes through its centre instead of SceneData::SpecularBounds'. */
+ReceiverIncidence FindReceiverIncidence(
+  const SceneData& scene, int index, const double* focus = nullptr);
 
 /**
  * The part of the scene the camera sees: the bounding box of scene.Bounds cut by
@@ -249,9 +260,11 @@ bool VisibleBounds(const SceneData& scene, double box[6]);
 /**
  * The diagonal of the box around VisibleBounds() and the specular actors: the size
  * of the region a frame's caustics are computed over, which relative tolerances
- * follow (a far-away actor the camera does not see changes nothing).
+ * follow (a far-away actor the camera does not see changes nothing). With
+ * `specular` (a box: the specular surfaces photons can meet, LightView::focus) that
+ * box stands for the specular actors: an idle mirror far off changes nothing either.
  */
-double VisibleScale(const SceneData& scene);
+double VisibleScale(const SceneData& scene, const double* specular = nullptr);
 
 /** VisibleScale() over the specular actors' bounds diagonal; 0 without specular actors. */
 double VisibleOverSpecular(const SceneData& scene);
@@ -283,11 +296,14 @@ double WindingNumber(const Mesh& mesh, const double point[3]);
  * in the light's view. With `fitOutline`, a directional light's square view is then
  * narrowed to the outline of that box and every mirror across the light (not their
  * bounding sphere), except with a participating medium: finer texels where the map's
- * texels bound the detail (caustic triangles). The depth range holds the whole scene,
- * as for every light view.
+ * texels bound the detail (caustic triangles). With `photonFocus` (the box the light's
+ * photons are aimed at, LightView::focus, which holds every mirror they can meet)
+ * only the mirrors that meet it count. The depth range holds the whole scene, as for
+ * every light view.
  */
 LightView ComputeReceiverMapView(const SceneData& scene, int index,
-  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline = false);
+  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline = false,
+  const double* photonFocus = nullptr);
 }
 
 #endif

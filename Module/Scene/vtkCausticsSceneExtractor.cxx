@@ -289,24 +289,41 @@ void ComputeBounds(caustics::SceneData& scene)
   double specular[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   scene.HasSpecular = false;
+  scene.RefractorChord = 0.0;
   for (const auto& mesh : scene.Meshes)
   {
     const auto role = scene.Materials[mesh.material].role;
     const bool isSpecular = role == caustics::Role::Reflector || role == caustics::Role::Refractor;
     scene.HasSpecular = scene.HasSpecular || isSpecular;
+    double own[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
     for (std::uint32_t index : mesh.indices)
     {
       for (int c = 0; c < 3; ++c)
       {
         const double v = mesh.positions[3 * index + c];
-        all[2 * c] = std::min(all[2 * c], v);
-        all[2 * c + 1] = std::max(all[2 * c + 1], v);
-        if (isSpecular)
-        {
-          specular[2 * c] = std::min(specular[2 * c], v);
-          specular[2 * c + 1] = std::max(specular[2 * c + 1], v);
-        }
+        own[2 * c] = std::min(own[2 * c], v);
+        own[2 * c + 1] = std::max(own[2 * c + 1], v);
       }
+    }
+    if (mesh.indices.empty())
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      all[2 * c] = std::min(all[2 * c], own[2 * c]);
+      all[2 * c + 1] = std::max(all[2 * c + 1], own[2 * c + 1]);
+      if (isSpecular)
+      {
+        specular[2 * c] = std::min(specular[2 * c], own[2 * c]);
+        specular[2 * c + 1] = std::max(specular[2 * c + 1], own[2 * c + 1]);
+      }
+    }
+    if (role == caustics::Role::Refractor)
+    {
+      const double dx = own[1] - own[0], dy = own[3] - own[2], dz = own[5] - own[4];
+      scene.RefractorChord = std::max(scene.RefractorChord, std::sqrt(dx * dx + dy * dy + dz * dz));
     }
   }
   for (int i = 0; i < 6; ++i)

@@ -10,18 +10,25 @@
 // The bounds (per technique, below) are the worst figure reached over the sweep
 // plus a margin for the reference's noise and rasterization differences. Each
 // view renders its reference once (1 M photons, 128^2 pixels: about 1 s).
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
+#include "vtkCausticsMaterial.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsTechniques.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderer.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkSmartPointer.h"
 
@@ -255,5 +262,106 @@ TEST(CameraIndependence, EverySurfaceTechniqueInEveryView)
   {
     std::cout << t.Name << ": worst relative L2 " << t.WorstL2 << ", worst flux error "
               << t.WorstFlux << "\n";
+  }
+}
+
+namespace
+{
+/**
+ * The caustic irradiance of a built-in scene seen through a camera narrowed to
+ * `viewAngle` degrees, with a silver square 1 m wide facing up at x = `mirrorX`
+ * (none at 0), from `technique`'s first frame (empty on failure).
+ */
+std::vector<float> CausticBesideAMirror(
+  const char* scene, double viewAngle, double mirrorX, const std::string& technique)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  builtin->SetSceneName(scene);
+  EXPECT_TRUE(builtin->Populate(renderer)) << builtin->GetLastError();
+  if (mirrorX != 0.0)
+  {
+    vtkNew<vtkPlaneSource> plane;
+    plane->SetOrigin(mirrorX, 0.5, -0.5);
+    plane->SetPoint1(mirrorX + 1.0, 0.5, -0.5);
+    plane->SetPoint2(mirrorX, 0.5, 0.5);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(plane->GetOutputPort());
+    vtkNew<vtkActor> mirror;
+    mirror->SetMapper(mapper);
+    const double n[3] = { 0.155, 0.117, 0.138 }, k[3] = { 4.83, 3.12, 2.15 };
+    vtkCausticsMaterial::MakeMirror(mirror->GetProperty(), n, k);
+    renderer->AddActor(mirror);
+  }
+  renderer->GetActiveCamera()->SetViewAngle(viewAngle);
+  renderer->ResetCameraClippingRange();
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(ImageSize, ImageSize);
+  window->AddRenderer(renderer);
+  vtkSmartPointer<vtkCausticsRenderPass> pass = vtkCausticsTechniques::Create(technique);
+  pass->SetLightBufferResolution(128);
+  renderer->SetPass(pass);
+  window->Render();
+  vtkNew<vtkImageData> caustic;
+  EXPECT_TRUE(pass->ReadBuffer("CausticIrradiance", caustic));
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  vtkDataArray* values = caustic->GetPointData()->GetArray("CausticIrradiance");
+  std::vector<float> irradiance;
+  for (vtkIdType i = 0; values && i < values->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      irradiance.push_back(static_cast<float>(values->GetComponent(i, c)));
+    }
+  }
+  return irradiance;
+}
+
+/** Relative L2 of `b` against `a` (1 when either is empty or their sizes differ). */
+double RelativeDifference(const std::vector<float>& a, const std::vector<float>& b)
+{
+  if (a.empty() || a.size() != b.size())
+  {
+    return 1.0;
+  }
+  double difference = 0.0, norm = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    difference += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
+    norm += double(a[i]) * a[i];
+  }
+  return norm > 0.0 ? std::sqrt(difference / norm) : 1.0;
+}
+}
+
+// A mirror that sends its light to the sky, far from a camera zoomed in on the
+// caustic, changes nothing, wherever it stands. Before the photon frusta's focus
+// (LightView::focus) was read by the stages after them, it moved the caustic maps'
+// receiver-incidence ray onto the pool's wall (its view turned: the zoomed pool's
+// caustic changed by 3.8 %), and it stretched screen-space's fitted trace view and
+// tolerance over empty space (the zoomed ball lens changed by 20 % with the mirror at
+// 12 m, 50 % at 30 m).
+TEST(CameraIndependence, AnIdleMirrorFarAwayChangesNothing)
+{
+  for (const char* technique : { "screen-space", "caustic-maps" })
+  {
+    SCOPED_TRACE(technique);
+    // The pool's water is a sheet: its photons are aimed at the part whose light the
+    // camera sees, with or without the mirror (which lights nothing in view).
+    const auto alone = CausticBesideAMirror("pool", 8.0, 0.0, technique);
+    const auto beside = CausticBesideAMirror("pool", 8.0, 30.0, technique);
+    EXPECT_LT(RelativeDifference(alone, beside), 1e-3) << "pool, mirror at 30 m";
+    // The ball's stray light may reach the mirror, which sends it up and away: only
+    // the ball is aimed at, wherever the mirror stands.
+    const auto near = CausticBesideAMirror("ball-lens", 12.0, 12.0, technique);
+    const auto far = CausticBesideAMirror("ball-lens", 12.0, 30.0, technique);
+    EXPECT_LT(RelativeDifference(near, far), 1e-3) << "ball lens, mirror at 12 m and 30 m";
+    std::cout << technique << ": pool with and without the mirror differ by "
+              << 100.0 * RelativeDifference(alone, beside)
+              << " %; the ball lens with it at 12 m and 30 m by "
+              << 100.0 * RelativeDifference(near, far) << " %\n";
   }
 }
