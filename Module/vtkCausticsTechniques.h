@@ -37,9 +37,11 @@ public:
   static std::string GetBestName();
   /**
    * The name "best" stands for in `renderer`'s scene, from the features it has
-   * (docs/benchmarks.md, "Which technique is best"): a scattering medium,
-   * reflectors or open refractors (a water surface) take screen-space, closed
-   * refractors alone take caustic maps. GetBestName() without a scene.
+   * (docs/benchmarks.md, "Which technique is best"): reflectors, and open
+   * refractors that are not a sheet (caustics::IsSheet), take screen-space; closed
+   * refractors and open sheets (a water surface) alone take caustic maps; without a
+   * GPU the CPU technique where it measured better. A scattering medium does not
+   * decide. GetBestName() without a scene.
    */
   static std::string GetBestNameFor(vtkRenderer* renderer);
 #ifndef __VTK_WRAP__

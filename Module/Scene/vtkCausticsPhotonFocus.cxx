@@ -332,7 +332,7 @@ Triangles Gather(const Mesh& mesh)
 }
 
 /** Whether every normal lies within 45 degrees of their mean: a sheet. */
-bool IsSheet(const Triangles& t)
+bool IsSheetOf(const Triangles& t)
 {
   glm::dvec3 mean(0.0);
   for (const glm::dvec3& n : t.Normals)
@@ -402,7 +402,7 @@ std::vector<SpecularMesh> GatherSpecular(const SceneData& scene)
     {
       Include(m.bounds, x);
     }
-    m.sheet = IsSheet(m.triangles);
+    m.sheet = IsSheetOf(m.triangles);
     if (m.Count() > 0)
     {
       meshes.push_back(std::move(m));
@@ -466,6 +466,11 @@ bool ReachesAnother(const Cone& cone, const std::vector<SpecularMesh>& meshes, s
   }
   return false;
 }
+}
+
+bool IsSheet(const Mesh& mesh)
+{
+  return IsSheetOf(Gather(mesh));
 }
 
 bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])

@@ -40,6 +40,7 @@
 
 namespace caustics
 {
+struct Mesh;
 struct SceneData;
 
 /**
@@ -49,6 +50,13 @@ struct SceneData;
  * way; to scene.Bounds without specular actors).
  */
 bool PhotonFocusBounds(const SceneData& scene, int index, double box[6]);
+
+/**
+ * Whether the mesh is a sheet as the focus tells them: every (vertex or face) normal
+ * within 45 degrees of their mean. A water surface or a gently curved mirror is; a
+ * closed or strongly curved surface, which a ray can meet twice, is not.
+ */
+bool IsSheet(const Mesh& mesh);
 }
 
 #endif

@@ -192,9 +192,9 @@ TEST(ProgressivePhotonPass, BestTakesItWithoutAGPU)
   vtkCausticsProgressivePhotonPass::RegisterTechnique();
   for (const auto& [name, gpu, cpu] : std::vector<std::array<std::string, 3>>{
          { "ball-lens", "caustic-maps", "caustic-maps" },
-         { "pool", "screen-space", "cpu-progressive" }, { "ring", "screen-space", "cpu-progressive" },
+         { "pool", "caustic-maps", "cpu-progressive" }, { "ring", "screen-space", "cpu-progressive" },
          { "bunny", "caustic-maps", "cpu-progressive" },
-         { "underwater", "screen-space", "screen-space" } })
+         { "underwater", "caustic-maps", "caustic-maps" } })
   {
     vtkNew<vtkOpenGLRenderer> renderer;
     vtkNew<vtkRenderWindow> window;

@@ -412,15 +412,16 @@ TEST(Medium, RejectsAbsurdCoefficients)
 }
 
 // "best" per scene (docs/benchmarks.md, "Which technique is best"): closed glass
-// alone takes caustic maps; a mirror or an open water surface takes screen-space; a
-// ball made open (a cap cut off) does too. A scattering medium changes nothing: the
-// techniques draw its volume caustic through one stage, and the surface decides.
+// and open water sheets take caustic maps; a mirror takes screen-space, and so does an
+// open refractor that is not a sheet (a glass hemisphere). A scattering medium changes
+// nothing: the techniques draw its volume caustic through one stage, and the surface
+// decides.
 TEST(Techniques, BestFollowsTheScenesFeatures)
 {
   for (const auto& [name, best] : std::vector<std::pair<std::string, std::string>>{
-         { "ball-lens", "caustic-maps" }, { "bunny", "caustic-maps" }, { "pool", "screen-space" },
+         { "ball-lens", "caustic-maps" }, { "bunny", "caustic-maps" }, { "pool", "caustic-maps" },
          { "ring", "screen-space" }, { "smoke-lens", "caustic-maps" },
-         { "underwater", "screen-space" } })
+         { "underwater", "caustic-maps" } })
   {
     vtkNew<vtkRenderer> renderer;
     vtkNew<vtkCausticsBuiltinScene> scene;
@@ -435,7 +436,7 @@ TEST(Techniques, BestFollowsTheScenesFeatures)
       EXPECT_EQ(vtkCausticsTechniques::GetBestNameFor(renderer), "caustic-maps") << "fog";
     }
   }
-  // A hemisphere of glass (open): screen-space.
+  // A hemisphere of glass (open, and curved past a sheet's 45 degrees): screen-space.
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkCausticsBuiltinScene> scene;
   scene->SetSceneName("ball-lens");
