@@ -120,6 +120,18 @@ bool Scatter(const glm::dvec3& d, glm::dvec3 n, double ior, bool refract, glm::d
   return glm::dot(out, out) > 0.5; // GLM returns the zero vector at TIR
 }
 
+/** A cone started from the triangle x: at its centroid, as wide as its farthest corner. */
+Cone StartAt(const glm::dvec3 x[3])
+{
+  Cone cone;
+  cone.origin = (x[0] + x[1] + x[2]) / 3.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    cone.radius = std::max(cone.radius, glm::length(x[k] - cone.origin));
+  }
+  return cone;
+}
+
 Cone MakeCone(const glm::dvec3 x[3], const glm::dvec3 leaving[3], const bool valid[3])
 {
   Cone cone;
@@ -137,13 +149,9 @@ Cone MakeCone(const glm::dvec3 x[3], const glm::dvec3 leaving[3], const bool val
   {
     return cone;
   }
+  cone = StartAt(x);
   cone.valid = true;
-  cone.origin = (x[0] + x[1] + x[2]) / 3.0;
   cone.direction = glm::normalize(sum);
-  for (int k = 0; k < 3; ++k)
-  {
-    cone.radius = std::max(cone.radius, glm::length(x[k] - cone.origin));
-  }
   if (count < 3)
   {
     // Total internal reflection at some corners: the refracted directions between
@@ -423,13 +431,8 @@ Cone ReflectedFrom(const Triangles& t, std::size_t i, const Box& source)
 {
   const glm::dvec3* x = &t.Corners[3 * i];
   const glm::dvec3* n = &t.Normals[3 * i];
-  Cone cone;
+  Cone cone = StartAt(x);
   cone.valid = true;
-  cone.origin = (x[0] + x[1] + x[2]) / 3.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    cone.radius = std::max(cone.radius, glm::length(x[k] - cone.origin));
-  }
   const glm::dvec3 centre(
     0.5 * (source[0] + source[1]), 0.5 * (source[2] + source[3]), 0.5 * (source[4] + source[5]));
   const double sourceRadius =

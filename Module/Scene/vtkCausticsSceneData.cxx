@@ -860,9 +860,10 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
       {
         meets = meets && own[2 * k] <= photonFocus[2 * k + 1] && own[2 * k + 1] >= photonFocus[2 * k];
       }
-      if (meets)
+      for (int k = 0; meets && k < 3; ++k)
       {
-        GrowBounds(mesh, fit);
+        fit[2 * k] = std::min(fit[2 * k], own[2 * k]);
+        fit[2 * k + 1] = std::max(fit[2 * k + 1], own[2 * k + 1]);
       }
     }
     FitOrthographic(view, fit);
