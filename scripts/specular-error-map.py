@@ -112,6 +112,9 @@ def main():
     parser.add_argument("--camera", default=None,
                         help="EYE:FOCAL, e.g. 2.5,2,2.5:0,0.2,0 (view up +y): a framing "
                              "other than the scene's own")
+    parser.add_argument("--view-angle", type=float, default=None,
+                        help="with --camera: the vertical field of view in degrees "
+                             "(default: the scene's)")
     parser.add_argument("--no-noise", action="store_true",
                         help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
@@ -137,6 +140,8 @@ def main():
             camera.SetPosition(*eye)
             camera.SetFocalPoint(*focal)
             camera.SetViewUp(0.0, 1.0, 0.0)
+            if args.view_angle:
+                camera.SetViewAngle(args.view_angle)
             renderer.ResetCameraClippingRange()
         truth, mask = reference_color(renderer, 1)
         if args.no_noise:
