@@ -271,7 +271,11 @@ float ImpostorTexelArea(int map, ivec3 texel)
 // tangent plane). One texel alone holds about one photon where the light is spread
 // (256^2 photons over the pool, 8 mm texels a metre away), and its count is that
 // photon's noise; a fixed window wide enough for that blurs a focus seen in a mirror
-// to a quarter of its peak.
+// to a quarter of its peak. The window is also about `minimumWidth` (m) wide or more
+// (the nearest width of 1, 3, 5, ... texels), as far as the radius allows: the
+// footprint of the camera pixel that reads it, or a
+// pixel seeing a focus in a convex mirror reads the focus's peak where the pixel
+// averages a wide patch of floor (12 times the reference's there).
 const int IMPOSTOR_STORE_FACES = 18; // 3 maps x 6 faces per channel
 
 // The cell of the store's coarse level that holds `texel` (a layer 6 map + face).
@@ -329,7 +333,7 @@ ivec3[4] ImpostorCoarseTexels(ivec2 cell, int layer)
     ImpostorCoarseTexel(cell, layer, 2), ImpostorCoarseTexel(cell, layer, 3));
 }
 
-vec3 ImpostorCausticIrradiance(ivec3 texel)
+vec3 ImpostorCausticIrradiance(ivec3 texel, float minimumWidth)
 {
   if (!(impostorCausticUnit > 0.0))
   {
@@ -372,7 +376,7 @@ vec3 ImpostorCausticIrradiance(ivec3 texel)
         area += ImpostorTexelArea(map, k);
       }
     }
-    if (samples >= float(impostorCausticSamples))
+    if (samples >= float(impostorCausticSamples) && reach + footprint >= minimumWidth)
     {
       break;
     }

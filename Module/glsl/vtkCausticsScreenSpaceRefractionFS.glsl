@@ -74,6 +74,8 @@ struct March
   int role;     // the surface's role (once CompleteHit ran)
   vec3 radiance; // OPAQUE impostor hit the camera does not see: its map's colour
   bool leftView; // MISS of the march: the ray left the view before the scene's bounds
+  bool hidden;   // OPAQUE hit of the march met from behind or far from the surface the
+                 // camera sees there: what it meets is hidden
 };
 
 // Distance along the view: clip w (perspective) or clip z (parallel), both growing away.
@@ -130,6 +132,30 @@ bool Leaving(vec3 o, vec3 d, vec3 x, vec3 p, vec3 n)
   return dot(x - p, front) > 0.0 && dot(d, front) > 0.0 && distance(x, p) < reach;
 }
 
+// Whether a ray heading along d, found beyond the surface sample (p, n) the camera sees,
+// meets it from behind: it heads towards the side that faces the camera, so it passed
+// behind the surface rather than through it, and what it meets there the camera does
+// not see (inside the ring, the floor its near wall hides, in a ray the far wall sends
+// back).
+bool FromBehind(vec3 d, vec3 p, vec3 n)
+{
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  vec3 front = dot(toCamera, n) >= 0.0 ? n : -n;
+  return dot(d, normalize(front)) > 0.0;
+}
+
+// Whether the point c of the tangent plane of the surface sample (p, n) is within a few
+// pixel footprints of p, as the crossing of a ray that meets the surface there is
+// (one that passed under it, such as a ray in the pool's water below its near wall's
+// top, crosses that plane far away, or behind its start).
+bool NearSample(vec3 c, vec3 p, vec3 n)
+{
+  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  vec4 clip = worldToClip * vec4(p, 1.0);
+  float cosine = abs(dot(toCamera, n)) / max(length(toCamera) * length(n), 1e-20);
+  return distance(c, p) < tolerance + 4.0 * abs(clip.w) * pixelScale / max(cosine, 0.1);
+}
+
 // Refines a crossing of the surface (p, n) near parameter t: the tangent-plane hit.
 float PlaneHit(vec3 o, vec3 d, vec3 p, vec3 n, float t)
 {
@@ -169,7 +195,10 @@ void RefineOpaqueHit(vec3 o, vec3 d, inout March result)
     return;
   }
   ivec2 q = result.pixel;
-  result.t = PlaneHit(o, d, texelFetch(gPosition, q, 0).xyz, texelFetch(gNormal, q, 0).xyz, result.t);
+  vec3 p = texelFetch(gPosition, q, 0).xyz;
+  vec3 n = texelFetch(gNormal, q, 0).xyz;
+  result.t = PlaneHit(o, d, p, n, result.t);
+  result.hidden = result.hidden || !NearSample(o + result.t * d, p, n);
   vec4 clip = worldToClip * vec4(o + result.t * d, 1.0);
   ivec2 exact = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * viewport));
   bool inside = clip.w > 0.0 && all(greaterThanEqual(exact, ivec2(0))) &&
@@ -231,6 +260,7 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
     result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
     result.t = t;
     result.pixel = q;
+    result.hidden = FromBehind(d, opaque.xyz, opaqueNormal);
     return true;
   }
   if (useNext && RefractorLayerHit(o, d, t, depth, q, next, nextSample, true, result))
@@ -261,6 +291,7 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   result.role = ROLE_NONE;
   result.radiance = vec3(0.0);
   result.leftView = false;
+  result.hidden = false;
   float t0 = 0.0;
   float t1 = 3.0e38;
   if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1))
@@ -392,8 +423,10 @@ ivec2 CameraPixel(vec3 h, float slack, int role)
 // refractor, against its own map (the exit point and its normal, §4) and the
 // environment's, whichever is nearer (an open refractor such as a water surface
 // has no exit below: the ray meets the pool's floor). An opaque hit carries the
-// camera pixel that shows it (Shade()), or (-1, -1) and its map's colour.
-March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
+// camera pixel that shows it (Shade()), or (-1, -1) and its map's colour, with the
+// caustic store read over at least the pixel's footprint there (`width`: m at o, and
+// its growth per metre along d).
+March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces, vec2 width)
 {
   March m;
   m.kind = MISS;
@@ -405,6 +438,7 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
   m.role = ROLE_NONE;
   m.radiance = vec3(0.0);
   m.leftView = false;
+  m.hidden = false;
   float t;
   ivec3 texel;
   bool found = ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, bounces,
@@ -438,7 +472,8 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces)
     // The map's direct light, and the caustic a photon technique stored there (net
     // of the light the specular objects block: no shadow otherwise).
     m.radiance = max(texelFetch(impostorRadiance, texel, 0).rgb +
-        causticsMaterials[m.material].albedoRole.rgb * ImpostorCausticIrradiance(texel),
+        causticsMaterials[m.material].albedoRole.rgb *
+          ImpostorCausticIrradiance(texel, width.x + width.y * t),
       vec3(0.0));
   }
   return m;
@@ -459,7 +494,24 @@ struct CameraPath
   int event;       // interfaces met
   int leftRole;    // role of the surface it left
   int bounces;     // mirror-to-mirror reflections in a row
+  float width;     // the pixel's footprint at o (m), as flat mirrors carry it
+  bool spreads;    // whether it still grows with the distance (not after glass: a
+                   // lens can focus it, and a footprint too wide blurs what it shows)
 };
+
+// The camera pixel's footprint at the surface point x the camera sees (m).
+float PixelFootprint(vec3 x)
+{
+  return abs((worldToClip * vec4(x, 1.0)).w) * pixelScale;
+}
+
+// The footprint's growth per metre of a path that left the camera's surfaces: a
+// perspective camera's pixels diverge by pixelScale radians; an orthographic one's
+// are parallel.
+float FootprintGrowth(bool spreads)
+{
+  return spreads && viewOrigin.w > 0.0 ? pixelScale : 0.0;
+}
 
 // What a path that leaves a surface the camera sees brings back, in display
 // colour: o + t d marched through the refractor's layers (`inside` the refractor
@@ -475,12 +527,13 @@ struct CameraPath
 // the events it has left; while the branch is held, further reflected parts are
 // dropped (their weight is R x R' at most). One loop with one march, so that the
 // march's code is compiled once (llvmpipe compiles each inlined copy).
-vec3 TracePath(
-  vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption, int leftRole)
+vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption,
+  int leftRole, bool spreads)
 {
   vec3 color = vec3(0.0);
   CameraPath path = CameraPath(o, d, vec3(1.0), absorption, inside,
-    viewMethod == METHOD_IMPOSTORS, current, next, 0, leftRole, 0);
+    viewMethod == METHOD_IMPOSTORS, current, next, 0, leftRole, 0, PixelFootprint(o),
+    spreads);
   // The deferred reflected branch (held: its throughput is not zero).
   bool held = false;
   CameraPath branch = path;
@@ -496,11 +549,15 @@ vec3 TracePath(
       if (!path.impostor)
       {
         m = MarchRay(path.o, path.d, path.next, path.inside ? path.current : -1);
-        path.impostor = m.kind == MISS && m.leftView && viewMethod == METHOD_BOTH;
+        // The combined view takes the impostors where the march cannot see: the ray
+        // left the view, or passed behind what the camera sees.
+        path.impostor =
+          viewMethod == METHOD_BOTH && ((m.kind == MISS && m.leftView) || m.hidden);
       }
       if (path.impostor)
       {
-        m = ImpostorRay(path.o, path.d, path.inside, path.leftRole, path.bounces);
+        m = ImpostorRay(path.o, path.d, path.inside, path.leftRole, path.bounces,
+          vec2(path.width, FootprintGrowth(path.spreads)));
       }
       CompleteHit(m);
       if (path.inside)
@@ -526,6 +583,7 @@ vec3 TracePath(
       continue;
     }
     ++path.event;
+    path.width += FootprintGrowth(path.spreads) * m.t;
     if (m.kind == OPAQUE)
     {
       CausticsMaterial mirror = causticsMaterials[m.material];
@@ -578,6 +636,7 @@ vec3 TracePath(
         path.current = m.layer;
         path.next = path.current + 1;
         path.leftRole = ROLE_REFRACTOR;
+        path.spreads = false;
       }
       else
       {
@@ -681,7 +740,7 @@ void main()
     bool alongLayers = k == 1 && eyeIn < 0;
     color += weights[k] *
       TracePath(x, directions[k], inside, alongLayers ? 0 : -1, alongLayers ? 1 : -1,
-        absorption, leftRole);
+        absorption, leftRole, leftRole == ROLE_REFLECTOR || k == 0);
   }
   outColor = vec4(color, 1.0);
 }

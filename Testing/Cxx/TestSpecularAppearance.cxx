@@ -213,6 +213,9 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // 6 % too bright on average: the photons' adaptive windows spread light into the
 // shadow, which the store's own shadow samples used to spread back; not verified
 // further). Bounds 0.205 and 0.23, just above.
+// Since the combined view hands the impostors the rays its march finds passing behind
+// a surface (CombinedViewWhereTheMarchPassesBehindASurface): BOTH pool 30.4 -> 22.6 %
+// (as the impostor view), ring 23.8 -> 23.2 %; bounds 0.23 and 0.235.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -225,9 +228,9 @@ TEST(SpecularAppearance, DistanceImpostors)
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
   EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.205);
-  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.24);
+  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.235);
   EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.23);
-  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.31);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.23);
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.56);
 }
 
@@ -360,4 +363,41 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
   EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
               PopulateWideSheet),
     0.185);
+}
+
+// The combined view (the default) on framings no other test has, where the screen-space
+// march passes behind what the camera sees: in the pool's water, rays head for the
+// near wall's inner face, hidden behind its top and outer face; inside the ring, rays
+// the far wall sends back head for the floor the near wall hides. The march took the
+// hidden surface's occluder for the hit (a wall's top, or the mirror's outer face met
+// from behind): the pool's water showed a tenth of its light. It now hands such rays
+// to the impostors, as it does rays that leave the view, and the caustic store is read
+// over the pixel's footprint (a focus seen in the ring's convex outer wall read its
+// peak: one pixel at 12 times the reference's). Relative L2, default settings, 128^2,
+// 60 degrees; before (scripts/specular-error-map.py --methods 2 --view-angle 60
+// --camera EYE:FOCAL, the same framings): 97.3 %, 59.7 %, 38.3 %, 65.0 %; reached:
+// 43.0 %, 32.7 %, 22.4 %, 26.1 %. Bounds just above. What is left on the pool is
+// grazing water 19 % too bright in both views (not looked into).
+TEST(SpecularAppearance, CombinedViewWhereTheMarchPassesBehindASurface)
+{
+  const int both = vtkCausticsRenderPass::BOTH;
+  const double up[3] = { 0.0, 1.0, 0.0 };
+  struct Framing
+  {
+    const char* scene;
+    double eye[3], focal[3];
+    double bound;
+  };
+  const Framing framings[] = {
+    { "pool", { -5.0, 2.5, 1.0 }, { 0.0, 0.5, 0.0 }, 0.44 },
+    { "pool", { 4.0, 3.5, -4.0 }, { 0.0, 0.5, 0.0 }, 0.335 },
+    { "ring", { 3.0, 1.0, -2.0 }, { 0.0, 0.3, 0.0 }, 0.23 },
+    { "ring", { -1.5, 1.2, 2.8 }, { 0.3, 0.3, -0.2 }, 0.27 },
+  };
+  for (const Framing& f : framings)
+  {
+    EXPECT_LT(SpecularError(f.scene, "screen-space", both, f.eye, f.focal, up, nullptr, false),
+      f.bound)
+      << f.scene << " from " << f.eye[0] << ", " << f.eye[1] << ", " << f.eye[2];
+  }
 }
