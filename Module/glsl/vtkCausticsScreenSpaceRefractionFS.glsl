@@ -74,8 +74,10 @@ struct March
   int role;     // the surface's role (once CompleteHit ran)
   vec3 radiance; // OPAQUE impostor hit the camera does not see: its map's colour
   bool leftView; // MISS of the march: the ray left the view before the scene's bounds
-  bool hidden;   // OPAQUE hit of the march met from behind or far from the surface the
-                 // camera sees there: what it meets is hidden
+  bool hidden;   // what the ray meets the screen does not show: an OPAQUE hit met from
+                 // behind or far from the surface the camera sees there, or a MISS
+                 // within the pixels it starts in, leaving a surface there
+  bool leaving;  // some sample was taken for the ray leaving an opaque surface
 };
 
 // Distance along the view: clip w (perspective) or clip z (parallel), both growing away.
@@ -254,8 +256,12 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
   vec3 x = o + t * d;
   float depth = depthLine.x + t * depthLine.y; // ViewDepth(x): affine in t
   vec3 opaqueNormal = texelFetch(gNormal, q, 0).xyz;
-  if (opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal) &&
-    !Leaving(o, d, x, opaque.xyz, opaqueNormal))
+  bool beyondOpaque = opaque.w >= 0.0 && Beyond(x, depth, opaque.xyz, opaqueNormal);
+  if (beyondOpaque && Leaving(o, d, x, opaque.xyz, opaqueNormal))
+  {
+    result.leaving = true;
+  }
+  else if (beyondOpaque)
   {
     result.kind = OPAQUE; // refined once the march ends (RefineOpaqueHit)
     result.t = t;
@@ -292,6 +298,7 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   result.radiance = vec3(0.0);
   result.leftView = false;
   result.hidden = false;
+  result.leaving = false;
   float t0 = 0.0;
   float t1 = 3.0e38;
   if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1))
@@ -347,6 +354,11 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
     }
     wasCovered = covered;
   }
+  // A ray that ends on nothing within the pixel or two it starts in, where it was taken
+  // for leaving a surface, is one the screen cannot resolve: from a mirror's foot it
+  // crosses the floor within the wall's own pixel, then leaves the scene under it.
+  result.hidden = result.hidden ||
+    (result.kind == MISS && !result.leftView && result.leaving && steps <= 2);
   RefineOpaqueHit(o, d, result);
   SmoothHitNormal(o, d, result);
   return result;
@@ -439,6 +451,7 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces, vec2 w
   m.radiance = vec3(0.0);
   m.leftView = false;
   m.hidden = false;
+  m.leaving = false;
   float t;
   ivec3 texel;
   bool found = ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, bounces,

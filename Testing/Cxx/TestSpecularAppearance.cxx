@@ -215,7 +215,10 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // further). Bounds 0.205 and 0.23, just above.
 // Since the combined view hands the impostors the rays its march finds passing behind
 // a surface (CombinedViewWhereTheMarchPassesBehindASurface): BOTH pool 30.4 -> 22.6 %
-// (as the impostor view), ring 23.8 -> 23.2 %; bounds 0.23 and 0.235.
+// (as the impostor view), ring 23.8 -> 23.2 %; and since a march that ends, on nothing,
+// within the pixels it starts in goes to the impostors too (a ray from the ring's foot
+// crosses the floor within the wall's own pixel, where the march takes it for leaving
+// the wall, and saw the background): ring 20.4 %. Bounds 0.23 and 0.21.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -228,7 +231,7 @@ TEST(SpecularAppearance, DistanceImpostors)
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
   EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.205);
-  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.235);
+  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.21);
   EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.23);
   EXPECT_LT(SpecularError("pool", "screen-space", both), 0.23);
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors), 0.56);
