@@ -65,7 +65,7 @@ def reference_color(renderer, seed):
 
 
 def stage(renderer, window, method, name, store_radius=None, store_samples=None,
-          store_coarse_samples=None):
+          store_coarse_samples=None, internal_reflections=None):
     technique = vtkcaustics.vtkCausticsTechniques.NewPass(name)
     if technique is None:
         raise SystemExit(f"unknown technique {name!r}")
@@ -77,6 +77,8 @@ def stage(renderer, window, method, name, store_radius=None, store_samples=None,
     if store_coarse_samples is not None:
         technique.GetDistanceImpostors().SetCausticCoarseSamples(store_coarse_samples)
     technique.SetCameraViewMethod(method)
+    if internal_reflections is not None:
+        technique.GetScreenSpaceRefraction().SetInternalReflections(internal_reflections == "on")
     technique.KeepBuffersOn()
     renderer.SetPass(technique)
     window.Render()
@@ -115,6 +117,9 @@ def main():
     parser.add_argument("--view-angle", type=float, default=None,
                         help="with --camera: the vertical field of view in degrees "
                              "(default: the scene's)")
+    parser.add_argument("--internal-reflections", choices=("on", "off"), default=None,
+                        help="follow the Fresnel-reflected branch inside glass or not "
+                             "(the stage's InternalReflections; default: the class's, on)")
     parser.add_argument("--no-noise", action="store_true",
                         help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
@@ -152,7 +157,7 @@ def main():
             print(f"{scene_name}: reference noise floor (seeds 1, 2; /sqrt 2) {100 * floor:.1f} %")
         for name in args.technique.split(","):
             views = {m: stage(renderer, window, m, name, args.store_radius, args.store_samples,
-                              args.store_coarse_samples) for m in sorted(set(methods + [0, 2]))}
+                              args.store_coarse_samples, args.internal_reflections) for m in sorted(set(methods + [0, 2]))}
             # Pixels where a march left the view: there the combined view took the impostors.
             left = np.abs(views[0]["TechniqueColor"][:, :, :3] -
                           views[2]["TechniqueColor"][:, :, :3]).max(axis=-1) > 1e-6
