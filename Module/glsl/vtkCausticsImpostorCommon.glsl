@@ -273,9 +273,9 @@ float ImpostorTexelArea(int map, ivec3 texel)
 // photon's noise; a fixed window wide enough for that blurs a focus seen in a mirror
 // to a quarter of its peak. The window is also about `minimumWidth` (m) wide or more
 // (the nearest width of 1, 3, 5, ... texels), as far as the radius allows: the
-// footprint of the camera pixel that reads it, or a
-// pixel seeing a focus in a convex mirror reads the focus's peak where the pixel
-// averages a wide patch of floor (12 times the reference's there).
+// footprint of the camera pixel that reads it. Otherwise a pixel that sees a focus in
+// a convex mirror reads the focus's peak where the pixel averages a wide patch of
+// floor (12 times the reference's there).
 const int IMPOSTOR_STORE_FACES = 18; // 3 maps x 6 faces per channel
 
 // The cell of the store's coarse level that holds `texel` (a layer 6 map + face).

@@ -539,7 +539,9 @@ float FootprintGrowth(bool spreads)
 // the ball lens's far side 4 % at normal incidence, all of it towards the rim), with
 // the events it has left; while the branch is held, further reflected parts are
 // dropped (their weight is R x R' at most). One loop with one march, so that the
-// march's code is compiled once (llvmpipe compiles each inlined copy).
+// march's code is compiled once (llvmpipe compiles each inlined copy). `spreads`: the
+// pixel's footprint grows along the path (reflected at the camera's surface; a path
+// refracted there, as one refracted later, keeps the footprint it had).
 vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorption,
   int leftRole, bool spreads)
 {
@@ -563,7 +565,7 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
       {
         m = MarchRay(path.o, path.d, path.next, path.inside ? path.current : -1);
         // The combined view takes the impostors where the march cannot see: the ray
-        // left the view, or passed behind what the camera sees.
+        // left the view, or what it meets the screen does not show (March.hidden).
         path.impostor =
           viewMethod == METHOD_BOTH && ((m.kind == MISS && m.leftView) || m.hidden);
       }
@@ -753,7 +755,7 @@ void main()
     bool alongLayers = k == 1 && eyeIn < 0;
     color += weights[k] *
       TracePath(x, directions[k], inside, alongLayers ? 0 : -1, alongLayers ? 1 : -1,
-        absorption, leftRole, leftRole == ROLE_REFLECTOR || k == 0);
+        absorption, leftRole, k == 0);
   }
   outColor = vec4(color, 1.0);
 }
