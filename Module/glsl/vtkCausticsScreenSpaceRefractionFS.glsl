@@ -87,6 +87,19 @@ float ViewDepth(vec3 p)
   return viewOrigin.w > 0.0 ? clip.w : clip.z;
 }
 
+// From the surface point p towards the camera (not normalized): to the eye, or against a
+// parallel view's direction.
+vec3 ToCamera(vec3 p)
+{
+  return viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+}
+
+// The camera pixel's footprint at the point x (m).
+float PixelFootprint(vec3 x)
+{
+  return abs((worldToClip * vec4(x, 1.0)).w) * pixelScale;
+}
+
 // Whether x (view depth `depth`) is on the given side of the surface sample (p, n)
 // of its pixel as the camera sees it (beyond: deeper along the view; else in
 // front), or, within a few pixel footprints of p, on that side of its tangent
@@ -100,7 +113,7 @@ bool OnSide(vec3 x, float depth, vec3 p, vec3 n, bool beyond)
   {
     return true;
   }
-  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
+  vec3 toCamera = ToCamera(p);
   float facing = dot(toCamera, n);
   float footprint = abs(clip.w) * pixelScale;
   float cosine = abs(facing) / max(length(toCamera), 1e-20);
@@ -127,10 +140,8 @@ bool InFront(vec3 x, float depth, vec3 p, vec3 n)
 // the floor next to it, not the wall).
 bool Leaving(vec3 o, vec3 d, vec3 x, vec3 p, vec3 n)
 {
-  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
-  vec3 front = dot(toCamera, n) >= 0.0 ? n : -n;
-  vec4 clip = worldToClip * vec4(p, 1.0);
-  float reach = tolerance + 4.0 * abs(clip.w) * pixelScale;
+  vec3 front = dot(ToCamera(p), n) >= 0.0 ? n : -n;
+  float reach = tolerance + 4.0 * PixelFootprint(p);
   return dot(x - p, front) > 0.0 && dot(d, front) > 0.0 && distance(x, p) < reach;
 }
 
@@ -141,9 +152,8 @@ bool Leaving(vec3 o, vec3 d, vec3 x, vec3 p, vec3 n)
 // back).
 bool FromBehind(vec3 d, vec3 p, vec3 n)
 {
-  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
-  vec3 front = dot(toCamera, n) >= 0.0 ? n : -n;
-  return dot(d, normalize(front)) > 0.0;
+  vec3 front = dot(ToCamera(p), n) >= 0.0 ? n : -n;
+  return dot(d, front) > 0.0;
 }
 
 // Whether the point c of the tangent plane of the surface sample (p, n) is within a few
@@ -152,10 +162,9 @@ bool FromBehind(vec3 d, vec3 p, vec3 n)
 // top, crosses that plane far away, or behind its start).
 bool NearSample(vec3 c, vec3 p, vec3 n)
 {
-  vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - p : -viewOrigin.xyz;
-  vec4 clip = worldToClip * vec4(p, 1.0);
+  vec3 toCamera = ToCamera(p);
   float cosine = abs(dot(toCamera, n)) / max(length(toCamera) * length(n), 1e-20);
-  return distance(c, p) < tolerance + 4.0 * abs(clip.w) * pixelScale / max(cosine, 0.1);
+  return distance(c, p) < tolerance + 4.0 * PixelFootprint(p) / max(cosine, 0.1);
 }
 
 // Refines a crossing of the surface (p, n) near parameter t: the tangent-plane hit.
@@ -511,12 +520,6 @@ struct CameraPath
   bool spreads;    // whether it still grows with the distance (not after glass: a
                    // lens can focus it, and a footprint too wide blurs what it shows)
 };
-
-// The camera pixel's footprint at the surface point x the camera sees (m).
-float PixelFootprint(vec3 x)
-{
-  return abs((worldToClip * vec4(x, 1.0)).w) * pixelScale;
-}
 
 // The footprint's growth per metre of a path that left the camera's surfaces: a
 // perspective camera's pixels diverge by pixelScale radians; an orthographic one's
