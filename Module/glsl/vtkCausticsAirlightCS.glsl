@@ -87,7 +87,7 @@ vec3 InScattered(vec3 x, vec3 v)
   float visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
     lightWorldToClip * vec4(x, 1.0), distance, bias,
     causticsMediumFillsRefractors != 0 ? noise : bias, lightType, lightPosition,
-    lightDirection, specular);
+    lightDirection, x, vec3(0.0), specular);
   if (!(visibility > 0.0))
   {
     return vec3(0.0);

@@ -371,6 +371,19 @@ float CausticsSurfaceShadowBias(
   return 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
 }
 
+// Whether a shadow map's occluder sample stands off the receiver's tangent plane (p, n on
+// the light's side) more steeply than the slope a smooth receiver's own samples reach
+// within a few texels (interpolated normals of coarse facets, curvature). A wall rising
+// from the floor stands at the light's elevation or steeper; n = 0: never.
+#define CAUSTICS_CONTACT_SLOPE 0.25
+bool CausticsContactOccluder(vec3 occluder, vec3 p, vec3 n)
+{
+  vec3 offset = occluder - p;
+  float height = dot(offset, n);
+  float lateral = length(offset - height * n);
+  return height > CAUSTICS_CONTACT_SLOPE * lateral + 1e-5 * length(p);
+}
+
 // A light's shadow map (vtkCausticsLightBuffers aimed at the scene: world positions seen
 // from the light, w = material, -1: none; normals with w = role) at a point `clip` in the
 // light's clip space, `distance` from it (CausticsLightDistance): the lit fraction by 2x2
@@ -379,9 +392,16 @@ float CausticsSurfaceShadowBias(
 // reflectors or refractors. Outside the map's frustum (it holds the whole scene) nothing
 // occludes. A refractor occluder counts from refractorBias on: a point of a medium that
 // fills the refractors, just behind a water surface, is in the water, lit only through it.
+//
+// A surface point passes its position p and its normal n on the light's side; a point in
+// a medium passes n = 0. The bias lets a surface that meets the receiver (a wall's foot
+// on the floor) through: its texels are nearer the light than the receiver by less than
+// the bias for a few centimetres from the contact. So an occluder within the bias still
+// counts where it stands above the receiver's tangent plane more steeply than the
+// receiver's own neighbouring texels can (CausticsContactOccluder).
 float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal, vec4 clip,
   float distance, float bias, float refractorBias, int lightType, vec3 origin, vec3 axis,
-  out float specular)
+  vec3 p, vec3 n, out float specular)
 {
   specular = 0.0;
   vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -404,11 +424,12 @@ float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal,
       float nearer = occluder.w < 0.0
         ? -1.0
         : distance - CausticsLightDistance(occluder.xyz, lightType, origin, axis);
+      bool contact = nearer > 1e-5 * abs(distance) && CausticsContactOccluder(occluder.xyz, p, n);
       // The role only where an occluder may count (its texel read once, as before).
-      int role = nearer <= min(bias, refractorBias)
+      int role = nearer <= min(bias, refractorBias) && !contact
         ? -1
         : int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
-      if (nearer <= (role == ROLE_REFRACTOR ? refractorBias : bias))
+      if (nearer <= (role == ROLE_REFRACTOR ? refractorBias : bias) && !contact)
       {
         visibility += weight;
       }

@@ -106,7 +106,7 @@ void main()
   float specularShadow; // the part of the light that a reflector or refractor blocks
   float visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
     lightWorldToClip * vec4(p, 1.0), distance, bias, bias, lightType, lightPosition,
-    lightDirection, specularShadow);
+    lightDirection, p, n, specularShadow);
   // A medium attenuates the light on its way to the surface (inside its box; as
   // the reference's DirectIrradiance): to the light, or out of the box for a sun.
   vec3 transmitted = lightType == 0 ? CausticsMediumTransmittance(p, toLight, 0.0, 3.0e38)

@@ -57,7 +57,7 @@ vec3 DirectIrradiance(vec3 p, vec3 n)
     float specular;
     visibility = CausticsShadowVisibility(shadowPosition, shadowNormal,
       lightWorldToClip * vec4(p, 1.0), distance, bias, bias, lightType, lightOrigin,
-      lightDirection, specular);
+      lightDirection, p, n, specular);
   }
   return lightRadiometric * (cosine * falloff * visibility);
 }
