@@ -65,6 +65,11 @@
 #define CAUSTICS_HIERARCHY_WORK_BINDING 4
 #define CAUSTICS_HIERARCHY_SPLATS_BINDING 5
 
+// The camera view of glass and mirrors (vtkCausticsSpecularHierarchy,
+// glsl/vtkCausticsSpecularTrace.glsl): the specular triangles' hierarchy.
+#define CAUSTICS_SPECULAR_NODE_BINDING 18
+#define CAUSTICS_SPECULAR_TRIANGLE_BINDING 19
+
 // Image units (a namespace of their own): the distance impostors' caustic store
 // (vtkCausticsDistanceImpostors::BeginCaustic, glsl/vtkCausticsImpostorCommon.glsl).
 #define CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE 7

@@ -560,6 +560,7 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   inputs.RefractorLayers = in.RefractorLayers;
   inputs.Opaque = f.CameraGBuffer;
   inputs.Geometry = f.Geometry;
+  inputs.Scene = &scene;
   inputs.DelegateColor = f.DelegateColor;
   inputs.DelegateDepth = f.DelegateDepth;
   inputs.CausticIrradiance = f.CausticIrradiance;

@@ -8,6 +8,7 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsSpecularHierarchy.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
@@ -19,6 +20,7 @@
 #include "vtkCausticsOptics.h"
 #include "vtkCausticsScreenSpaceCommon.h"
 #include "vtkCausticsScreenSpaceRefractionFS.h"
+#include "vtkCausticsSpecularTrace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +33,7 @@ struct vtkCausticsScreenSpaceRefraction::Internals
   caustics::ssp::Framebuffer Framebuffer;
   caustics::gl::FullScreenTriangle Triangle;
   vtkNew<vtkCausticsShaderProgram> Program;
+  vtkNew<vtkCausticsSpecularHierarchy> Hierarchy;
 };
 
 vtkCausticsScreenSpaceRefraction::vtkCausticsScreenSpaceRefraction()
@@ -39,7 +42,8 @@ vtkCausticsScreenSpaceRefraction::vtkCausticsScreenSpaceRefraction()
   this->Internal->Program->SetName("screen-space refraction");
   this->Internal->Program->SetVertexSource(vtkCausticsFullScreenVS);
   this->Internal->Program->SetFragmentSource((std::string(vtkCausticsOptics) +
-    vtkCausticsScreenSpaceCommon + vtkCausticsImpostorCommon + vtkCausticsScreenSpaceRefractionFS)
+    vtkCausticsScreenSpaceCommon + vtkCausticsImpostorCommon + vtkCausticsSpecularTrace +
+    vtkCausticsScreenSpaceRefractionFS)
                                                .c_str());
 }
 
@@ -135,7 +139,12 @@ bool vtkCausticsScreenSpaceRefraction::Render(
   state->vtkglEnable(GL_SCISSOR_TEST);
   state->vtkglScissor(rect[0], rect[1], rect[2], rect[3]);
   vtkCausticsShaderProgram* p = in.Program;
-  const bool ok = rect[2] == 0 || rect[3] == 0 || p->Bind(renWin);
+  const bool wanted = this->ExactSpecularGeometry != EXACT_OFF && inputs.Scene;
+  const bool hierarchy = !wanted || in.Hierarchy->Update(*inputs.Scene);
+  const bool exact = wanted && hierarchy &&
+    (this->ExactSpecularGeometry == EXACT_ON || in.Hierarchy->GetNumberOfNonConvexMeshes() > 0);
+  this->TracedSpecularGeometry = exact;
+  const bool ok = hierarchy && (rect[2] == 0 || rect[3] == 0 || p->Bind(renWin));
   if (ok && rect[2] > 0 && rect[3] > 0)
   {
     caustics::ssp::TextureUnits units(renWin);
@@ -177,6 +186,8 @@ bool vtkCausticsScreenSpaceRefraction::Render(
       static_cast<float>(inputs.Background[1]), static_cast<float>(inputs.Background[2]));
     p->SetUniformi("maxEvents", this->MaximumEvents);
     p->SetUniformi("internalReflections", this->InternalReflections ? 1 : 0);
+    p->SetUniformi("exactSpecular", exact ? 1 : 0);
+    in.Hierarchy->Bind(p);
     p->SetUniformf("tolerance", static_cast<float>(inputs.Tolerance));
     p->SetUniformf(
       "pixelScale", caustics::ssp::PixelScale(inputs.WorldToClip, inputs.Width, inputs.Height));
@@ -205,6 +216,12 @@ void vtkCausticsScreenSpaceRefraction::ReleaseGraphicsResources(vtkWindow* win)
   this->Internal->Framebuffer.Release();
   this->Internal->Triangle.Release();
   this->Internal->Program->ReleaseGraphicsResources(win);
+  this->Internal->Hierarchy->ReleaseGraphicsResources(win);
+}
+
+vtkCausticsSpecularHierarchy* vtkCausticsScreenSpaceRefraction::GetSpecularHierarchy()
+{
+  return this->Internal->Hierarchy;
 }
 
 void vtkCausticsScreenSpaceRefraction::PrintSelf(ostream& os, vtkIndent indent)
@@ -212,4 +229,5 @@ void vtkCausticsScreenSpaceRefraction::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MaximumEvents: " << this->MaximumEvents << "\n";
   os << indent << "InternalReflections: " << this->InternalReflections << "\n";
+  os << indent << "ExactSpecularGeometry: " << this->ExactSpecularGeometry << "\n";
 }

@@ -65,7 +65,7 @@ def reference_color(renderer, seed):
 
 
 def stage(renderer, window, method, name, store_radius=None, store_samples=None,
-          store_coarse_samples=None, internal_reflections=None):
+          store_coarse_samples=None, internal_reflections=None, exact_specular=None):
     technique = vtkcaustics.vtkCausticsTechniques.NewPass(name)
     if technique is None:
         raise SystemExit(f"unknown technique {name!r}")
@@ -79,6 +79,9 @@ def stage(renderer, window, method, name, store_radius=None, store_samples=None,
     technique.SetCameraViewMethod(method)
     if internal_reflections is not None:
         technique.GetScreenSpaceRefraction().SetInternalReflections(internal_reflections == "on")
+    if exact_specular is not None:
+        technique.GetScreenSpaceRefraction().SetExactSpecularGeometry(
+            {"off": 0, "on": 1, "auto": 2}[exact_specular])
     technique.KeepBuffersOn()
     renderer.SetPass(technique)
     window.Render()
@@ -120,6 +123,10 @@ def main():
     parser.add_argument("--internal-reflections", choices=("on", "off"), default=None,
                         help="follow the Fresnel-reflected branch inside glass or not "
                              "(the stage's InternalReflections; default: the class's, on)")
+    parser.add_argument("--exact-specular", choices=("on", "off", "auto"), default=None,
+                        help="trace the glass and mirror triangles themselves or find them in "
+                             "the layers and maps (the stage's ExactSpecularGeometry; default: "
+                             "the class's, auto: where one is not a convex solid)")
     parser.add_argument("--no-noise", action="store_true",
                         help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
@@ -157,7 +164,8 @@ def main():
             print(f"{scene_name}: reference noise floor (seeds 1, 2; /sqrt 2) {100 * floor:.1f} %")
         for name in args.technique.split(","):
             views = {m: stage(renderer, window, m, name, args.store_radius, args.store_samples,
-                              args.store_coarse_samples, args.internal_reflections) for m in sorted(set(methods + [0, 2]))}
+                              args.store_coarse_samples, args.internal_reflections,
+                              args.exact_specular) for m in sorted(set(methods + [0, 2]))}
             # Pixels where a march left the view: there the combined view took the impostors.
             left = np.abs(views[0]["TechniqueColor"][:, :, :3] -
                           views[2]["TechniqueColor"][:, :, :3]).max(axis=-1) > 1e-6

@@ -50,6 +50,7 @@ uniform float depthTolerance; // window depth: VTK's image and the G-buffers agr
 // 0 the screen-space march; 1 the distance impostors (glsl/vtkCausticsImpostorCommon.glsl);
 // 2 the march, then the impostors from where a march leaves the view or the scene.
 uniform int viewMethod;
+uniform int exactSpecular; // 1: glass and mirrors traced as triangles (SpecularTrace)
 
 layout(location = 0) out vec4 outColor;
 
@@ -78,6 +79,8 @@ struct March
                  // behind or far from the surface the camera sees there, or a MISS
                  // within the pixels it starts in, leaving a surface there
   bool leaving;  // some sample was taken for the ray leaving an opaque surface
+  bool exact;    // a specular triangle of the hierarchy (SpecularTrace)
+  vec3 geometric; // exact: the face normal (on the normal's side); else the normal
 };
 
 // Distance along the view: clip w (perspective) or clip z (parallel), both growing away.
@@ -286,15 +289,15 @@ bool MarchSample(vec3 o, vec3 d, SspLine line, vec2 depthLine, int j, int steps,
     RefractorLayerHit(o, d, t, depth, q, current, currentSample, false, result);
 }
 
-// Marches o + t d across the screen. next/current: refractor layers whose
-// surfaces end the march when the ray's depth passes beyond (next) or comes in
+// Marches o + t d across the screen up to t = tLimit. next/current: refractor layers
+// whose surfaces end the march when the ray's depth passes beyond (next) or comes in
 // front of (current) them; -1 to ignore. The march strides MARCH_STRIDE pixels
 // and walks the pixels of the stride back one by one once a sample has met
 // something, so the first crossing is found at pixel steps: the surfaces it
 // meets stay behind (or in front) once passed, and only a feature thinner than
 // the stride, passed and left within it, can be missed. On llvmpipe the march
 // is most of a frame's time (docs/technique-screen-space.md, "Refraction").
-March MarchRay(vec3 o, vec3 d, int next, int current)
+March MarchRay(vec3 o, vec3 d, int next, int current, float tLimit)
 {
   March result;
   result.kind = MISS;
@@ -308,6 +311,8 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   result.leftView = false;
   result.hidden = false;
   result.leaving = false;
+  result.exact = false;
+  result.geometric = vec3(0.0);
   float t0 = 0.0;
   float t1 = 3.0e38;
   if (!CausticsClipToBox(o, d, boundsMin - vec3(tolerance), boundsMax + vec3(tolerance), t0, t1))
@@ -317,10 +322,12 @@ March MarchRay(vec3 o, vec3 d, int next, int current)
   float tScene = t1;
   bool inView = SspClipToFrustum(worldToClip, o, d, t0, t1);
   result.leftView = !inView || t1 < tScene;
-  if (!inView)
+  if (!inView || t0 >= tLimit)
   {
     return result;
   }
+  // Past tLimit the caller has its hit already (a specular triangle).
+  t1 = min(t1, tLimit);
   vec4 c0 = worldToClip * vec4(o + t0 * d, 1.0);
   vec4 c1 = worldToClip * vec4(o + t1 * d, 1.0);
   SspLine line;
@@ -461,13 +468,15 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces, vec2 w
   m.leftView = false;
   m.hidden = false;
   m.leaving = false;
+  m.exact = false;
+  m.geometric = vec3(0.0);
   float t;
   ivec3 texel;
   bool found = ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, bounces,
     boundsMin, boundsMax, tolerance, t, texel);
   float tExit;
   ivec3 exitTexel;
-  if (inside && ImpostorSearch(
+  if (inside && exactSpecular == 0 && ImpostorSearch(
                   IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, tExit, exitTexel) &&
     (!found || tExit < t))
   {
@@ -499,6 +508,61 @@ March ImpostorRay(vec3 o, vec3 d, bool inside, int leftRole, int bounces, vec2 w
       vec3(0.0));
   }
   return m;
+}
+
+// The glass or mirror triangle o + t d meets first (exactSpecular), as a hit of the
+// march: its exact point, face normal and interpolated normal.
+bool ExactSpecularHit(vec3 o, vec3 d, out March m)
+{
+  SpecularHit s;
+  bool found = exactSpecular != 0 && SpecularTrace(o, d, 0.01 * tolerance, 3.0e38, s);
+  m.role = found ? int(causticsMaterials[s.material].albedoRole.a + 0.5) : ROLE_NONE;
+  m.kind = !found ? MISS : (m.role == ROLE_REFRACTOR ? REFRACTOR : OPAQUE);
+  m.t = s.t;
+  m.pixel = ivec2(-1);
+  m.layer = -1;
+  m.normal = s.shading;
+  m.material = s.material;
+  m.radiance = vec3(0.0);
+  m.leftView = false;
+  m.hidden = false;
+  m.leaving = false;
+  m.exact = found;
+  m.geometric = s.geometric;
+  return found;
+}
+
+// The unit normal on d's side of hit m, as the reference takes it: the interpolated
+// normal on the face's side, or the face's own where the interpolated one would send
+// the mirrored ray into the surface (exact hits; otherwise both are the same).
+vec3 FacingNormal(vec3 d, March m)
+{
+  vec3 face = m.exact ? m.geometric : m.normal;
+  bool front = dot(d, face) <= 0.0;
+  vec3 n = front ? m.normal : -m.normal;
+  face = front ? face : -face;
+  return dot(d, n) >= 0.0 || dot(reflect(d, n), face) <= 0.0 ? face : n;
+}
+
+// The dielectric interface of hit m met by d, from index n1 into n2 (CausticsDielectric),
+// on the interpolated normal unless a direction would leave on the wrong side of the
+// face, then on the face (as the reference). False under total internal reflection.
+bool ScatterDielectric(vec3 d, March m, float n1, float n2, out float reflectance,
+  out vec3 reflected, out vec3 refracted)
+{
+  vec3 face = m.exact ? m.geometric : m.normal;
+  bool front = dot(d, face) <= 0.0;
+  vec3 n = front ? m.normal : -m.normal;
+  face = front ? face : -face;
+  bool transmits =
+    CausticsDielectric(d, n, clamp(-dot(d, n), 0.0, 1.0), n1, n2, reflectance, reflected, refracted);
+  if (m.exact &&
+    !(dot(d, n) < 0.0 && dot(reflected, face) > 0.0 && (!transmits || dot(refracted, face) < 0.0)))
+  {
+    transmits = CausticsDielectric(
+      d, face, clamp(-dot(d, face), 0.0, 1.0), n1, n2, reflectance, reflected, refracted);
+  }
+  return transmits;
 }
 
 // One camera path's state along TracePath: where it is and heads, what it still
@@ -564,9 +628,15 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
     March m;
     if (!ends)
     {
+      // Glass and mirrors traced as triangles: the march and the impostors look for
+      // what lies around them, up to the triangle, and the layers are not consulted.
+      March specular;
+      bool exact = ExactSpecularHit(path.o, path.d, specular);
+      bool layers = exactSpecular == 0;
       if (!path.impostor)
       {
-        m = MarchRay(path.o, path.d, path.next, path.inside ? path.current : -1);
+        m = MarchRay(path.o, path.d, layers ? path.next : -1,
+          layers && path.inside ? path.current : -1, exact ? specular.t + tolerance : 3.0e38);
         // The combined view takes the impostors where the march cannot see: the ray
         // left the view, or what it meets the screen does not show (March.hidden).
         path.impostor =
@@ -576,6 +646,10 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
       {
         m = ImpostorRay(path.o, path.d, path.inside, path.leftRole, path.bounces,
           vec2(path.width, FootprintGrowth(path.spreads)));
+      }
+      if (exact && (m.kind == MISS || specular.t <= m.t + tolerance))
+      {
+        m = specular;
       }
       CompleteHit(m);
       if (path.inside)
@@ -605,8 +679,7 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
     if (m.kind == OPAQUE)
     {
       CausticsMaterial mirror = causticsMaterials[m.material];
-      vec3 n = m.normal;
-      vec3 facing = dot(path.d, n) < 0.0 ? n : -n;
+      vec3 facing = FacingNormal(path.d, m);
       path.bounces = path.leftRole == ROLE_REFLECTOR ? path.bounces + 1 : 0;
       path.throughput *= FresnelConductor(
         clamp(-dot(path.d, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
@@ -620,14 +693,14 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
     {
       CausticsMaterial hitMaterial = causticsMaterials[m.material];
       float hitIor = max(hitMaterial.params.x, 1.0);
-      bool towardsOutside = dot(path.d, m.normal) > 0.0;
-      vec3 f = towardsOutside ? -m.normal : m.normal;
-      float c = clamp(-dot(path.d, f), 0.0, 1.0);
+      // An exact hit's face says which side the ray is on (a closed mesh's inside);
+      // otherwise the path's own count of crossings does.
+      path.inside = m.exact ? dot(path.d, m.geometric) > 0.0 : path.inside;
       float n1 = path.inside ? hitIor : 1.0;
       float n2 = path.inside ? 1.0 : hitIor;
       float r;
       vec3 mirrored, refracted;
-      if (CausticsDielectric(path.d, f, c, n1, n2, r, mirrored, refracted))
+      if (ScatterDielectric(path.d, m, n1, n2, r, mirrored, refracted))
       {
         vec3 reflectedThroughput = path.throughput * r;
         if (internalReflections != 0 && !held &&
@@ -668,6 +741,27 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
     (held ? branch.throughput * background : vec3(0.0));
 }
 
+// The camera's first surface at x (normal n as the G-buffer has it) along the view
+// direction v, as a hit: the exact triangle where the hierarchy meets it there (x
+// moves onto it), whose face then decides the side the camera sees, as the
+// reference's does.
+March FirstSurface(inout vec3 x, vec3 v, vec3 n, int material)
+{
+  vec3 o = viewOrigin.w > 0.0 ? viewOrigin.xyz : x - distance(boundsMin, boundsMax) * v;
+  March m;
+  if (ExactSpecularHit(o, v, m) && distance(o + m.t * v, x) < PixelFootprint(x) + tolerance)
+  {
+    x = o + m.t * v;
+    return m;
+  }
+  m.exact = false;
+  m.t = distance(o, x);
+  m.normal = n;
+  m.geometric = n;
+  m.material = material;
+  return m;
+}
+
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -695,8 +789,8 @@ void main()
     }
     x = opaque.xyz;
     vec3 v = viewOrigin.w > 0.0 ? normalize(x - viewOrigin.xyz) : viewOrigin.xyz;
-    vec3 n = normalize(normalRole.xyz);
-    vec3 facing = dot(v, n) < 0.0 ? n : -n;
+    March first = FirstSurface(x, v, normalize(normalRole.xyz), int(opaque.w + 0.5));
+    vec3 facing = FacingNormal(v, first);
     CausticsMaterial mirror = causticsMaterials[int(opaque.w + 0.5)];
     weights[0] =
       FresnelConductor(clamp(-dot(v, facing), 0.0, 1.0), mirror.metalN.rgb, mirror.metalK.rgb);
@@ -714,12 +808,11 @@ void main()
     }
     x = front.xyz;
     vec3 v = viewOrigin.w > 0.0 ? normalize(x - viewOrigin.xyz) : viewOrigin.xyz;
-    vec3 n = texelFetch(refractorNormal, ivec3(pixel, 0), 0).xyz;
-    CausticsMaterial material = causticsMaterials[int(front.w + 0.5)];
+    March first =
+      FirstSurface(x, v, texelFetch(refractorNormal, ivec3(pixel, 0), 0).xyz, int(front.w + 0.5));
+    CausticsMaterial material = causticsMaterials[first.material];
     float ior = max(material.params.x, 1.0);
-    bool backFace = dot(v, n) > 0.0;
-    vec3 facing = backFace ? -n : n;
-    float cosI = clamp(-dot(v, facing), 0.0, 1.0);
+    bool backFace = dot(v, first.geometric) > 0.0;
     // The eye's medium: the closed refractor it is in (eyeMaterial), else, as the
     // reference decides at every surface, the refractor whose surface this pixel sees
     // from its back side (the side its normal does not point to): a camera under an
@@ -731,13 +824,13 @@ void main()
     // (a grazing pixel, mostly reflected either way). From the eye's medium into the
     // other: from air into the refractor, or out of it (the surface seen first is the
     // way out, and the light has crossed the medium up to it).
-    eyeIn = eyeMaterial >= 0 ? eyeMaterial : (backFace ? int(front.w + 0.5) : -1);
+    eyeIn = eyeMaterial >= 0 ? eyeMaterial : (backFace ? first.material : -1);
     bool eyeInGlass = eyeIn >= 0;
     float n1 = eyeInGlass ? max(causticsMaterials[eyeIn].params.x, 1.0) : 1.0;
     float n2 = eyeInGlass ? 1.0 : ior;
     float reflectance;
     vec3 reflected, refracted;
-    bool transmits = CausticsDielectric(v, facing, cosI, n1, n2, reflectance, reflected, refracted);
+    bool transmits = ScatterDielectric(v, first, n1, n2, reflectance, reflected, refracted);
     vec3 crossed = eyeInGlass ? CausticsTransmittance(
       causticsMaterials[eyeIn].attenuation.rgb, distance(x, viewOrigin.xyz)) : vec3(1.0);
     weights[0] = crossed * reflectance; // reflected, staying in the eye's medium
