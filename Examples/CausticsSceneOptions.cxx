@@ -12,6 +12,7 @@
 #include "vtkCausticsMeshReader.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
+#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsTechniques.h"
 
 #include "vtkActor.h"
@@ -101,6 +102,11 @@ std::string QualityUsage()
                              impostors (distance impostors, paper 004) or both
                              (default: screen-space, impostors where rays leave
                              the view; docs/technique-distance-impostors.md)
+  --exact-specular MODE      the camera view traces glass and mirror triangles:
+                             off, on, or auto (default: where one is not a convex
+                             solid; docs/accuracy.md)
+  --refraction-events N      interfaces a camera path through glass and mirrors
+                             may cross (2..16, default 8)
   --airlight on|off          a medium's airlight and volume shadows of the direct
                              light (default on; docs/airlight.md)
   --size W[xH]               image size in pixels (default 512x512)
@@ -301,6 +307,12 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.Value("--camera-view",
     [&options](const std::string& option, const std::string& value)
     { options.CameraView = ParseChoice(option, value, { "screen-space", "impostors", "both" }); });
+  arguments.Value("--exact-specular",
+    [&options](const std::string& option, const std::string& value)
+    { options.ExactSpecular = ParseChoice(option, value, { "off", "on", "auto" }); });
+  arguments.Value("--refraction-events",
+    [&options](const std::string& option, const std::string& value)
+    { options.RefractionEvents = ParseInteger(option, value, 2, 16); });
   arguments.Value("--airlight",
     [&options](const std::string& option, const std::string& value)
     { options.Airlight = ParseChoice(option, value, { "off", "on" }) == 1; });
@@ -707,6 +719,15 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   if (options.CameraView >= 0)
   {
     pass->SetCameraViewMethod(options.CameraView); // the same order as CameraViewMethods
+  }
+  if (options.RefractionEvents >= 0)
+  {
+    pass->SetRefractionEvents(options.RefractionEvents);
+  }
+  if (options.ExactSpecular >= 0)
+  {
+    // The same order as vtkCausticsScreenSpaceRefraction's EXACT_* values.
+    pass->GetScreenSpaceRefraction()->SetExactSpecularGeometry(options.ExactSpecular);
   }
   pass->GetAirlight()->SetEnabled(options.Airlight);
   if (auto* screenSpace = vtkCausticsScreenSpacePhotonPass::SafeDownCast(pass))

@@ -41,6 +41,9 @@ struct SceneOptions
   int ProgressiveFrames = 1; ///< --progressive N: the pass's mean of N still frames (1: off)
   /** --camera-view: vtkCausticsRenderPass::CameraViewMethods; -1: the pass's default (both). */
   int CameraView = -1;
+  /** --exact-specular: vtkCausticsScreenSpaceRefraction's EXACT_OFF, _ON, _AUTOMATIC; -1: its default. */
+  int ExactSpecular = -1;
+  int RefractionEvents = -1; ///< --refraction-events N: the pass's RefractionEvents; -1: its default
   bool Airlight = true; ///< --airlight off: no airlight stage (vtkCausticsAirlight)
   bool HasLightDirection = false, HasLightIntensity = false;
   std::array<double, 3> LightDirection{ { 0, -1, 0 } };

@@ -536,10 +536,12 @@ bool vtkCausticsRenderPass::RenderTechniqueColor(const FrameInputs& f, vtkTextur
   }
   // 1. The refractors' layered depth image in the camera's view (front and back
   //    faces, every layer a viewing ray may cross; none without refractors: then
-  //    only mirrors are traced).
+  //    only mirrors are traced). Where the stage traces the specular triangles, it
+  //    needs the first surface only.
   this->BeginStage("refractor layers");
   in.RefractorLayers->SetRoleMask(vtkCausticsSceneGeometry::RoleBit(3));
-  in.RefractorLayers->SetMaximumNumberOfLayers(std::min(16, 2 * this->RefractionEvents));
+  in.RefractorLayers->SetMaximumNumberOfLayers(
+    in.Refraction->WillTraceSpecularGeometry(scene) ? 1 : this->RefractorLayers);
   in.RefractorLayers->SetTimings(this->GetTimings(), "refractor layers ");
   const bool layers =
     in.RefractorLayers->Render(f.Window, f.Geometry, scene, f.WorldToClip, f.Width, f.Height);
@@ -1724,6 +1726,7 @@ void vtkCausticsRenderPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RoughnessCutoff: " << this->GetRoughnessCutoff() << "\n";
   os << indent << "RefractionTracing: " << this->RefractionTracing << "\n";
   os << indent << "RefractionEvents: " << this->RefractionEvents << "\n";
+  os << indent << "RefractorLayers: " << this->RefractorLayers << "\n";
   os << indent << "Denoise: " << this->Denoise << "\n";
   os << indent << "ProgressiveFrames: " << this->ProgressiveFrames << "\n";
   os << indent << "Denoiser:\n";

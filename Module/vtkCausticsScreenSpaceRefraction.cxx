@@ -139,12 +139,9 @@ bool vtkCausticsScreenSpaceRefraction::Render(
   state->vtkglEnable(GL_SCISSOR_TEST);
   state->vtkglScissor(rect[0], rect[1], rect[2], rect[3]);
   vtkCausticsShaderProgram* p = in.Program;
-  const bool wanted = this->ExactSpecularGeometry != EXACT_OFF && inputs.Scene;
-  const bool hierarchy = !wanted || in.Hierarchy->Update(*inputs.Scene);
-  const bool exact = wanted && hierarchy &&
-    (this->ExactSpecularGeometry == EXACT_ON || in.Hierarchy->GetNumberOfNonConvexMeshes() > 0);
+  const bool exact = inputs.Scene && this->WillTraceSpecularGeometry(*inputs.Scene);
   this->TracedSpecularGeometry = exact;
-  const bool ok = hierarchy && (rect[2] == 0 || rect[3] == 0 || p->Bind(renWin));
+  const bool ok = rect[2] == 0 || rect[3] == 0 || p->Bind(renWin);
   if (ok && rect[2] > 0 && rect[3] > 0)
   {
     caustics::ssp::TextureUnits units(renWin);
@@ -217,6 +214,16 @@ void vtkCausticsScreenSpaceRefraction::ReleaseGraphicsResources(vtkWindow* win)
   this->Internal->Triangle.Release();
   this->Internal->Program->ReleaseGraphicsResources(win);
   this->Internal->Hierarchy->ReleaseGraphicsResources(win);
+}
+
+bool vtkCausticsScreenSpaceRefraction::WillTraceSpecularGeometry(const caustics::SceneData& scene)
+{
+  if (this->ExactSpecularGeometry == EXACT_OFF || !this->Internal->Hierarchy->Update(scene))
+  {
+    return false; // a hierarchy that failed to upload has said why; the layers serve
+  }
+  return this->ExactSpecularGeometry == EXACT_ON ||
+    this->Internal->Hierarchy->GetNumberOfNonConvexMeshes() > 0;
 }
 
 vtkCausticsSpecularHierarchy* vtkCausticsScreenSpaceRefraction::GetSpecularHierarchy()

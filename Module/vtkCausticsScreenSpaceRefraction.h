@@ -58,7 +58,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Most refractor interfaces a viewing ray crosses after its entry, in [1, 16]. Default 4. */
+  /** Most refractor interfaces a viewing ray crosses after its entry, in [1, 16]. Default 8 (the render pass sets it to its RefractionEvents). */
   vtkSetClampMacro(MaximumEvents, int, 1, 16);
   vtkGetMacro(MaximumEvents, int);
   ///@}
@@ -89,6 +89,15 @@ public:
 
   /** Whether the last Render() traced the specular triangles. */
   vtkGetMacro(TracedSpecularGeometry, bool);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Whether Render() will trace `scene`'s specular triangles (ExactSpecularGeometry);
+   * brings the hierarchy up to date (the context must be current). Then the march
+   * consults no refractor layer beyond the first.
+   */
+  bool WillTraceSpecularGeometry(const caustics::SceneData& scene);
+#endif
 
   /** The hierarchy the camera view traces (rebuilt only when glass or mirrors change). */
   vtkCausticsSpecularHierarchy* GetSpecularHierarchy();
@@ -159,7 +168,7 @@ protected:
   vtkCausticsScreenSpaceRefraction();
   ~vtkCausticsScreenSpaceRefraction() override;
 
-  int MaximumEvents = 4;
+  int MaximumEvents = 8;
   bool InternalReflections = true;
   int ExactSpecularGeometry = EXACT_AUTOMATIC;
   bool TracedSpecularGeometry = false;

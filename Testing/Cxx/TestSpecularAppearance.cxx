@@ -191,12 +191,18 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
 // pixels, 60 % of its squared error) and the pool's near strip of water (16 % of its
 // pixels, 40 %) (docs/accuracy.md, "Glass and mirrors against the reference's camera
 // paths"; scripts/specular-error-map.py).
+// Since the shadow test keeps a wall's foot in its shadow and the stage traces the
+// ring's and the water's triangles (docs/accuracy.md, "Contact shadows" and "Glass and
+// mirrors traced as triangles"): ring 17.6 % (screen-space) and 18.5 % (caustic maps),
+// pool 29.9 %; with 8 interfaces a path (the default since then) the ring's further
+// mirror-to-mirror bounces leave the screen, where this view alone sees the
+// background: 18.9 and 19.5 %. Bounds just above.
 TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 {
   EXPECT_LT(SpecularError("ball-lens", "screen-space"), 0.275);
-  EXPECT_LT(SpecularError("ring", "screen-space"), 0.24);
-  EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.24);
-  EXPECT_LT(SpecularError("pool", "screen-space"), 0.31);
+  EXPECT_LT(SpecularError("ring", "screen-space"), 0.192);
+  EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.198);
+  EXPECT_LT(SpecularError("pool", "screen-space"), 0.302);
 }
 
 // The same with the distance impostors (paper 004, docs/technique-distance-impostors.md),
@@ -224,6 +230,10 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // within the pixels it starts in goes to the impostors too (a ray from the ring's foot
 // crosses the floor within the wall's own pixel, where the march takes it for leaving
 // the wall, and saw the background): ring 20.4 %. Bounds 0.23 and 0.21.
+// Since the shadow test keeps the ring's floor at the wall's foot in the wall's shadow
+// (it was lit for a few centimetres, and the wall showed it): ring 13.5 % (impostors)
+// and 14.4 % (both); tracing the ring's triangles, 13.5 and 13.4 %. Pool 22.0 % both.
+// Bounds 0.14 and 0.225.
 // The issue's 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -235,10 +245,10 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.205);
-  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.21);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.23);
-  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.23);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.14);
+  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.14);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.225);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.225);
   // The impostors' own refractor map (ExactSpecularGeometryOnConcaveGlass traces the
   // bunny's triangles, the default for a concave object).
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors, nullptr, nullptr, nullptr, nullptr,
@@ -248,22 +258,28 @@ TEST(SpecularAppearance, DistanceImpostors)
 
 // The glass bunny's triangles traced (vtkCausticsSpecularHierarchy), the default for a
 // specular object that is not a convex solid, against finding its surfaces in the
-// layered depth image and the refractor map. Measured (relative L2, 128 x 128): combined
-// view 71.0 % -> 57.5 %, impostor view 55.4 % -> 57.5 %. Ten pixels hold 91 % of the
-// squared error: bright caustics on the floor seen through the glass (the reference
-// reads 3.1 where the stage reads 0.1; every photon technique fills the same, 56-60 %).
-// Without those ten the combined view goes from 42.1 % to 21.4 % and the impostor view
-// from 31.7 % to 21.4 %. Bounds just above; tracing off must stay measurably worse.
+// layered depth image and the refractor map, with 8 interfaces a path (the reference's;
+// the default since 2026-12-05). Relative L2, 128 x 128, combined view (impostor view):
+// its own camera 42.5 % (42.5 %) against 72.0 % (54.3 %) with the layers; from
+// (-0.8, 1.5, 1.8) towards (0, 0.5, 0), 60 degrees, 28.3 % (28.3 %) against 105.8 %
+// (50.5 %). With 4 interfaces the traced paths ended dark inside the bunny (57.5 % on its
+// own camera). Bounds just above;
+// the layers must stay measurably worse (a trace that stops working fails the test).
 TEST(SpecularAppearance, ExactSpecularGeometryOnConcaveGlass)
 {
   const int both = vtkCausticsRenderPass::BOTH;
-  const double traced = SpecularError("bunny", "screen-space", both);
-  const double layered = SpecularError("bunny", "screen-space", both, nullptr, nullptr, nullptr,
-    nullptr, true, Size, vtkCausticsScreenSpaceRefraction::EXACT_OFF);
-  EXPECT_LT(traced, 0.585);
-  EXPECT_GT(layered, 0.68);
+  const int layers = vtkCausticsScreenSpaceRefraction::EXACT_OFF;
+  const double up[3] = { 0.0, 1.0, 0.0 };
+  const double eye[3] = { -0.8, 1.5, 1.8 }, focal[3] = { 0.0, 0.5, 0.0 };
+  EXPECT_LT(SpecularError("bunny", "screen-space", both), 0.43);
   EXPECT_LT(SpecularError("bunny", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS),
-    0.585);
+    0.43);
+  EXPECT_LT(SpecularError("bunny", "screen-space", both, eye, focal, up), 0.29);
+  EXPECT_GT(SpecularError("bunny", "screen-space", both, nullptr, nullptr, nullptr, nullptr, true,
+              Size, layers),
+    0.65);
+  EXPECT_GT(
+    SpecularError("bunny", "screen-space", both, eye, focal, up, nullptr, true, Size, layers), 0.9);
   vtkNew<vtkCausticsScreenSpaceRefraction> stage;
   EXPECT_EQ(stage->GetExactSpecularGeometry(), vtkCausticsScreenSpaceRefraction::EXACT_AUTOMATIC);
 }
