@@ -31,6 +31,19 @@ float AsFloat(std::int32_t bits)
   return value;
 }
 
+/** A mesh's role (None where its material index is out of range). */
+caustics::Role RoleOf(const caustics::SceneData& scene, const caustics::Mesh& mesh)
+{
+  return mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size())
+    ? scene.Materials[mesh.material].role
+    : caustics::Role::None;
+}
+
+bool IsSpecular(caustics::Role role)
+{
+  return role == caustics::Role::Reflector || role == caustics::Role::Refractor;
+}
+
 struct Triangle
 {
   std::array<float, 9> corners; // three xyz
@@ -46,12 +59,7 @@ std::vector<Triangle> SpecularTriangles(const caustics::SceneData& scene)
   std::vector<Triangle> triangles;
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
-    if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.Materials.size()))
-    {
-      continue;
-    }
-    const caustics::Role role = scene.Materials[mesh.material].role;
-    if (role != caustics::Role::Reflector && role != caustics::Role::Refractor)
+    if (!IsSpecular(RoleOf(scene, mesh)))
     {
       continue;
     }
@@ -211,10 +219,7 @@ bool vtkCausticsSpecularHierarchy::Update(const caustics::SceneData& scene)
   key.reserve(scene.Meshes.size());
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
-    const int role = mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size())
-      ? static_cast<int>(scene.Materials[mesh.material].role)
-      : 0;
-    key.emplace_back(mesh.version, mesh.material, role);
+    key.emplace_back(mesh.version, mesh.material, static_cast<int>(RoleOf(scene, mesh)));
   }
   if (in.Built && key == in.Key)
   {
@@ -225,12 +230,8 @@ bool vtkCausticsSpecularHierarchy::Update(const caustics::SceneData& scene)
   in.NonConvex = 0;
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
-    const int role = mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size())
-      ? static_cast<int>(scene.Materials[mesh.material].role)
-      : 0;
-    const bool specular = role == static_cast<int>(caustics::Role::Reflector) ||
-      role == static_cast<int>(caustics::Role::Refractor);
-    in.NonConvex += specular && mesh.TriangleCount() > 0 && !IsConvex(mesh) ? 1 : 0;
+    in.NonConvex +=
+      IsSpecular(RoleOf(scene, mesh)) && mesh.TriangleCount() > 0 && !IsConvex(mesh) ? 1 : 0;
   }
   in.NodeCount = static_cast<vtkIdType>(nodes.size() / FloatsPerNode);
   in.TriangleCount = static_cast<vtkIdType>(triangles.size() / FloatsPerTriangle);

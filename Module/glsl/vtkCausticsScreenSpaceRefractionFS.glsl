@@ -405,6 +405,49 @@ vec3 Shade(ivec2 q)
   return background; // a surface hidden from VTK's view: not in any image
 }
 
+// Display colour at the point h of the opaque surface that pixel q shows: bilinear over
+// the four pixels around h's projection that show a surface of q's role through h's
+// neighbourhood (within a few pixel footprints of q's tangent plane), or q's own colour.
+// The reference shades the exact point; the nearest pixel shifted a tiled floor seen
+// through water by up to half a pixel.
+vec3 ShadeAt(vec3 h, ivec2 q)
+{
+  vec4 clip = worldToClip * vec4(h, 1.0);
+  if (!(clip.w > 0.0))
+  {
+    return Shade(q);
+  }
+  vec2 s = (clip.xy / clip.w * 0.5 + 0.5) * viewport - 0.5;
+  vec2 base = floor(s);
+  vec2 f = s - base;
+  vec4 normalRole = texelFetch(gNormal, q, 0);
+  vec3 n = normalize(normalRole.xyz);
+  float reach = 4.0 * clip.w * pixelScale + tolerance;
+  vec3 sum = vec3(0.0);
+  float weights = 0.0;
+  for (int j = 0; j < 2; ++j)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      ivec2 p = ivec2(base) + ivec2(i, j);
+      if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(viewport))))
+      {
+        continue;
+      }
+      vec4 there = texelFetch(gPosition, p, 0);
+      bool same = there.w >= 0.0 && texelFetch(gNormal, p, 0).w == normalRole.w &&
+        abs(dot(there.xyz - h, n)) < reach && distance(there.xyz, h) < 2.0 * reach;
+      float w = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      if (same && w > 0.0)
+      {
+        sum += w * Shade(p);
+        weights += w;
+      }
+    }
+  }
+  return weights > 0.0 ? sum / weights : Shade(q);
+}
+
 // The role, normal and material of a hit: the opaque G-buffer's at the march's
 // pixel (an impostor hit brings its own, from its map).
 void CompleteHit(inout March m)
@@ -660,7 +703,7 @@ vec3 TracePath(vec3 o, vec3 d, bool inside, int current, int next, vec3 absorpti
       ends = m.kind == MISS || (m.kind == OPAQUE && m.role != ROLE_REFLECTOR);
       if (m.kind == OPAQUE && m.role != ROLE_REFLECTOR)
       {
-        ending = m.pixel.x >= 0 ? Shade(m.pixel) : m.radiance;
+        ending = m.pixel.x >= 0 ? ShadeAt(x, m.pixel) : m.radiance;
       }
     }
     if (ends)

@@ -196,13 +196,16 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
 // mirrors traced as triangles"): ring 17.6 % (screen-space) and 18.5 % (caustic maps),
 // pool 29.9 %; with 8 interfaces a path (the default since then) the ring's further
 // mirror-to-mirror bounces leave the screen, where this view alone sees the
-// background: 18.9 and 19.5 %. Bounds just above.
+// background: 18.9 and 19.5 %. Since a hit on a surface the camera sees is shaded
+// bilinearly from the pixels around its projection (ShadeAt: the nearest pixel
+// shifted the pool's tiles by up to half a pixel): ring 17.8 and 18.1 %, pool 25.6 %.
+// Bounds just above.
 TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 {
   EXPECT_LT(SpecularError("ball-lens", "screen-space"), 0.275);
-  EXPECT_LT(SpecularError("ring", "screen-space"), 0.192);
-  EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.198);
-  EXPECT_LT(SpecularError("pool", "screen-space"), 0.302);
+  EXPECT_LT(SpecularError("ring", "screen-space"), 0.182);
+  EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.185);
+  EXPECT_LT(SpecularError("pool", "screen-space"), 0.26);
 }
 
 // The same with the distance impostors (paper 004, docs/technique-distance-impostors.md),
@@ -233,7 +236,8 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // Since the shadow test keeps the ring's floor at the wall's foot in the wall's shadow
 // (it was lit for a few centimetres, and the wall showed it): ring 13.5 % (impostors)
 // and 14.4 % (both); tracing the ring's triangles, 13.5 and 13.4 %. Pool 22.0 % both.
-// Bounds 0.14 and 0.225.
+// Shaded bilinearly where the camera sees the hit (ShadeAt): ring 12.0 and 11.8 %, pool
+// 17.9 and 17.9 %. Bounds 0.122 and 0.182.
 // The issue's 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -245,10 +249,10 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.14);
-  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.14);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.225);
-  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.225);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.122);
+  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.122);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.182);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.182);
   // The impostors' own refractor map (ExactSpecularGeometryOnConcaveGlass traces the
   // bunny's triangles, the default for a concave object).
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors, nullptr, nullptr, nullptr, nullptr,
@@ -263,18 +267,19 @@ TEST(SpecularAppearance, DistanceImpostors)
 // its own camera 42.5 % (42.5 %) against 72.0 % (54.3 %) with the layers; from
 // (-0.8, 1.5, 1.8) towards (0, 0.5, 0), 60 degrees, 28.3 % (28.3 %) against 105.8 %
 // (50.5 %). With 4 interfaces the traced paths ended dark inside the bunny (57.5 % on its
-// own camera). Bounds just above;
-// the layers must stay measurably worse (a trace that stops working fails the test).
+// own camera). Shaded bilinearly where the camera sees the hit (ShadeAt): 39.2 % (39.2 %)
+// and 22.6 %. Bounds just above; the layers must stay measurably worse (a trace that
+// stops working fails the test).
 TEST(SpecularAppearance, ExactSpecularGeometryOnConcaveGlass)
 {
   const int both = vtkCausticsRenderPass::BOTH;
   const int layers = vtkCausticsScreenSpaceRefraction::EXACT_OFF;
   const double up[3] = { 0.0, 1.0, 0.0 };
   const double eye[3] = { -0.8, 1.5, 1.8 }, focal[3] = { 0.0, 0.5, 0.0 };
-  EXPECT_LT(SpecularError("bunny", "screen-space", both), 0.43);
+  EXPECT_LT(SpecularError("bunny", "screen-space", both), 0.398);
   EXPECT_LT(SpecularError("bunny", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS),
-    0.43);
-  EXPECT_LT(SpecularError("bunny", "screen-space", both, eye, focal, up), 0.29);
+    0.398);
+  EXPECT_LT(SpecularError("bunny", "screen-space", both, eye, focal, up), 0.232);
   EXPECT_GT(SpecularError("bunny", "screen-space", both, nullptr, nullptr, nullptr, nullptr, true,
               Size, layers),
     0.65);
@@ -357,10 +362,10 @@ TEST(SpecularAppearance, CameraInsideTheGlass)
 {
   const double eye[3] = { 0.35, 3.4, 0.25 };
   EXPECT_LT(
-    SpecularError("ball-lens", "screen-space", vtkCausticsRenderPass::SCREEN_SPACE, eye), 0.175);
+    SpecularError("ball-lens", "screen-space", vtkCausticsRenderPass::SCREEN_SPACE, eye), 0.17);
   EXPECT_LT(
     SpecularError("ball-lens", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye),
-    0.075);
+    0.062);
 }
 
 // A camera under the pool's open water sheet (index 1.33, one surface at y ~ 1, its
@@ -375,23 +380,25 @@ TEST(SpecularAppearance, CameraInsideTheGlass)
 // down to a floor behind the camera, out of the view: they see the background (the
 // view's mean is 36 % under the reference's; the impostors' 4 % over it). The
 // impostor view follows the floor's tiles in the waves but blurs their reflection.
-// Bounds just above.
+// Since the water's triangles are traced (a sheet is not a convex solid) and hits the
+// camera sees are shaded bilinearly: 69.5 % and 27.4 %. Bounds just above.
 TEST(SpecularAppearance, CameraUnderTheWaterSheet)
 {
   const double eye[3] = { 0.5, 0.4, 0.8 }, focal[3] = { -0.4, 1.0, -0.6 },
                up[3] = { 0.0, 1.0, 0.0 };
   EXPECT_LT(
     SpecularError("pool", "screen-space", vtkCausticsRenderPass::SCREEN_SPACE, eye, focal, up),
-    0.71);
+    0.70);
   EXPECT_LT(SpecularError(
               "pool", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye, focal, up),
-    0.45);
+    0.28);
 }
 
 // A second framing, not designed around: low, near a corner, looking across the pool
 // at the far wall's waterline, mostly total internal reflection at grazing angles.
 // Measured, not bounded: 88.8 % before and 77.8 % after (screen-space view), 88.1 %
-// and 70.3 % (impostor view).
+// and 70.3 % (impostor view); 72.2 % and 56.5 % since the water's triangles are traced
+// and hits the camera sees are shaded bilinearly (2026-12-05).
 TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
 {
   const double eye[3] = { -1.4, 0.25, -1.2 }, focal[3] = { 1.5, 1.1, 1.0 },
@@ -419,7 +426,9 @@ TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
 // is unchanged). More samples per window trade it against the ring's sharp caustic
 // (CausticSamples 24: 15.5 %, 17.5 %, ring 19.9 %; 48: 14.9 %, 16.8 %, ring 20.0 %).
 // With the shadow out of the store (the maps' radiance shadowed by the shadow maps, the
-// store holding the photons alone): 15.6 % and 18.2 %. Bounds just above.
+// store holding the photons alone): 15.6 % and 18.2 %. Since the sheet's triangles are
+// traced and hits the camera sees are shaded bilinearly: below 21.4 % (screen-space)
+// and 13.2 % (impostors), above 15.2 % and 18.1 %. Bounds just above.
 TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 {
   const int screen = vtkCausticsRenderPass::SCREEN_SPACE;
@@ -428,14 +437,14 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
   const double below[3] = { 4.0, 0.6, 0.3 }, towardsTheSheet[3] = { 1.0, 1.0, 0.0 };
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", screen, below, towardsTheSheet, up,
               PopulateWideSheet),
-    0.23);
+    0.22);
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", impostors, below, towardsTheSheet,
               up, PopulateWideSheet),
-    0.16);
+    0.137);
   const double above[3] = { 4.0, 1.6, 0.3 }, origin[3] = { 0.0, 0.0, 0.0 };
   EXPECT_LT(SpecularError(
               "sheet, beside above", "screen-space", screen, above, origin, up, PopulateWideSheet),
-    0.16);
+    0.156);
   EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
               PopulateWideSheet),
     0.185);
@@ -452,8 +461,11 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 // peak: one pixel at 12 times the reference's). Relative L2, default settings, 128^2,
 // 60 degrees; before (scripts/specular-error-map.py --methods 2 --view-angle 60
 // --camera EYE:FOCAL, the same framings): 97.3 %, 59.7 %, 38.3 %, 65.0 %; reached:
-// 43.0 %, 32.7 %, 22.4 %, 26.1 %. Bounds just above. What is left on the pool is
-// grazing water 19 % too bright in both views (not looked into).
+// 43.0 %, 32.7 %, 22.4 %, 26.1 %; since the shadow test keeps the ring's floor at the
+// wall's foot in its shadow, the water's and the ring's triangles are traced and hits
+// the camera sees are shaded bilinearly (2026-12-05): 42.7 %, 30.3 %, 12.2 %, 20.5 %.
+// Bounds just above. What is left on the pool is grazing water 19 % too bright in both
+// views (not looked into).
 TEST(SpecularAppearance, CombinedViewWhereTheMarchPassesBehindASurface)
 {
   const int both = vtkCausticsRenderPass::BOTH;
@@ -465,10 +477,10 @@ TEST(SpecularAppearance, CombinedViewWhereTheMarchPassesBehindASurface)
     double bound;
   };
   const Framing framings[] = {
-    { "pool", { -5.0, 2.5, 1.0 }, { 0.0, 0.5, 0.0 }, 0.44 },
-    { "pool", { 4.0, 3.5, -4.0 }, { 0.0, 0.5, 0.0 }, 0.335 },
-    { "ring", { 3.0, 1.0, -2.0 }, { 0.0, 0.3, 0.0 }, 0.23 },
-    { "ring", { -1.5, 1.2, 2.8 }, { 0.3, 0.3, -0.2 }, 0.27 },
+    { "pool", { -5.0, 2.5, 1.0 }, { 0.0, 0.5, 0.0 }, 0.435 },
+    { "pool", { 4.0, 3.5, -4.0 }, { 0.0, 0.5, 0.0 }, 0.31 },
+    { "ring", { 3.0, 1.0, -2.0 }, { 0.0, 0.3, 0.0 }, 0.125 },
+    { "ring", { -1.5, 1.2, 2.8 }, { 0.3, 0.3, -0.2 }, 0.21 },
   };
   for (const Framing& f : framings)
   {
