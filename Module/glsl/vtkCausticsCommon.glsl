@@ -371,17 +371,23 @@ float CausticsSurfaceShadowBias(
   return 2.0 * texel * (1.0 + tangent) + 1e-5 * abs(distance);
 }
 
-// Whether a shadow map's occluder sample stands off the receiver's tangent plane (p, n on
-// the light's side) more steeply than the slope a smooth receiver's own samples reach
-// within a few texels (interpolated normals of coarse facets, curvature). A wall rising
-// from the floor stands at the light's elevation or steeper; n = 0: never.
+// Whether a shadow map's occluder sample (position, normal, the unit direction to the
+// light there) shadows the receiver point p (normal n on the light's side) although it
+// is within the bias: it stands off p's tangent plane more steeply than the slope a
+// smooth receiver's own samples reach within a few texels (interpolated normals of
+// coarse facets, curvature), and p lies behind the occluder's lit side. A wall rising
+// from the floor stands at the light's elevation or steeper; the floor in front of a
+// wall's lit face is not behind it, though a texel of its foot is nearer the light.
+// n = 0: never.
 #define CAUSTICS_CONTACT_SLOPE 0.25
-bool CausticsContactOccluder(vec3 occluder, vec3 p, vec3 n)
+bool CausticsContactOccluder(vec3 occluder, vec3 occluderNormal, vec3 toLight, vec3 p, vec3 n)
 {
   vec3 offset = occluder - p;
   float height = dot(offset, n);
   float lateral = length(offset - height * n);
-  return height > CAUSTICS_CONTACT_SLOPE * lateral + 1e-5 * length(p);
+  float noise = 1e-5 * length(p);
+  vec3 lit = dot(occluderNormal, toLight) < 0.0 ? -occluderNormal : occluderNormal;
+  return height > CAUSTICS_CONTACT_SLOPE * lateral + noise && dot(offset, lit) > noise;
 }
 
 // A light's shadow map (vtkCausticsLightBuffers aimed at the scene: world positions seen
@@ -424,11 +430,19 @@ float CausticsShadowVisibility(sampler2D shadowPosition, sampler2D shadowNormal,
       float nearer = occluder.w < 0.0
         ? -1.0
         : distance - CausticsLightDistance(occluder.xyz, lightType, origin, axis);
-      bool contact = nearer > 1e-5 * abs(distance) && CausticsContactOccluder(occluder.xyz, p, n);
+      // Within the bias, a surface point's candidate contact needs the occluder's normal.
+      bool candidate = nearer > 1e-5 * abs(distance) && nearer <= max(bias, refractorBias) &&
+        dot(n, n) > 0.0;
+      vec4 occluderNormal = candidate || nearer > min(bias, refractorBias)
+        ? texelFetch(shadowNormal, texelIndex, 0)
+        : vec4(0.0, 0.0, 0.0, -1.0);
+      vec3 toLight = lightType == 0 ? -axis : normalize(origin - occluder.xyz);
+      bool contact =
+        candidate && CausticsContactOccluder(occluder.xyz, occluderNormal.xyz, toLight, p, n);
       // The role only where an occluder may count (its texel read once, as before).
       int role = nearer <= min(bias, refractorBias) && !contact
         ? -1
-        : int(texelFetch(shadowNormal, texelIndex, 0).w + 0.5);
+        : int(occluderNormal.w + 0.5);
       if (nearer <= (role == ROLE_REFRACTOR ? refractorBias : bias) && !contact)
       {
         visibility += weight;

@@ -328,54 +328,95 @@ March MarchRay(vec3 o, vec3 d, int next, int current, float tLimit)
   }
   // Past tLimit the caller has its hit already (a specular triangle).
   t1 = min(t1, tLimit);
-  vec4 c0 = worldToClip * vec4(o + t0 * d, 1.0);
-  vec4 c1 = worldToClip * vec4(o + t1 * d, 1.0);
-  SspLine line;
-  line.start = vec4((c0.xy / c0.w * 0.5 + 0.5) * viewport, 1.0 / c0.w, t0);
-  line.end = vec4((c1.xy / c1.w * 0.5 + 0.5) * viewport, 1.0 / c1.w, t1);
-  vec2 span = abs(line.end.xy - line.start.xy);
-  int steps = int(clamp(ceil(max(span.x, span.y)), 1.0, max(viewport.x, viewport.y) + 1.0));
-  line.info = vec4(float(steps), 0.0, 0.0, 0.0);
+  // Where the march of a ray leaving a mirror ends at the scene's box on nothing, a
+  // second, short segment two pixel footprints past it: a ray that crosses the floor at
+  // the box's bottom next to the mirror's foot ends at the crossing, where its last
+  // sample projects onto the wall and sees nothing beyond. A hit found there must cross
+  // its surface's plane at the box's face (a floor's plane met past its edge, or far
+  // behind, is nothing). One loop, so that the march's code is compiled once.
+  bool extend = !result.leftView && t1 < tLimit;
+  float tBox = t1;
   int layers = int(ldiObjects[0].y);
   vec4 clipOrigin = worldToClip * vec4(o, 1.0);
   vec4 clipDirection = worldToClip * vec4(d, 0.0);
   vec2 depthLine = viewOrigin.w > 0.0 ? vec2(clipOrigin.w, clipDirection.w)
                                       : vec2(clipOrigin.z, clipDirection.z);
-  // One sample per pixel step, at the step's centre, and one at the segment's end;
-  // each is compared with the surfaces of the pixel it projects to. Inside a
-  // refractor too the march strides, and it also walks back where a surface it
-  // consults ends (the stride's sample has left the surface's outline, the ball's
-  // back layer at its rim): a crossing just before the outline would be missed.
-  int wasCovered = 0;
-  for (int coarse = 0; coarse < steps + MARCH_STRIDE; coarse += MARCH_STRIDE)
+  int firstSteps = 0;
+  bool inMargin = false;
+  for (int segment = 0; segment < 2 && result.kind == MISS; ++segment)
   {
-    int j = min(coarse, steps);
-    int covered;
-    bool hit = MarchSample(o, d, line, depthLine, j, steps, next, current, layers, result, covered);
-    if (hit || (wasCovered & ~covered) != 0)
+    if (segment == 1)
     {
-      // The first sample of the stride that meets a surface replaces the stride's.
-      bool earlier = false;
-      int unused;
-      for (int fine = max(j - MARCH_STRIDE + 1, 0); fine < j && !earlier; ++fine)
+      t0 = tBox;
+      t1 = tBox + tolerance + 2.0 * PixelFootprint(o + tBox * d);
+      if (!extend || !result.leaving || !SspClipToFrustum(worldToClip, o, d, t0, t1))
       {
-        earlier =
-          MarchSample(o, d, line, depthLine, fine, steps, next, current, layers, result, unused);
+        break;
       }
-      hit = hit || earlier;
     }
-    if (hit)
+    vec4 c0 = worldToClip * vec4(o + t0 * d, 1.0);
+    vec4 c1 = worldToClip * vec4(o + t1 * d, 1.0);
+    SspLine line;
+    line.start = vec4((c0.xy / c0.w * 0.5 + 0.5) * viewport, 1.0 / c0.w, t0);
+    line.end = vec4((c1.xy / c1.w * 0.5 + 0.5) * viewport, 1.0 / c1.w, t1);
+    vec2 span = abs(line.end.xy - line.start.xy);
+    int steps = int(clamp(ceil(max(span.x, span.y)), 1.0, max(viewport.x, viewport.y) + 1.0));
+    line.info = vec4(float(steps), 0.0, 0.0, 0.0);
+    firstSteps = segment == 0 ? steps : firstSteps;
+    // One sample per pixel step, at the step's centre, and one at the segment's end;
+    // each is compared with the surfaces of the pixel it projects to. Inside a
+    // refractor too the march strides, and it also walks back where a surface it
+    // consults ends (the stride's sample has left the surface's outline, the ball's
+    // back layer at its rim): a crossing just before the outline would be missed.
+    int wasCovered = 0;
+    for (int coarse = 0; coarse < steps + MARCH_STRIDE; coarse += MARCH_STRIDE)
     {
-      break;
+      int j = min(coarse, steps);
+      int covered;
+      bool hit =
+        MarchSample(o, d, line, depthLine, j, steps, next, current, layers, result, covered);
+      if (hit || (wasCovered & ~covered) != 0)
+      {
+        // The first sample of the stride that meets a surface replaces the stride's.
+        bool earlier = false;
+        int unused;
+        for (int fine = max(j - MARCH_STRIDE + 1, 0); fine < j && !earlier; ++fine)
+        {
+          earlier =
+            MarchSample(o, d, line, depthLine, fine, steps, next, current, layers, result, unused);
+        }
+        hit = hit || earlier;
+      }
+      if (hit)
+      {
+        break;
+      }
+      wasCovered = covered;
     }
-    wasCovered = covered;
+    inMargin = segment == 1 && result.kind != MISS;
   }
   // A ray that ends on nothing within the pixel or two it starts in, where it was taken
   // for leaving a surface, is one the screen cannot resolve: from a mirror's foot it
   // crosses the floor within the wall's own pixel, then leaves the scene under it.
   result.hidden = result.hidden ||
-    (result.kind == MISS && !result.leftView && result.leaving && steps <= 2);
+    (result.kind == MISS && !result.leftView && result.leaving && firstSteps <= 2);
+  if (inMargin && result.kind == OPAQUE)
+  {
+    // The surface's tangent plane, met at the box's face (within the margin before it).
+    vec3 p = texelFetch(gPosition, result.pixel, 0).xyz;
+    vec3 n = texelFetch(gNormal, result.pixel, 0).xyz;
+    float along = dot(d, n);
+    float crossing = abs(along) > 1e-4 ? dot(p - o, n) / along : -1.0;
+    float reach = tolerance + 2.0 * PixelFootprint(o + tBox * d);
+    inMargin = !(crossing > max(tBox - reach, 0.0) && crossing <= tBox + tolerance);
+  }
   RefineOpaqueHit(o, d, result);
+  if (inMargin)
+  {
+    result.kind = MISS;
+    result.t = 0.0;
+    result.hidden = false;
+  }
   SmoothHitNormal(o, d, result);
   return result;
 }

@@ -199,12 +199,15 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
 // background: 18.9 and 19.5 %. Since a hit on a surface the camera sees is shaded
 // bilinearly from the pixels around its projection (ShadeAt: the nearest pixel
 // shifted the pool's tiles by up to half a pixel): ring 17.8 and 18.1 %, pool 25.6 %.
+// Since a ray leaving a mirror that ends at the scene's box on nothing is marched two
+// pixel footprints further (next to the ring's foot it crosses the floor at the box's
+// bottom, where the march's last sample projected onto the wall): ring 12.9 and 13.4 %.
 // Bounds just above.
 TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 {
   EXPECT_LT(SpecularError("ball-lens", "screen-space"), 0.275);
-  EXPECT_LT(SpecularError("ring", "screen-space"), 0.182);
-  EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.185);
+  EXPECT_LT(SpecularError("ring", "screen-space"), 0.132);
+  EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.137);
   EXPECT_LT(SpecularError("pool", "screen-space"), 0.26);
 }
 
@@ -237,7 +240,10 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // (it was lit for a few centimetres, and the wall showed it): ring 13.5 % (impostors)
 // and 14.4 % (both); tracing the ring's triangles, 13.5 and 13.4 %. Pool 22.0 % both.
 // Shaded bilinearly where the camera sees the hit (ShadeAt): ring 12.0 and 11.8 %, pool
-// 17.9 and 17.9 %. Bounds 0.122 and 0.182.
+// 17.9 and 17.9 %. Since the contact shadow needs the receiver behind the occluder's
+// lit side (no shadow on the floor before a lit wall's foot), the ring's impostor view
+// 12.2 %; since the march of a ray leaving a mirror goes two pixel footprints past the
+// scene's box, the ring's combined view 9.7 %. Bounds just above.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -249,8 +255,8 @@ TEST(SpecularAppearance, DistanceImpostors)
   const int both = vtkCausticsRenderPass::BOTH;
   EXPECT_LT(SpecularError("ball-lens", "screen-space", impostors), 0.09);
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
-  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.122);
-  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.122);
+  EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.124);
+  EXPECT_LT(SpecularError("ring", "screen-space", both), 0.1);
   EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.182);
   EXPECT_LT(SpecularError("pool", "screen-space", both), 0.182);
   // The impostors' own refractor map (ExactSpecularGeometryOnConcaveGlass traces the
