@@ -104,8 +104,7 @@ constexpr caustics::Role MapGroup[vtkCausticsDistanceImpostors::NUMBER_OF_MAPS] 
 /** Whether a mesh's material has the given role. */
 bool HasRole(const caustics::SceneData& scene, const caustics::Mesh& mesh, caustics::Role role)
 {
-  return mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size()) &&
-    scene.Materials[mesh.material].role == role;
+  return caustics::MeshRole(scene, mesh) == role;
 }
 }
 
@@ -231,16 +230,7 @@ int vtkCausticsDistanceImpostors::GetNumberOfLayers() const
 bool vtkCausticsDistanceImpostors::SceneChanged(const caustics::SceneData& scene)
 {
   auto& in = *this->Internal;
-  std::vector<std::tuple<unsigned long, int, int>> key;
-  key.reserve(scene.Meshes.size());
-  for (const caustics::Mesh& mesh : scene.Meshes)
-  {
-    const int role = mesh.material >= 0 &&
-        mesh.material < static_cast<int>(scene.Materials.size())
-      ? static_cast<int>(scene.Materials[mesh.material].role)
-      : 0;
-    key.emplace_back(mesh.version, mesh.material, role);
-  }
+  std::vector<std::tuple<unsigned long, int, int>> key = caustics::MeshKey(scene);
   std::vector<double> lights;
   for (const caustics::Light& light : scene.Lights)
   {

@@ -31,14 +31,6 @@ float AsFloat(std::int32_t bits)
   return value;
 }
 
-/** A mesh's role (None where its material index is out of range). */
-caustics::Role RoleOf(const caustics::SceneData& scene, const caustics::Mesh& mesh)
-{
-  return mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size())
-    ? scene.Materials[mesh.material].role
-    : caustics::Role::None;
-}
-
 bool IsSpecular(caustics::Role role)
 {
   return role == caustics::Role::Reflector || role == caustics::Role::Refractor;
@@ -59,7 +51,7 @@ std::vector<Triangle> SpecularTriangles(const caustics::SceneData& scene)
   std::vector<Triangle> triangles;
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
-    if (!IsSpecular(RoleOf(scene, mesh)))
+    if (!IsSpecular(caustics::MeshRole(scene, mesh)))
     {
       continue;
     }
@@ -215,12 +207,7 @@ void vtkCausticsSpecularHierarchy::Build(
 bool vtkCausticsSpecularHierarchy::Update(const caustics::SceneData& scene)
 {
   auto& in = *this->Internal;
-  std::vector<std::tuple<unsigned long, int, int>> key;
-  key.reserve(scene.Meshes.size());
-  for (const caustics::Mesh& mesh : scene.Meshes)
-  {
-    key.emplace_back(mesh.version, mesh.material, static_cast<int>(RoleOf(scene, mesh)));
-  }
+  std::vector<std::tuple<unsigned long, int, int>> key = caustics::MeshKey(scene);
   if (in.Built && key == in.Key)
   {
     return true;
@@ -231,7 +218,7 @@ bool vtkCausticsSpecularHierarchy::Update(const caustics::SceneData& scene)
   for (const caustics::Mesh& mesh : scene.Meshes)
   {
     in.NonConvex +=
-      IsSpecular(RoleOf(scene, mesh)) && mesh.TriangleCount() > 0 && !IsConvex(mesh) ? 1 : 0;
+      IsSpecular(caustics::MeshRole(scene, mesh)) && mesh.TriangleCount() > 0 && !IsConvex(mesh) ? 1 : 0;
   }
   in.NodeCount = static_cast<vtkIdType>(nodes.size() / FloatsPerNode);
   in.TriangleCount = static_cast<vtkIdType>(triangles.size() / FloatsPerTriangle);

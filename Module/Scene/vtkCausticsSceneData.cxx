@@ -416,6 +416,24 @@ void OffsetLightView(LightView& view, double u, double v, int resolution)
   SetViewTransforms(view);
 }
 
+Role MeshRole(const SceneData& scene, const Mesh& mesh)
+{
+  return mesh.material >= 0 && mesh.material < static_cast<int>(scene.Materials.size())
+    ? scene.Materials[mesh.material].role
+    : Role::None;
+}
+
+std::vector<std::tuple<unsigned long, int, int>> MeshKey(const SceneData& scene)
+{
+  std::vector<std::tuple<unsigned long, int, int>> key;
+  key.reserve(scene.Meshes.size());
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    key.emplace_back(mesh.version, mesh.material, static_cast<int>(MeshRole(scene, mesh)));
+  }
+  return key;
+}
+
 bool LightReachesSpecular(const Light& light, const double specularBounds[6])
 {
   if (!(light.radiometric[0] > 0.0 || light.radiometric[1] > 0.0 || light.radiometric[2] > 0.0))

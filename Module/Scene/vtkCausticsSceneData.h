@@ -18,6 +18,7 @@
 #include <cstdint> // For std::uint32_t
 #include <memory>  // For std::shared_ptr
 #include <string>  // For std::string
+#include <tuple>   // For std::tuple
 #include <vector>  // For std::vector
 
 class vtkActor;
@@ -221,6 +222,15 @@ struct SceneData
  * SceneData::HasSpecular first.
  */
 bool LightReachesSpecular(const Light& light, const double specularBounds[6]);
+
+/** A mesh's role: its material's, Role::None where the material index is out of range. */
+Role MeshRole(const SceneData& scene, const Mesh& mesh);
+
+/**
+ * (version, material, role) of every mesh: two equal keys mean that no mesh's geometry,
+ * material index or role changed, which is what caches of the geometry compare.
+ */
+std::vector<std::tuple<unsigned long, int, int>> MeshKey(const SceneData& scene);
 
 /**
  * The angle in degrees at which light `index` meets the receivers beyond its

@@ -616,15 +616,23 @@ bool ExactSpecularHit(vec3 o, vec3 d, out March m)
   return found;
 }
 
-// The unit normal on d's side of hit m, as the reference takes it: the interpolated
-// normal on the face's side, or the face's own where the interpolated one would send
-// the mirrored ray into the surface (exact hits; otherwise both are the same).
+// The normals of hit m on d's side, as the reference's FacingNormals: the face decides
+// the side (exact hits; otherwise the interpolated normal is the face), `n` is the
+// interpolated normal turned to it.
+void FacingNormals(vec3 d, March m, out vec3 n, out vec3 face)
+{
+  face = m.exact ? m.geometric : m.normal;
+  bool front = dot(d, face) <= 0.0;
+  n = front ? m.normal : -m.normal;
+  face = front ? face : -face;
+}
+
+// The mirror normal of hit m for d: the interpolated one, or the face's own where the
+// interpolated one would send the mirrored ray into the surface.
 vec3 FacingNormal(vec3 d, March m)
 {
-  vec3 face = m.exact ? m.geometric : m.normal;
-  bool front = dot(d, face) <= 0.0;
-  vec3 n = front ? m.normal : -m.normal;
-  face = front ? face : -face;
+  vec3 n, face;
+  FacingNormals(d, m, n, face);
   return dot(d, n) >= 0.0 || dot(reflect(d, n), face) <= 0.0 ? face : n;
 }
 
@@ -634,10 +642,8 @@ vec3 FacingNormal(vec3 d, March m)
 bool ScatterDielectric(vec3 d, March m, float n1, float n2, out float reflectance,
   out vec3 reflected, out vec3 refracted)
 {
-  vec3 face = m.exact ? m.geometric : m.normal;
-  bool front = dot(d, face) <= 0.0;
-  vec3 n = front ? m.normal : -m.normal;
-  face = front ? face : -face;
+  vec3 n, face;
+  FacingNormals(d, m, n, face);
   bool transmits =
     CausticsDielectric(d, n, clamp(-dot(d, n), 0.0, 1.0), n1, n2, reflectance, reflected, refracted);
   if (m.exact &&
