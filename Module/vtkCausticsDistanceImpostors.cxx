@@ -125,6 +125,8 @@ struct vtkCausticsDistanceImpostors::Internals
   std::array<std::array<float, 16>, Faces> Rotation{};
   double Centre[NUMBER_OF_MAPS][3] = {};
   double Reach[NUMBER_OF_MAPS] = {}; // longest ray segment a search needs, m
+  // The box of the meshes each map draws: a ray that misses it meets nothing there.
+  double Content[NUMBER_OF_MAPS][6] = {};
   bool Made[NUMBER_OF_MAPS] = {};
   double ReflectorWinding = 0.0; // of the reflectors at their reference point
   // What the maps were made from: (version, material, role) per mesh, the lights'
@@ -274,6 +276,20 @@ void vtkCausticsDistanceImpostors::ChooseReferencePoints(const caustics::SceneDa
       }
     }
     in.Made[map] = box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5];
+    double content[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    for (const caustics::Mesh& mesh : scene.Meshes)
+    {
+      const int role = static_cast<int>(caustics::MeshRole(scene, mesh));
+      if (MapRoles[map] & vtkCausticsSceneGeometry::RoleBit(role))
+      {
+        caustics::GrowBounds(mesh, content);
+      }
+    }
+    const bool drawsSomething = content[0] <= content[1];
+    for (int k = 0; k < 6; ++k)
+    {
+      in.Content[map][k] = drawsSomething ? content[k] : (k % 2 ? -1.0 : 1.0); // min > max: none
+    }
     double groupDiagonal = 0.0;
     double thinnest = 1e300;
     for (int a = 0; a < 3 && in.Made[map]; ++a)
@@ -497,6 +513,11 @@ void vtkCausticsDistanceImpostors::SetUniforms(
       static_cast<float>(c[1]), static_cast<float>(c[2]));
     program->SetUniformf(("impostorReach" + index).c_str(), static_cast<float>(in.Reach[map]));
     program->SetUniformi(("impostorValid" + index).c_str(), in.Made[map] ? 1 : 0);
+    const double* box = in.Content[map];
+    program->SetUniform3f(("impostorContentMin" + index).c_str(), static_cast<float>(box[0]),
+      static_cast<float>(box[2]), static_cast<float>(box[4]));
+    program->SetUniform3f(("impostorContentMax" + index).c_str(), static_cast<float>(box[1]),
+      static_cast<float>(box[3]), static_cast<float>(box[5]));
   }
 }
 

@@ -10,6 +10,8 @@ uniform mat4 impostorFaceRotation[6]; // points relative to the reference point 
 uniform vec3 impostorCentre[4];       // reference points, m
 uniform float impostorReach[4];       // longest segment a search of the map needs, m
 uniform int impostorValid[4];         // 1: the map exists
+uniform vec3 impostorContentMin[4];   // the box of the meshes a map draws (min > max: none)
+uniform vec3 impostorContentMax[4];
 uniform int impostorResolution;
 uniform int impostorLinearSteps;
 uniform int impostorSecantSteps;
@@ -182,7 +184,18 @@ bool ImpostorSearch(int map, vec3 o, vec3 d, vec3 boxMin, vec3 boxMax, float tol
   float t1 = impostorReach[map];
   t = t1;
   texel = ivec3(0);
-  return CausticsClipToBox(o, d, boxMin - vec3(tolerance), boxMax + vec3(tolerance), t0, t1) &&
+  // A ray that misses the box of what the map draws meets nothing in it (the ball's
+  // reflections of the sky): no search.
+  float c0 = 0.0;
+  float c1 = t1;
+  bool content = all(lessThanEqual(impostorContentMin[map], impostorContentMax[map]));
+  vec3 margin =
+    vec3(tolerance) + 1e-4 * (content ? impostorContentMax[map] - impostorContentMin[map] : vec3(0.0));
+  return content &&
+    CausticsClipToBox(o, d, boxMin - vec3(tolerance), boxMax + vec3(tolerance), t0, t1) &&
+    CausticsClipToBox(o, d, impostorContentMin[map] - margin, impostorContentMax[map] + margin,
+      c0, c1) &&
+    c1 >= max(t0, tolerance) && c0 <= t1 &&
     ImpostorHit(map, o, d, max(t0, tolerance), t1, t, texel);
 }
 
@@ -381,6 +394,10 @@ vec3 ImpostorCausticIrradiance(ivec3 texel, float minimumWidth)
       break;
     }
   }
+  // The fine window's own evidence, kept to check the coarse level against.
+  vec3 fineCounts = counts;
+  float fineSamples = samples;
+  float fineArea = area;
   if (samples < float(impostorCausticSamples) && impostorCausticCells > 0)
   {
     // Too few deposits within the fine window (light spread thin over a receiver the
@@ -415,6 +432,17 @@ vec3 ImpostorCausticIrradiance(ivec3 texel, float minimumWidth)
         break;
       }
     }
+  }
+  // The coarse cells average whatever lies around: at a shadow's edge (the floor under
+  // a pool's wall, lit on one side) they carry the lit side's light into the shadow.
+  // Their density would put `expected` deposits in the fine window; far fewer there
+  // (beyond two standard deviations of a Poisson count) says the light ends there, and
+  // the fine window's own estimate, dark or dim, stands.
+  float expected = area > 0.0 ? samples * fineArea / area : 0.0;
+  if (fineArea > 0.0 && fineSamples < float(impostorCausticSamples) &&
+    fineSamples < expected - 2.0 * sqrt(expected))
+  {
+    return fineCounts * impostorCausticUnit / fineArea;
   }
   return area > 0.0 ? counts * impostorCausticUnit / area : vec3(0.0);
 }

@@ -243,7 +243,8 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // 17.9 and 17.9 %. Since the contact shadow needs the receiver behind the occluder's
 // lit side (no shadow on the floor before a lit wall's foot), the ring's impostor view
 // 12.2 %; since the march of a ray leaving a mirror goes two pixel footprints past the
-// scene's box, the ring's combined view 9.7 %. Bounds just above.
+// scene's box, the ring's combined view 9.7 %; with the caustic store's shadow edges
+// kept (ImpostorCausticIrradiance), the pool 17.8 and 17.9 %. Bounds just above.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -257,8 +258,8 @@ TEST(SpecularAppearance, DistanceImpostors)
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
   EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.124);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.1);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.182);
-  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.182);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.18);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.18);
   // The impostors' own refractor map (ExactSpecularGeometryOnConcaveGlass traces the
   // bunny's triangles, the default for a concave object).
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors, nullptr, nullptr, nullptr, nullptr,
@@ -387,7 +388,8 @@ TEST(SpecularAppearance, CameraInsideTheGlass)
 // view's mean is 36 % under the reference's; the impostors' 4 % over it). The
 // impostor view follows the floor's tiles in the waves but blurs their reflection.
 // Since the water's triangles are traced (a sheet is not a convex solid) and hits the
-// camera sees are shaded bilinearly: 69.5 % and 27.4 %. Bounds just above.
+// camera sees are shaded bilinearly: 69.5 % and 27.4 %; with the caustic store's shadow
+// edges kept (ImpostorCausticIrradiance), 27.1 %. Bounds just above.
 TEST(SpecularAppearance, CameraUnderTheWaterSheet)
 {
   const double eye[3] = { 0.5, 0.4, 0.8 }, focal[3] = { -0.4, 1.0, -0.6 },
@@ -397,7 +399,7 @@ TEST(SpecularAppearance, CameraUnderTheWaterSheet)
     0.70);
   EXPECT_LT(SpecularError(
               "pool", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS, eye, focal, up),
-    0.28);
+    0.275);
 }
 
 // A second framing, not designed around: low, near a corner, looking across the pool
@@ -469,7 +471,9 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 // --camera EYE:FOCAL, the same framings): 97.3 %, 59.7 %, 38.3 %, 65.0 %; reached:
 // 43.0 %, 32.7 %, 22.4 %, 26.1 %; since the shadow test keeps the ring's floor at the
 // wall's foot in its shadow, the water's and the ring's triangles are traced and hits
-// the camera sees are shaded bilinearly (2026-12-05): 42.7 %, 30.3 %, 12.2 %, 20.5 %.
+// the camera sees are shaded bilinearly (2026-12-05): 42.7 %, 30.3 %, 12.2 %, 20.5 %;
+// since the caustic store's coarse cells no longer carry a lit floor's light into the
+// shadow beside it (ImpostorCausticIrradiance): 41.3 %, 30.3 %, 11.3 %, 18.8 %.
 // Bounds just above. What is left on the pool is grazing water 19 % too bright in both
 // views (not looked into).
 TEST(SpecularAppearance, CombinedViewWhereTheMarchPassesBehindASurface)
@@ -483,10 +487,10 @@ TEST(SpecularAppearance, CombinedViewWhereTheMarchPassesBehindASurface)
     double bound;
   };
   const Framing framings[] = {
-    { "pool", { -5.0, 2.5, 1.0 }, { 0.0, 0.5, 0.0 }, 0.435 },
+    { "pool", { -5.0, 2.5, 1.0 }, { 0.0, 0.5, 0.0 }, 0.42 },
     { "pool", { 4.0, 3.5, -4.0 }, { 0.0, 0.5, 0.0 }, 0.31 },
-    { "ring", { 3.0, 1.0, -2.0 }, { 0.0, 0.3, 0.0 }, 0.125 },
-    { "ring", { -1.5, 1.2, 2.8 }, { 0.3, 0.3, -0.2 }, 0.21 },
+    { "ring", { 3.0, 1.0, -2.0 }, { 0.0, 0.3, 0.0 }, 0.118 },
+    { "ring", { -1.5, 1.2, 2.8 }, { 0.3, 0.3, -0.2 }, 0.195 },
   };
   for (const Framing& f : framings)
   {
