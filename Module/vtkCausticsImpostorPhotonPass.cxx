@@ -14,7 +14,10 @@
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h" // TextureUnits
+#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsSpecularHierarchy.h"
+#include "vtkCausticsSpecularTrace.h" // Glass and mirror triangles (shared)
 #include "vtkCausticsTimings.h"
 #include "vtkObjectFactory.h"
 #include "vtkTextureObject.h"
@@ -61,8 +64,8 @@ vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
 {
   auto& s = *this->Internal;
   s.Program->SetName("impostor photon trace");
-  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon + vtkCausticsImpostorCommon +
-    vtkCausticsImpostorPhotonTraceCS;
+  const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
+    vtkCausticsImpostorCommon + vtkCausticsSpecularTrace + vtkCausticsImpostorPhotonTraceCS;
   s.Program->SetComputeSource(source.c_str());
   s.Spread->SetName("impostor photon spread");
   s.Spread->SetComputeSource(vtkCausticsImpostorPhotonSpreadCS);
@@ -191,6 +194,12 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
     s.Program->SetUniformf("tolerance", static_cast<float>(1e-5 * in.Scene->Scale()));
     s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
     s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+    // Glass and mirrors traced as triangles where the camera view traces them (the
+    // stage's ExactSpecularGeometry: by default where one is not a convex solid).
+    vtkCausticsScreenSpaceRefraction* cameraView = this->GetScreenSpaceRefraction();
+    const bool exact = cameraView->WillTraceSpecularGeometry(*in.Scene);
+    s.Program->SetUniformi("exactSpecular", exact ? 1 : 0);
+    cameraView->GetSpecularHierarchy()->Bind(s.Program);
     caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
     s.Program->DispatchCovering2D(emitted.Width, emitted.Height, 8, 8);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -41,10 +41,15 @@
  *    vtkCausticsDistanceImpostors::BeginCaustic); the shared camera view shades
  *    such hits with albedo x (the map's direct irradiance + that net caustic
  *    irradiance, flux over the texel's area on the surface).
+ * Where the camera view traces glass and mirrors as triangles (the base pass's
+ * GetScreenSpaceRefraction()->ExactSpecularGeometry: by default where one is not a
+ * convex solid), the photons do too (vtkCausticsSpecularHierarchy): every specular
+ * surface is the nearest triangle, the maps give the receivers around them.
  * Limits: one reference point per map, so surfaces hidden from it are missed
- * (vtkCausticsDistanceImpostors), as are the insides of non-convex refractors; a
- * photon that leaves a refractor does not meet that refractor again (its environment
- * map does not hold it), nor a mirror the mirror it left; the caustic store is a
+ * (vtkCausticsDistanceImpostors); against the maps alone (convex solids, or that
+ * setting off), so are the insides of non-convex refractors, and a photon that leaves
+ * a refractor does not meet that refractor again (its environment map does not hold
+ * it), nor a mirror the mirror it left; the caustic store is a
  * histogram of one cube-map texel's resolution and counts in 1/4096 of the first
  * light's largest photon flux.
  */

@@ -21,6 +21,10 @@
 //    positions, so the receiver need not be in the camera's or the light's view;
 // The caustic store is filled from the landed records afterwards by the shared
 // stage of every technique (glsl/vtkCausticsCausticStoreCS.glsl).
+// Where glass and mirrors are traced as triangles (exactSpecular, as the camera view:
+// some specular mesh is not a convex solid), every specular surface comes from the
+// triangles (SpecularTrace) and the maps give only what lies around them: a photon
+// inside a bunny meets its ears, and one that leaves glass may meet it again.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform sampler2D emitPosition;  // xyz, w = 0 none, 1 in air, 2 inside a refractor
@@ -42,6 +46,7 @@ uniform vec3 boundsMax;
 uniform float tolerance; // m: a search starts this far from its surface
 uniform int maximumEvents;
 uniform float spacings; // kernel radius in photon spacings
+uniform int exactSpecular; // 1: glass and mirrors traced as triangles (SpecularTrace)
 
 layout(rgba32f, binding = 0) uniform writeonly image2D outPosition;
 layout(rgba32f, binding = 1) uniform writeonly image2D outNormal;
@@ -62,17 +67,39 @@ void NoPhoton(ivec2 g)
 // environment's. A closed refractor resting on a floor meets the floor exactly where
 // it leaves, and the environment map there is not consulted: a photon at its
 // bottom face leaves it (or is reflected back in) as physics says. `bounces`: the
-// mirror-to-mirror reflections in a row so far.
-bool NextSurface(
-  vec3 o, vec3 d, bool inside, int leftRole, int bounces, out float t, out ivec3 texel)
+// mirror-to-mirror reflections in a row so far. With exactSpecular, glass and mirrors
+// are the triangles' alone (a map's specular texel shows the same surface less
+// exactly), and the nearer of the triangle and the map's receiver is the hit.
+struct PhotonHit
 {
-  if (inside &&
-    ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, t, texel))
+  float t;
+  ivec3 texel;          // the map's texel (not exact)
+  bool exact;           // a traced triangle
+  SpecularHit triangle; // exact: the triangle's material and normals
+};
+
+bool NextSurface(vec3 o, vec3 d, bool inside, int leftRole, int bounces, out PhotonHit hit)
+{
+  bool traced = exactSpecular != 0 && SpecularTrace(o, d, tolerance, 3.0e38, hit.triangle);
+  float t = 3.0e38;
+  ivec3 texel = ivec3(0);
+  bool found = exactSpecular == 0 && inside &&
+    ImpostorSearch(IMPOSTOR_REFRACTOR_SURFACE, o, d, boundsMin, boundsMax, tolerance, t, texel);
+  // Traced, the mirrors meet themselves through their triangles: their own map is not
+  // searched (its texel would hide the receiver the environment map holds beyond).
+  int selfBounces = exactSpecular != 0 ? impostorReflectorBounces : bounces;
+  found = found ||
+    ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, selfBounces, boundsMin,
+      boundsMax, tolerance, t, texel);
+  if (found && exactSpecular != 0)
   {
-    return true;
+    int role = int(texelFetch(impostorNormal, texel, 0).w + 0.5);
+    found = role != ROLE_REFLECTOR && role != ROLE_REFRACTOR;
   }
-  return ImpostorEnvironmentSearch(o, d, inside ? ROLE_REFRACTOR : leftRole, bounces, boundsMin,
-    boundsMax, tolerance, t, texel);
+  hit.exact = traced && (!found || hit.triangle.t <= t + tolerance);
+  hit.t = hit.exact ? hit.triangle.t : t;
+  hit.texel = texel;
+  return hit.exact || found;
 }
 
 void main()
@@ -112,22 +139,35 @@ void main()
 
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
-    float t;
-    ivec3 texel;
-    if (!NextSurface(o, d, inside, leftRole, bounces, t, texel))
+    PhotonHit hit;
+    if (!NextSurface(o, d, inside, leftRole, bounces, hit))
     {
       break;
     }
+    float t = hit.t;
     vec3 h = o + t * d;
-    vec4 surface = texelFetch(impostorPosition, texel, 0);
-    vec4 normalRole = texelFetch(impostorNormal, texel, 0);
-    int material = int(surface.w + 0.5);
-    int role = int(normalRole.w + 0.5);
-    if (!(dot(normalRole.xyz, normalRole.xyz) > 0.0))
+    int material;
+    int role;
+    vec3 n;
+    if (hit.exact)
     {
-      break;
+      material = hit.triangle.material;
+      role = int(causticsMaterials[material].albedoRole.a + 0.5);
+      n = CausticsTriangleNormal(
+        d, hit.triangle.shading, hit.triangle.geometric, causticsMaterials[material], role);
     }
-    vec3 n = ImpostorSmoothNormal(texel.z / 6, h, texel);
+    else
+    {
+      vec4 surface = texelFetch(impostorPosition, hit.texel, 0);
+      vec4 normalRole = texelFetch(impostorNormal, hit.texel, 0);
+      material = int(surface.w + 0.5);
+      role = int(normalRole.w + 0.5);
+      if (!(dot(normalRole.xyz, normalRole.xyz) > 0.0))
+      {
+        break;
+      }
+      n = ImpostorSmoothNormal(hit.texel.z / 6, h, hit.texel);
+    }
     if (inside)
     {
       // Beer-Lambert over the chord, with the refractor's own absorption (the
@@ -145,6 +185,9 @@ void main()
     if (role == ROLE_REFLECTOR || role == ROLE_REFRACTOR)
     {
       bounces = role == ROLE_REFLECTOR && leftRole == ROLE_REFLECTOR ? bounces + 1 : 0;
+      // A traced triangle's face tells the side (a closed mesh's inside), as in the
+      // camera view; otherwise the photon's own count of crossings does.
+      inside = hit.exact && role == ROLE_REFRACTOR ? dot(d, hit.triangle.geometric) > 0.0 : inside;
       bool wasInside = inside;
       float u = stratified ? CausticsGridStratified(g, rotation) : CausticsRandom(rng);
       stratified = false;

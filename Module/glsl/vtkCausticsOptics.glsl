@@ -113,6 +113,22 @@ CausticsInteraction CausticsSurfaceInteraction(
   return s;
 }
 
+// The normal a photon's interaction at a traced triangle takes (glass and mirrors traced
+// as triangles, vtkCausticsSpecularTrace.glsl), as the reference's rules and the camera
+// view's (ScatterDielectric): the face (`geometric`, on the side of the interpolated
+// normal) decides which side d arrives on, and the interpolated normal `shading`
+// shades, unless it takes the other side or would send a direction out on the wrong
+// side of the face (a grazing ray at a coarse facet); then the face's own.
+vec3 CausticsTriangleNormal(vec3 d, vec3 shading, vec3 geometric, CausticsMaterial material, int role)
+{
+  bool entering = dot(d, geometric) < 0.0;
+  vec3 face = entering ? geometric : -geometric; // towards where d comes from
+  CausticsInteraction s = CausticsSurfaceInteraction(d, shading, material, role, 1.0);
+  bool fine = s.entering == entering && dot(s.reflected, face) > 0.0 &&
+    (!s.transmits || role != ROLE_REFRACTOR || dot(s.refracted, face) < 0.0);
+  return fine ? shading : geometric;
+}
+
 // A photon's specular event followed as one branch (Russian roulette): reflection
 // or refraction, chosen by the uniform number u with its share of the exact Fresnel
 // weights, the flux divided by that probability so that the estimate stays
