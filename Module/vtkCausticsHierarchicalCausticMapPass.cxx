@@ -5,6 +5,7 @@
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsPhotonBuffer.h"
+#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonGrid.h"
@@ -305,6 +306,11 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     // Where each photon lands.
     this->BeginStage("hcm trace");
     light.Photons->SetHiddenReceivers(hidden ? light.HiddenMap->GetReceivers(0) : nullptr);
+    // Concave glass traced as triangles, where the camera view traces it.
+    vtkCausticsScreenSpaceRefraction* cameraView = this->GetScreenSpaceRefraction();
+    light.Photons->SetTracedSpecularGeometry(cameraView->WillTraceSpecularGeometry(scene)
+        ? cameraView->GetSpecularHierarchy()
+        : nullptr);
     light.Traced = light.Traced &&
       light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
         light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid,

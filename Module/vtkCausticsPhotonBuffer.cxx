@@ -9,6 +9,7 @@
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsVolumeSegmentList.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -19,6 +20,7 @@
 #include "vtkCausticsPhotonBufferCommon.h"
 #include "vtkCausticsPhotonBufferHierarchyArgumentsCS.h"
 #include "vtkCausticsPhotonBufferTraceCS.h"
+#include "vtkCausticsSpecularTrace.h"
 #include "vtkCausticsVolumeLinesCommon.h"
 
 #include <algorithm>
@@ -56,6 +58,7 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   const caustics::gl::MediumBuffer* MediumGrid = nullptr;    // the medium's density, if any
   caustics::gl::VolumeSegmentList* VolumeSegments = nullptr; // phase 2 appends, when on
   bool InsideAppends = false; // phase 1 appends too (the medium fills the refractors)
+  const vtkCausticsSpecularHierarchy* Traced = nullptr; // glass as triangles, or null
   vtkTextureObject* Inputs[13] = { nullptr };
 };
 
@@ -98,6 +101,11 @@ void SetTraceUniforms(
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
   program->SetUniformi("maximumInternalEvents", trace.Settings->MaximumInternalEvents);
   program->SetUniformi("marchSteps", trace.Settings->MarchSteps);
+  program->SetUniformi("exactSpecular", trace.Traced ? 1 : 0);
+  if (trace.Traced)
+  {
+    trace.Traced->Bind(program);
+  }
   caustics::gl::SetMediumUniforms(program, *trace.Scene, trace.MediumGrid);
   program->SetUniformf("chordLength", static_cast<float>(trace.ChordLength));
   program->SetUniformf("airLength", static_cast<float>(trace.AirLength));
@@ -171,7 +179,7 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   this->BackLayer->AlbedoOff();
   this->ReflectorLayer->AlbedoOff();
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
-    vtkCausticsVolumeLinesCommon + vtkCausticsPhotonBufferTraceCS;
+    vtkCausticsVolumeLinesCommon + vtkCausticsSpecularTrace + vtkCausticsPhotonBufferTraceCS;
   this->SortProgram->SetName("photon buffer: sort");
   this->SortProgram->SetDefine("PHASE", 0);
   this->SortProgram->SetComputeSource(source.c_str());
@@ -272,6 +280,7 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   this->DescribeTrace(settings, scene, grid, photonView, mapView, receivers, trace);
   // Photons follow a heterogeneous medium's density (the programs compile it in).
   trace.MediumGrid = mediumGrid;
+  trace.Traced = this->TracedSpecular;
   for (vtkCausticsShaderProgram* phase : { this->SortProgram.GetPointer(),
          this->InsideProgram.GetPointer(), this->AirProgram.GetPointer() })
   {

@@ -57,6 +57,7 @@
 #include <memory>  // For std::unique_ptr
 
 class vtkCausticsGBuffer;
+class vtkCausticsSpecularHierarchy;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
 class vtkOpenGLRenderWindow;
@@ -126,6 +127,18 @@ public:
    */
   void SetHiddenReceivers(vtkCausticsGBuffer* hidden) { this->HiddenReceivers = hidden; }
 
+  /**
+   * Glass traced as triangles inside the refractors (vtkCausticsSpecularHierarchy, as
+   * the camera view traces it): a photon inside leaves through the triangle it meets,
+   * with that face telling the side, instead of through the light's nearest and
+   * farthest refractor layers (which a concave refractor does not fit). Null (the
+   * default): the layers. Not owned; it must stay alive through Trace().
+   */
+  void SetTracedSpecularGeometry(vtkCausticsSpecularHierarchy* traced)
+  {
+    this->TracedSpecular = traced;
+  }
+
   /** GPU counters of the last Render(); flux in W summed over RGB. */
   struct Statistics
   {
@@ -187,6 +200,7 @@ protected:
   vtkNew<vtkCausticsGBuffer> BackLayer;
   vtkNew<vtkCausticsGBuffer> ReflectorLayer; // mirrors as the caustic map's view sees them
   vtkCausticsGBuffer* HiddenReceivers = nullptr; // not owned (SetHiddenReceivers)
+  vtkCausticsSpecularHierarchy* TracedSpecular = nullptr; // not owned (SetTracedSpecularGeometry)
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;

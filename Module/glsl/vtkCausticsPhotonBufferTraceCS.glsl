@@ -68,6 +68,7 @@ uniform float airLength;   // longest straight path through the scene (m)
 uniform vec3 receiverLow;  // the receivers' bounds, slightly enlarged
 uniform vec3 receiverHigh;
 uniform float fluxUnit;    // W per statistics unit
+uniform int exactSpecular; // 1: inside, the glass's triangles (SpecularTrace), not the slab
 
 // The photon buffer, also the hand-over between the two phases (PHASE 0 inside
 // refractors, PHASE 1 in air; two programs, so that each stays small): after
@@ -489,24 +490,42 @@ void main()
 bool InsideStretch(inout vec3 p, vec3 d, inout vec3 flux, out float t, out float reflectance,
   out vec3 mirrored, out vec3 refracted, out bool transmits)
 {
-  int kind;
   vec3 n;
-  if (!SlabExit(p, d, t, kind, n))
+  float material;
+  if (exactSpecular != 0)
   {
-    return false;
+    // The glass's triangles: the one the photon meets, its normal by the face's rules
+    // (CausticsTriangleNormal). A start on the surface it stands on is skipped.
+    SpecularHit hit;
+    if (!SpecularTrace(p, d, 1e-4 * chordLength, 3.0e38, hit))
+    {
+      return false;
+    }
+    t = hit.t;
+    material = float(hit.material);
+    n = CausticsTriangleNormal(
+      d, hit.shading, hit.geometric, causticsMaterials[hit.material], ROLE_REFRACTOR);
+  }
+  else
+  {
+    int kind;
+    if (!SlabExit(p, d, t, kind, n))
+    {
+      return false;
+    }
+    vec3 x = p + t * d;
+    vec3 s, nearest;
+    bool onLayer = kind == 2
+      ? LayerAt(photonView, frontPosition, frontNormal, x, s, nearest, material)
+      : LayerAt(photonView, backPosition, backNormal, x, s, nearest, material);
+    if (!onLayer)
+    {
+      // The silhouette: the material of the last texel inside.
+      LayerAt(photonView, backPosition, backNormal,
+        p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
+    }
   }
   vec3 x = p + t * d;
-  vec3 s, nearest;
-  float material;
-  bool onLayer = kind == 2
-    ? LayerAt(photonView, frontPosition, frontNormal, x, s, nearest, material)
-    : LayerAt(photonView, backPosition, backNormal, x, s, nearest, material);
-  if (!onLayer)
-  {
-    // The silhouette: the material of the last texel inside.
-    LayerAt(photonView, backPosition, backNormal,
-      p + max(t - ViewTexelSize(photonView, p), 0.0) * d, s, nearest, material);
-  }
   int refractor = max(int(material + 0.5), 0);
   CausticsMaterial medium = causticsMaterials[refractor];
   // The participating medium when it fills the refractors (its volume caustic and

@@ -172,17 +172,20 @@ TEST(CausticMapReference, RingAtTheDefaultPhotons)
 
 TEST(CausticMapReference, Bunny)
 {
-  // A glass bunny under a spot light in a Cornell box: the refractor is taken as
-  // the slab between its front and back faces seen from the light, the caustic
-  // map sees only the spot's cone (the light reflected onto the ceiling and the
-  // upper walls is lost), and photons trapped inside after 8 interfaces are
-  // dropped. Measured: relative L2 53.8 %, flux ratio 0.652, peak 1 px off (59.8 %
-  // before the splats' floor of one camera pixel footprint, MinimumCameraSplatRadius).
+  // A glass bunny under a spot light in a Cornell box: the bunny is not a convex
+  // solid, so photons inside leave through its triangles (the camera view's
+  // hierarchy); the caustic map sees only the spot's cone (the light reflected onto
+  // the ceiling and the upper walls is lost), a photon that left does not meet the
+  // bunny again, and photons trapped inside after 8 interfaces are dropped.
+  // Measured: relative L2 49.7 %, flux ratio 0.780, peak 1 px off; with the refractor
+  // taken as the slab between its front and back faces seen from the light, 53.8 %
+  // and 0.652 (59.8 % before the splats' floor of one camera pixel footprint,
+  // MinimumCameraSplatRadius).
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(Compare("bunny", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.55);
-  EXPECT_GT(metrics->GetFluxRatio(), 0.63);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.505);
+  EXPECT_GT(metrics->GetFluxRatio(), 0.77);
   EXPECT_LT(metrics->GetFluxRatio(), 1.0);
 }
 
