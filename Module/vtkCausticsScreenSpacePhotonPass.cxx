@@ -11,8 +11,10 @@
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceLineTracer.h"
+#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
 #include "vtkCausticsVolumeLines.h"
@@ -33,6 +35,7 @@
 #include "vtkCausticsScreenSpacePhotonPassShadowCS.h"
 #include "vtkCausticsScreenSpacePhotonPassTransferCS.h"
 #include "vtkCausticsScreenSpaceVolumeSegmentsCS.h"
+#include "vtkCausticsSpecularTrace.h"
 #include "vtkCausticsVolumeLinesCommon.h"
 
 #include <algorithm>
@@ -146,7 +149,8 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   in.InitialProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   in.TransferProgram->SetName("ssp specular transfer");
   in.TransferProgram->SetComputeSource(
-    (optics + common + vtkCausticsScreenSpacePhotonPassTransferCS).c_str());
+    (optics + common + vtkCausticsSpecularTrace + vtkCausticsScreenSpacePhotonPassTransferCS)
+      .c_str());
   in.RadiusProgram->SetName("ssp splat radius");
   in.RadiusProgram->SetComputeSource(vtkCausticsScreenSpacePhotonPassRadiusCS);
   in.RadiusProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
@@ -334,6 +338,15 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   caustics::gl::SetMediumUniforms(p, scene, f.MediumGrid);
   p->SetUniformu(
     "seed", 0x9e3779b9u * static_cast<unsigned int>(bounce + 1) + static_cast<unsigned int>(light));
+  // Glass and mirrors traced as triangles where the camera view traces them.
+  vtkCausticsScreenSpaceRefraction* cameraView = this->GetScreenSpaceRefraction();
+  const bool exact = cameraView->WillTraceSpecularGeometry(scene);
+  p->SetUniformi("exactSpecular", exact ? 1 : 0);
+  p->SetUniformf("tolerance", static_cast<float>(1e-5 * scene.Scale()));
+  // Inside traced glass, interfaces within one bounce, up to the reference's 8 events
+  // a path (vtkCausticsReferenceRenderer::MaxBounces).
+  p->SetUniformi("maxPathEvents", 8);
+  cameraView->GetSpecularHierarchy()->Bind(p);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Tracer->GetArgumentBuffer());
   glDispatchComputeIndirect(0);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -18,7 +18,12 @@
  * 4. specular transfer (§2.3): photons that hit reflectors or refractors are
  *    reflected or refracted (exact Fresnel, total internal reflection) into the
  *    next transfer map; steps 3-4 repeat for up to MaximumBounces specular events.
- *    Photons end at the first receiver they meet, so caustics are shadowed (§1.2);
+ *    Photons end at the first receiver they meet, so caustics are shadowed (§1.2).
+ *    Where the camera view traces glass and mirrors as triangles
+ *    (GetScreenSpaceRefraction()->ExactSpecularGeometry: by default where one is not a
+ *    convex solid), a glass or mirror hit is the triangle's (vtkCausticsSpecularHierarchy)
+ *    and a photon inside such glass crosses it from triangle to triangle within the
+ *    bounce, up to 8 events a path;
  * 5. splatting (§3.1): photons on receivers are splatted by
  *    vtkCausticsPhotonSplatter, receiver-oriented and energy-normalized: each
  *    deposits exactly its flux, so the result is irradiance in W/m^2;

@@ -11,6 +11,13 @@
 //    dielectric one branch is chosen with probability R (reflection) or 1 - R, so
 //    the flux is kept and energy is conserved on average (total internal
 //    reflection: always reflected). The result goes to the next transfer map.
+// Where glass and mirrors are traced as triangles (exactSpecular, as the camera view:
+// some specular mesh is not a convex solid), the segment's specular surface is the
+// triangle it meets (SpecularTrace), not the screen's estimate: a concave refractor's
+// exit, which the layers only guess and lose off the screen. Inside such glass the photon
+// then goes from interface to interface here, within this bounce (FollowInsideGlass), up
+// to maxPathEvents specular events on its whole path, and the screen traces it on once
+// it leaves.
 layout(local_size_x = 64) in;
 
 SSP_COUNTER(readonly);
@@ -35,6 +42,9 @@ uniform vec4 viewOrigin;   // camera position (w = 1) or view direction (w = 0)
 uniform float splatRadius; // m; 0: splatRadiusPixels pixel footprints
 uniform float splatRadiusPixels;
 uniform uint seed;
+uniform int exactSpecular; // 1: glass and mirrors traced as triangles
+uniform float tolerance;   // m: a trace starts this far from its surface
+uniform int maxPathEvents; // specular events a path may have with traced glass
 
 uint Hash(uint x)
 {
@@ -84,6 +94,72 @@ float PixelArea(vec3 x, vec3 n)
   return area;
 }
 
+// The segment's hit with glass and mirrors traced as triangles: the triangle o + t d
+// meets, where the screen found a glass or mirror surface (the same surface, less
+// exactly) or nothing. A receiver the screen found stands (so does water's floor, with
+// no triangle below), even where a triangle comes first: the photon would then need
+// another bounce, and at MaximumBounces (3) it was lost (the mirror cup seen obliquely:
+// 15.1 % against 16.4 %, but flux 0.977 against 0.981).
+void TracedHit(vec3 o, vec3 d, inout float t, inout vec3 x, inout vec3 n, inout int materialIndex)
+{
+  SpecularHit triangle;
+  if (exactSpecular == 0 || !SpecularTrace(o, d, tolerance, 3.0e38, triangle))
+  {
+    return;
+  }
+  int screenRole = t >= 0.0 ? int(causticsMaterials[materialIndex].albedoRole.a + 0.5) : ROLE_NONE;
+  if (t >= 0.0 && screenRole != ROLE_REFLECTOR && screenRole != ROLE_REFRACTOR)
+  {
+    return;
+  }
+  t = triangle.t;
+  x = o + t * d;
+  materialIndex = triangle.material;
+  CausticsMaterial material = causticsMaterials[materialIndex];
+  n = CausticsTriangleNormal(
+    d, triangle.shading, triangle.geometric, material, int(material.albedoRole.a + 0.5));
+}
+
+// A photon inside glass traced as triangles, at x heading d (state 2) in `material`:
+// followed from interface to interface as the screen's bounces would (absorption,
+// exact Fresnel, one branch by the photon's own numbers), until it leaves into air
+// (state 1), meets no triangle (an open sheet's water: the screen finds its floor) or
+// runs out of events (false: lost, as the reference drops a path past its events;
+// `events`: the path's events before this one).
+// `path` grows by the distance. Not where a medium fills the refractors: the screen's
+// bounces hand every stretch to the volume caustics.
+bool FollowInsideGlass(inout vec3 x, inout vec3 d, inout float state, inout int material,
+  inout vec3 flux, inout float path, uint photon, int events)
+{
+  for (int k = events + 1; k < maxPathEvents && exactSpecular != 0 && state > 1.5 &&
+       !CausticsStretchInMedium(true);
+       ++k)
+  {
+    SpecularHit triangle;
+    if (!SpecularTrace(x, d, tolerance, 3.0e38, triangle))
+    {
+      return true;
+    }
+    CausticsMaterial surface = causticsMaterials[triangle.material];
+    int role = int(surface.albedoRole.a + 0.5);
+    if (role != ROLE_REFRACTOR)
+    {
+      return true; // a mirror in the glass: the screen's next bounce meets it
+    }
+    flux *= CausticsTransmittance(causticsMaterials[material].attenuation.rgb, triangle.t);
+    path += triangle.t;
+    x += triangle.t * d;
+    vec3 n = CausticsTriangleNormal(d, triangle.shading, triangle.geometric, surface, role);
+    CausticsInteraction s = CausticsSurfaceInteraction(d, n, surface, role, 1.0);
+    float u = float(Hash(photon ^ Hash(uint(k) + seed)) >> 8) / 16777216.0;
+    bool refracts = s.transmits && !(u < s.reflectedWeight.r);
+    d = normalize(refracts ? s.refracted : s.reflected);
+    state = refracts ? (s.entering ? 2.0 : 1.0) : state;
+    material = triangle.material;
+  }
+  return !(exactSpecular != 0 && state > 1.5 && !CausticsStretchInMedium(true));
+}
+
 void main()
 {
   uint i = gl_GlobalInvocationID.x;
@@ -92,17 +168,18 @@ void main()
     return;
   }
   SspHit hit = hits[i];
-  float t = hit.position.w;
-  if (!(t >= 0.0))
-  {
-    return; // left the scene or the view: lost
-  }
   SspRay ray = rays[i];
-  SspPayload payload = payloads[i];
+  float t = hit.position.w;
   vec3 d = ray.direction.xyz;
   vec3 x = hit.position.xyz;
   vec3 n = hit.normal.xyz;
   int materialIndex = int(hit.normal.w + 0.5);
+  TracedHit(ray.origin.xyz, d, t, x, n, materialIndex);
+  if (!(t >= 0.0))
+  {
+    return; // left the scene or the view: lost
+  }
+  SspPayload payload = payloads[i];
   CausticsMaterial material = causticsMaterials[materialIndex];
   int role = int(material.albedoRole.a + 0.5);
   vec3 flux = payload.flux.rgb;
@@ -170,6 +247,13 @@ void main()
       state = s.entering ? 2.0 : 1.0;
     }
   }
+  float path = uintBitsToFloat(payload.info.y) + t;
+  direction = normalize(direction);
+  if (role == ROLE_REFRACTOR &&
+    !FollowInsideGlass(x, direction, state, materialIndex, flux, path, payload.info.x, events))
+  {
+    return;
+  }
   if (!(dot(flux, vec3(1.0)) > 0.0))
   {
     return;
@@ -180,8 +264,7 @@ void main()
     return;
   }
   nextRays[index].origin = vec4(x, state);
-  nextRays[index].direction = vec4(normalize(direction), float(materialIndex));
+  nextRays[index].direction = vec4(direction, float(materialIndex));
   nextPayloads[index].flux = vec4(flux, float(events + 1));
-  nextPayloads[index].info =
-    uvec4(payload.info.x, floatBitsToUint(uintBitsToFloat(payload.info.y) + t), payload.info.zw);
+  nextPayloads[index].info = uvec4(payload.info.x, floatBitsToUint(path), payload.info.zw);
 }

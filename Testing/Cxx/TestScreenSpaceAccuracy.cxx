@@ -15,6 +15,7 @@
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
+#include "vtkCausticsScreenSpaceRefraction.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -43,11 +44,13 @@ struct Comparison
   vtkNew<vtkCausticsErrorMetrics> Metrics;
 
   Comparison(const char* scene, vtkIdType photons, bool throughRefractors,
-    int traceView = vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC)
+    int traceView = vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC,
+    int exactSpecular = vtkCausticsScreenSpaceRefraction::EXACT_AUTOMATIC)
   {
     this->Scene->SetSceneName(scene);
     EXPECT_TRUE(this->Scene->Populate(this->Renderer)) << this->Scene->GetLastError();
     this->Pass->SetTraceView(traceView);
+    this->Pass->GetScreenSpaceRefraction()->SetExactSpecularGeometry(exactSpecular);
     this->Renderer->SetPass(this->Pass);
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
@@ -104,6 +107,26 @@ TEST(ScreenSpaceAccuracy, PoolFloorMatchesReference)
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.07);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
+}
+
+// The glass bunny (not a convex solid): photons inside it go from triangle to triangle
+// (vtkCausticsSpecularHierarchy, as the camera view traces it) instead of through the
+// refractor layers of the trace view, which lose its ears and hollows and every exit
+// off the screen; inside, up to the reference's 8 events a path. Reached: relative L2
+// 36.1 %, flux 0.997; through the layers 53.1 % and 0.661. Bounds just above; the
+// layers must stay measurably worse (a trace that stops working fails it).
+TEST(ScreenSpaceAccuracy, ConcaveGlassTracedAsTriangles)
+{
+  Comparison traced("bunny", 1000000, false);
+  ASSERT_TRUE(traced.Compare());
+  Comparison layers("bunny", 1000000, false,
+    vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC,
+    vtkCausticsScreenSpaceRefraction::EXACT_OFF);
+  ASSERT_TRUE(layers.Compare());
+  EXPECT_EQ(traced.Metrics->GetNumberOfNonFinitePixels(), 0);
+  EXPECT_LT(traced.Metrics->GetRelativeL2Error(), 0.365);
+  EXPECT_NEAR(traced.Metrics->GetFluxRatio(), 1.0, 0.015);
+  EXPECT_LT(traced.Metrics->GetRelativeL2Error(), 0.75 * layers.Metrics->GetRelativeL2Error());
 }
 
 // §5, Fig. 11: for every receiver pixel, a shadow ray towards the light traced in
