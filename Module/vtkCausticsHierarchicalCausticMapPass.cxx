@@ -5,7 +5,6 @@
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsPhotonBuffer.h"
-#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonGrid.h"
@@ -307,10 +306,7 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     this->BeginStage("hcm trace");
     light.Photons->SetHiddenReceivers(hidden ? light.HiddenMap->GetReceivers(0) : nullptr);
     // Concave glass traced as triangles, where the camera view traces it.
-    vtkCausticsScreenSpaceRefraction* cameraView = this->GetScreenSpaceRefraction();
-    light.Photons->SetTracedSpecularGeometry(cameraView->WillTraceSpecularGeometry(scene)
-        ? cameraView->GetSpecularHierarchy()
-        : nullptr);
+    light.Photons->SetTracedSpecularGeometry(this->GetTracedSpecularGeometry(scene));
     light.Traced = light.Traced &&
       light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
         light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid,

@@ -14,7 +14,6 @@
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h" // TextureUnits
-#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsSpecularTrace.h" // Glass and mirror triangles (shared)
@@ -194,12 +193,8 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
     s.Program->SetUniformf("tolerance", static_cast<float>(1e-5 * in.Scene->Scale()));
     s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
     s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
-    // Glass and mirrors traced as triangles where the camera view traces them (the
-    // stage's ExactSpecularGeometry: by default where one is not a convex solid).
-    vtkCausticsScreenSpaceRefraction* cameraView = this->GetScreenSpaceRefraction();
-    const bool exact = cameraView->WillTraceSpecularGeometry(*in.Scene);
-    s.Program->SetUniformi("exactSpecular", exact ? 1 : 0);
-    cameraView->GetSpecularHierarchy()->Bind(s.Program);
+    // Glass and mirrors traced as triangles where the camera view traces them.
+    vtkCausticsSpecularHierarchy::BindTraced(this->GetTracedSpecularGeometry(*in.Scene), s.Program);
     caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
     s.Program->DispatchCovering2D(emitted.Width, emitted.Height, 8, 8);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -101,11 +101,7 @@ void SetTraceUniforms(
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
   program->SetUniformi("maximumInternalEvents", trace.Settings->MaximumInternalEvents);
   program->SetUniformi("marchSteps", trace.Settings->MarchSteps);
-  program->SetUniformi("exactSpecular", trace.Traced ? 1 : 0);
-  if (trace.Traced)
-  {
-    trace.Traced->Bind(program);
-  }
+  vtkCausticsSpecularHierarchy::BindTraced(trace.Traced, program);
   caustics::gl::SetMediumUniforms(program, *trace.Scene, trace.MediumGrid);
   program->SetUniformf("chordLength", static_cast<float>(trace.ChordLength));
   program->SetUniformf("airLength", static_cast<float>(trace.AirLength));

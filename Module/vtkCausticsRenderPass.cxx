@@ -19,6 +19,7 @@
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceRefraction.h"
+#include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
@@ -512,6 +513,14 @@ vtkCausticsLayeredDepth* vtkCausticsRenderPass::GetRefractorLayeredDepth()
 vtkCausticsScreenSpaceRefraction* vtkCausticsRenderPass::GetScreenSpaceRefraction()
 {
   return this->Internal->Refraction;
+}
+
+vtkCausticsSpecularHierarchy* vtkCausticsRenderPass::GetTracedSpecularGeometry(
+  const caustics::SceneData& scene)
+{
+  vtkCausticsScreenSpaceRefraction* cameraView = this->Internal->Refraction;
+  return cameraView->WillTraceSpecularGeometry(scene) ? cameraView->GetSpecularHierarchy()
+                                                      : nullptr;
 }
 
 vtkCausticsDistanceImpostors* vtkCausticsRenderPass::GetDistanceImpostors()

@@ -79,6 +79,7 @@ class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
 class vtkCausticsLayeredDepth;
 class vtkCausticsScreenSpaceRefraction;
+class vtkCausticsSpecularHierarchy;
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneExtractor;
 class vtkCausticsSceneGeometry;
@@ -585,6 +586,13 @@ protected:
     int width, int height, double maximumPhotonFlux, bool shadow = true);
   /** Whether this frame's camera view reads the caustic store (StoreCaustic() runs). */
   bool GetStoresCaustic() const { return this->StoresCaustic; }
+  /**
+   * The camera view's hierarchy of glass and mirror triangles where it traces them
+   * (its ExactSpecularGeometry: by default where one is not a convex solid), so that a
+   * technique's photons meet the same surfaces; null where it does not.
+   */
+  vtkCausticsSpecularHierarchy* GetTracedSpecularGeometry(const caustics::SceneData& scene);
+
   /**
    * Brings the distance impostors' maps up to date (only when the scene changed),
    * their radiance shadowed by the direct irradiance stage's shadow maps, which it

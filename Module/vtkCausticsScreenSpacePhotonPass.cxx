@@ -11,7 +11,6 @@
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceLineTracer.h"
-#include "vtkCausticsScreenSpaceRefraction.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsSpecularHierarchy.h"
@@ -339,14 +338,11 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   p->SetUniformu(
     "seed", 0x9e3779b9u * static_cast<unsigned int>(bounce + 1) + static_cast<unsigned int>(light));
   // Glass and mirrors traced as triangles where the camera view traces them.
-  vtkCausticsScreenSpaceRefraction* cameraView = this->GetScreenSpaceRefraction();
-  const bool exact = cameraView->WillTraceSpecularGeometry(scene);
-  p->SetUniformi("exactSpecular", exact ? 1 : 0);
+  vtkCausticsSpecularHierarchy::BindTraced(this->GetTracedSpecularGeometry(scene), p);
   p->SetUniformf("tolerance", static_cast<float>(1e-5 * scene.Scale()));
   // Inside traced glass, interfaces within one bounce, up to the reference's 8 events
   // a path (vtkCausticsReferenceRenderer::MaxBounces).
   p->SetUniformi("maxPathEvents", 8);
-  cameraView->GetSpecularHierarchy()->Bind(p);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.Tracer->GetArgumentBuffer());
   glDispatchComputeIndirect(0);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -183,8 +183,7 @@ bool vtkCausticsScreenSpaceRefraction::Render(
       static_cast<float>(inputs.Background[1]), static_cast<float>(inputs.Background[2]));
     p->SetUniformi("maxEvents", this->MaximumEvents);
     p->SetUniformi("internalReflections", this->InternalReflections ? 1 : 0);
-    p->SetUniformi("exactSpecular", exact ? 1 : 0);
-    in.Hierarchy->Bind(p);
+    vtkCausticsSpecularHierarchy::BindTraced(exact ? in.Hierarchy.GetPointer() : nullptr, p);
     p->SetUniformf("tolerance", static_cast<float>(inputs.Tolerance));
     p->SetUniformf(
       "pixelScale", caustics::ssp::PixelScale(inputs.WorldToClip, inputs.Width, inputs.Height));

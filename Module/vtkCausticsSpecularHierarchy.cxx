@@ -255,6 +255,20 @@ void vtkCausticsSpecularHierarchy::Bind(vtkCausticsShaderProgram* program) const
   program->SetUniformi("specularNodeCount", ready ? static_cast<int>(in.NodeCount) : 0);
 }
 
+void vtkCausticsSpecularHierarchy::BindTraced(
+  const vtkCausticsSpecularHierarchy* traced, vtkCausticsShaderProgram* program)
+{
+  program->SetUniformi("exactSpecular", traced ? 1 : 0);
+  if (traced)
+  {
+    traced->Bind(program);
+  }
+  else
+  {
+    program->SetUniformi("specularNodeCount", 0);
+  }
+}
+
 vtkIdType vtkCausticsSpecularHierarchy::GetNumberOfTriangles() const
 {
   return this->Internal->TriangleCount;

@@ -74,6 +74,12 @@ public:
   /** Binds the hierarchy's buffers; sets `specularNodeCount` (0: nothing to trace). */
   void Bind(vtkCausticsShaderProgram* program) const;
 
+  /**
+   * For a stage that traces glass and mirrors as triangles where asked: sets
+   * `exactSpecular` (1 with a hierarchy, 0 with null) and binds `traced` if any.
+   */
+  static void BindTraced(const vtkCausticsSpecularHierarchy* traced, vtkCausticsShaderProgram* program);
+
   /** Triangles in the hierarchy. */
   vtkIdType GetNumberOfTriangles() const;
   /** Nodes in the hierarchy. */

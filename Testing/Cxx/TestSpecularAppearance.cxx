@@ -275,7 +275,9 @@ TEST(SpecularAppearance, DistanceImpostors)
 // (-0.8, 1.5, 1.8) towards (0, 0.5, 0), 60 degrees, 28.3 % (28.3 %) against 105.8 %
 // (50.5 %). With 4 interfaces the traced paths ended dark inside the bunny (57.5 % on its
 // own camera). Shaded bilinearly where the camera sees the hit (ShadeAt): 39.2 % (39.2 %)
-// and 22.6 %. Bounds just above; the layers must stay measurably worse (a trace that
+// and 22.6 %; since the screen-space photons cross the bunny as triangles too (the
+// caustics seen through it): 38.2 % (38.1 %) and 21.6 %. Bounds just above; the layers
+// (which also turn the photons' triangles off) must stay measurably worse (a trace that
 // stops working fails the test).
 TEST(SpecularAppearance, ExactSpecularGeometryOnConcaveGlass)
 {
@@ -283,10 +285,10 @@ TEST(SpecularAppearance, ExactSpecularGeometryOnConcaveGlass)
   const int layers = vtkCausticsScreenSpaceRefraction::EXACT_OFF;
   const double up[3] = { 0.0, 1.0, 0.0 };
   const double eye[3] = { -0.8, 1.5, 1.8 }, focal[3] = { 0.0, 0.5, 0.0 };
-  EXPECT_LT(SpecularError("bunny", "screen-space", both), 0.398);
+  EXPECT_LT(SpecularError("bunny", "screen-space", both), 0.385);
   EXPECT_LT(SpecularError("bunny", "screen-space", vtkCausticsRenderPass::DISTANCE_IMPOSTORS),
-    0.398);
-  EXPECT_LT(SpecularError("bunny", "screen-space", both, eye, focal, up), 0.232);
+    0.385);
+  EXPECT_LT(SpecularError("bunny", "screen-space", both, eye, focal, up), 0.22);
   EXPECT_GT(SpecularError("bunny", "screen-space", both, nullptr, nullptr, nullptr, nullptr, true,
               Size, layers),
     0.65);
