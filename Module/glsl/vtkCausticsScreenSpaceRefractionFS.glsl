@@ -54,7 +54,7 @@ uniform int exactSpecular; // 1: glass and mirrors traced as triangles (Specular
 
 layout(location = 0) out vec4 outColor;
 
-const int MARCH_STRIDE = 8;
+const int MARCH_STRIDE = 16;
 const int MISS = 0;
 const int OPAQUE = 1;
 const int REFRACTOR = 2;
