@@ -120,6 +120,17 @@ void TracedHit(vec3 o, vec3 d, inout float t, inout vec3 x, inout vec3 n, inout 
     d, triangle.shading, triangle.geometric, material, int(material.albedoRole.a + 0.5));
 }
 
+// One branch at a dielectric for photon `photon` at its event `event`: refracted with
+// probability 1 - R (the flux kept as it is), else reflected (always under total
+// internal reflection); `state` follows the side the photon ends on.
+vec3 DielectricBranch(CausticsInteraction s, uint photon, int event, inout float state)
+{
+  float u = float(Hash(photon ^ Hash(uint(event) + seed)) >> 8) / 16777216.0;
+  bool refracts = s.transmits && !(u < s.reflectedWeight.r);
+  state = refracts ? (s.entering ? 2.0 : 1.0) : state;
+  return refracts ? s.refracted : s.reflected;
+}
+
 // A photon inside glass traced as triangles, at x heading d (state 2) in `material`:
 // followed from interface to interface as the screen's bounces would (absorption,
 // exact Fresnel, one branch by the photon's own numbers), until it leaves into air
@@ -131,9 +142,11 @@ void TracedHit(vec3 o, vec3 d, inout float t, inout vec3 x, inout vec3 n, inout 
 bool FollowInsideGlass(inout vec3 x, inout vec3 d, inout float state, inout int material,
   inout vec3 flux, inout float path, uint photon, int events)
 {
-  for (int k = events + 1; k < maxPathEvents && exactSpecular != 0 && state > 1.5 &&
-       !CausticsStretchInMedium(true);
-       ++k)
+  if (exactSpecular == 0 || CausticsStretchInMedium(true))
+  {
+    return true;
+  }
+  for (int k = events + 1; k < maxPathEvents && state > 1.5; ++k)
   {
     SpecularHit triangle;
     if (!SpecularTrace(x, d, tolerance, 3.0e38, triangle))
@@ -151,13 +164,10 @@ bool FollowInsideGlass(inout vec3 x, inout vec3 d, inout float state, inout int 
     x += triangle.t * d;
     vec3 n = CausticsTriangleNormal(d, triangle.shading, triangle.geometric, surface, role);
     CausticsInteraction s = CausticsSurfaceInteraction(d, n, surface, role, 1.0);
-    float u = float(Hash(photon ^ Hash(uint(k) + seed)) >> 8) / 16777216.0;
-    bool refracts = s.transmits && !(u < s.reflectedWeight.r);
-    d = normalize(refracts ? s.refracted : s.reflected);
-    state = refracts ? (s.entering ? 2.0 : 1.0) : state;
+    d = normalize(DielectricBranch(s, photon, k, state));
     material = triangle.material;
   }
-  return !(exactSpecular != 0 && state > 1.5 && !CausticsStretchInMedium(true));
+  return !(state > 1.5);
 }
 
 void main()
@@ -239,13 +249,7 @@ void main()
   }
   else
   {
-    // One branch, refracted with probability 1 - R: the flux is kept as it is.
-    float u = float(Hash(payload.info.x ^ Hash(uint(events) + seed)) >> 8) / 16777216.0;
-    if (s.transmits && !(u < s.reflectedWeight.r))
-    {
-      direction = s.refracted;
-      state = s.entering ? 2.0 : 1.0;
-    }
+    direction = DielectricBranch(s, payload.info.x, events, state);
   }
   float path = uintBitsToFloat(payload.info.y) + t;
   direction = normalize(direction);
