@@ -2,6 +2,7 @@
 
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsCausticMapSettings.h"
+#include "vtkCausticsDistanceImpostors.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsPhotonBufferHierarchy.h"
@@ -10,6 +11,7 @@
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -21,6 +23,7 @@
 #include "vtkCausticsCausticMapApplyFS.h"
 #include "vtkCausticsCausticMapSplatVS.h"
 #include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsImpostorCommon.h"
 #include "vtkCausticsPhotonBufferCommon.h"
 #include "vtkCausticsPhotonSplatFS.h"
 
@@ -59,6 +62,12 @@ vtkCausticsCausticMap::vtkCausticsCausticMap()
   this->ApplyProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   this->ApplyProgram->SetVertexSource(vtkCausticsFullScreenVS);
   this->ApplyProgram->SetFragmentSource((common + vtkCausticsCausticMapApplyFS).c_str());
+  this->StoreProgram->SetName("caustic map final render: the caustic store");
+  this->StoreProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->StoreProgram->SetDefine("CAUSTICS_STORE", 1);
+  this->StoreProgram->SetVertexSource(vtkCausticsFullScreenVS);
+  this->StoreProgram->SetFragmentSource(
+    (common + vtkCausticsImpostorCommon + vtkCausticsCausticMapApplyFS).c_str());
 }
 
 vtkCausticsCausticMap::~vtkCausticsCausticMap()
@@ -287,12 +296,35 @@ bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuf
   const caustics::Camera& view, vtkCausticsCausticMap* front,
   const caustics::gl::StorageBuffer* drawArguments, std::size_t drawOffset)
 {
+  return this->DrawFinal(
+    renWin, this->ApplyProgram, camera, view, front, nullptr, drawArguments, drawOffset);
+}
+
+bool vtkCausticsCausticMap::ApplyStore(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera,
+  const caustics::Camera& view, vtkCausticsCausticMap* hidden, vtkCausticsDistanceImpostors* store,
+  const caustics::gl::StorageBuffer& drawArguments, std::size_t drawOffset)
+{
+  if (!store)
+  {
+    vtkErrorMacro(<< "ApplyStore needs the distance impostors whose store took the photons");
+    return false;
+  }
+  // The hidden receivers' map stands where Apply() takes its front map: a pixel it sees
+  // is its own.
+  return this->DrawFinal(
+    renWin, this->StoreProgram, camera, view, hidden, store, &drawArguments, drawOffset);
+}
+
+bool vtkCausticsCausticMap::DrawFinal(vtkOpenGLRenderWindow* renWin,
+  vtkCausticsShaderProgram* program, vtkCausticsGBuffer* camera, const caustics::Camera& view,
+  vtkCausticsCausticMap* front, vtkCausticsDistanceImpostors* store,
+  const caustics::gl::StorageBuffer* drawArguments, std::size_t drawOffset)
+{
   if (!this->Internal->HasView || !camera)
   {
     vtkErrorMacro(<< "Apply needs RenderReceivers() and Splat() first, and a camera G-buffer");
     return false;
   }
-  vtkCausticsShaderProgram* program = this->ApplyProgram;
   if (!program->Bind(renWin))
   {
     return false;
@@ -331,6 +363,11 @@ bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuf
   bind(frontReceivers->GetPositionTexture(), "frontPosition");
   bind(frontReceivers->GetNormalTexture(), "frontNormal");
   program->SetUniformi("hasFront", front ? 1 : 0);
+  caustics::ssp::TextureUnits units(renWin); // the store's, held through the draw
+  if (store)
+  {
+    store->SetUniforms(program, units);
+  }
   if (drawArguments)
   {
     this->Triangle->DrawIndirect(*drawArguments, drawOffset);
@@ -344,6 +381,10 @@ bool vtkCausticsCausticMap::Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuf
     texture->Deactivate();
   }
   program->Unbind(renWin);
+  if (store)
+  {
+    glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+  }
   return true;
 }
 
@@ -357,6 +398,7 @@ void vtkCausticsCausticMap::ReleaseGraphicsResources(vtkWindow* win)
   }
   this->SplatProgram->ReleaseGraphicsResources(win);
   this->ApplyProgram->ReleaseGraphicsResources(win);
+  this->StoreProgram->ReleaseGraphicsResources(win);
   this->Triangle->Release();
   if (this->VertexArray)
   {

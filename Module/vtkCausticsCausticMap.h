@@ -29,7 +29,9 @@
  * refraction bends light onto. Its Splat() draws only the photons that landed there
  * (`hiddenOnly`); its Apply() adds them where the camera sees those receivers. Every
  * surface point is in one map's receivers, so a kernel split across the two maps
- * deposits its flux once.
+ * deposits its flux once. The receivers neither map sees (a ceiling above the light, a
+ * wall beyond the map's frame) take the photons that landed there from the distance
+ * impostors' caustic store (ApplyStore).
  * Textures are allocated when the resolution changes, never per frame.
  */
 #ifndef vtkCausticsCausticMap_h
@@ -43,6 +45,7 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
 class vtkCausticsPhotonSplatter;
 class vtkCausticsPhotonBufferHierarchy;
@@ -127,6 +130,22 @@ public:
   bool Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera,
     const caustics::Camera& view, vtkCausticsCausticMap* front = nullptr,
     const caustics::gl::StorageBuffer* drawArguments = nullptr, std::size_t drawOffset = 0);
+
+  /**
+   * Adds, at the receivers of `camera` that neither this map (as Apply() tests it)
+   * nor `hidden` (its hidden receivers' map, or null) sees, the caustic irradiance of
+   * `store`'s caustic store, where a texel of its environment maps shows the pixel's
+   * point, read over at least the pixel's footprint (ImpostorCausticIrradiance): the
+   * light of the photons the trace handed to the store because no receiver layer of
+   * this view landed them (vtkCausticsPhotonBuffer::SetCausticStore: a ceiling above
+   * the light, a wall beyond the map's frame). Drawn as Apply() with
+   * `drawArguments` (vtkCausticsPhotonBuffer's store draw: nothing when the store took
+   * no photon). False on failure.
+   */
+  bool ApplyStore(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera,
+    const caustics::Camera& view, vtkCausticsCausticMap* hidden,
+    vtkCausticsDistanceImpostors* store, const caustics::gl::StorageBuffer& drawArguments,
+    std::size_t drawOffset);
 #endif
 
   /**
@@ -163,6 +182,7 @@ protected:
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffers[4];
   vtkNew<vtkCausticsShaderProgram> SplatProgram;
   vtkNew<vtkCausticsShaderProgram> ApplyProgram;
+  vtkNew<vtkCausticsShaderProgram> StoreProgram; // ApplyStore(): the same pass, CAUSTICS_STORE
   unsigned int VertexArray = 0;
 
 private:
@@ -176,6 +196,11 @@ private:
     vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
   void DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
     vtkCausticsPhotonBufferHierarchy* hierarchy);
+  // Apply() and ApplyStore(): `program` over the camera's receivers, additively.
+  bool DrawFinal(vtkOpenGLRenderWindow* renWin, vtkCausticsShaderProgram* program,
+    vtkCausticsGBuffer* camera, const caustics::Camera& view, vtkCausticsCausticMap* front,
+    vtkCausticsDistanceImpostors* store, const caustics::gl::StorageBuffer* drawArguments,
+    std::size_t drawOffset);
 
   struct Internals;
   std::unique_ptr<Internals> Internal; // the view of the last RenderReceivers()

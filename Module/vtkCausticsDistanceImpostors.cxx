@@ -554,6 +554,16 @@ void vtkCausticsDistanceImpostors::ResetCaustic()
   this->CausticUnit = 0.0;
 }
 
+bool vtkCausticsDistanceImpostors::OpenCaustic(double maximumPhotonFlux)
+{
+  if (!(this->CausticUnit > 0.0) && this->Internal->Caustic.Handle)
+  {
+    // Fixed point of the store: 1/4096 of the frame's first light's largest photon.
+    this->BeginCaustic(maximumPhotonFlux / 3.0 / 4096.0);
+  }
+  return this->CausticUnit > 0.0;
+}
+
 bool vtkCausticsDistanceImpostors::StoreCaustic(vtkOpenGLRenderWindow* renWin,
   const caustics::PhotonRecords& landed, int width, int height, double maximumPhotonFlux,
   vtkCausticsLightBuffers* lightBuffers, int light, const caustics::SceneData& scene,
@@ -565,14 +575,9 @@ bool vtkCausticsDistanceImpostors::StoreCaustic(vtkOpenGLRenderWindow* renWin,
   {
     return true; // no maps, photons or light: nothing to store
   }
-  if (!(this->CausticUnit > 0.0))
+  if (!this->OpenCaustic(maximumPhotonFlux))
   {
-    // Fixed point of the store: 1/4096 of the frame's first light's largest photon.
-    this->BeginCaustic(maximumPhotonFlux / 3.0 / 4096.0);
-    if (!(this->CausticUnit > 0.0))
-    {
-      return true;
-    }
+    return true;
   }
   vtkCausticsShaderProgram* p = in.Store;
   if (!p->Bind(renWin))

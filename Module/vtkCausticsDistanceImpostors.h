@@ -217,6 +217,12 @@ public:
    * `maximumPhotonFlux` / 3. Call after Update(). Returns false on a GL failure.
    */
   void ResetCaustic();
+  /**
+   * Opens the frame's store if no StoreCaustic() has (clears it, sets its fixed point
+   * from `maximumPhotonFlux` as StoreCaustic() would), for a trace that deposits into
+   * it itself (vtkCausticsPhotonBuffer::SetCausticStore). True when it is open.
+   */
+  bool OpenCaustic(double maximumPhotonFlux);
   bool StoreCaustic(vtkOpenGLRenderWindow* renWin, const caustics::PhotonRecords& landed,
     int width, int height, double maximumPhotonFlux, vtkCausticsLightBuffers* lightBuffers,
     int light, const caustics::SceneData& scene, bool shadow = true);

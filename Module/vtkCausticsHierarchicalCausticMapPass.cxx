@@ -44,6 +44,8 @@ struct PerLight
   vtkNew<vtkCausticsCausticMap> HiddenMap; // receivers behind Map's (HiddenReceivers)
   caustics::LightView MapView;
   bool Traced = false;
+  // This frame's caustic store of the photons no receiver layer landed, or null.
+  vtkCausticsDistanceImpostors* Store = nullptr;
   // Where the light meets the receivers beyond the specular actors, and what it
   // was found for (the light and the meshes' versions).
   caustics::ReceiverIncidence Incidence;
@@ -60,6 +62,7 @@ struct PerLight
     this->Map->ReleaseGraphicsResources(w);
     this->HiddenMap->ReleaseGraphicsResources(w);
     this->Traced = false;
+    this->Store = nullptr;
     this->IncidenceKey.clear();
     this->LayersKey.clear();
   }
@@ -273,6 +276,7 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
   for (std::size_t i = 0; i < this->Internal->Lights.size(); ++i)
   {
     PerLight& light = *this->Internal->Lights[i];
+    light.Store = nullptr;
     if (!light.Traced)
     {
       continue;
@@ -307,6 +311,12 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderPhotonBuffers(vtkOpenGLRenderW
     light.Photons->SetHiddenReceivers(hidden ? light.HiddenMap->GetReceivers(0) : nullptr);
     // Concave glass traced as triangles, where the camera view traces it.
     light.Photons->SetTracedSpecularGeometry(this->GetTracedSpecularGeometry(scene));
+    // Photons that no receiver layer of the map's view lands go to the caustic store
+    // (one light: with more, the store at a receiver one light's map sees would also
+    // hold that light's landed photons, which its map already shows).
+    light.Store =
+      this->Internal->Lights.size() == 1 ? this->OpenCausticStore(grid.MaximumPhotonFlux) : nullptr;
+    light.Photons->SetCausticStore(light.Store);
     light.Traced = light.Traced &&
       light.Photons->Trace(renWin, this->Settings, this->GetGeometry(), scene, grid, photonView,
         light.MapView, light.Map->GetReceivers(0), this->GetFrameInputs().MediumGrid,
@@ -419,6 +429,17 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderFinal(vtkOpenGLRenderWindow* r
           ok;
         this->EndStage("hcm hidden final render");
       }
+      if (light->Store)
+      {
+        // The receivers neither map sees: the photons the store took (drawn only then).
+        this->BeginStage("hcm store final render");
+        ok = light->Map->ApplyStore(renWin, this->GetCameraGBuffer(), camera,
+               this->Settings.HiddenReceivers ? light->HiddenMap.GetPointer() : nullptr,
+               light->Store, light->Photons->GetStatisticsBuffer(),
+               vtkCausticsPhotonBuffer::GetStoreDrawOffset()) &&
+          ok;
+        this->EndStage("hcm store final render");
+      }
     }
   }
   return ok;
@@ -467,10 +488,12 @@ bool vtkCausticsHierarchicalCausticMapPass::GetCounters(int i, Counters& counter
   counters.HiddenHits = statistics.HiddenHits;
   counters.LostInside = statistics.LostInside;
   counters.Escaped = statistics.Escaped;
+  counters.Stored = statistics.Stored;
   counters.FluxIn = statistics.FluxIn;
   counters.FluxHits = statistics.FluxHits;
   counters.FluxLostInside = statistics.FluxLostInside;
   counters.FluxEscaped = statistics.FluxEscaped;
+  counters.FluxStored = statistics.FluxStored;
   counters.FluxInternalReflection = statistics.FluxInternalReflection;
   counters.FluxAbsorbed = statistics.FluxAbsorbed;
   counters.StartLevel = gather.StartLevel;

@@ -325,10 +325,12 @@ public:
     long long HiddenHits = 0; ///< of them, on a hidden receiver (HiddenReceivers)
     long long LostInside = 0; ///< no exit found inside a refractor
     long long Escaped = 0;    ///< left the caustic map's view
+    long long Stored = 0;     ///< no receiver layer landed it; the caustic store did
     double FluxIn = 0.0;      ///< W emitted (summed over RGB)
     double FluxHits = 0.0;    ///< W that landed on receivers
     double FluxLostInside = 0.0;
     double FluxEscaped = 0.0;
+    double FluxStored = 0.0;
     double FluxInternalReflection = 0.0; ///< reflected back inside at exits, not followed
     double FluxAbsorbed = 0.0;
     int StartLevel = 0;              ///< first traversal level (0: flat)

@@ -2,12 +2,15 @@
 
 #include "vtkCausticsBindings.h" // CAUSTICS_*_BINDING
 #include "vtkCausticsCausticMapSettings.h"
+#include "vtkCausticsDistanceImpostors.h"
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsImpostorCommon.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
+#include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsVolumeSegmentList.h"
@@ -59,6 +62,7 @@ struct vtkCausticsPhotonBuffer::TraceUniforms
   caustics::gl::VolumeSegmentList* VolumeSegments = nullptr; // phase 2 appends, when on
   bool InsideAppends = false; // phase 1 appends too (the medium fills the refractors)
   const vtkCausticsSpecularHierarchy* Traced = nullptr; // glass as triangles, or null
+  vtkCausticsDistanceImpostors* Store = nullptr; // phase 2's caustic store, or null
   vtkTextureObject* Inputs[13] = { nullptr };
 };
 
@@ -138,6 +142,13 @@ bool RunPhases(vtkOpenGLRenderWindow* renWin, vtkCausticsShaderProgram* const ph
       return false;
     }
     SetTraceUniforms(program, trace);
+    // The caustic store of phase 2's photons that no receiver layer lands (its
+    // texture units held through the dispatch).
+    caustics::ssp::TextureUnits units(renWin);
+    if (phase == 2 && trace.Store)
+    {
+      trace.Store->SetUniforms(program, units);
+    }
     if (trace.VolumeSegments && trace.VolumeSegments->IsOn() &&
       (phase == 2 || (phase == 1 && trace.InsideAppends)))
     {
@@ -175,7 +186,8 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   this->BackLayer->AlbedoOff();
   this->ReflectorLayer->AlbedoOff();
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
-    vtkCausticsVolumeLinesCommon + vtkCausticsSpecularTrace + vtkCausticsPhotonBufferTraceCS;
+    vtkCausticsVolumeLinesCommon + vtkCausticsSpecularTrace + vtkCausticsImpostorCommon +
+    vtkCausticsPhotonBufferTraceCS;
   this->SortProgram->SetName("photon buffer: sort");
   this->SortProgram->SetDefine("PHASE", 0);
   this->SortProgram->SetComputeSource(source.c_str());
@@ -185,6 +197,9 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   this->AirProgram->SetName("photon buffer: to the receivers");
   this->AirProgram->SetDefine("PHASE", 2);
   this->AirProgram->SetComputeSource(source.c_str());
+  this->StoreDrawProgram->SetName("photon buffer: the caustic store's draw");
+  this->StoreDrawProgram->SetDefine("PHASE", 3);
+  this->StoreDrawProgram->SetComputeSource(source.c_str());
   this->ArgumentsProgram->SetName("photon buffer dispatch arguments");
   this->ArgumentsProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   this->ArgumentsProgram->SetComputeSource(
@@ -277,6 +292,15 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   // Photons follow a heterogeneous medium's density (the programs compile it in).
   trace.MediumGrid = mediumGrid;
   trace.Traced = this->TracedSpecular;
+  trace.Store = this->CausticStore;
+  if (trace.Store)
+  {
+    this->AirProgram->SetDefine("CAUSTICS_STORE_ESCAPED", 1);
+  }
+  else
+  {
+    this->AirProgram->RemoveDefine("CAUSTICS_STORE_ESCAPED");
+  }
   for (vtkCausticsShaderProgram* phase : { this->SortProgram.GetPointer(),
          this->InsideProgram.GetPointer(), this->AirProgram.GetPointer() })
   {
@@ -328,11 +352,23 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   }
   this->BindTraceOutputs(geometry);
   vtkCausticsShaderProgram* phases[] = { this->SortProgram, this->InsideProgram, this->AirProgram };
-  const bool ok = RunPhases(renWin, phases, this->ArgumentsProgram, trace);
+  bool ok = RunPhases(renWin, phases, this->ArgumentsProgram, trace);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   if (ok)
   {
     this->AirProgram->Unbind(renWin);
+  }
+  if (ok && trace.Store)
+  {
+    // The store's final render draws only when it took a share of the light worth a
+    // full-screen pass (STAT_STORE_DRAW, set on the GPU).
+    ok = this->StoreDrawProgram->Bind(renWin);
+    if (ok)
+    {
+      this->StoreDrawProgram->SetUniformf("storeDrawShare", 1e-3f);
+      this->StoreDrawProgram->Dispatch(1);
+      this->StoreDrawProgram->Unbind(renWin);
+    }
   }
   // Later stages read the photon buffer as textures and the counters as buffers.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
@@ -340,6 +376,10 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
   for (unsigned int i = 0; i < 3; ++i)
   {
     glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  }
+  if (trace.Store)
+  {
+    glBindImageTexture(CAUSTICS_IMPOSTOR_CAUSTIC_IMAGE, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
   }
   for (vtkTextureObject* input : trace.Inputs)
   {
@@ -357,9 +397,12 @@ std::size_t vtkCausticsPhotonBuffer::AllocateOutputs(
   this->Internal->Statistics.Clear();
   // The hidden receivers' final render draws its triangle only if the trace finds a
   // photon that lands there (it sets the instance count).
-  const std::uint32_t hiddenDraw[4] = { 3u, 0u, 0u, 0u };
+  // So does the caustic store's, if the trace stores a photon.
+  const std::uint32_t noDraw[4] = { 3u, 0u, 0u, 0u };
   this->Internal->Statistics.Write(
-    caustics::hcm::StatHiddenDraw * sizeof(std::uint32_t), sizeof(hiddenDraw), hiddenDraw);
+    caustics::hcm::StatHiddenDraw * sizeof(std::uint32_t), sizeof(noDraw), noDraw);
+  this->Internal->Statistics.Write(
+    caustics::hcm::StatStoreDraw * sizeof(std::uint32_t), sizeof(noDraw), noDraw);
   // Work lists (control words, then two lists of up to one entry per texel).
   const std::size_t capacity = static_cast<std::size_t>(width) * height;
   const std::size_t listBytes = (caustics::hcm::ControlSize + 2 * capacity) * sizeof(std::uint32_t);
@@ -436,6 +479,11 @@ std::size_t vtkCausticsPhotonBuffer::GetHiddenDrawOffset()
   return caustics::hcm::StatHiddenDraw * sizeof(std::uint32_t);
 }
 
+std::size_t vtkCausticsPhotonBuffer::GetStoreDrawOffset()
+{
+  return caustics::hcm::StatStoreDraw * sizeof(std::uint32_t);
+}
+
 caustics::PhotonRecords vtkCausticsPhotonBuffer::GetLanded() const
 {
   return this->Internal->Landed.Records();
@@ -456,12 +504,14 @@ bool vtkCausticsPhotonBuffer::GetStatistics(Statistics& statistics)
   statistics.HiddenHits = words[caustics::hcm::StatHiddenHits];
   statistics.LostInside = words[caustics::hcm::StatLostInside];
   statistics.Escaped = words[caustics::hcm::StatEscaped];
+  statistics.Stored = words[caustics::hcm::StatStored];
   const double unit = this->FluxUnit;
   using caustics::hcm::FluxFromWords;
   statistics.FluxIn = FluxFromWords(&words[caustics::hcm::StatFluxIn], unit);
   statistics.FluxHits = FluxFromWords(&words[caustics::hcm::StatFluxHits], unit);
   statistics.FluxLostInside = FluxFromWords(&words[caustics::hcm::StatFluxLostInside], unit);
   statistics.FluxEscaped = FluxFromWords(&words[caustics::hcm::StatFluxEscaped], unit);
+  statistics.FluxStored = FluxFromWords(&words[caustics::hcm::StatFluxStored], unit);
   statistics.FluxInternalReflection =
     FluxFromWords(&words[caustics::hcm::StatFluxInternalReflection], unit);
   statistics.FluxAbsorbed = FluxFromWords(&words[caustics::hcm::StatFluxAbsorbed], unit);
@@ -478,6 +528,7 @@ void vtkCausticsPhotonBuffer::ReleaseGraphicsResources(vtkWindow* win)
   this->InsideProgram->ReleaseGraphicsResources(win);
   this->AirProgram->ReleaseGraphicsResources(win);
   this->ArgumentsProgram->ReleaseGraphicsResources(win);
+  this->StoreDrawProgram->ReleaseGraphicsResources(win);
   this->Internal->Lists.Release();
   this->Internal->Statistics.Release();
 }

@@ -56,6 +56,7 @@
 #include <cstddef> // For std::size_t
 #include <memory>  // For std::unique_ptr
 
+class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
 class vtkCausticsSpecularHierarchy;
 class vtkCausticsSceneGeometry;
@@ -139,6 +140,21 @@ public:
     this->TracedSpecular = traced;
   }
 
+  /**
+   * The distance impostors whose caustic store takes the photons that no receiver
+   * layer lands (a ceiling above the light, a wall beyond the caustic map's frame):
+   * such a photon is searched in their environment map, and one that meets a receiver
+   * there, lit from the side it arrives on, adds its flux to the store
+   * (ImpostorDepositCaustic) instead of escaping, counted as Stored; the final
+   * render then reads the store where the caustic map does not see
+   * (vtkCausticsCausticMap::ApplyStore, drawn only when the store took more than
+   * 10^-3 of the flux that landed). The store must be open for the frame
+   * (vtkCausticsDistanceImpostors::OpenCaustic()) and hold the photons' light alone.
+   * Null (the default): such photons escape. Not owned; it must stay alive through
+   * Trace().
+   */
+  void SetCausticStore(vtkCausticsDistanceImpostors* store) { this->CausticStore = store; }
+
   /** GPU counters of the last Render(); flux in W summed over RGB. */
   struct Statistics
   {
@@ -147,10 +163,12 @@ public:
     long long HiddenHits = 0; ///< of them, on a hidden receiver (SetHiddenReceivers)
     long long LostInside = 0; ///< exit not found within MaximumInternalEvents
     long long Escaped = 0;    ///< left the caustic map's view or hit a receiver's back
+    long long Stored = 0;     ///< no receiver layer landed it; the caustic store did
     double FluxIn = 0.0;
     double FluxHits = 0.0;
     double FluxLostInside = 0.0;
     double FluxEscaped = 0.0;
+    double FluxStored = 0.0;
     double FluxInternalReflection = 0.0; ///< reflected back inside at exits, not followed
     double FluxAbsorbed = 0.0;           ///< Beer-Lambert inside refractors
   };
@@ -169,12 +187,15 @@ public:
   caustics::PhotonRecords GetLanded() const;
 
   /**
-   * The trace's counters on the GPU, and the byte offset in it of the hidden
+   * The trace's counters on the GPU, and the byte offsets in it of the hidden
    * receivers' final-render draw arguments ({ 3, 1 if a photon landed on a hidden
-   * receiver else 0, 0, 0 }, for vtkCausticsCausticMap::Apply).
+   * receiver else 0, 0, 0 }, for vtkCausticsCausticMap::Apply) and of the caustic
+   * store's ({ 3, 1 if the store took more than 10^-3 of the landed flux else 0,
+   * 0, 0 }, for vtkCausticsCausticMap::ApplyStore).
    */
   const caustics::gl::StorageBuffer& GetStatisticsBuffer() const;
   static std::size_t GetHiddenDrawOffset();
+  static std::size_t GetStoreDrawOffset();
 #endif
 
   ///@{
@@ -201,10 +222,12 @@ protected:
   vtkNew<vtkCausticsGBuffer> ReflectorLayer; // mirrors as the caustic map's view sees them
   vtkCausticsGBuffer* HiddenReceivers = nullptr; // not owned (SetHiddenReceivers)
   vtkCausticsSpecularHierarchy* TracedSpecular = nullptr; // not owned (SetTracedSpecularGeometry)
+  vtkCausticsDistanceImpostors* CausticStore = nullptr;   // not owned (SetCausticStore)
   vtkNew<vtkCausticsShaderProgram> SortProgram;
   vtkNew<vtkCausticsShaderProgram> InsideProgram;
   vtkNew<vtkCausticsShaderProgram> AirProgram;
   vtkNew<vtkCausticsShaderProgram> ArgumentsProgram;
+  vtkNew<vtkCausticsShaderProgram> StoreDrawProgram; // PHASE 3: the store's draw, or not
 
 private:
   vtkCausticsPhotonBuffer(const vtkCausticsPhotonBuffer&) = delete;

@@ -616,6 +616,15 @@ bool vtkCausticsRenderPass::StoreCaustic(const FrameInputs& f, int light,
   return ok;
 }
 
+vtkCausticsDistanceImpostors* vtkCausticsRenderPass::OpenCausticStore(double maximumPhotonFlux)
+{
+  vtkCausticsDistanceImpostors* impostors = this->Internal->Impostors;
+  return this->StoresCaustic && impostors->GetRadianceShadowed() &&
+      impostors->OpenCaustic(maximumPhotonFlux)
+    ? impostors
+    : nullptr;
+}
+
 bool vtkCausticsRenderPass::UpdateImpostors(const FrameInputs& f)
 {
   auto& in = *this->Internal;

@@ -587,6 +587,15 @@ protected:
   /** Whether this frame's camera view reads the caustic store (StoreCaustic() runs). */
   bool GetStoresCaustic() const { return this->StoresCaustic; }
   /**
+   * The distance impostors, their caustic store opened for this frame (its fixed
+   * point from `maximumPhotonFlux`, as StoreCaustic() sets it), for a trace that
+   * deposits into it the photons its own receivers do not land
+   * (vtkCausticsPhotonBuffer::SetCausticStore); null in a frame that stores no
+   * caustic (GetStoresCaustic()) or whose store would hold blocked light besides
+   * the photons' (maps' radiance without the shadows).
+   */
+  vtkCausticsDistanceImpostors* OpenCausticStore(double maximumPhotonFlux);
+  /**
    * The camera view's hierarchy of glass and mirror triangles where it traces them
    * (its ExactSpecularGeometry: by default where one is not a convex solid), so that a
    * technique's photons meet the same surfaces; null where it does not.

@@ -15,6 +15,10 @@
 // therefore averaged over the texels under the footprint, each by the area of it it
 // holds (SampleFootprint); where it spans one texel or less, one bilinear tap.
 // Splats need none of it: their kernels are at least a pixel footprint wide.
+// With CAUSTICS_STORE (vtkCausticsCausticMap::ApplyStore, glsl/vtkCausticsImpostorCommon.glsl
+// before this file) the pass adds instead, at the receiver pixels neither this map nor
+// the hidden receivers' map (bound as the front map) sees, the distance impostors'
+// caustic store: the photons no receiver layer of the map's view landed.
 uniform sampler2D gPosition; // camera G-buffer: world position, w = material (-1: none)
 uniform sampler2D gNormal;   // normal as modelled, w = role
 uniform sampler2D irradiance[4];
@@ -184,6 +188,41 @@ vec4 SampleFootprint(ivec2 pixel, vec3 x, vec3 n, out bool seen)
   return seen ? sum / weights : vec4(0.0);
 }
 
+#ifdef CAUSTICS_STORE
+// The side of camera pixel `pixel`'s footprint on the plane (x, n) (m; 0 where the
+// camera's rays run along it): the store's read window spans at least that.
+float FootprintWidth(ivec2 pixel, vec3 x, vec3 n)
+{
+  vec3 a, b, c;
+  bool onPlane = CameraRayOnPlane(vec2(pixel), x, n, a) &&
+    CameraRayOnPlane(vec2(pixel) + vec2(1.0, 0.0), x, n, b) &&
+    CameraRayOnPlane(vec2(pixel) + vec2(0.0, 1.0), x, n, c);
+  return onPlane ? sqrt(length(cross(b - a, c - a))) : 0.0;
+}
+
+// The caustic store's irradiance at x: the first environment map whose texel in x's
+// direction shows the receiver at x (ImpostorDepositCaustic stored each map alike).
+bool StoreIrradiance(vec3 x, float width, out vec3 irradiance)
+{
+  irradiance = vec3(0.0);
+  for (int map = IMPOSTOR_REFRACTOR_ENVIRONMENT; map <= IMPOSTOR_REFLECTOR_ENVIRONMENT; map += 2)
+  {
+    if (impostorValid[map] == 0)
+    {
+      continue;
+    }
+    ivec3 texel = ImpostorTexel(map, x - impostorCentre[map]);
+    if (int(texelFetch(impostorNormal, texel, 0).w + 0.5) == ROLE_RECEIVER &&
+      ImpostorOnSurface(map, x, texel))
+    {
+      irradiance = max(ImpostorCausticIrradiance(texel, width), vec3(0.0));
+      return true;
+    }
+  }
+  return false;
+}
+#endif
+
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -199,6 +238,17 @@ void main()
   {
     discard; // the front map's pixel
   }
+#ifdef CAUSTICS_STORE
+  bool mapSees;
+  SampleFootprint(pixel, x, n, mapSees); // as this map's own final render tests it
+  vec3 stored;
+  if (mapSees || !StoreIrradiance(x, FootprintWidth(pixel, x, n), stored))
+  {
+    discard;
+  }
+  outIrradiance = vec4(stored, 0.0);
+  return;
+#endif
   bool seen;
   vec4 total = SampleFootprint(pixel, x, n, seen);
   if (!seen)

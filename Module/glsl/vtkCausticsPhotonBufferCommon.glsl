@@ -20,7 +20,10 @@
 #define STAT_FLUX_ABSORBED 14
 #define STAT_HIDDEN_HITS 16 // of STAT_HITS, on the hidden receivers' layer
 #define STAT_HIDDEN_DRAW 17 // the hidden map's final-render draw: 3, 1 if any such hit, 0, 0
-#define STAT_SIZE 21
+#define STAT_STORED 21      // photons no receiver layer lands, taken by the caustic store
+#define STAT_FLUX_STORED 22
+#define STAT_STORE_DRAW 24 // the caustic store's final-render draw: 3, 1 if any stored, 0, 0
+#define STAT_SIZE 28
 
 // Hierarchy control block (uint words): indirect arguments and counters.
 #define CONTROL_DISPATCH 0           // 3 words per traversal level, 16 levels

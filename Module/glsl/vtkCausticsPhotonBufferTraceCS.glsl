@@ -1,14 +1,18 @@
 // The photon buffer (001_7c07a484f7a872bb.txt §2, Fig. 2): every emitted photon
 // (vtkCausticsPhotonEmitter: after its first specular interaction) is followed to
-// the diffuse receiver it lands on. Three phases, three programs (PHASE):
+// the diffuse receiver it lands on. Three phases, three programs (PHASE), and a
+// fourth with the caustic store (PHASE 3, below: whether its final render draws):
 // 0. sort, one thread per texel: photons are counted; those in air are handed
 //    over to phase 2, those inside a refractor listed for phase 1;
 // 1. inside, one thread per listed photon: the exit is found on the refractor's
 //    back faces (or front faces, for a photon heading back towards the light) as
 //    the light sees them, Beer-Lambert absorption applies on the way, and the
 //    photon refracts out with exact Fresnel; total internal reflection continues
-//    inside, up to maximumInternalEvents interfaces. The part reflected back
-//    inside at a partial exit is not followed to the surfaces (counted). A medium
+//    inside, up to maximumInternalEvents interfaces. At a partial exit the photon
+//    goes on inside with probability R (Russian roulette) where the glass is traced
+//    as triangles; between the layers the part reflected back inside is not
+//    followed to the surfaces (counted), since their exit fits only directions that
+//    come from the light (an 8 % overshoot under a sun parallel to the floor). A medium
 //    that fills the refractors takes its share on each stretch and, when it
 //    scatters, the stretch is appended for the volume caustics (as phase 2's), and so
 //    are the stretches of that reflected part (its volume light only);
@@ -18,7 +22,12 @@
 //    one: its photons' measure is negated for the hidden receivers' map); a mirror met
 //    before it (a mirror-only layer of the same view) reflects the photon with the
 //    conductor's Fresnel reflectance, up to maximumReflections times, after which
-//    a mirror in the way stops it (it no longer passes through).
+//    a mirror in the way stops it (it no longer passes through). With
+//    CAUSTICS_STORE_ESCAPED, a photon that neither layer lands (a ceiling above
+//    the light, a wall beyond the map's frame) is searched in the distance
+//    impostors' environment map, and one that lands on a receiver there adds its
+//    flux to their caustic store (ImpostorDepositCaustic), which the final render
+//    reads where the caustic map does not see (vtkCausticsCausticMap::ApplyStore).
 // Lists keep every thread of a work group busy: Mesa's llvmpipe runs the
 // instructions of branches no lane takes, so a texel-wide dispatch would pay
 // for the tracing code at every empty texel.
@@ -576,13 +585,14 @@ void main()
     state = 1;
     underSheet = true;
   }
-  // The part reflected back inside at the exit (the echo), followed below for the
-  // volume caustic by Russian roulette: with probability R (stratified over the
+  // Between the light's layers, the part reflected back inside at the exit (the echo),
+  // followed below for the volume caustic by Russian roulette: with probability R (stratified over the
   // photons, a fixed rotation, so the frame stays deterministic) and the flux the
   // photon brought to the exit, which keeps its mean (flux x R) without a piece per photon.
   bool echo = false;
   vec3 echoFlux = vec3(0.0), echoPosition = p, echoDirection = d;
   int event = 0;
+  uint rng = CausticsHash(uint(texel.x) * 0x9e3779b9u ^ uint(texel.y));
   for (; event < maximumInternalEvents && state == 2; ++event)
   {
     float t, reflectance;
@@ -595,8 +605,24 @@ void main()
     }
     absorbed += Power(arriving - flux);
     path += t;
-    if (transmits)
+    if (transmits && exactSpecular != 0)
     {
+      // Traced as triangles, the part reflected back inside is followed: Russian
+      // roulette between the branches with the Fresnel weights (stratified over the
+      // photons at the first exit), as the reference and the impostors' photons do.
+      float u = event == 0 ? CausticsGridStratified(texel, 0x68e31da4u) : CausticsRandom(rng);
+      if (u < reflectance)
+      {
+        d = mirrored;
+        continue;
+      }
+      d = refracted;
+      state = 1;
+    }
+    else if (transmits)
+    {
+      // Between the light's two layers, whose exit a direction that does not come from
+      // the light may miss, it is not (counted; its volume echo is followed below).
       reflected += Power(flux) * reflectance;
       echo = CausticsGridStratified(texel, 0x68e31da4u) < reflectance;
       echoFlux = flux;
@@ -620,7 +646,6 @@ void main()
   // maximumInternalEvents pieces per photon (the list's capacity).
   if (echo && state == 1 && CausticsStretchInMedium(true))
   {
-    uint rng = CausticsHash(uint(texel.x) * 0x9e3779b9u ^ uint(texel.y));
     for (; event < maximumInternalEvents; ++event)
     {
       float t, reflectance;
@@ -648,6 +673,27 @@ void main()
   imageStore(outNormal, texel, vec4(d, underSheet ? 2.0 : 1.0));
   imageStore(outFlux, texel, vec4(flux, direction.w));
   Append(1, texel);
+}
+#elif PHASE == 3
+// Phase 3, one thread, after phase 2 with the caustic store: its final render
+// (vtkCausticsCausticMap::ApplyStore, a full-screen pass) is drawn only when the store
+// took more than `storeDrawShare` of the flux that landed; below it, leaving that light
+// out changes the caustic's flux by less than that share (the ball lens's few
+// grazing photons beyond its map: 2e-4 of it).
+uniform float storeDrawShare;
+
+float CounterFlux(int slot)
+{
+  return float(statistics[slot]) + 4294967296.0 * float(statistics[slot + 1]);
+}
+
+void main()
+{
+  if (gl_LocalInvocationIndex == 0u)
+  {
+    statistics[STAT_STORE_DRAW + 1] =
+      CounterFlux(STAT_FLUX_STORED) > storeDrawShare * CounterFlux(STAT_FLUX_HITS) ? 1u : 0u;
+  }
 }
 #else
 // Phase 2: photons in air find the receiver they land on, as the caustic map sees
@@ -733,6 +779,25 @@ bool FindReflector(vec3 p, vec3 d, float limit, out float t, out vec3 n, out int
   return true;
 }
 
+#ifdef CAUSTICS_STORE_ESCAPED
+// Where a photon no receiver layer lands meets a receiver in the distance impostors'
+// environment map of what it left (`leftMirror`: a mirror's; else the refractors' when
+// made), lit from the side it arrives on: its t, or -1 where there is none.
+float EscapedReceiver(vec3 p, vec3 d, bool leftMirror)
+{
+  bool mirror = leftMirror || impostorValid[IMPOSTOR_REFRACTOR_ENVIRONMENT] == 0;
+  float t;
+  ivec3 texel;
+  if (!ImpostorEnvironmentSearch(p, d, mirror ? ROLE_REFLECTOR : ROLE_REFRACTOR, 0, receiverLow,
+        receiverHigh, 1e-4 * airLength, t, texel))
+  {
+    return -1.0;
+  }
+  vec4 normalRole = texelFetch(impostorNormal, texel, 0);
+  return int(normalRole.w + 0.5) == ROLE_RECEIVER && dot(d, normalRole.xyz) < 0.0 ? t : -1.0;
+}
+#endif
+
 void main()
 {
   ivec2 texel;
@@ -753,7 +818,7 @@ void main()
   bool inMedium = CausticsStretchInMedium(underSheet);
   float t = -1.0;
   vec3 n = vec3(0.0);
-  bool landed = false, hidden = false;
+  bool landed = false, hidden = false, leftMirror = false;
   for (int reflection = 0; reflection <= maximumReflections; ++reflection)
   {
     landed = FindReceiver(p, d, t, n, hidden);
@@ -783,18 +848,40 @@ void main()
     path += mirrorT;
     p = x;
     d = reflect(d, facing);
+    leftMirror = true;
     if (!(Power(kept) > 0.0) || !AllFinite(p) || !AllFinite(d))
     {
       break;
     }
   }
   float power = Power(flux4.rgb);
+  float stored = -1.0; // t of the receiver the caustic store takes the photon on
+#ifdef CAUSTICS_STORE_ESCAPED
+  if (!landed && power > 0.0 && AllFinite(p) && AllFinite(d))
+  {
+    stored = EscapedReceiver(p, d, leftMirror);
+  }
+#endif
   if (AllFinite(p) && AllFinite(d))
   {
     // The last piece: to the receiver, or across the scene when it escapes.
-    CausticsAppendVolumeSegment(
-      CausticsMakeMediumSegment(p, d, landed ? t : airLength, flux4.rgb, underSheet, -1));
+    CausticsAppendVolumeSegment(CausticsMakeMediumSegment(
+      p, d, landed ? t : (stored > 0.0 ? stored : airLength), flux4.rgb, underSheet, -1));
   }
+#ifdef CAUSTICS_STORE_ESCAPED
+  if (stored > 0.0)
+  {
+    vec3 kept = inMedium ? flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, stored) : flux4.rgb;
+    AddFlux(STAT_FLUX_ABSORBED, power - Power(kept));
+    atomicAdd(statistics[STAT_STORED], 1u);
+    AddFlux(STAT_FLUX_STORED, Power(kept));
+    ImpostorDepositCaustic(p + stored * d, kept);
+    imageStore(outPosition, texel, vec4(0.0));
+    imageStore(outNormal, texel, vec4(0.0));
+    imageStore(outFlux, texel, vec4(0.0));
+    return;
+  }
+#endif
   vec3 hit = p + t * d;
   path += t;
   if (!landed || !AllFinite(hit) || !(path > 0.0) || isinf(path) || !(power > 0.0))

@@ -174,19 +174,94 @@ TEST(CausticMapReference, Bunny)
 {
   // A glass bunny under a spot light in a Cornell box: the bunny is not a convex
   // solid, so photons inside leave through its triangles (the camera view's
-  // hierarchy); the caustic map sees only the spot's cone (the light reflected onto
-  // the ceiling and the upper walls is lost), a photon that left does not meet the
-  // bunny again, and photons trapped inside after 8 interfaces are dropped.
-  // Measured: relative L2 49.7 %, flux ratio 0.780, peak 1 px off; with the refractor
+  // hierarchy), and the part reflected back inside at an exit goes on inside by
+  // Russian roulette; the caustic map sees only the spot's cone, and the light
+  // reflected onto the ceiling and the upper walls lands in the caustic store
+  // (ReceiversTheMapDoesNotSeeTakeTheStore below); a photon that left does not meet
+  // the bunny again, and photons trapped inside after 8 interfaces are dropped.
+  // Measured: relative L2 47.8 %, flux ratio 0.963, peak 1 px off. Before the store,
+  // 49.4 % and 0.866; before the roulette too, 49.7 % and 0.780; with the refractor
   // taken as the slab between its front and back faces seen from the light, 53.8 %
   // and 0.652 (59.8 % before the splats' floor of one camera pixel footprint,
   // MinimumCameraSplatRadius).
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(Compare("bunny", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.505);
-  EXPECT_GT(metrics->GetFluxRatio(), 0.77);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.49);
+  EXPECT_GT(metrics->GetFluxRatio(), 0.95);
   EXPECT_LT(metrics->GetFluxRatio(), 1.0);
+}
+
+namespace
+{
+/** Flux (W, summed over RGB) of `irradiance` on the reference's receiver pixels whose
+ * normal has a component along `axis` beyond `threshold` (signed). */
+double FluxWhereNormal(
+  vtkDataArray* irradiance, vtkImageData* reference, int axis, double threshold)
+{
+  vtkDataArray* mask = hcmtest::Array(reference, "ReceiverMask");
+  vtkDataArray* normal = hcmtest::Array(reference, "Normal");
+  vtkDataArray* area = hcmtest::Array(reference, "PixelArea");
+  double flux = 0.0;
+  for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
+  {
+    const double n = normal->GetComponent(i, axis);
+    if (mask->GetComponent(i, 0) > 0.0 && (threshold < 0.0 ? n < threshold : n > threshold))
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        flux += irradiance->GetComponent(i, c) * area->GetComponent(i, 0);
+      }
+    }
+  }
+  return flux;
+}
+}
+
+TEST(CausticMapReference, ReceiversTheMapDoesNotSeeTakeTheStore)
+{
+  // The bunny's Cornell box: the spot in the ceiling lights the floor, and the glass
+  // reflects and refracts its light onto the ceiling and the upper walls, which the
+  // caustic map's view (aimed down the spot's cone) does not hold. Their photons go to
+  // the distance impostors' caustic store, and the final render reads it at the
+  // receivers the map does not see (vtkCausticsCausticMap::ApplyStore). Measured
+  // against the reference: ceiling 1.034 of its flux, walls 0.846 (back 0.72, left
+  // 0.80, right 0.89: a wall the map sees at a grazing angle loses the photons its
+  // layer search misses). Without the store the ceiling had none.
+  hcmtest::Frame f("bunny", 1024, 256);
+  ASSERT_TRUE(f.Populated);
+  f.Render();
+  auto caustic = f.Buffer("CausticIrradiance");
+  ASSERT_TRUE(caustic);
+  vtkCausticsHierarchicalCausticMapPass::Counters counters;
+  ASSERT_TRUE(f.Pass->GetCounters(0, counters));
+  EXPECT_GT(counters.Stored, 0);
+  vtkNew<vtkCausticsReferenceRenderer> reference;
+  reference->SetInputRenderer(f.Renderer);
+  reference->SetImageSize(256, 256);
+  reference->SetPhotonsPerLight(1000000);
+  reference->CameraSeesRefractorsOff();
+  ASSERT_TRUE(reference->Update()) << reference->GetLastError();
+  vtkImageData* truth = reference->GetOutput();
+  vtkDataArray* ours = hcmtest::Array(caustic);
+  vtkDataArray* exact = hcmtest::Array(truth, "CausticIrradiance");
+  const double ceiling =
+    FluxWhereNormal(ours, truth, 1, -0.9) / FluxWhereNormal(exact, truth, 1, -0.9);
+  // The red, green and back walls.
+  const int axes[3] = { 0, 0, 2 };
+  const double sides[3] = { 0.9, -0.9, 0.9 };
+  double wallsOurs = 0.0, wallsExact = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    wallsOurs += FluxWhereNormal(ours, truth, axes[k], sides[k]);
+    wallsExact += FluxWhereNormal(exact, truth, axes[k], sides[k]);
+  }
+  const double walls = wallsOurs / wallsExact;
+  std::cout << "bunny's box: ceiling " << ceiling << " of the reference's flux, walls " << walls
+            << "; " << counters.Stored << " photons went to the caustic store\n";
+  EXPECT_NEAR(ceiling, 1.0, 0.1);
+  EXPECT_GT(walls, 0.8);
+  EXPECT_LT(walls, 1.05);
 }
 
 TEST(CausticMapReference, GrazingSun)

@@ -60,10 +60,10 @@ vtkCausticsHierarchicalCausticMapPass::Counters CheckFrame(Frame& f, const char*
   }
   if (f.Pass->GetLightTraced(0) && f.Pass->GetCounters(0, c))
   {
-    EXPECT_EQ(c.Photons, c.Hits + c.LostInside + c.Escaped) << what;
+    EXPECT_EQ(c.Photons, c.Hits + c.LostInside + c.Escaped + c.Stored) << what;
     EXPECT_EQ(c.Valid, c.Hits) << what;
-    const double balance =
-      c.FluxHits + c.FluxLostInside + c.FluxEscaped + c.FluxInternalReflection + c.FluxAbsorbed;
+    const double balance = c.FluxHits + c.FluxLostInside + c.FluxEscaped + c.FluxStored +
+      c.FluxInternalReflection + c.FluxAbsorbed;
     // Fixed-point flux sums round each term to 2^-20 of the largest texel flux: a
     // photon with 1 % of it errs by 5e-5 per term (PhotonBuffer.AccountsForEveryWatt).
     EXPECT_NEAR(balance, c.FluxIn, 1e-4 * c.FluxIn + 1e-30) << what;
