@@ -370,9 +370,10 @@ bool vtkCausticsPhotonBuffer::Trace(vtkOpenGLRenderWindow* renWin,
       this->StoreDrawProgram->Unbind(renWin);
     }
   }
-  // Later stages read the photon buffer as textures and the counters as buffers.
+  // Later stages read the photon buffer as textures, the counters as buffers and
+  // the final renders' draw arguments from them.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-    GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   for (unsigned int i = 0; i < 3; ++i)
   {
     glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);

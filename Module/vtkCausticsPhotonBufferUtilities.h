@@ -42,7 +42,7 @@ constexpr int StatHiddenHits = 16;
 constexpr int StatHiddenDraw = 17; // 4 words: { 3, any hidden hit ? 1 : 0, 0, 0 }
 constexpr int StatStored = 21;
 constexpr int StatFluxStored = 22;
-constexpr int StatStoreDraw = 24; // 4 words: { 3, any stored photon ? 1 : 0, 0, 0 }
+constexpr int StatStoreDraw = 24; // 4 words: { 3, stored flux > 1e-3 x landed ? 1 : 0, 0, 0 }
 constexpr int StatSize = 28;
 
 // Hierarchy control block words (CONTROL_*).

@@ -22,7 +22,7 @@
 #define STAT_HIDDEN_DRAW 17 // the hidden map's final-render draw: 3, 1 if any such hit, 0, 0
 #define STAT_STORED 21      // photons no receiver layer lands, taken by the caustic store
 #define STAT_FLUX_STORED 22
-#define STAT_STORE_DRAW 24 // the caustic store's final-render draw: 3, 1 if any stored, 0, 0
+#define STAT_STORE_DRAW 24 // the caustic store's final-render draw: 3, 1 if worth it (phase 3), 0, 0
 #define STAT_SIZE 28
 
 // Hierarchy control block (uint words): indirect arguments and counters.
