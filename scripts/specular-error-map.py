@@ -13,7 +13,10 @@ causes can be told apart:
   opaque G-buffer role);
 - pixels where some screen-space march left the view (the screen-space and the combined
   views differ there) and the others;
-- missing light (stage below the reference) against extra light, and the mean ratio.
+- missing light (stage below the reference) against extra light, and the mean ratio;
+- with --split-caustic, pixels whose reference colour is mostly caustic light (more than
+  half of it goes when the reference has no photons: the technique's caustic, seen through
+  the glass or in the mirror) and the others.
 
   cd build && PYTHONPATH=lib/python3/dist-packages xvfb-run -n 91 /usr/bin/python3 \\
       ../scripts/specular-error-map.py [--scenes ball-lens,ring,pool,bunny]
@@ -50,11 +53,11 @@ def array(image, name, components):
     return data.reshape(SIZE, SIZE, -1)[:, :, :components]
 
 
-def reference_color(renderer, seed):
+def reference_color(renderer, seed, photons=1000000):
     reference = vtkcaustics.vtkCausticsReferenceRenderer()
     reference.SetInputRenderer(renderer)
     reference.SetImageSize(SIZE, SIZE)
-    reference.SetPhotonsPerLight(1000000)
+    reference.SetPhotonsPerLight(photons)
     reference.SetSpecularSamples(256)
     reference.SetSeed(seed)
     if not reference.Update():
@@ -127,6 +130,11 @@ def main():
                         help="trace the glass and mirror triangles themselves or find them in "
                              "the layers and maps (the stage's ExactSpecularGeometry; default: "
                              "the class's, auto: where one is not a convex solid)")
+    parser.add_argument("--split-caustic", action="store_true",
+                        help="also split the error between the pixels whose reference colour "
+                             "is mostly caustic light (the technique's photons, seen through the "
+                             "glass or in the mirror) and the others; renders the reference once "
+                             "more with one photon")
     parser.add_argument("--no-noise", action="store_true",
                         help="render the reference once (no noise floor): half the time")
     parser.add_argument("--output", default="specular-error-map")
@@ -156,6 +164,13 @@ def main():
                 camera.SetViewAngle(args.view_angle)
             renderer.ResetCameraClippingRange()
         truth, mask = reference_color(renderer, 1)
+        # The pixels whose light is mostly caustic: the reference without its photons
+        # (one) keeps the direct light alone.
+        caustic_share = None
+        if args.split_caustic:
+            direct, _ = reference_color(renderer, 1, photons=1)
+            caustic_share = ((truth - direct).sum(axis=-1) /
+                             np.maximum(truth.sum(axis=-1), 1e-30))
         if args.no_noise:
             other, floor = truth, 0.0  # the bias below is then the error itself
         else:
@@ -183,9 +198,13 @@ def main():
                 print(f"  {name}, {NAMES[method]} view: {int(drawn.sum())} pixels, relative L2 "
                       f"{100 * error:.1f} % (bias without the reference's noise {100 * bias:.1f} %), "
                       f"mean ratio {ratio:.3f}, {100 * missing:.0f} % of the squared error missing light")
-                for label, part in (("mirror", drawn & mirror), ("glass", drawn & ~mirror),
-                                    ("a march left the view", drawn & left),
-                                    ("marches stayed in the view", drawn & ~left)):
+                parts = [("mirror", drawn & mirror), ("glass", drawn & ~mirror),
+                         ("a march left the view", drawn & left),
+                         ("marches stayed in the view", drawn & ~left)]
+                if caustic_share is not None:
+                    parts += [("mostly caustic light", drawn & (caustic_share > 0.5)),
+                              ("mostly direct light", drawn & ~(caustic_share > 0.5))]
+                for label, part in parts:
                     if part.sum() == 0:
                         continue
                     share = squared[part].sum() / total
