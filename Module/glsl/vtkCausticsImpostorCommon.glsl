@@ -401,30 +401,40 @@ vec3 ImpostorCausticIrradiance(ivec3 texel, float minimumWidth)
   if (samples < float(impostorCausticSamples) && impostorCausticCells > 0)
   {
     // Too few deposits within the fine window (light spread thin over a receiver the
-    // map sees finely): the 3 x 3, then 5 x 5, cells of the coarse level around it,
-    // whatever surfaces they show. Photons and shadow samples are lattices that
-    // alias with the texels; a window holding too few of either leaves their
-    // difference (a flat water sheet's T - 1 of the direct light) to that noise.
-    ivec2 centre = ImpostorCoarseCell(texel.xy);
+    // map sees finely): a window of 3, then 5, cells of the coarse level per side
+    // around it, whatever surfaces they show. Photons and shadow samples are lattices
+    // that alias with the texels; a window holding too few of either leaves their
+    // difference (a flat water sheet's T - 1 of the direct light) to that noise. The
+    // window is centred on the texel, not on its cell, each cell counting by the share
+    // of it the window covers: the estimate slides with the texel instead of stepping
+    // from cell to cell (a cell-centred window drew the cells as blocks).
+    vec2 position = vec2(texel.xy) + 0.5; // texels, from the face's corner
     for (int ring = 1; ring <= 2; ++ring)
     {
       counts = vec3(0.0);
       samples = 0.0;
       area = 0.0;
-      for (int y = -ring; y <= ring; ++y)
+      vec2 low = position - float(IMPOSTOR_COARSE) * (float(ring) + 0.5);
+      vec2 high = position + float(IMPOSTOR_COARSE) * (float(ring) + 0.5);
+      ivec2 first = max(ivec2(floor(low / float(IMPOSTOR_COARSE))), ivec2(0));
+      ivec2 last = min(ivec2(floor(high / float(IMPOSTOR_COARSE))), ivec2(impostorCausticCells - 1));
+      for (int y = first.y; y <= last.y; ++y)
       {
-        for (int x = -ring; x <= ring; ++x)
+        for (int x = first.x; x <= last.x; ++x)
         {
-          ivec2 cell = centre + ivec2(x, y);
-          if (any(lessThan(cell, ivec2(0))) ||
-            any(greaterThanEqual(cell, ivec2(impostorCausticCells))))
+          ivec2 cell = ivec2(x, y);
+          vec2 start = vec2(cell) * float(IMPOSTOR_COARSE);
+          vec2 covered = clamp(min(start + float(IMPOSTOR_COARSE), high) - max(start, low),
+            vec2(0.0), vec2(float(IMPOSTOR_COARSE))) / float(IMPOSTOR_COARSE);
+          float share = covered.x * covered.y;
+          if (!(share > 0.0))
           {
             continue;
           }
           vec4 stored = ImpostorStoreLoad(ImpostorCoarseTexels(cell, texel.z));
-          counts += stored.xyz;
-          samples += stored.w;
-          area += texelFetch(impostorCausticArea, ivec3(cell, texel.z), 0).x;
+          counts += share * stored.xyz;
+          samples += share * stored.w;
+          area += share * texelFetch(impostorCausticArea, ivec3(cell, texel.z), 0).x;
         }
       }
       if (samples >= float(impostorCausticCoarseSamples))
