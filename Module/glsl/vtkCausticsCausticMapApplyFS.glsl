@@ -207,13 +207,8 @@ bool StoreIrradiance(vec3 x, float width, out vec3 irradiance)
   irradiance = vec3(0.0);
   for (int map = IMPOSTOR_REFRACTOR_ENVIRONMENT; map <= IMPOSTOR_REFLECTOR_ENVIRONMENT; map += 2)
   {
-    if (impostorValid[map] == 0)
-    {
-      continue;
-    }
-    ivec3 texel = ImpostorTexel(map, x - impostorCentre[map]);
-    if (int(texelFetch(impostorNormal, texel, 0).w + 0.5) == ROLE_RECEIVER &&
-      ImpostorOnSurface(map, x, texel))
+    ivec3 texel;
+    if (ImpostorReceiverTexel(map, x, texel))
     {
       irradiance = max(ImpostorCausticIrradiance(texel, width), vec3(0.0));
       return true;

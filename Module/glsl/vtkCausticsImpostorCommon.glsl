@@ -457,6 +457,20 @@ vec3 ImpostorCausticIrradiance(ivec3 texel, float minimumWidth)
   return area > 0.0 ? counts * impostorCausticUnit / area : vec3(0.0);
 }
 
+// Whether environment map `map` (made) has, in h's direction, a texel that shows a
+// receiver at h: the texel the caustic store keeps h's light in.
+bool ImpostorReceiverTexel(int map, vec3 h, out ivec3 texel)
+{
+  texel = ivec3(0);
+  if (impostorValid[map] == 0)
+  {
+    return false;
+  }
+  texel = ImpostorTexel(map, h - impostorCentre[map]);
+  return int(texelFetch(impostorNormal, texel, 0).w + 0.5) == ROLE_RECEIVER &&
+    ImpostorOnSurface(map, h, texel);
+}
+
 // Adds `flux` (W per channel, negative for blocked light) landed at h on a receiver
 // to the caustic store of each environment map whose texel in h's direction shows
 // that receiver at h.
@@ -469,13 +483,8 @@ void ImpostorDepositCaustic(vec3 h, vec3 flux)
   ivec3 counts = ivec3(round(flux / impostorCausticUnit));
   for (int map = IMPOSTOR_REFRACTOR_ENVIRONMENT; map <= IMPOSTOR_REFLECTOR_ENVIRONMENT; map += 2)
   {
-    if (impostorValid[map] == 0)
-    {
-      continue;
-    }
-    ivec3 texel = ImpostorTexel(map, h - impostorCentre[map]);
-    if (int(texelFetch(impostorNormal, texel, 0).w + 0.5) != ROLE_RECEIVER ||
-      !ImpostorOnSurface(map, h, texel))
+    ivec3 texel;
+    if (!ImpostorReceiverTexel(map, h, texel))
     {
       continue;
     }
