@@ -26,7 +26,7 @@ vtkStandardNewMacro(vtkCausticsReferenceRenderer);
 namespace
 {
 // Bump whenever a change alters the reference's results: old cache files then miss.
-const char* const ReferenceVersion = "caustics-reference-4";
+const char* const ReferenceVersion = "caustics-reference-5";
 
 /** The point-data arrays of the output, with their components (also the EXR layers). */
 struct OutputArray

@@ -241,3 +241,71 @@ TEST(ReferenceSlab, UndersideOfTheFloorStaysDark)
   EXPECT_GT(seen, 1000);
   EXPECT_GT(reference->GetNumberOfPhotonsDeposited(), 50000) << "photons are there, above";
 }
+
+TEST(ReferenceSlab, EstimateHoldsUpToTheReceiversEnd)
+{
+  // The slab under a vertical sun over a floor 1 m wide, all of it under the slab: the
+  // floor's caustic irradiance is E T^2 (1 + R^2 + R^4 + R^6) everywhere, up to its
+  // edges. A gather kernel across an edge holds photons from its covered part only; the
+  // estimate is divided by that share (docs/reference.md), else the band within one
+  // radius of the edge read about 0.7 of the value and the corners less.
+  vtkNew<vtkRenderer> renderer;
+  const double floorHalf = 0.5;
+  renderer->AddActor(reftest::Floor(floorHalf));
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(-Half, Half, Bottom, Top, -Half, Half);
+  cube->Update();
+  auto slab = reftest::MakeActor(cube->GetOutput(), "slab");
+  vtkCausticsMaterial::MakeGlass(slab->GetProperty(), N);
+  renderer->AddActor(slab);
+  renderer->AddLight(reftest::Directional(0.0, -1.0, 0.0, Irradiance));
+  // Below the slab, beside it, looking down at the whole floor.
+  const double eye[3] = { 0.3, 0.8, 1.5 }, focal[3] = { 0.0, 0.0, 0.0 }, up[3] = { 0, 1, 0 };
+  reftest::SetCamera(renderer, eye, focal, up, 50.0);
+  auto reference = reftest::MakeReference(renderer, 128, 128, 400000);
+  const double radius = 0.05;
+  reference->SetKernelRadius(radius);
+  ASSERT_TRUE(reference->Update()) << reference->GetLastError();
+  vtkImageData* image = reference->GetOutput();
+  const double r = reftest::FresnelLaws(0.0, 1.0, N), t = 1.0 - r;
+  const double expected = Irradiance * t * t * (1.0 + r * r + std::pow(r, 4) + std::pow(r, 6));
+  // By the distance to the nearest edge: within r/2 of it, between r/2 and r, beyond.
+  double sum[3] = { 0.0, 0.0, 0.0 };
+  int count[3] = { 0, 0, 0 };
+  int corners = 0;
+  double cornerSum = 0.0;
+  for (int j = 0; j < 128; ++j)
+  {
+    for (int i = 0; i < 128; ++i)
+    {
+      if (reftest::At(image, "ReceiverMask", i, j) == 0.0)
+      {
+        continue;
+      }
+      const double x = std::abs(reftest::At(image, "Position", i, j, 0));
+      const double z = std::abs(reftest::At(image, "Position", i, j, 2));
+      const double edge = floorHalf - std::max(x, z);
+      const int band = edge < 0.5 * radius ? 0 : (edge < radius ? 1 : 2);
+      const double value = reftest::At(image, "CausticIrradiance", i, j, 1);
+      sum[band] += value;
+      ++count[band];
+      if (floorHalf - std::min(x, z) < 0.5 * radius)
+      {
+        cornerSum += value;
+        ++corners;
+      }
+    }
+  }
+  ASSERT_GT(count[0], 200);
+  ASSERT_GT(count[2], 2000);
+  ASSERT_GT(corners, 4);
+  const double edgeBand = sum[0] / count[0] / expected, nearBand = sum[1] / count[1] / expected,
+               inside = sum[2] / count[2] / expected, corner = cornerSum / corners / expected;
+  std::cout << "of the exact irradiance: within r/2 of an edge " << edgeBand << " (" << count[0]
+            << " pixels), r/2 to r " << nearBand << ", inside " << inside << ", corners "
+            << corner << " (" << corners << ")\n";
+  EXPECT_NEAR(inside, 1.0, 0.01);
+  EXPECT_NEAR(nearBand, 1.0, 0.02);
+  EXPECT_NEAR(edgeBand, 1.0, 0.03);
+  EXPECT_NEAR(corner, 1.0, 0.1);
+}

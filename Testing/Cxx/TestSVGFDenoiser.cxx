@@ -61,7 +61,10 @@ constexpr double FLUX = 1e-4;         // denoised over raw flux: 0.999997
 constexpr double RIGID_FLICKER = 1.06; // moving with its light: flicker 1.038 of still's (1.97)
 constexpr double RIGID_L2 = 1.0;       // relative L2 0.993 of still's (4.87)
 constexpr double SLIDE_FLICKER = 1.65; // floor sliding under the caustic: 1.614 ((2.01))
-constexpr double APPEAR = 1.03; // an actor appears: 1.011x the error before (dropping all: 3.58x)
+// An actor appears: 1.044x the error before (dropping all: 3.68x). The box stands on the
+// floor: since the reference's estimate holds up to a receiver's end (docs/reference.md)
+// the floor along its foot counts the light the splats lose there (1.011x before).
+constexpr double APPEAR = 1.06;
 constexpr double SLIDE_L2 = 1.58;      // worst frame's relative L2 1.553 of still's mean ((8.79))
 }
 

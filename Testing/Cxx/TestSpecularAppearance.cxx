@@ -202,13 +202,15 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
 // Since a ray leaving a mirror that ends at the scene's box on nothing is marched two
 // pixel footprints further (next to the ring's foot it crosses the floor at the box's
 // bottom, where the march's last sample projected onto the wall): ring 12.9 and 13.4 %.
-// Bounds just above.
+// Since the reference's estimate holds up to a receiver's end (docs/reference.md), the
+// pool's floor along its walls, seen through the water, counts the light the splats
+// lose there: pool 25.6 -> 26.3 %. Bounds just above.
 TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 {
   EXPECT_LT(SpecularError("ball-lens", "screen-space"), 0.275);
   EXPECT_LT(SpecularError("ring", "screen-space"), 0.132);
   EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.137);
-  EXPECT_LT(SpecularError("pool", "screen-space"), 0.26);
+  EXPECT_LT(SpecularError("pool", "screen-space"), 0.266);
 }
 
 // The same with the distance impostors (paper 004, docs/technique-distance-impostors.md),
@@ -244,7 +246,9 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // lit side (no shadow on the floor before a lit wall's foot), the ring's impostor view
 // 12.2 %; since the march of a ray leaving a mirror goes two pixel footprints past the
 // scene's box, the ring's combined view 9.7 %; with the caustic store's shadow edges
-// kept (ImpostorCausticIrradiance), the pool 17.8 and 17.9 %. Bounds just above.
+// kept (ImpostorCausticIrradiance), the pool 17.8 and 17.9 %. Since the reference's
+// estimate holds up to a receiver's end (docs/reference.md; the floor along the pool's
+// walls): pool 18.4 and 18.4 %. Bounds just above.
 // The 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -258,8 +262,8 @@ TEST(SpecularAppearance, DistanceImpostors)
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
   EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.124);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.1);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.18);
-  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.18);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.187);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.187);
   // The impostors' own refractor map (ExactSpecularGeometryOnConcaveGlass traces the
   // bunny's triangles, the default for a concave object).
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors, nullptr, nullptr, nullptr, nullptr,
@@ -438,7 +442,12 @@ TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
 // With the shadow out of the store (the maps' radiance shadowed by the shadow maps, the
 // store holding the photons alone): 15.6 % and 18.2 %. Since the sheet's triangles are
 // traced and hits the camera sees are shaded bilinearly: below 21.4 % (screen-space)
-// and 13.2 % (impostors), above 15.2 % and 18.1 %. Bounds just above.
+// and 13.2 % (impostors), above 15.2 % and 18.1 %. Since the reference's estimate holds
+// up to a receiver's end (docs/reference.md): below 22.7 % and 15.8 %, above 21.7 % and
+// 17.2 %. The 2 m floor, seen through the sheet from 4 m, is a band a few pixels tall
+// in the camera's own view, where the screen-space photons splat: their kernels reach
+// past its edges on most of its pixels, and the splats lose that light there (the
+// reference used to lose it too). Bounds just above.
 TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 {
   const int screen = vtkCausticsRenderPass::SCREEN_SPACE;
@@ -447,14 +456,14 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
   const double below[3] = { 4.0, 0.6, 0.3 }, towardsTheSheet[3] = { 1.0, 1.0, 0.0 };
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", screen, below, towardsTheSheet, up,
               PopulateWideSheet),
-    0.22);
+    0.232);
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", impostors, below, towardsTheSheet,
               up, PopulateWideSheet),
-    0.137);
+    0.162);
   const double above[3] = { 4.0, 1.6, 0.3 }, origin[3] = { 0.0, 0.0, 0.0 };
   EXPECT_LT(SpecularError(
               "sheet, beside above", "screen-space", screen, above, origin, up, PopulateWideSheet),
-    0.156);
+    0.222);
   EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
               PopulateWideSheet),
     0.185);
