@@ -22,6 +22,7 @@
 
 #include "vtkCausticsCausticMapApplyFS.h"
 #include "vtkCausticsCausticMapSplatVS.h"
+#include "vtkCausticsSplatCoverage.h"
 #include "vtkCausticsFullScreenVS.h"
 #include "vtkCausticsImpostorCommon.h"
 #include "vtkCausticsPhotonBufferCommon.h"
@@ -56,7 +57,8 @@ vtkCausticsCausticMap::vtkCausticsCausticMap()
   const std::string common = vtkCausticsPhotonBufferCommon;
   this->SplatProgram->SetName("caustic map splat");
   this->SplatProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
-  this->SplatProgram->SetVertexSource((common + vtkCausticsCausticMapSplatVS).c_str());
+  this->SplatProgram->SetVertexSource(
+    (common + vtkCausticsSplatCoverage + vtkCausticsCausticMapSplatVS).c_str());
   this->SplatProgram->SetFragmentSource(vtkCausticsPhotonSplatFS);
   this->ApplyProgram->SetName("caustic map final render");
   this->ApplyProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
@@ -130,7 +132,7 @@ bool vtkCausticsCausticMap::RenderReceivers(vtkOpenGLRenderWindow* renWin,
 bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
   const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
   const caustics::PhotonRecords& landed, vtkCausticsPhotonBufferHierarchy* hierarchy,
-  const caustics::Camera* camera, bool hiddenOnly)
+  const caustics::Camera* camera, vtkCausticsCausticMap* otherLayer, bool hiddenOnly)
 {
   if (!this->Internal->HasView || !landed.IsSet() || !hierarchy)
   {
@@ -178,7 +180,7 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
       GL_SHADER_STORAGE_BUFFER, CAUSTICS_HIERARCHY_SPLATS_BINDING);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hierarchy->GetControlBuffer().Handle());
     glBindVertexArray(this->VertexArray);
-    this->DrawLevels(state, program, hierarchy);
+    this->DrawLevels(state, program, hierarchy, otherLayer);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     for (vtkTextureObject* input : inputs)
@@ -267,7 +269,7 @@ void vtkCausticsCausticMap::SetSplatUniforms(vtkCausticsShaderProgram* program,
 }
 
 void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
-  vtkCausticsPhotonBufferHierarchy* hierarchy)
+  vtkCausticsPhotonBufferHierarchy* hierarchy, vtkCausticsCausticMap* otherLayer)
 {
   for (int j = 0; j < this->NumberOfLevels; ++j)
   {
@@ -279,6 +281,25 @@ void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderP
     targetNormal->Activate();
     program->SetUniformi("targetPosition", targetPosition->GetTextureUnit());
     program->SetUniformi("targetNormal", targetNormal->GetTextureUnit());
+    // The other layer's receivers of this level, where it has them (the same view and
+    // size: rendered with the same settings).
+    vtkCausticsGBuffer* other = otherLayer && j < otherLayer->NumberOfLevels &&
+        otherLayer->GetLevelResolution(j) == size
+      ? otherLayer->Receivers[j].GetPointer()
+      : nullptr;
+    vtkTextureObject* otherPosition = other ? other->GetPositionTexture() : nullptr;
+    vtkTextureObject* otherNormal = other ? other->GetNormalTexture() : nullptr;
+    const bool hasOther = otherPosition && otherNormal;
+    program->SetUniformi("hasOtherLayer", hasOther ? 1 : 0);
+    if (hasOther)
+    {
+      otherPosition->Activate();
+      otherNormal->Activate();
+    }
+    // Unused when there is none, but a sampler must name a unit of its type.
+    program->SetUniformi(
+      "otherPosition", (hasOther ? otherPosition : targetPosition)->GetTextureUnit());
+    program->SetUniformi("otherNormal", (hasOther ? otherNormal : targetNormal)->GetTextureUnit());
     caustics::hcm::SetViewUniforms(program, "targetView", this->Internal->View, size, size);
     program->SetUniformu("listOffset", static_cast<unsigned int>(j) * hierarchy->GetSplatRegion());
     this->Framebuffers[j]->Bind();
@@ -287,6 +308,11 @@ void vtkCausticsCausticMap::DrawLevels(vtkOpenGLState* state, vtkCausticsShaderP
     glDrawArraysIndirect(GL_POINTS,
       reinterpret_cast<const void*>(
         static_cast<std::size_t>(vtkCausticsPhotonBufferHierarchy::GetDrawArgumentsOffset(j))));
+    if (hasOther)
+    {
+      otherPosition->Deactivate();
+      otherNormal->Deactivate();
+    }
     targetPosition->Deactivate();
     targetNormal->Deactivate();
   }

@@ -106,12 +106,17 @@ public:
    * settings' ClusterRadius(), and no less than MinimumCameraSplatRadius pixel
    * footprints of `camera` (may be null: no floor). `hiddenOnly`: only the photons
    * the trace marked as landed on a hidden receiver (a negative measure, see
-   * vtkCausticsPhotonBuffer), for the hidden receivers' map. False if a program failed.
+   * vtkCausticsPhotonBuffer), for the hidden receivers' map. `otherLayer` (may be
+   * null): the other receiver layer of the same view (the hidden receivers' map for
+   * the map, the map for the hidden receivers'), whose receivers were rendered. Each
+   * kernel deposits its whole flux on the receivers of its plane that either layer
+   * shows, so a kernel cut by its plane's end, or by the map's frame, loses nothing.
+   * False if a program failed.
    */
   bool Splat(vtkOpenGLRenderWindow* renWin, const caustics::CausticMapSettings& settings,
     const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
     vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera,
-    bool hiddenOnly = false);
+    vtkCausticsCausticMap* otherLayer = nullptr, bool hiddenOnly = false);
 
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of
@@ -195,7 +200,7 @@ private:
     const caustics::CausticMapSettings& settings, const caustics::PhotonGrid& grid,
     vtkCausticsPhotonBufferHierarchy* hierarchy, const caustics::Camera* camera);
   void DrawLevels(vtkOpenGLState* state, vtkCausticsShaderProgram* program,
-    vtkCausticsPhotonBufferHierarchy* hierarchy);
+    vtkCausticsPhotonBufferHierarchy* hierarchy, vtkCausticsCausticMap* otherLayer);
   // Apply() and ApplyStore(): `program` over the camera's receivers, additively.
   bool DrawFinal(vtkOpenGLRenderWindow* renWin, vtkCausticsShaderProgram* program,
     vtkCausticsGBuffer* camera, const caustics::Camera& view, vtkCausticsCausticMap* front,

@@ -391,8 +391,9 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
     else
     {
       light.Traced = gathered &&
-        light.Map->Splat(
-          renWin, this->Settings, grid, light.Photons->GetLanded(), light.Hierarchy, &scene.View);
+        light.Map->Splat(renWin, this->Settings, grid, light.Photons->GetLanded(),
+          light.Hierarchy, &scene.View,
+          this->Settings.HiddenReceivers ? light.HiddenMap.GetPointer() : nullptr);
     }
     // The photons that landed on hidden receivers, and those whose kernel reaches
     // them, into their own map (splats in either reconstruction).
@@ -401,7 +402,7 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
       this->BeginStage("hcm hidden splat");
       light.Traced = light.Traced &&
         light.HiddenMap->Splat(renWin, this->Settings, grid, light.Photons->GetLanded(),
-          light.Hierarchy, &scene.View, true);
+          light.Hierarchy, &scene.View, light.Map, true);
       this->EndStage("hcm hidden splat");
     }
     this->EndStage("hcm splat");

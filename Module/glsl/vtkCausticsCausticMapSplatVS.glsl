@@ -26,8 +26,13 @@ uniform float minimumCameraRadiusPixels; // clusters' floor in camera pixel foot
 // receivers on their plane (a photon beside the edge of a wall's shadow lights both
 // sides; the others would be drawn for nothing).
 uniform bool hiddenOnly;
-uniform sampler2D targetPosition; // the level's receivers (the fragment shader's test)
-uniform float planeTolerance;
+// targetPosition, targetNormal (the level's receivers), planeTolerance and
+// normalTolerance: vtkCausticsSplatCoverage.glsl.
+// The other receiver layer's same level (the hidden receivers' map for the map, the
+// map for the hidden receivers'): the two share each kernel (KernelDeposit).
+uniform bool hasOtherLayer;
+uniform sampler2D otherPosition;
+uniform sampler2D otherNormal;
 
 struct Node
 {
@@ -77,12 +82,32 @@ vec3 OnPlane(vec2 pixel, vec3 c, vec3 n)
   return origin + dot(c - origin, n) / dot(direction, n) * direction;
 }
 
-// The sum over pixel centres of the kernel of radius r (m) centred at `centre`
-// (pixels) on the plane (c, n), times each pixel's area on that plane: what the
-// fragment shader will deposit per watt. The midpoint rule behind it errs by up to
-// 12 % at 1.5 pixels (5 % at 2, 1 % at 4), depending on where the centre falls
-// in its pixel; dividing the flux by it makes every splat deposit exactly its flux.
-float DiscreteKernelSum(vec2 centre, vec3 c, vec3 n, float r, float reach)
+// The texels of this level's plane (vtkCausticsSplatCoverage.glsl): those that show it
+// in this map or in the other receiver layer. Past the map's frame the plane ends for
+// the map: the caustic store holds the photons that land there, and the pixels there
+// read it.
+bool KernelCountsTexel(ivec2 texel, vec3 c, vec3 n, float r, inout float d2)
+{
+  if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(targetView.size))))
+  {
+    return false;
+  }
+  return DepositsOn(targetPosition, targetNormal, texel, c, n, r, d2) ||
+    (hasOtherLayer && DepositsOn(otherPosition, otherNormal, texel, c, n, r, d2));
+}
+
+// What the fragment shaders will deposit per watt: the kernel of radius r (m) centred
+// at `centre` (pixels; a and b: r along its two tangents, in pixels) on the plane
+// (c, n), over the texels of this level, and of the other receiver layer, that show
+// that plane, times each texel's area on it. Dividing the flux by it makes every splat
+// deposit exactly its flux on the receivers it reaches
+// (vtkCausticsSplatCoverage.glsl): a kernel cut by the plane's end, by the map's frame
+// or by a shadow's edge the other layer holds gives the cut part to the rest (on the
+// bunny's box a tenth of its walls' light was lost so), and small kernels lose the
+// midpoint rule's error (up to 12 % at 1.5 pixels): kernels narrower than 4 pixels are
+// summed over every pixel centre they cover. Wider ones count the share that lands
+// (the continuous kernel integrates to 1).
+float KernelDeposit(vec2 centre, vec2 a, vec2 b, vec3 c, vec3 n, float r, float reach, bool small)
 {
   // One pixel step along x and y, on the plane (exact for orthographic views; the
   // perspective's change over a few pixels is of second order).
@@ -93,21 +118,15 @@ float DiscreteKernelSum(vec2 centre, vec3 c, vec3 n, float r, float reach)
   {
     return 1.0;
   }
-  float r2 = r * r;
-  int extent = int(ceil(reach)) + 1;
-  vec2 first = floor(centre) + 0.5;
-  float sum = 0.0;
-  for (int y = -extent; y <= extent; ++y)
+  bool whole = KernelWhole(centre, a, b, c, n, r);
+  if (!small)
   {
-    for (int x = -extent; x <= extent; ++x)
-    {
-      vec2 delta = first + vec2(x, y) - centre;
-      vec3 offset = delta.x * stepX + delta.y * stepY;
-      float d2 = dot(offset, offset);
-      sum += d2 < r2 ? 1.0 - d2 / r2 : 0.0;
-    }
+    return whole ? 1.0
+                 : LandedShare(KernelSums(centre, c, n, stepX, stepY, r, reach,
+                     KernelStride(reach), false));
   }
-  return sum * 2.0 / (CAUSTICS_PI * r2) * area;
+  vec2 sums = KernelSums(centre, c, n, stepX, stepY, r, reach, 1, whole);
+  return max(sums.y, 0.125 * sums.x) * 2.0 / (CAUSTICS_PI * r * r) * area;
 }
 
 // Whether the target level shows a receiver on the plane (p, n) at the kernel's
@@ -198,8 +217,8 @@ void main()
     Discard();
     return;
   }
-  // Small kernels: normalized over the pixel centres they actually cover.
-  float deposit = clamped < 4.0 ? DiscreteKernelSum(centre, position, n, splatRadius, reach) : 1.0;
+  float deposit =
+    KernelDeposit(centre, scale * a, scale * b, position, n, splatRadius, reach, clamped < 4.0);
   splatCentre = position;
   splatNormal = n;
   splatFlux = deposit > 0.0 ? flux / deposit : flux;

@@ -100,7 +100,10 @@ TEST(CausticMapReference, PoolFloor)
 {
   // The floor under the waves: the water is an open refractor (one sheet), so the
   // photons stay in the water after refracting in and go on to the floor. Reached
-  // here: relL2 8.18 %, flux 1.0029. The floor along the sunlit wall is hidden from
+  // here: relL2 8.29 %, flux 0.9973 (8.18 % and 1.0029 before the reference's estimate
+  // held up to a receiver's end and the kernels gave the floor what they lost on the
+  // walls at its edges: both had lost 1-3 % along the walls, docs/reference.md).
+  // The floor along the sunlit wall is hidden from
   // the sun's caustic map by the wall while refraction bends photons onto it: the
   // hidden receivers' map holds it (HiddenReceivers); without it 19.7 % and flux
   // 0.968, that strip's 3 % missing (docs/technique-caustic-maps.md). Before open
@@ -179,7 +182,10 @@ TEST(CausticMapReference, Bunny)
   // reflected onto the ceiling and the upper walls lands in the caustic store
   // (ReceiversTheMapDoesNotSeeTakeTheStore below); a photon that left does not meet
   // the bunny again, and photons trapped inside after 8 interfaces are dropped.
-  // Measured: relative L2 47.8 %, flux ratio 0.963, peak 1 px off. Before the store,
+  // Measured: relative L2 47.8 %, flux ratio 1.020, peak 1 px off: the walls now keep
+  // the light their kernels lost at the box's corners, and the reference counts the
+  // light along them (docs/reference.md); what is over is the floor (1.055 of it,
+  // ReceiversTheMapDoesNotSeeTakeTheStore). Before both, 47.8 % and 0.963. Before the store,
   // 49.4 % and 0.866; before the roulette too, 49.7 % and 0.780; with the refractor
   // taken as the slab between its front and back faces seen from the light, 53.8 %
   // and 0.652 (59.8 % before the splats' floor of one camera pixel footprint,
@@ -189,7 +195,7 @@ TEST(CausticMapReference, Bunny)
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_LT(metrics->GetRelativeL2Error(), 0.49);
   EXPECT_GT(metrics->GetFluxRatio(), 0.95);
-  EXPECT_LT(metrics->GetFluxRatio(), 1.0);
+  EXPECT_LT(metrics->GetFluxRatio(), 1.03);
 }
 
 namespace
@@ -225,9 +231,12 @@ TEST(CausticMapReference, ReceiversTheMapDoesNotSeeTakeTheStore)
   // caustic map's view (aimed down the spot's cone) does not hold. Their photons go to
   // the distance impostors' caustic store, and the final render reads it at the
   // receivers the map does not see (vtkCausticsCausticMap::ApplyStore). Measured
-  // against the reference: ceiling 1.034 of its flux, walls 0.846 (back 0.72, left
-  // 0.80, right 0.89: a wall the map sees at a grazing angle loses the photons its
-  // layer search misses). Without the store the ceiling had none.
+  // against the reference: ceiling 1.017 of its flux, walls 0.951 (back 0.875), floor
+  // 1.055. Without the store the ceiling had none. The walls, which the map sees
+  // obliquely and whose kernels meet the floor, the ceiling and each other, read 0.846
+  // (back 0.74) before each splat deposited its whole flux on the receivers it reaches
+  // (KernelDeposit, vtkCausticsSplatCoverage.glsl). The floor is 5 % over with splats
+  // and 0.7 % over with caustic triangles from the same photons (not explained yet).
   hcmtest::Frame f("bunny", 1024, 256);
   ASSERT_TRUE(f.Populated);
   f.Render();
@@ -257,10 +266,15 @@ TEST(CausticMapReference, ReceiversTheMapDoesNotSeeTakeTheStore)
     wallsExact += FluxWhereNormal(exact, truth, axes[k], sides[k]);
   }
   const double walls = wallsOurs / wallsExact;
+  const double floor =
+    FluxWhereNormal(ours, truth, 1, 0.9) / FluxWhereNormal(exact, truth, 1, 0.9);
+  const double back =
+    FluxWhereNormal(ours, truth, 2, 0.9) / FluxWhereNormal(exact, truth, 2, 0.9);
   std::cout << "bunny's box: ceiling " << ceiling << " of the reference's flux, walls " << walls
-            << "; " << counters.Stored << " photons went to the caustic store\n";
+            << " (back " << back << "), floor " << floor << "; " << counters.Stored
+            << " photons went to the caustic store\n";
   EXPECT_NEAR(ceiling, 1.0, 0.1);
-  EXPECT_GT(walls, 0.8);
+  EXPECT_GT(walls, 0.92);
   EXPECT_LT(walls, 1.05);
 }
 

@@ -117,14 +117,17 @@ TEST(MirrorCup, SecondReflectionsFromAbove)
       { "cpu-progressive", 0.046, 0.005 } });
 }
 
-// Obliquely: screen-space 16.3 %, flux 0.981 (at 128 x 128 pixels 19.1 % and 0.969,
-// docs/accuracy.md, "Mirror cup"); caustic maps 14.3 %, 1.012 (17.3 %, 1.017 with the
+// Obliquely: screen-space 16.5 %, flux 0.978 (at 128 x 128 pixels 19.1 % and 0.969,
+// docs/accuracy.md, "Mirror cup"); caustic maps 14.4 %, 1.015 (17.3 %, 1.017 with the
 // max-distance spacing; at 128 pixels 11.6 %, 0.997, and 54.7 % and 1.25 before the
-// second reflections); cpu-progressive 12.5 %, 1.000.
+// second reflections); cpu-progressive 12.5 %, 1.000. Before the reference's estimate
+// held up to a receiver's end (docs/reference.md) and the caustic maps' kernels gave
+// the floor what they lost on the wall at its foot: 16.3 % and 0.981, 14.3 % and
+// 1.012. The floor's ring along the wall's foot is what the screen-space splats lose.
 TEST(MirrorCup, SecondReflectionsObliquely)
 {
   Check(1,
-    { { "screen-space", 0.17, 0.02 }, { "caustic-maps", 0.15, 0.015 },
+    { { "screen-space", 0.17, 0.025 }, { "caustic-maps", 0.15, 0.018 },
       { "cpu-progressive", 0.13, 0.005 } });
 }
 
