@@ -22,11 +22,11 @@
 
 #include "vtkCausticsCausticMapApplyFS.h"
 #include "vtkCausticsCausticMapSplatVS.h"
-#include "vtkCausticsSplatCoverage.h"
 #include "vtkCausticsFullScreenVS.h"
 #include "vtkCausticsImpostorCommon.h"
 #include "vtkCausticsPhotonBufferCommon.h"
 #include "vtkCausticsPhotonSplatFS.h"
+#include "vtkCausticsSplatCoverage.h"
 
 #include <algorithm>
 #include <string>

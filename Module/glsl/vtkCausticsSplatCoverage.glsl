@@ -32,9 +32,9 @@ bool DepositsOn(sampler2D positions, sampler2D normals, ivec2 texel, vec3 c, vec
 }
 
 // The vertex shader's rule: whether texel `texel` (possibly outside the target) is the
-// kernel's plane. d2 comes in as the squared distance of the texel's
-// ray on the plane from c, and goes out as the weight's distance (the fragment shader's
-// own where it deposits).
+// kernel's plane. d2 comes in as the squared distance from c of the texel's ray on the
+// plane, and goes out as the distance the weight takes (the fragment shader's own,
+// where it deposits).
 bool KernelCountsTexel(ivec2 texel, vec3 c, vec3 n, float r, inout float d2);
 
 // The kernel K = 1 - d^2/r^2 over the pixel centres the kernel covers on the plane
