@@ -184,7 +184,7 @@ TEST(CausticMapReference, Bunny)
   // the bunny again, and photons trapped inside after 8 interfaces are dropped.
   // Measured: relative L2 47.8 %, flux ratio 1.020, peak 1 px off: the walls now keep
   // the light their kernels lost at the box's corners, and the reference counts the
-  // light along them (docs/reference.md); what is over is the floor (1.055 of it,
+  // light along them (docs/reference.md); what is over is the floor (1.053 of it,
   // ReceiversTheMapDoesNotSeeTakeTheStore). Before both, 47.8 % and 0.963. Before the store,
   // 49.4 % and 0.866; before the roulette too, 49.7 % and 0.780; with the refractor
   // taken as the slab between its front and back faces seen from the light, 53.8 %
@@ -231,8 +231,8 @@ TEST(CausticMapReference, ReceiversTheMapDoesNotSeeTakeTheStore)
   // caustic map's view (aimed down the spot's cone) does not hold. Their photons go to
   // the distance impostors' caustic store, and the final render reads it at the
   // receivers the map does not see (vtkCausticsCausticMap::ApplyStore). Measured
-  // against the reference: ceiling 1.017 of its flux, walls 0.951 (back 0.875), floor
-  // 1.055. Without the store the ceiling had none. The walls, which the map sees
+  // against the reference: ceiling 1.017 of its flux, walls 0.948 (back 0.879), floor
+  // 1.053. Without the store the ceiling had none. The walls, which the map sees
   // obliquely and whose kernels meet the floor, the ceiling and each other, read 0.846
   // (back 0.74) before each splat deposited its whole flux on the receivers it reaches
   // (KernelDeposit, vtkCausticsSplatCoverage.glsl). The floor is 5 % over with splats
