@@ -229,6 +229,22 @@ void main()
   }
   vec3 x = position.xyz;
   vec3 n = normalize(normalRole.xyz);
+  // Light lands on the side of a receiver it arrives from: the side the map's view
+  // sees, and for the caustic store the side the normal points to (its deposit's
+  // test). A camera that sees the other side (outside a box, under a floor) sees
+  // none of it: the outside of the bunny box's walls showed their inside's caustic.
+  float cameraSide = dot(ViewAway(cameraView, x), n);
+#ifdef CAUSTICS_STORE
+  if (cameraSide > 0.0)
+  {
+    discard;
+  }
+#else
+  if (cameraSide * dot(ViewAway(mapViews[0], x), n) < 0.0)
+  {
+    discard;
+  }
+#endif
   if (hasFront && FrontSees(x, n))
   {
     discard; // the front map's pixel
