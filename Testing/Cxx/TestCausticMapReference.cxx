@@ -201,6 +201,23 @@ TEST(CausticMapReference, Bunny)
 
 namespace
 {
+/** The reference of a 256^2 frame `f` (10^6 photons), its camera rays passing the
+ * refractors as the caustic buffer's G-buffer does; null (and a failure) on error. */
+vtkSmartPointer<vtkImageData> ReferenceThroughRefractors(hcmtest::Frame& f)
+{
+  vtkNew<vtkCausticsReferenceRenderer> reference;
+  reference->SetInputRenderer(f.Renderer);
+  reference->SetImageSize(256, 256);
+  reference->SetPhotonsPerLight(1000000);
+  reference->CameraSeesRefractorsOff();
+  if (!reference->Update())
+  {
+    ADD_FAILURE() << reference->GetLastError();
+    return nullptr;
+  }
+  return reference->GetOutput();
+}
+
 /** Flux (W, summed over RGB) of `irradiance` on the reference's receiver pixels whose
  * normal has a component along `axis` beyond `threshold` (signed). */
 double FluxWhereNormal(
@@ -246,13 +263,8 @@ TEST(CausticMapReference, ReceiversTheMapDoesNotSeeTakeTheStore)
   vtkCausticsHierarchicalCausticMapPass::Counters counters;
   ASSERT_TRUE(f.Pass->GetCounters(0, counters));
   EXPECT_GT(counters.Stored, 0);
-  vtkNew<vtkCausticsReferenceRenderer> reference;
-  reference->SetInputRenderer(f.Renderer);
-  reference->SetImageSize(256, 256);
-  reference->SetPhotonsPerLight(1000000);
-  reference->CameraSeesRefractorsOff();
-  ASSERT_TRUE(reference->Update()) << reference->GetLastError();
-  vtkImageData* truth = reference->GetOutput();
+  vtkSmartPointer<vtkImageData> truth = ReferenceThroughRefractors(f);
+  ASSERT_TRUE(truth);
   vtkDataArray* ours = hcmtest::Array(caustic);
   vtkDataArray* exact = hcmtest::Array(truth, "CausticIrradiance");
   const double ceiling =
@@ -295,13 +307,8 @@ TEST(CausticMapReference, CameraOutsideTheBoxSeesItsWallsUnlit)
   f.Render();
   auto caustic = f.Buffer("CausticIrradiance");
   ASSERT_TRUE(caustic);
-  vtkNew<vtkCausticsReferenceRenderer> reference;
-  reference->SetInputRenderer(f.Renderer);
-  reference->SetImageSize(256, 256);
-  reference->SetPhotonsPerLight(1000000);
-  reference->CameraSeesRefractorsOff();
-  ASSERT_TRUE(reference->Update()) << reference->GetLastError();
-  vtkImageData* truth = reference->GetOutput();
+  vtkSmartPointer<vtkImageData> truth = ReferenceThroughRefractors(f);
+  ASSERT_TRUE(truth);
   vtkDataArray* ours = hcmtest::Array(caustic);
   vtkDataArray* position = hcmtest::Array(truth, "Position");
   vtkDataArray* mask = hcmtest::Array(truth, "ReceiverMask");
