@@ -2206,9 +2206,8 @@ struct ReferenceTracer::Internals
    */
   double KernelCoverage(const glm::dvec3& x, const glm::dvec3& n, double r) const
   {
-    const glm::dvec3 helper = std::abs(n.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-    const glm::dvec3 e1 = glm::normalize(glm::cross(n, helper));
-    const glm::dvec3 e2 = glm::cross(n, e1);
+    glm::dvec3 e1, e2;
+    Basis(n, e1, e2);
     bool rimCovered = true;
     for (int k = 0; k < 8 && rimCovered; ++k)
     {
