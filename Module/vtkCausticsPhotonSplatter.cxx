@@ -17,6 +17,7 @@
 #include "vtkCausticsPhotonTriangleFS.h"
 #include "vtkCausticsPhotonTriangleVS.h"
 
+#include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkCausticsPhotonSplatter);
@@ -199,6 +200,19 @@ bool vtkCausticsPhotonSplatter::DrawSplats(vtkOpenGLRenderWindow* renWin,
   this->Program->SetUniformf("maximumRadiusPixels", static_cast<float>(this->MaximumRadiusPixels));
   this->Program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
   this->Program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+  // The GL discards a point whose centre is outside the clip volume, sprite and all:
+  // a photon that landed just outside the view would not light the pixels its kernel
+  // covers inside it, and every image read low along its borders (0.6 of the
+  // reference in the outermost pixels). The points are drawn into a viewport wider by
+  // the largest sprite's reach on each side, their positions shrunk to match, so that
+  // each keeps its pixel; what falls outside the framebuffer is discarded as before.
+  const int guard = static_cast<int>(std::ceil(1.4143 * this->MaximumRadiusPixels)) + 2;
+  this->Program->SetUniform2f("guardScale",
+    static_cast<float>(size[0]) / static_cast<float>(size[0] + 2 * guard),
+    static_cast<float>(size[1]) / static_cast<float>(size[1] + 2 * guard));
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  state->vtkglViewport(-guard, -guard, size[0] + 2 * guard, size[1] + 2 * guard);
   glBindVertexArray(this->VertexArray);
   glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(grid.Count()));
   glBindVertexArray(0);

@@ -8,6 +8,11 @@ uniform sampler2D kernelRadius; // r: the kernel's radius (m)
 uniform int hitWidth;
 uniform mat4 worldToClip;
 uniform vec2 viewport;
+// The draw's viewport is wider than the target by a guard band on each side (the GL
+// drops a point whose centre is outside the clip volume, vtkCausticsPhotonSplatter):
+// clip x and y are scaled by target size / viewport size so that every point keeps its
+// pixel.
+uniform vec2 guardScale;
 uniform float minimumRadiusPixels;
 uniform float maximumRadiusPixels;
 // Caustic triangles (vtkCausticsPhotonTriangleCommon.glsl): when on, a photon splats
@@ -98,6 +103,6 @@ void main()
   splatFlux = flux;
   splatRadius = r;
   splatHalfSet = CausticsHalfSet(uint(gl_VertexID));
-  gl_Position = clip;
+  gl_Position = vec4(clip.xy * guardScale, clip.zw);
   gl_PointSize = min(2.0 * 1.4143 * clamped + 2.0, 1023.0);
 }
