@@ -5,11 +5,14 @@
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkCausticsFullScreenVS.h"
+#include "vtkCausticsPhotonSplatEndsFS.h"
 #include "vtkCausticsPhotonSplatFS.h"
 #include "vtkCausticsPhotonSplatVS.h"
 #include "vtkCausticsPhotonTriangleClassifyCS.h"
@@ -23,9 +26,11 @@
 vtkStandardNewMacro(vtkCausticsPhotonSplatter);
 
 vtkCausticsPhotonSplatter::vtkCausticsPhotonSplatter()
+  : Triangle(new caustics::gl::FullScreenTriangle)
 {
   this->Program->SetName("photon splat");
   this->Program->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->Program->SetDefine("CAUSTICS_KERNEL_RADII", 1);
   this->Program->SetVertexSource(vtkCausticsPhotonSplatVS);
   this->Program->SetFragmentSource(vtkCausticsPhotonSplatFS);
   const std::string triangles = vtkCausticsPhotonTriangleCommon;
@@ -40,6 +45,10 @@ vtkCausticsPhotonSplatter::vtkCausticsPhotonSplatter()
   this->TriangleProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   this->TriangleProgram->SetVertexSource((records + triangles + vtkCausticsPhotonTriangleVS).c_str());
   this->TriangleProgram->SetFragmentSource(vtkCausticsPhotonTriangleFS);
+  this->EndsProgram->SetName("photon splat: receivers' ends");
+  this->EndsProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
+  this->EndsProgram->SetVertexSource(vtkCausticsFullScreenVS);
+  this->EndsProgram->SetFragmentSource(vtkCausticsPhotonSplatEndsFS);
 }
 
 vtkCausticsPhotonSplatter::~vtkCausticsPhotonSplatter()
@@ -48,6 +57,7 @@ vtkCausticsPhotonSplatter::~vtkCausticsPhotonSplatter()
   {
     vtkErrorMacro(<< "destroyed before ReleaseGraphicsResources(): vertex array leaked");
   }
+  delete this->Triangle;
 }
 
 bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
@@ -83,7 +93,69 @@ bool vtkCausticsPhotonSplatter::Splat(vtkOpenGLRenderWindow* renWin,
   {
     return false;
   }
-  return this->DrawSplats(renWin, grid, landed, kernelRadius, target, worldToClip);
+  return this->KeepFluxAtReceiverEnds
+    ? this->SplatKeepingEnds(renWin, grid, landed, kernelRadius, target, worldToClip)
+    : this->DrawSplats(renWin, grid, landed, kernelRadius, target, worldToClip);
+}
+
+bool vtkCausticsPhotonSplatter::SplatKeepingEnds(vtkOpenGLRenderWindow* renWin,
+  const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
+  vtkTextureObject* kernelRadius, vtkCausticsGBuffer* target, const float worldToClip[16])
+{
+  const int* size = target->GetSize();
+  const bool resized =
+    caustics::gl::EnsureTexture(this->KernelIrradiance, renWin, size[0], size[1], GL_RGBA32F);
+  caustics::gl::EnsureTexture(this->KernelRadii, renWin, size[0], size[1], GL_RG32F);
+  vtkOpenGLState* state = renWin->GetState();
+  state->PushFramebufferBindings();
+  vtkOpenGLFramebufferObject* framebuffer = this->KernelFramebuffer;
+  framebuffer->SetContext(renWin);
+  framebuffer->Bind();
+  if (resized || framebuffer->GetNumberOfColorAttachments() != 2)
+  {
+    framebuffer->AddColorAttachment(0, this->KernelIrradiance);
+    framebuffer->AddColorAttachment(1, this->KernelRadii);
+  }
+  framebuffer->ActivateDrawBuffers(2);
+  const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  glClearBufferfv(GL_COLOR, 0, zero);
+  glClearBufferfv(GL_COLOR, 1, zero);
+  const bool drawn = this->DrawSplats(renWin, grid, landed, kernelRadius, target, worldToClip);
+  state->PopFramebufferBindings();
+  return drawn && this->AddKernels(renWin, target, worldToClip);
+}
+
+bool vtkCausticsPhotonSplatter::AddKernels(
+  vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* target, const float worldToClip[16])
+{
+  vtkCausticsShaderProgram* program = this->EndsProgram;
+  if (!program->Bind(renWin))
+  {
+    return false;
+  }
+  vtkTextureObject* inputs[] = { this->KernelIrradiance, this->KernelRadii,
+    target->GetPositionTexture(), target->GetNormalTexture() };
+  const char* names[] = { "kernelIrradiance", "kernelRadii", "targetPosition", "targetNormal" };
+  for (int i = 0; i < 4; ++i)
+  {
+    inputs[i]->Activate();
+    program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+  }
+  float clipToWorld[16];
+  caustics::gl::InvertColumnMajor(worldToClip, clipToWorld);
+  const int* size = target->GetSize();
+  program->SetUniformMatrix4("worldToClip", worldToClip);
+  program->SetUniformMatrix4("clipToWorld", clipToWorld);
+  program->SetUniform2f("viewport", static_cast<float>(size[0]), static_cast<float>(size[1]));
+  program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
+  program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+  this->Triangle->Draw(); // blended additively into the caller's target (Splat())
+  for (vtkTextureObject* input : inputs)
+  {
+    input->Deactivate();
+  }
+  program->Unbind(renWin);
+  return true;
 }
 
 void vtkCausticsPhotonSplatter::SetRecordUniforms(vtkCausticsShaderProgram* program,
@@ -230,6 +302,11 @@ void vtkCausticsPhotonSplatter::ReleaseGraphicsResources(vtkWindow* win)
   this->ClassifyProgram->ReleaseGraphicsResources(win);
   this->TriangleProgram->ReleaseGraphicsResources(win);
   this->TriangleMask->ReleaseGraphicsResources(win);
+  this->EndsProgram->ReleaseGraphicsResources(win);
+  this->KernelFramebuffer->ReleaseGraphicsResources(win);
+  this->KernelIrradiance->ReleaseGraphicsResources(win);
+  this->KernelRadii->ReleaseGraphicsResources(win);
+  this->Triangle->Release();
   if (this->VertexArray)
   {
     glDeleteVertexArrays(1, &this->VertexArray);
@@ -247,4 +324,6 @@ void vtkCausticsPhotonSplatter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Reconstruction: " << (this->Reconstruction == TRIANGLES ? "triangles" : "splats")
      << "\n";
   os << indent << "TriangleStretch: " << this->TriangleStretch << "\n";
+  os << indent << "KeepFluxAtReceiverEnds: " << (this->KeepFluxAtReceiverEnds ? "on" : "off")
+     << "\n";
 }

@@ -9,13 +9,25 @@
  * 1. each hit (position, receiver normal, kernel radius r in m, flux in W) is drawn
  *    as a point sprite covering its disk as the view sees it; the radius is
  *    widened or narrowed to stay within [MinimumRadiusPixels, MaximumRadiusPixels]
- *    of the view, and the kernel is normalized for the radius actually used;
+ *    of the view, and the kernel is normalized for the radius actually used; the
+ *    sprites are drawn with a guard band around the view, so that a hit just outside
+ *    it still lights the pixels inside that its kernel covers;
  * 2. each covered pixel takes its surface point x from the view's G-buffer and,
  *    if x is a receiver lying on the photon's tangent plane (within
  *    PlaneTolerance radii) with a normal agreeing within NormalTolerance, adds
  *    flux x K(d), K the Epanechnikov kernel 2/(pi r^2)(1 - d^2/r^2) of the
  *    in-plane distance d. K integrates to 1 over the plane, so every fully
- *    visible photon deposits exactly its flux — no scene-dependent scale factor.
+ *    visible photon deposits exactly its flux — no scene-dependent scale factor;
+ * 3. with KeepFluxAtReceiverEnds (the default), the kernels are drawn into the
+ *    splatter's own target together with their mean radius at each pixel, and each
+ *    pixel is then added to the caller's target divided by the share of its own
+ *    disc that lies on its receiver (glsl/vtkCausticsPhotonSplatEndsFS.glsl): within
+ *    a kernel of a receiver's end (a floor meeting a wall, a table's edge) the
+ *    disc holds photons only on its receiver part, and the estimate read that share
+ *    of the light (0.58 of it on the pool's corner lines). The reference renderer
+ *    divides its estimate the same way (docs/reference.md). A single view cannot
+ *    always tell an end from an occluder: docs/accuracy.md, "Kernels at a receiver's
+ *    end", says which it takes for which.
  * The caller binds the target framebuffer (RGBA32F, same size as the G-buffer);
  * the splatter blends additively into it (alpha counts contributions).
  *
@@ -39,6 +51,7 @@
 
 class vtkCausticsGBuffer;
 class vtkCausticsShaderProgram;
+class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
@@ -47,6 +60,10 @@ namespace caustics
 {
 struct PhotonGrid;
 struct PhotonRecords;
+namespace gl
+{
+class FullScreenTriangle;
+}
 }
 
 class VTKRENDERINGCAUSTICS_EXPORT vtkCausticsPhotonSplatter : public vtkObject
@@ -79,6 +96,18 @@ public:
   /** Smallest cosine between the photon's and the pixel's receiver normals. Default 0.8. */
   vtkSetClampMacro(NormalTolerance, double, -1.0, 1.0);
   vtkGetMacro(NormalTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Divide each pixel's splatted irradiance by the share of its kernel's disc that
+   * lies on its receiver (step 3 above), so that the light along a receiver's end is
+   * not lost. Off: the kernels add straight into the caller's target, as before.
+   * Default on.
+   */
+  vtkSetMacro(KeepFluxAtReceiverEnds, bool);
+  vtkGetMacro(KeepFluxAtReceiverEnds, bool);
+  vtkBooleanMacro(KeepFluxAtReceiverEnds, bool);
   ///@}
 
   /** How landed photons become irradiance. */
@@ -131,11 +160,18 @@ protected:
   double NormalTolerance = 0.8;
   int Reconstruction = SPLATS;
   double TriangleStretch = 8.0;
+  bool KeepFluxAtReceiverEnds = true;
   vtkNew<vtkCausticsShaderProgram> Program;
   vtkNew<vtkCausticsShaderProgram> ClassifyProgram; // which triangles are valid
   vtkNew<vtkCausticsShaderProgram> TriangleProgram;
   vtkNew<vtkTextureObject> TriangleMask; // R32UI, one texel per grid cell
   unsigned int VertexArray = 0;
+  // KeepFluxAtReceiverEnds: the kernels alone, the target's size.
+  vtkNew<vtkTextureObject> KernelIrradiance; // RGBA32F, as the caller's target
+  vtkNew<vtkTextureObject> KernelRadii;      // RG32F: sum of w, sum of w r (w: deposit luminance)
+  vtkNew<vtkOpenGLFramebufferObject> KernelFramebuffer;
+  vtkNew<vtkCausticsShaderProgram> EndsProgram; // adds them, divided by the disc's share
+  caustics::gl::FullScreenTriangle* Triangle;
 
 private:
   // Splat() in steps (the caller's framebuffer stays bound).
@@ -149,6 +185,12 @@ private:
   bool DrawSplats(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
     const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius,
     vtkCausticsGBuffer* target, const float worldToClip[16]);
+  // KeepFluxAtReceiverEnds: DrawSplats into the splatter's own target, then AddKernels.
+  bool SplatKeepingEnds(vtkOpenGLRenderWindow* renWin, const caustics::PhotonGrid& grid,
+    const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius,
+    vtkCausticsGBuffer* target, const float worldToClip[16]);
+  bool AddKernels(
+    vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* target, const float worldToClip[16]);
 
   vtkCausticsPhotonSplatter(const vtkCausticsPhotonSplatter&) = delete;
   void operator=(const vtkCausticsPhotonSplatter&) = delete;

@@ -19,6 +19,12 @@ flat in float splatRadius;
 flat in float splatHalfSet;
 
 layout(location = 0) out vec4 outIrradiance;
+#ifdef CAUSTICS_KERNEL_RADII
+// The kernels' radius at this pixel, as sums weighted by what each deposits (its
+// luminance): the disc whose share on the receiver vtkCausticsPhotonSplatEndsFS
+// divides by.
+layout(location = 1) out vec2 outKernelRadii;
+#endif
 
 void main()
 {
@@ -40,4 +46,8 @@ void main()
   }
   float kernel = 2.0 / (CAUSTICS_PI * r2) * (1.0 - d2 / r2);
   outIrradiance = CausticsDeposit(splatFlux * kernel, splatHalfSet);
+#ifdef CAUSTICS_KERNEL_RADII
+  float weight = CausticsLuminance(splatFlux * kernel);
+  outKernelRadii = vec2(weight, weight * splatRadius);
+#endif
 }

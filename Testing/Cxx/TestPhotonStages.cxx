@@ -26,6 +26,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <vector>
 
 namespace
@@ -125,9 +126,10 @@ TEST(PhotonEmitter, ConservesFluxAndRefractsAtNormalIncidence)
 namespace
 {
 /**
- * A top-down orthographic view of the ball lens's floor, 256 pixels over 8 m (1/32 m
- * pixels), and an irradiance target of its size: where the splatter deposits
- * photons that the test puts in the photon record layout.
+ * A top-down orthographic view of the ball lens's floor (12 m square, centred), 256
+ * pixels over 8 m (1/32 m pixels) centred at x = `centreX`, and an irradiance target of
+ * its size: where the splatter deposits photons that the test puts in the photon record
+ * layout.
  */
 struct FloorTarget
 {
@@ -140,12 +142,12 @@ struct FloorTarget
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   caustics::gl::PhotonPlanes Landed;
 
-  explicit FloorTarget(BallLens& frame)
+  explicit FloorTarget(BallLens& frame, double centreX = 0.0)
     : Frame(frame)
   {
     frame.GL()->MakeCurrent();
-    const double worldToClip[16] = { 1.0 / Half, 0, 0, 0, 0, 0, -1.0 / Half, 0, 0, -0.1, 0, 0.5, 0,
-      0, 0, 1 }; // x -> x, -z -> y, depth from y
+    const double worldToClip[16] = { 1.0 / Half, 0, 0, -centreX / Half, 0, 0, -1.0 / Half, 0, 0,
+      -0.1, 0, 0.5, 0, 0, 0, 1 }; // x -> x, -z -> y, depth from y
     caustics::gl::ToColumnMajor(worldToClip, this->WorldToClip);
     EXPECT_TRUE(this->View->Render(frame.GL(), frame.Pass->GetGeometry(), this->WorldToClip, Size,
       Size, vtkCausticsSceneGeometry::RoleBit(1)));
@@ -337,5 +339,74 @@ TEST(PhotonSplatter, CausticTrianglesDepositTheMappedIrradiance)
   EXPECT_NEAR(
     FloorTarget::Flux(irradiance, 0) / (total - 2 * Lattice::PhotonFlux), 1.0, 0.01);
   EXPECT_NEAR(FloorTarget::At(irradiance, 0.7, -0.4, 0), 2.0, 0.01); // far from all three
+  splatter->ReleaseGraphicsResources(f.Window);
+}
+
+// Each pixel's kernels keep their flux where the receiver ends inside them and where
+// the view's border cuts them (vtkCausticsPhotonSplatter, KeepFluxAtReceiverEnds and the
+// guard band; docs/accuracy.md): photons of 0.005 W on a 0.05 m lattice (2 W/m^2),
+// kernels of 0.15 m (4.8 pixels), up to the floor's end at x = 6, in a view of x from 2
+// to 10 and z from -4 to 4 (the floor runs on past its top, bottom and left borders).
+TEST(PhotonSplatter, KernelsKeepTheirFluxAtAReceiversEndAndAtTheViewsBorder)
+{
+  BallLens f;
+  FloorTarget floor(f, 6.0);
+  const int columns = 140, rows = 200; // x from -0.975 to 5.975, z from -4.975 to 4.975
+  std::vector<float> positions, normals, fluxes, radii;
+  for (int j = 0; j < rows; ++j)
+  {
+    for (int i = 0; i < columns; ++i)
+    {
+      const float position[4] = { 0.05f * i - 0.975f, 0.0f, 0.05f * j - 4.975f, 1.0f };
+      const float normal[4] = { 0, 1, 0, 1 };
+      const float flux[4] = { 0.005f, 0.005f, 0.005f, 0.0025f };
+      positions.insert(positions.end(), position, position + 4);
+      normals.insert(normals.end(), normal, normal + 4);
+      fluxes.insert(fluxes.end(), flux, flux + 4);
+      radii.push_back(0.15f);
+    }
+  }
+  floor.Upload(columns, rows, positions, normals, fluxes, radii);
+  caustics::PhotonGrid grid;
+  grid.Width = columns;
+  grid.Height = grid.BranchRows = rows;
+  // The mean irradiance (red) over pixel columns [x0, x1) and rows [y0, y1).
+  auto mean = [](vtkImageData* irradiance, int x0, int x1, int y0, int y1) {
+    double sum = 0.0;
+    for (int y = y0; y < y1; ++y)
+    {
+      for (int x = x0; x < x1; ++x)
+      {
+        sum += Array(irradiance)->GetComponent(static_cast<vtkIdType>(y) * FloorTarget::Size + x, 0);
+      }
+    }
+    return sum / ((x1 - x0) * (y1 - y0));
+  };
+  const int size = FloorTarget::Size;
+  // Pixel column 127 is the floor's last (x 5.969 to 6.0); 128 on, nothing.
+  vtkNew<vtkCausticsPhotonSplatter> splatter;
+  auto kept = floor.Deposit(splatter, grid);
+  const double inside = mean(kept, 40, 100, 64, 192);
+  std::cout << "inside " << inside << ", the floor's last columns "
+            << mean(kept, 124, 125, 64, 192) << " " << mean(kept, 125, 126, 64, 192) << " "
+            << mean(kept, 126, 127, 64, 192) << " " << mean(kept, 127, 128, 64, 192)
+            << ", the view's top, bottom rows and left column " << mean(kept, 40, 100, 0, 1)
+            << " " << mean(kept, 40, 100, size - 1, size) << " " << mean(kept, 0, 1, 64, 192)
+            << " W/m^2\n";
+  EXPECT_NEAR(inside, 2.0, 0.02);
+  EXPECT_NEAR(mean(kept, 127, 128, 64, 192), 2.0, 0.1) << "the floor's last column";
+  EXPECT_NEAR(mean(kept, 124, 127, 64, 192), 2.0, 0.06) << "the three before it";
+  EXPECT_EQ(mean(kept, 128, size, 0, size), 0.0) << "no light past the floor's end";
+  EXPECT_NEAR(mean(kept, 40, 100, 0, 1), 2.0, 0.06) << "the view's top row";
+  EXPECT_NEAR(mean(kept, 40, 100, size - 1, size), 2.0, 0.06) << "the view's bottom row";
+  EXPECT_NEAR(mean(kept, 0, 1, 64, 192), 2.0, 0.06) << "the view's left column";
+  // Without the share, the last column keeps about half (the disc's half past the
+  // end holds no photons); the border rows keep theirs (the guard band).
+  splatter->KeepFluxAtReceiverEndsOff();
+  auto lost = floor.Deposit(splatter, grid);
+  std::cout << "without the share, the floor's last column " << mean(lost, 127, 128, 64, 192)
+            << " W/m^2\n";
+  EXPECT_LT(mean(lost, 127, 128, 64, 192), 0.6 * 2.0);
+  EXPECT_NEAR(mean(lost, 40, 100, 0, 1), 2.0, 0.06);
   splatter->ReleaseGraphicsResources(f.Window);
 }

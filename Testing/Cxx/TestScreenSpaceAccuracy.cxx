@@ -96,16 +96,18 @@ TEST(ScreenSpaceAccuracy, BallLensMatchesReference)
   EXPECT_LE(c.Metrics->GetPeakPositionError(), 2.0);
 }
 
-// Reached: relative L2 0.023 on the floor under the water (flux ratio 0.998). The
-// reference at 4 M photons has ~4% noise there (docs/benchmarks.md: 8.4% at 1 M,
-// 2.4% at 10 M photons against 20 M), which the bound must absorb: 0.023 and 0.04
-// in quadrature is 0.046; with a margin, 0.07 (the issue asked for 0.20).
+// Reached: relative L2 0.046 on the floor under the water (flux ratio 0.995); 0.062
+// and 0.988 before the splats kept their flux at a receiver's end (docs/accuracy.md),
+// 0.023 and 0.998 against the reference before its estimate held up to one, which lost
+// the same light along the floor's and walls' corners. The reference at 4 M photons
+// has ~4% noise there (docs/benchmarks.md: 8.4% at 1 M, 2.4% at 10 M photons against
+// 20 M), part of what is reached; bound 0.055 (the issue asked for 0.20).
 TEST(ScreenSpaceAccuracy, PoolFloorMatchesReference)
 {
   Comparison c("pool", 4000000, true);
   ASSERT_TRUE(c.Compare());
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.07);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.055);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
 }
 
@@ -113,8 +115,10 @@ TEST(ScreenSpaceAccuracy, PoolFloorMatchesReference)
 // (vtkCausticsSpecularHierarchy, as the camera view traces it) instead of through the
 // refractor layers of the trace view, which lose its ears and hollows and every exit
 // off the screen; inside, up to the reference's 8 events a path. Reached: relative L2
-// 36.1 %, flux 0.997; through the layers 53.1 % and 0.661. Bounds just above; the
-// layers must stay measurably worse (a trace that stops working fails it).
+// 36.1 %, flux 1.013 (36.2 % and 0.988 before the splats kept their flux at the box's
+// corners and along the image's border); through the layers 53.0 % and 0.667. Bounds
+// just above; the layers must stay measurably worse (a trace that stops working fails
+// it).
 TEST(ScreenSpaceAccuracy, ConcaveGlassTracedAsTriangles)
 {
   Comparison traced("bunny", 1000000, false);

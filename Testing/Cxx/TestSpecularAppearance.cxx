@@ -204,13 +204,14 @@ double SpecularError(const std::string& sceneName, const std::string& technique,
 // bottom, where the march's last sample projected onto the wall): ring 12.9 and 13.4 %.
 // Since the reference's estimate holds up to a receiver's end (docs/reference.md), the
 // pool's floor along its walls, seen through the water, counts the light the splats
-// lose there: pool 25.6 -> 26.3 %. Bounds just above.
+// lose there: pool 25.6 -> 26.3 %. Since the splats keep their flux at a receiver's
+// end and along the image's border (docs/accuracy.md): pool 25.8 %. Bounds just above.
 TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 {
   EXPECT_LT(SpecularError("ball-lens", "screen-space"), 0.275);
   EXPECT_LT(SpecularError("ring", "screen-space"), 0.132);
   EXPECT_LT(SpecularError("ring", "caustic-maps"), 0.137);
-  EXPECT_LT(SpecularError("pool", "screen-space"), 0.266);
+  EXPECT_LT(SpecularError("pool", "screen-space"), 0.262);
 }
 
 // The same with the distance impostors (paper 004, docs/technique-distance-impostors.md),
@@ -248,7 +249,8 @@ TEST(SpecularAppearance, MatchesTheReferencesCameraPaths)
 // scene's box, the ring's combined view 9.7 %; with the caustic store's shadow edges
 // kept (ImpostorCausticIrradiance), the pool 17.8 and 17.9 %. Since the reference's
 // estimate holds up to a receiver's end (docs/reference.md; the floor along the pool's
-// walls): pool 18.4 and 18.4 %. Bounds just above.
+// walls): pool 18.4 and 18.4 %; since the splats keep their flux there and along the
+// image's border (docs/accuracy.md), 17.8 and 17.8 %. Bounds just above.
 // The issue's 10 % is reached on the ball by the impostor view; the combined view's
 // screen-space march sees the background where its rays leave the screen (the ball's
 // top rim). The ring's foot, the pool's near strip of water seen at grazing angles,
@@ -262,8 +264,8 @@ TEST(SpecularAppearance, DistanceImpostors)
   EXPECT_LT(SpecularError("ball-lens", "screen-space", both), 0.115);
   EXPECT_LT(SpecularError("ring", "screen-space", impostors), 0.124);
   EXPECT_LT(SpecularError("ring", "screen-space", both), 0.1);
-  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.187);
-  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.187);
+  EXPECT_LT(SpecularError("pool", "screen-space", impostors), 0.181);
+  EXPECT_LT(SpecularError("pool", "screen-space", both), 0.181);
   // The impostors' own refractor map (ExactSpecularGeometryOnConcaveGlass traces the
   // bunny's triangles, the default for a concave object).
   EXPECT_LT(SpecularError("bunny", "screen-space", impostors, nullptr, nullptr, nullptr, nullptr,
@@ -446,8 +448,16 @@ TEST(SpecularAppearance, DISABLED_CameraUnderTheWaterSheetAcross)
 // up to a receiver's end (docs/reference.md): below 22.7 % and 15.8 %, above 21.7 % and
 // 17.2 %. The 2 m floor, seen through the sheet from 4 m, is a band a few pixels tall
 // in the camera's own view, where the screen-space photons splat: their kernels reach
-// past its edges on most of its pixels, and the splats lose that light there (the
-// reference used to lose it too). Bounds just above.
+// past its edges on most of its pixels (the reference used to lose that light too).
+// Since the splats keep their flux at a receiver's end (docs/accuracy.md, "Kernels at a
+// receiver's end"): below 23.1 % and 15.6 %, above 23.8 % and 18.8 %. Above got worse:
+// the screen-space photons do not fall as the world-space ones do along the floor's
+// edges. On the same floor and sheet seen from the same place
+// (scripts/kernel-ends.py, scene "sheet"), their last row at the floor's near edge read
+// 0.99 of the reference with no correction, and the one at its far edge 0.66, where
+// cascaded and impostor photons read 0.77 and 0.79 at the near edge and 0.95 and 0.91
+// at the far: the near edge's light the screen-space splats did not lose is now
+// divided by its kernels' share. Bounds just above.
 TEST(SpecularAppearance, CameraBesideTheWaterSheet)
 {
   const int screen = vtkCausticsRenderPass::SCREEN_SPACE;
@@ -456,17 +466,17 @@ TEST(SpecularAppearance, CameraBesideTheWaterSheet)
   const double below[3] = { 4.0, 0.6, 0.3 }, towardsTheSheet[3] = { 1.0, 1.0, 0.0 };
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", screen, below, towardsTheSheet, up,
               PopulateWideSheet),
-    0.232);
+    0.235);
   EXPECT_LT(SpecularError("sheet, beside below", "screen-space", impostors, below, towardsTheSheet,
               up, PopulateWideSheet),
-    0.162);
+    0.159);
   const double above[3] = { 4.0, 1.6, 0.3 }, origin[3] = { 0.0, 0.0, 0.0 };
   EXPECT_LT(SpecularError(
               "sheet, beside above", "screen-space", screen, above, origin, up, PopulateWideSheet),
-    0.222);
+    0.242);
   EXPECT_LT(SpecularError("sheet, beside above", "screen-space", impostors, above, origin, up,
               PopulateWideSheet),
-    0.185);
+    0.192);
 }
 
 // The combined view (the default) on framings no other test has, where the screen-space
