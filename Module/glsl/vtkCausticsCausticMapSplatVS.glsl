@@ -185,9 +185,8 @@ void main()
     Discard();
     return;
   }
-  vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 e1 = normalize(cross(n, helper));
-  vec3 e2 = cross(n, e1);
+  vec3 e1, e2;
+  CausticsTangents(n, e1, e2);
   // Projection is not linear under perspective: measure the splat's own radius
   // (a texel-sized probe for clusters).
   float probe = r > 0.0 ? r : ViewTexelSize(targetView, position);

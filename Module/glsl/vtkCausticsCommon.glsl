@@ -5,6 +5,16 @@
 
 const float CAUSTICS_PI = 3.14159265358979323846;
 
+// Two unit tangents e1, e2 of the plane with unit normal n, (e1, e2, n) right-handed:
+// the one frame every stage lays a kernel disc on a receiver in (the splats, their
+// share on the receiver, a disc's projected radius).
+void CausticsTangents(vec3 n, out vec3 e1, out vec3 e2)
+{
+  vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  e1 = normalize(cross(n, helper));
+  e2 = cross(n, e1);
+}
+
 // Luminance of a linear RGB value (Rec. 709 weights): what the denoiser filters on.
 float CausticsLuminance(vec3 c)
 {

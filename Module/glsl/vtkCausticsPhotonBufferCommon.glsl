@@ -114,9 +114,8 @@ bool AllFinite(vec3 v)
 // their point sprites; 0 if x is outside the view.
 float ProjectedRadiusPixels(CausticsView v, vec3 x, vec3 n, float r)
 {
-  vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 e1 = normalize(cross(n, helper));
-  vec3 e2 = cross(n, e1);
+  vec3 e1, e2;
+  CausticsTangents(n, e1, e2);
   vec2 c, a, b;
   bool inside = ViewProject(v, x, c);
   ViewProject(v, x + r * e1, a);

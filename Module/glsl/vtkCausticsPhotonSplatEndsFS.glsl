@@ -118,9 +118,8 @@ float OnReceiver(vec3 x, vec3 n, float r, vec3 s, bool bilinear)
 // become a spike).
 float ReceiverShare(vec3 x, vec3 n, float r)
 {
-  vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 e1 = normalize(cross(n, helper));
-  vec3 e2 = cross(n, e1);
+  vec3 e1, e2;
+  CausticsTangents(n, e1, e2);
   bool whole = true;
   for (int k = 0; k < 8 && whole; ++k)
   {

@@ -80,9 +80,8 @@ void main()
     return;
   }
   vec3 n = normalize(normal);
-  vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 e1 = normalize(cross(n, helper));
-  vec3 e2 = cross(n, e1);
+  vec3 e1, e2;
+  CausticsTangents(n, e1, e2);
   float r = radius;
   vec2 centre = ToPixels(position.xyz);
   // Projected radius along the two tangents; a tilted disk's ellipse fits in sqrt(2) x max.
