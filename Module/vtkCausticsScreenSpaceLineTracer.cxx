@@ -221,8 +221,16 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::ReduceRows(
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_RAY_BINDING, batch.Rays);
   this->Lines.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_LINE_BINDING);
   this->Hits.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_HIT_BINDING);
+  const View& view = *batch.Against;
+  glBindBufferBase(
+    GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, view.Layers->GetTableBuffer());
   p->SetUniformi("rowHits", batch.RowUnit);
-  p->SetUniformMatrix4("worldToClip", batch.Against->WorldToClip);
+  p->SetUniformMatrix4("worldToClip", view.WorldToClip);
+  const float origin[4] = { static_cast<float>(view.ViewOrigin[0]),
+    static_cast<float>(view.ViewOrigin[1]), static_cast<float>(view.ViewOrigin[2]),
+    static_cast<float>(view.ViewOrigin[3]) };
+  p->SetUniform4f("viewOrigin", origin);
+  p->SetUniformf("tolerance", batch.Tolerance);
   p->SetUniformf("pixelScale", batch.PixelScale);
   p->SetUniformi("ldiPosition", batch.PositionUnit);
   p->SetUniformi("ldiNormal", batch.NormalUnit);

@@ -10,10 +10,18 @@ SSP_RAYS(readonly);
 SSP_LINES(readonly);
 SSP_HITS(writeonly);
 
+layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTable
+{
+  uvec4 ldiHeader;
+  uvec4 ldiObjects[];
+};
+
 uniform usampler2D rowHits;
 uniform sampler2DArray ldiPosition;
 uniform sampler2DArray ldiNormal;
 uniform mat4 worldToClip;
+uniform vec4 viewOrigin;  // camera position (w = 1) or view direction (w = 0, parallel)
+uniform float tolerance;  // m
 uniform float pixelScale; // world size of one pixel at clip w = 1, m
 uniform vec2 viewport;
 uniform int batchBase;
@@ -21,6 +29,75 @@ uniform int capacity;
 uniform uint stamp;
 
 shared uint candidateT[16][16];
+
+// The row's first hit x (at t, on `layer` at `pixel`) may not be the ray's first: where
+// the ray ends within a pixel of another surface the image shows (the floor's strip
+// along a wall's foot, whose pixels' centres show the wall), the row's fragments tested
+// only the wall, and the ray met the wall's plane beyond the floor, below it. The
+// surfaces of the eight pixels around the hit are tested as the row's fragments test
+// theirs (vtkCausticsScreenSpaceLineTracerLineFS): the earliest receiver the ray meets
+// close to its sample takes the hit (glass and mirrors keep the row's answer: next to
+// a glass bunny's silhouette, rays that had just left it met its tangent planes again).
+// Returns whether one did (t, pixel and layer updated).
+bool EarlierNeighbour(SspRay ray, float ownLimit, inout float t, inout ivec2 pixel, inout int layer)
+{
+  vec3 o = ray.origin.xyz;
+  vec3 d = ray.direction.xyz;
+  int ownMaterial = ray.direction.w >= 0.0 ? int(ray.direction.w + 0.5) : -1;
+  ivec2 centre = pixel;
+  bool found = false;
+  uint objects = ldiHeader.x;
+  for (int j = -1; j <= 1; ++j)
+  {
+    for (int i = -1; i <= 1; ++i)
+    {
+      ivec2 q = centre + ivec2(i, j);
+      if ((i == 0 && j == 0) || any(lessThan(q, ivec2(0))) ||
+        any(greaterThanEqual(q, ivec2(viewport))))
+      {
+        continue;
+      }
+      for (uint object = 0u; object < objects; ++object)
+      {
+        uvec4 entry = ldiObjects[object];
+        for (uint k = 0u; k < entry.y; ++k)
+        {
+          int l = int(entry.x + k);
+          vec4 p = texelFetch(ldiPosition, ivec3(q, l), 0);
+          if (p.w < 0.0)
+          {
+            break;
+          }
+          vec4 normalRole = texelFetch(ldiNormal, ivec3(q, l), 0);
+          vec3 normal = normalRole.xyz;
+          float denominator = dot(d, normal);
+          if (int(normalRole.w + 0.5) != ROLE_RECEIVER || abs(denominator) <= 1e-3)
+          {
+            continue;
+          }
+          float candidate = dot(p.xyz - o, normal) / denominator;
+          if (candidate >= t || candidate <= tolerance ||
+            (int(p.w + 0.5) == ownMaterial && candidate < ownLimit))
+          {
+            continue;
+          }
+          float footprint = pixelScale * abs((worldToClip * vec4(p.xyz, 1.0)).w);
+          vec3 view = viewOrigin.w > 0.0 ? normalize(p.xyz - viewOrigin.xyz) : viewOrigin.xyz;
+          float reach = tolerance + 2.0 * footprint / max(abs(dot(view, normal)), 0.1);
+          if (distance(o + candidate * d, p.xyz) > reach)
+          {
+            continue;
+          }
+          t = candidate;
+          pixel = q;
+          layer = l;
+          found = true;
+        }
+      }
+    }
+  }
+  return found;
+}
 shared uint candidateColumn[16][16];
 
 void main()
@@ -82,6 +159,7 @@ void main()
     ivec2 pixel = SspLinePixel(line, column, ivec2(viewport));
     float t = uintBitsToFloat(candidateT[slot][0]);
     SspRay r = rays[ray];
+    EarlierNeighbour(r, line.info.y, t, pixel, layer);
     vec4 surface = texelFetch(ldiPosition, ivec3(pixel, layer), 0);
     vec3 normal = texelFetch(ldiNormal, ivec3(pixel, layer), 0).xyz;
     vec3 x = r.origin.xyz + t * r.direction.xyz;

@@ -96,18 +96,20 @@ TEST(ScreenSpaceAccuracy, BallLensMatchesReference)
   EXPECT_LE(c.Metrics->GetPeakPositionError(), 2.0);
 }
 
-// Reached: relative L2 0.046 on the floor under the water (flux ratio 0.995); 0.062
-// and 0.988 before the splats kept their flux at a receiver's end (docs/accuracy.md),
-// 0.023 and 0.998 against the reference before its estimate held up to one, which lost
-// the same light along the floor's and walls' corners. The reference at 4 M photons
-// has ~4% noise there (docs/benchmarks.md: 8.4% at 1 M, 2.4% at 10 M photons against
-// 20 M), part of what is reached; bound 0.055 (the issue asked for 0.20).
+// Reached: relative L2 0.041 on the floor under the water (flux ratio 0.995); 0.046
+// before the first-hit reduction tested the receivers around the row's hit (photons
+// ending on the floor along a wall's foot landed on the wall), 0.062 and 0.988 before
+// the splats kept their flux at a receiver's end (docs/accuracy.md), 0.023 and 0.998
+// against the reference before its estimate held up to one, which lost the same light
+// along the floor's and walls' corners. The reference at 4 M photons has ~4% noise
+// there (docs/benchmarks.md: 8.4% at 1 M, 2.4% at 10 M photons against 20 M), part of
+// what is reached; bound 0.05 (the issue asked for 0.20).
 TEST(ScreenSpaceAccuracy, PoolFloorMatchesReference)
 {
   Comparison c("pool", 4000000, true);
   ASSERT_TRUE(c.Compare());
   EXPECT_EQ(c.Metrics->GetNumberOfNonFinitePixels(), 0);
-  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.055);
+  EXPECT_LT(c.Metrics->GetRelativeL2Error(), 0.05);
   EXPECT_NEAR(c.Metrics->GetFluxRatio(), 1.0, 0.03);
 }
 
