@@ -110,6 +110,17 @@ struct SspPayload
   uvec4 info;
 };
 
+// How far from a layered depth image sample (point p, normal n as modelled, a pixel
+// `footprint` wide there) a ray may meet the sample's tangent plane and still hit its
+// surface: the tolerance and two footprints, stretched by a grazing view by at most 10
+// (beyond, near silhouettes, the tangent plane no longer follows the surface).
+// viewOrigin: camera position (w = 1) or view direction (w = 0, parallel).
+float SspSampleReach(vec4 viewOrigin, vec3 p, vec3 n, float footprint, float tolerance)
+{
+  vec3 view = viewOrigin.w > 0.0 ? normalize(p - viewOrigin.xyz) : viewOrigin.xyz;
+  return tolerance + 2.0 * footprint / max(abs(dot(view, n)), 0.1);
+}
+
 // The normal at the hit point x. Normals constant per pixel would bend photons in
 // pixel-sized steps (printing the pixel grid into the caustic), and where the
 // camera sees the surface at a grazing angle a pixel's sample lies far from x.

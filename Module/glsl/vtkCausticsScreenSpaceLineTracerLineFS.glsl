@@ -97,9 +97,8 @@ void main()
       {
         continue; // its own surface next to the origin (refractors: the side test)
       }
-      vec3 view = viewOrigin.w > 0.0 ? normalize(p.xyz - viewOrigin.xyz) : viewOrigin.xyz;
-      float reach = tolerance + 2.0 * footprint / max(abs(dot(view, normal)), 0.1);
-      if (distance(o + t * d, p.xyz) > reach)
+      if (distance(o + t * d, p.xyz) >
+        SspSampleReach(viewOrigin, p.xyz, normal, footprint, tolerance))
       {
         continue;
       }

@@ -82,9 +82,8 @@ bool EarlierNeighbour(SspRay ray, float ownLimit, inout float t, inout ivec2 pix
             continue;
           }
           float footprint = pixelScale * abs((worldToClip * vec4(p.xyz, 1.0)).w);
-          vec3 view = viewOrigin.w > 0.0 ? normalize(p.xyz - viewOrigin.xyz) : viewOrigin.xyz;
-          float reach = tolerance + 2.0 * footprint / max(abs(dot(view, normal)), 0.1);
-          if (distance(o + candidate * d, p.xyz) > reach)
+          if (distance(o + candidate * d, p.xyz) >
+            SspSampleReach(viewOrigin, p.xyz, normal, footprint, tolerance))
           {
             continue;
           }
