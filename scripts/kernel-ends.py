@@ -26,6 +26,7 @@ docs/accuracy.md ("Kernels at a receiver's end", "Camera independence") quotes i
 """
 import argparse
 import base64
+import importlib.util
 import json
 import math
 import os
@@ -34,7 +35,11 @@ import sys
 import tempfile
 
 import numpy as np
-import OpenImageIO as oiio
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+spec = importlib.util.spec_from_file_location("error_map", os.path.join(HERE, "error-map.py"))
+error_map = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(error_map)  # its EXR reader: reference_layers, Layers
 
 
 def grid_quad(origin, u, v, normal, divisions):
@@ -176,17 +181,8 @@ def render(options, scene_path, scene, technique, prefix):
     return prefix + ("-reference.exr" if technique == "reference" else ".exr")
 
 
-def caustic(path):
-    image = oiio.ImageBuf(path)
-    names = list(image.spec().channelnames)
-    pixels = image.get_pixels(oiio.FLOAT)
-    rgb = pixels[:, :, [names.index("caustic." + c) for c in "RGB"]]
-    mask = pixels[:, :, names.index("mask.Y")] if "mask.Y" in names else np.ones(rgb.shape[:2])
-    return rgb, mask
-
-
 def compare(reference, mask, image):
-    on = mask > 0
+    on = mask
     difference = (image - reference)[on]
     l2 = math.sqrt(float((difference ** 2).sum()) / max(float((reference[on] ** 2).sum()), 1e-30))
     flux = float(image[on].sum()) / max(float(reference[on].sum()), 1e-30)
@@ -253,12 +249,13 @@ def main():
                                  ("sheet", sheet_scene, sheet_figures)):
         path = os.path.join(directory, scene + ".gltf")
         make(path)
-        reference, mask = caustic(render(options, path, scene, "reference",
-                                         os.path.join(directory, scene)))
+        reference, mask, _ = error_map.reference_layers(
+            render(options, path, scene, "reference", os.path.join(directory, scene)))
         print("%s (reference %g photons)" % (scene, options.reference_photons))
         for technique in options.techniques.split(","):
-            image, _ = caustic(render(options, path, scene, technique,
-                                      os.path.join(directory, scene + "-" + technique)))
+            image = error_map.Layers(render(
+                options, path, scene, technique,
+                os.path.join(directory, scene + "-" + technique))).rgb("caustic")
             l2, flux = compare(reference, mask, image)
             print("  %s: relative L2 %.4f, flux %.4f" % (technique, l2, flux))
             for line in figures(reference, image):

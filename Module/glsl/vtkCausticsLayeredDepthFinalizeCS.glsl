@@ -4,11 +4,7 @@
 // nothing is read back (vtkCausticsLayeredDepth).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) buffer SspLayerTable
-{
-  uvec4 ldiHeader;
-  uvec4 ldiObjects[];
-};
+SSP_LDI_TABLE();
 // Per peel command: object | layer << 16.
 layout(std430, binding = CAUSTICS_LDI_COMMAND_INFO_BINDING) readonly buffer SspCommandInfo
 {

@@ -4,11 +4,7 @@
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(r32ui, binding = 0) readonly uniform uimage2DArray complexity;
-layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) buffer SspLayerTable
-{
-  uvec4 ldiHeader;
-  uvec4 ldiObjects[];
-};
+SSP_LDI_TABLE();
 
 uniform ivec2 size;
 uniform int objectCount;

@@ -45,6 +45,10 @@ struct SspHit
 #define SSP_NEXT_RAYS(access) layout(std430, binding = CAUSTICS_SSP_NEXT_RAY_BINDING) access buffer SspNextRays { SspRay nextRays[]; }
 #define SSP_NEXT_PAYLOADS(access) layout(std430, binding = CAUSTICS_SSP_NEXT_PAYLOAD_BINDING) access buffer SspNextPayloads { SspPayload nextPayloads[]; }
 #define SSP_NEXT_COUNTER(access) layout(std430, binding = CAUSTICS_SSP_NEXT_COUNTER_BINDING) access buffer SspNextCounter { uint nextCount; }
+// The layered depth image's table (vtkCausticsLayeredDepth): ldiHeader.x objects; of
+// object i, ldiObjects[i].x is its first layer and .y its number of layers (packed:
+// none behind an empty one).
+#define SSP_LDI_TABLE(access) layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) access buffer SspLayerTable { uvec4 ldiHeader; uvec4 ldiObjects[]; }
 
 // Ray parameter at the screen-linear parameter u in [0, 1] of a projected segment:
 // t is perspective-correct, interpolated with 1/w as the rasterizer would.

@@ -6,11 +6,7 @@
 // stamp, misses too, so that the row needs no clearing.
 flat in SspRay lineRay;
 flat in SspLine line;
-layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTable
-{
-  uvec4 ldiHeader;
-  uvec4 ldiObjects[];
-};
+SSP_LDI_TABLE(readonly);
 
 uniform sampler2DArray ldiPosition;
 uniform sampler2DArray ldiNormal;

@@ -10,11 +10,7 @@ SSP_RAYS(readonly);
 SSP_LINES(readonly);
 SSP_HITS(writeonly);
 
-layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTable
-{
-  uvec4 ldiHeader;
-  uvec4 ldiObjects[];
-};
+SSP_LDI_TABLE(readonly);
 
 uniform usampler2D rowHits;
 uniform sampler2DArray ldiPosition;

@@ -13,11 +13,7 @@
 // VTK shows that surface, else albedo x (direct + caustic irradiance).
 in vec2 texCoord;
 
-layout(std430, binding = CAUSTICS_LDI_TABLE_BINDING) readonly buffer SspLayerTable
-{
-  uvec4 ldiHeader;
-  uvec4 ldiObjects[];
-};
+SSP_LDI_TABLE(readonly);
 
 uniform sampler2DArray refractorPosition; // xyz, w = material (-1: none)
 uniform sampler2DArray refractorNormal;   // xyz as modelled, w = role
