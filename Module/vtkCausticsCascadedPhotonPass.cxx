@@ -284,8 +284,8 @@ bool vtkCausticsCascadedPhotonPass::Splat(const FrameInputs& in)
 {
   auto& s = *this->Internal;
   this->BeginStage("cascaded splat");
-  const bool ok = s.Splatter->Splat(in.Window, s.Grid, s.Landed.Records(), s.Landed.KernelRadius(),
-    in.CameraGBuffer, in.WorldToClip);
+  const bool ok =
+    this->SplatInCameraView(in, s.Splatter, s.Grid, s.Landed.Records(), s.Landed.KernelRadius());
   this->EndStage("cascaded splat");
   return ok;
 }

@@ -238,8 +238,8 @@ bool vtkCausticsImpostorPhotonPass::Splat(const FrameInputs& in)
 {
   auto& s = *this->Internal;
   this->BeginStage("impostor splat");
-  const bool ok = s.Splatter->Splat(in.Window, s.Grid, s.Landed.Records(), s.Landed.KernelRadius(),
-    in.CameraGBuffer, in.WorldToClip);
+  const bool ok =
+    this->SplatInCameraView(in, s.Splatter, s.Grid, s.Landed.Records(), s.Landed.KernelRadius());
   this->EndStage("impostor splat");
   return ok;
 }

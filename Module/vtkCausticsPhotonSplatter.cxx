@@ -20,6 +20,7 @@
 #include "vtkCausticsPhotonTriangleFS.h"
 #include "vtkCausticsPhotonTriangleVS.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -125,6 +126,34 @@ bool vtkCausticsPhotonSplatter::SplatKeepingEnds(vtkOpenGLRenderWindow* renWin,
   return drawn && this->AddKernels(renWin, target, worldToClip);
 }
 
+void vtkCausticsPhotonSplatter::SetReceiverBounds(const double bounds[6])
+{
+  const bool valid = bounds && std::isfinite(bounds[0]) && std::isfinite(bounds[1]) &&
+    std::isfinite(bounds[2]) && std::isfinite(bounds[3]) && std::isfinite(bounds[4]) &&
+    std::isfinite(bounds[5]) && bounds[0] <= bounds[1] && bounds[2] <= bounds[3] &&
+    bounds[4] <= bounds[5];
+  if (valid == this->HasReceiverBounds &&
+    (!valid || std::equal(bounds, bounds + 6, this->ReceiverBounds)))
+  {
+    return;
+  }
+  this->HasReceiverBounds = valid;
+  if (valid)
+  {
+    std::copy(bounds, bounds + 6, this->ReceiverBounds);
+  }
+  this->Modified();
+}
+
+bool vtkCausticsPhotonSplatter::GetReceiverBounds(double bounds[6]) const
+{
+  if (this->HasReceiverBounds)
+  {
+    std::copy(this->ReceiverBounds, this->ReceiverBounds + 6, bounds);
+  }
+  return this->HasReceiverBounds;
+}
+
 bool vtkCausticsPhotonSplatter::AddKernels(
   vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* target, const float worldToClip[16])
 {
@@ -149,6 +178,12 @@ bool vtkCausticsPhotonSplatter::AddKernels(
   program->SetUniform2f("viewport", static_cast<float>(size[0]), static_cast<float>(size[1]));
   program->SetUniformf("planeTolerance", static_cast<float>(this->PlaneTolerance));
   program->SetUniformf("normalTolerance", static_cast<float>(this->NormalTolerance));
+  const double* b = this->ReceiverBounds;
+  program->SetUniformi("hasReceiverBounds", this->HasReceiverBounds ? 1 : 0);
+  program->SetUniform3f(
+    "receiverMin", static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]));
+  program->SetUniform3f(
+    "receiverMax", static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]));
   this->Triangle->Draw(); // blended additively into the caller's target (Splat())
   for (vtkTextureObject* input : inputs)
   {
@@ -326,4 +361,15 @@ void vtkCausticsPhotonSplatter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TriangleStretch: " << this->TriangleStretch << "\n";
   os << indent << "KeepFluxAtReceiverEnds: " << (this->KeepFluxAtReceiverEnds ? "on" : "off")
      << "\n";
+  os << indent << "ReceiverBounds: ";
+  if (this->HasReceiverBounds)
+  {
+    const double* b = this->ReceiverBounds;
+    os << "(" << b[0] << ", " << b[1] << ", " << b[2] << ", " << b[3] << ", " << b[4] << ", "
+       << b[5] << ")\n";
+  }
+  else
+  {
+    os << "(none)\n";
+  }
 }

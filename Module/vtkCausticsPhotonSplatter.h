@@ -110,6 +110,19 @@ public:
   vtkBooleanMacro(KeepFluxAtReceiverEnds, bool);
   ///@}
 
+  ///@{
+  /**
+   * The receivers' axis-aligned bounds (xmin, xmax, ymin, ymax, zmin, zmax), or
+   * nullptr (the default) where they are not known. With KeepFluxAtReceiverEnds, a
+   * point of a kernel's disc outside the view is taken to lie on its receiver only
+   * inside them: the image cannot show that a wall whose top is just above its border
+   * ends there, the bounds can. Copied; the render passes set the frame's
+   * (vtkCausticsRenderPass::FrameInputs::ReceiverBounds).
+   */
+  void SetReceiverBounds(const double bounds[6]);
+  bool GetReceiverBounds(double bounds[6]) const;
+  ///@}
+
   /** How landed photons become irradiance. */
   enum Reconstructions
   {
@@ -161,6 +174,8 @@ protected:
   int Reconstruction = SPLATS;
   double TriangleStretch = 8.0;
   bool KeepFluxAtReceiverEnds = true;
+  bool HasReceiverBounds = false;
+  double ReceiverBounds[6] = { 0, 0, 0, 0, 0, 0 };
   vtkNew<vtkCausticsShaderProgram> Program;
   vtkNew<vtkCausticsShaderProgram> ClassifyProgram; // which triangles are valid
   vtkNew<vtkCausticsShaderProgram> TriangleProgram;

@@ -14,13 +14,15 @@
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsMaterial.h"
+#include "vtkCausticsPhotonBufferUtilities.h"
+#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsProgressiveMean.h"
 #include "vtkCausticsSVGFDenoiser.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceRefraction.h"
-#include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsSpecularHierarchy.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsTraceView.h"
 #include "vtkDataArray.h"
@@ -277,6 +279,7 @@ int VTKLightsReach(vtkRenderer* renderer, const double bounds[6])
 struct vtkCausticsRenderPass::Internals
 {
   vtkNew<vtkCausticsSceneExtractor> Extractor;
+  caustics::hcm::ReceiverBoundsCache ReceiverBounds; // the frame's, kept per mesh version
   vtkNew<vtkCausticsSceneGeometry> Geometry;
   vtkNew<vtkCausticsGBuffer> CameraGBuffer;      // receivers and reflectors
   vtkNew<vtkCausticsGBuffer> RefractiveGBuffer;  // refractors
@@ -616,6 +619,14 @@ bool vtkCausticsRenderPass::StoreCaustic(const FrameInputs& f, int light,
   return ok;
 }
 
+bool vtkCausticsRenderPass::SplatInCameraView(const FrameInputs& in,
+  vtkCausticsPhotonSplatter* splatter, const caustics::PhotonGrid& grid,
+  const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius)
+{
+  splatter->SetReceiverBounds(in.HasReceiverBounds ? in.ReceiverBounds : nullptr);
+  return splatter->Splat(in.Window, grid, landed, kernelRadius, in.CameraGBuffer, in.WorldToClip);
+}
+
 vtkCausticsDistanceImpostors* vtkCausticsRenderPass::OpenCausticStore(double maximumPhotonFlux)
 {
   vtkCausticsDistanceImpostors* impostors = this->Internal->Impostors;
@@ -773,6 +784,8 @@ bool vtkCausticsRenderPass::PrepareScene(vtkRenderer* renderer)
   const caustics::Vec3& eye = scene.View.position;
   const double viewOrigin[4] = { eye[0], eye[1], eye[2], scene.View.parallel ? 0.0 : 1.0 };
   this->Frame.EyeMaterial = EyeMaterial(scene, viewOrigin);
+  this->Frame.HasReceiverBounds =
+    this->Internal->ReceiverBounds.Compute(scene, this->Frame.ReceiverBounds);
   return true;
 }
 

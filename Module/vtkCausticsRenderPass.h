@@ -81,6 +81,7 @@ class vtkCausticsLayeredDepth;
 class vtkCausticsScreenSpaceRefraction;
 class vtkCausticsSpecularHierarchy;
 class vtkCausticsLightBuffers;
+class vtkCausticsPhotonSplatter;
 class vtkCausticsSceneExtractor;
 class vtkCausticsSceneGeometry;
 class vtkCausticsSVGFDenoiser;
@@ -93,6 +94,7 @@ class vtkTextureObject;
 
 namespace caustics
 {
+struct PhotonGrid;
 struct PhotonRecords;
 struct SceneData;
 namespace gl
@@ -435,6 +437,9 @@ protected:
     vtkCausticsCameraOpticalDepth* CameraOpticalDepth = nullptr;
     /** The material of the closed refractor the eye is in, or -1 (air, a parallel view). */
     int EyeMaterial = -1;
+    /** The receivers' axis-aligned bounds (xmin, xmax, ...), valid with HasReceiverBounds. */
+    double ReceiverBounds[6] = { 0, 0, 0, 0, 0, 0 };
+    bool HasReceiverBounds = false;
   };
 
   /** What the frame produced; reset at the start of every Render(). */
@@ -584,6 +589,15 @@ protected:
    */
   bool StoreCaustic(const FrameInputs& in, int light, const caustics::PhotonRecords& landed,
     int width, int height, double maximumPhotonFlux, bool shadow = true);
+  /**
+   * The shared camera-view reconstruction: `splatter` splats the landed photon records
+   * of `grid` (kernel radii in `kernelRadius`) into the caustic framebuffer the base
+   * pass bound, over the camera's G-buffer, with the frame's receiver bounds
+   * (vtkCausticsPhotonSplatter::SetReceiverBounds). Returns false on a GL failure.
+   */
+  bool SplatInCameraView(const FrameInputs& in, vtkCausticsPhotonSplatter* splatter,
+    const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
+    vtkTextureObject* kernelRadius);
   /** Whether this frame's camera view reads the caustic store (StoreCaustic() runs). */
   bool GetStoresCaustic() const { return this->StoresCaustic; }
   /**

@@ -391,8 +391,8 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(
   }
   // Into the caustic framebuffer the base pass bound (each stage restores it).
   in.Splatter->SetReconstruction(this->Settings.Reconstruction);
-  return in.Splatter->Splat(
-    renWin, grid, in.Landed.Records(), in.Landed.KernelRadius(), f.CameraGBuffer, f.WorldToClip);
+  return this->SplatInCameraView(
+    f, in.Splatter, grid, in.Landed.Records(), in.Landed.KernelRadius());
 }
 
 bool vtkCausticsScreenSpacePhotonPass::DrawGodRays(vtkOpenGLRenderWindow* renWin, int, int)

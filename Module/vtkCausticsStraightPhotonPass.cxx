@@ -53,8 +53,8 @@ bool vtkCausticsStraightPhotonPass::RenderCausticIrradiance(const FrameInputs& i
         this->Transport(in, light) &&
         this->StoreCaustic(in, light, s.Landed.Records(), s.Emitter->GetGrid().Width,
           s.Emitter->GetGrid().Height, s.Emitter->GetGrid().MaximumPhotonFlux) &&
-        s.Splatter->Splat(in.Window, s.Emitter->GetGrid(), s.Landed.Records(),
-          s.Landed.KernelRadius(), in.CameraGBuffer, in.WorldToClip));
+        this->SplatInCameraView(
+          in, s.Splatter, s.Emitter->GetGrid(), s.Landed.Records(), s.Landed.KernelRadius()));
   }
   return ok;
 }

@@ -17,7 +17,9 @@
 //   occluder: the plane is taken to go on behind it, as it does under a glass bunny or
 //   behind a mirror ring's wall, since the photons that land there still splat onto
 //   the pixels the view shows;
-// - off the view: taken to go on (the splats there are not seen either).
+// - off the view: taken to go on (the splats there are not seen either) inside the
+//   receivers' bounds, where those are known, and to have ended outside them (a wall
+//   whose top is just above the image's top border).
 uniform sampler2D kernelIrradiance; // the kernels alone: rgb W/m^2, a the half-set difference
 uniform sampler2D kernelRadii;      // x: sum of w, y: sum of w r (w: a kernel's deposit luminance)
 uniform sampler2D targetPosition;   // xyz world, w = material (-1: no surface)
@@ -27,18 +29,31 @@ uniform mat4 clipToWorld;
 uniform vec2 viewport;
 uniform float planeTolerance; // the splats' tests (vtkCausticsPhotonSplatFS)
 uniform float normalTolerance;
+uniform bool hasReceiverBounds; // the receivers' bounds (vtkCausticsPhotonSplatter)
+uniform vec3 receiverMin;
+uniform vec3 receiverMax;
 
 layout(location = 0) out vec4 outIrradiance;
+
+// Whether disc point s, off the view, is taken to lie on the receiver: inside the
+// receivers' bounds (widened by a hundredth of the kernel's radius r, for the bounds'
+// rounding), or anywhere where they are not known.
+bool OffViewOnReceiver(vec3 s, float r)
+{
+  return !hasReceiverBounds ||
+    (all(greaterThanEqual(s, receiverMin - 0.01 * r)) &&
+      all(lessThanEqual(s, receiverMax + 0.01 * r)));
+}
 
 // Whether pixel `pixel` of the view, which disc point s (of the receiver (x, n),
 // kernel radius r; at depth sDepth, NDC z) projects into or next to, shows that the
 // receiver goes on at s. `rise`: how high above the plane a receiver rising from it
 // within r before s shows at s's pixel.
-bool PixelShowsReceiver(ivec2 pixel, float sDepth, vec3 x, vec3 n, float r, float rise)
+bool PixelShowsReceiver(ivec2 pixel, vec3 s, float sDepth, vec3 x, vec3 n, float r, float rise)
 {
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(viewport))))
   {
-    return true; // off the view: taken to go on
+    return OffViewOnReceiver(s, r);
   }
   vec4 p = texelFetch(targetPosition, pixel, 0);
   if (p.w < 0.0)
@@ -72,14 +87,11 @@ bool PixelShowsReceiver(ivec2 pixel, float sDepth, vec3 x, vec3 n, float r, floa
 float OnReceiver(vec3 x, vec3 n, float r, vec3 s, bool bilinear)
 {
   vec4 clip = worldToClip * vec4(s, 1.0);
-  if (!(clip.w > 0.0))
+  vec3 ndc = clip.xyz / max(clip.w, 1e-30);
+  if (!(clip.w > 0.0) || any(lessThan(ndc.xy, vec2(-1.0))) ||
+    any(greaterThanEqual(ndc.xy, vec2(1.0))))
   {
-    return 1.0;
-  }
-  vec3 ndc = clip.xyz / clip.w;
-  if (any(lessThan(ndc.xy, vec2(-1.0))) || any(greaterThanEqual(ndc.xy, vec2(1.0))))
-  {
-    return 1.0; // off the view: taken to go on (the splats there are not seen either)
+    return OffViewOnReceiver(s, r) ? 1.0 : 0.0;
   }
   // A receiver rising from the plane at distance delta < r before s shows at s's pixel
   // at height delta tan(b), b the angle between the view's ray and the plane.
@@ -91,7 +103,7 @@ float OnReceiver(vec3 x, vec3 n, float r, vec3 s, bool bilinear)
   vec2 pixel = (ndc.xy * 0.5 + 0.5) * viewport;
   if (!bilinear)
   {
-    return PixelShowsReceiver(ivec2(pixel), ndc.z, x, n, r, rise) ? 1.0 : 0.0;
+    return PixelShowsReceiver(ivec2(pixel), s, ndc.z, x, n, r, rise) ? 1.0 : 0.0;
   }
   vec2 f = pixel - 0.5;
   ivec2 base = ivec2(floor(f));
@@ -101,7 +113,7 @@ float OnReceiver(vec3 x, vec3 n, float r, vec3 s, bool bilinear)
   {
     ivec2 corner = ivec2(k & 1, k >> 1);
     vec2 weights = mix(1.0 - w, w, vec2(corner));
-    if (PixelShowsReceiver(base + corner, ndc.z, x, n, r, rise))
+    if (PixelShowsReceiver(base + corner, s, ndc.z, x, n, r, rise))
     {
       on += weights.x * weights.y;
     }
