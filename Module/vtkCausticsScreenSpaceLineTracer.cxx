@@ -94,7 +94,25 @@ struct vtkCausticsScreenSpaceLineTracer::Internals
   bool SetupLines(vtkOpenGLRenderWindow* renWin, const Batch& batch);
   bool RasterizeRows(vtkOpenGLRenderWindow* renWin, const Batch& batch, int b);
   bool ReduceRows(vtkOpenGLRenderWindow* renWin, const Batch& batch, int b);
+  // What the row and reduction shaders both read: the traced view and its layers.
+  static void SetViewUniforms(vtkCausticsShaderProgram* p, const Batch& batch);
 };
+
+void vtkCausticsScreenSpaceLineTracer::Internals::SetViewUniforms(
+  vtkCausticsShaderProgram* p, const Batch& batch)
+{
+  const View& view = *batch.Against;
+  p->SetUniformi("ldiPosition", batch.PositionUnit);
+  p->SetUniformi("ldiNormal", batch.NormalUnit);
+  p->SetUniformMatrix4("worldToClip", view.WorldToClip);
+  p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
+  const float origin[4] = { static_cast<float>(view.ViewOrigin[0]),
+    static_cast<float>(view.ViewOrigin[1]), static_cast<float>(view.ViewOrigin[2]),
+    static_cast<float>(view.ViewOrigin[3]) };
+  p->SetUniform4f("viewOrigin", origin);
+  p->SetUniformf("tolerance", batch.Tolerance);
+  p->SetUniformf("pixelScale", batch.PixelScale);
+}
 
 void vtkCausticsScreenSpaceLineTracer::Internals::Allocate(const Batch& batch)
 {
@@ -189,16 +207,7 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::RasterizeRows(
     GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, view.Layers->GetTableBuffer());
   p->SetUniformi("batchBase", b * batch.Rows);
   p->SetUniform2f("target", static_cast<float>(batch.RowWidth), static_cast<float>(batch.Rows));
-  p->SetUniformi("ldiPosition", batch.PositionUnit);
-  p->SetUniformi("ldiNormal", batch.NormalUnit);
-  p->SetUniformMatrix4("worldToClip", view.WorldToClip);
-  p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
-  const float origin[4] = { static_cast<float>(view.ViewOrigin[0]),
-    static_cast<float>(view.ViewOrigin[1]), static_cast<float>(view.ViewOrigin[2]),
-    static_cast<float>(view.ViewOrigin[3]) };
-  p->SetUniform4f("viewOrigin", origin);
-  p->SetUniformf("tolerance", batch.Tolerance);
-  p->SetUniformf("pixelScale", batch.PixelScale);
+  SetViewUniforms(p, batch);
   p->SetUniformu("stamp", this->Stamp);
   glBindVertexArray(this->EmptyVertexArray);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, this->Arguments.Handle());
@@ -225,16 +234,7 @@ bool vtkCausticsScreenSpaceLineTracer::Internals::ReduceRows(
   glBindBufferBase(
     GL_SHADER_STORAGE_BUFFER, CAUSTICS_LDI_TABLE_BINDING, view.Layers->GetTableBuffer());
   p->SetUniformi("rowHits", batch.RowUnit);
-  p->SetUniformMatrix4("worldToClip", view.WorldToClip);
-  const float origin[4] = { static_cast<float>(view.ViewOrigin[0]),
-    static_cast<float>(view.ViewOrigin[1]), static_cast<float>(view.ViewOrigin[2]),
-    static_cast<float>(view.ViewOrigin[3]) };
-  p->SetUniform4f("viewOrigin", origin);
-  p->SetUniformf("tolerance", batch.Tolerance);
-  p->SetUniformf("pixelScale", batch.PixelScale);
-  p->SetUniformi("ldiPosition", batch.PositionUnit);
-  p->SetUniformi("ldiNormal", batch.NormalUnit);
-  p->SetUniform2f("viewport", static_cast<float>(batch.Width), static_cast<float>(batch.Height));
+  SetViewUniforms(p, batch);
   p->SetUniformi("batchBase", b * batch.Rows);
   p->SetUniformi("capacity", batch.Capacity);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_COUNTER_BINDING, batch.Counter);

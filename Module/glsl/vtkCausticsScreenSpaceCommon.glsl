@@ -125,6 +125,65 @@ float SspSampleReach(vec4 viewOrigin, vec3 p, vec3 n, float footprint, float tol
   return tolerance + 2.0 * footprint / max(abs(dot(view, n)), 0.1);
 }
 
+// Whether surface sample s (xyz world, w material, -1: none; sn: normal as modelled,
+// w role) at the pixel x projects to shows that a receiver (normal n) goes on at x, a
+// point of its tangent plane, `reach` being how far from a sample a ray may meet its
+// tangent plane at that pixel (SspSampleReach): s is a receiver sample on x's plane near
+// x, or the surface the receiver ends against (or one standing on it) with x within
+// the reach of its plane, in the part of the pixel the receiver covers (a wall's foot).
+bool SspSampleContinues(vec4 s, vec4 sn, vec3 n, vec3 x, float reach)
+{
+  if (s.w < 0.0 || !(dot(sn.xyz, sn.xyz) > 0.0))
+  {
+    return false;
+  }
+  vec3 m = normalize(sn.xyz);
+  return (int(sn.w + 0.5) == ROLE_RECEIVER && abs(dot(s.xyz - x, n)) <= 0.5 * reach &&
+           dot(m, n) >= 0.5 * length(n)) ||
+    abs(dot(x - s.xyz, m)) <= reach;
+}
+
+// Whether the receiver of a layered depth image sample (normal n, at pixel
+// `samplePixel`) ends before x, a point of the sample's tangent plane within its
+// `reach`. A ray passing just beyond a receiver's end (a wall's top, a floor's far
+// edge) meets the tangent plane of the receiver's last pixels within that reach; taken
+// as a hit, it lands on nothing there, and such photons pile up along every end the
+// light passes. Told by x's own pixel q: the image holds every layer of a pixel (a
+// receiver's layers are as many as its depth complexity), so a surface in front of x
+// does not hide the receiver's sample there. The receiver goes on where q holds a
+// sample on x's plane, or the surface it ends against (SspSampleContinues). x off the
+// view, or in the sample's own pixel, or a receiver seen nearly edge-on (where its
+// samples are sparse), says nothing.
+bool SspReceiverEndsBefore(sampler2DArray positions, sampler2DArray normals, mat4 worldToClip,
+  vec2 viewport, vec4 viewOrigin, ivec2 samplePixel, vec3 n, vec3 x, float reach)
+{
+  vec3 view = viewOrigin.w > 0.0 ? normalize(x - viewOrigin.xyz) : viewOrigin.xyz;
+  if (abs(dot(view, n)) < 0.35 * length(n))
+  {
+    return false;
+  }
+  vec4 clip = worldToClip * vec4(x, 1.0);
+  if (!(clip.w > 0.0))
+  {
+    return false;
+  }
+  ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * viewport));
+  if (q == samplePixel || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(viewport))))
+  {
+    return false;
+  }
+  int layers = textureSize(positions, 0).z;
+  for (int l = 0; l < layers; ++l)
+  {
+    if (SspSampleContinues(
+          texelFetch(positions, ivec3(q, l), 0), texelFetch(normals, ivec3(q, l), 0), n, x, reach))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The normal at the hit point x. Normals constant per pixel would bend photons in
 // pixel-sized steps (printing the pixel grid into the caustic), and where the
 // camera sees the surface at a grazing angle a pixel's sample lies far from x.

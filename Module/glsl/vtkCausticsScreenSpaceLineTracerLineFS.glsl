@@ -93,8 +93,15 @@ void main()
       {
         continue; // its own surface next to the origin (refractors: the side test)
       }
-      if (distance(o + t * d, p.xyz) >
-        SspSampleReach(viewOrigin, p.xyz, normal, footprint, tolerance))
+      float reach = SspSampleReach(viewOrigin, p.xyz, normal, footprint, tolerance);
+      if (distance(o + t * d, p.xyz) > reach)
+      {
+        continue;
+      }
+      // Past a receiver's end its tangent plane goes on where the receiver does not.
+      if (int(normalRole.w + 0.5) == ROLE_RECEIVER &&
+        SspReceiverEndsBefore(ldiPosition, ldiNormal, worldToClip, viewport, viewOrigin, pixel,
+          normal, o + t * d, reach))
       {
         continue;
       }

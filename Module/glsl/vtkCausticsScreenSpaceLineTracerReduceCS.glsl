@@ -78,8 +78,10 @@ bool EarlierNeighbour(SspRay ray, float ownLimit, inout float t, inout ivec2 pix
             continue;
           }
           float footprint = pixelScale * abs((worldToClip * vec4(p.xyz, 1.0)).w);
-          if (distance(o + candidate * d, p.xyz) >
-            SspSampleReach(viewOrigin, p.xyz, normal, footprint, tolerance))
+          float reach = SspSampleReach(viewOrigin, p.xyz, normal, footprint, tolerance);
+          if (distance(o + candidate * d, p.xyz) > reach ||
+            SspReceiverEndsBefore(ldiPosition, ldiNormal, worldToClip, viewport, viewOrigin, q,
+              normal, o + candidate * d, reach))
           {
             continue;
           }

@@ -10,6 +10,8 @@
 //   shadows: fraction of receiver pixels classified differently.
 // The figures reached are printed; each bound is the figure reached plus a margin
 // for the reference's noise and for rasterization differences between GPUs.
+#include "TestReferenceUtilities.h"
+
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsErrorMetrics.h"
 #include "vtkCausticsReferenceRenderer.h"
@@ -17,6 +19,7 @@
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsScreenSpaceRefraction.h"
 
+#include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -228,5 +231,86 @@ TEST(ScreenSpaceAccuracy, ShadowRaysMatchReferenceShadows)
     ASSERT_GT(judged, 10000);
     EXPECT_GT(shadowed, 100) << "the scene must cast a shadow for the test to mean anything";
     EXPECT_LT(fraction, test.Bound) << scene;
+  }
+}
+
+// A ray that passes just beyond a receiver's end meets the tangent plane of the
+// receiver's last pixels within a sample's reach, and used to land there, on nothing:
+// photons piled up along every end the light passes. Scene (none of the built-in
+// ones): a 2 m floor and a 1 m back wall along its far edge under a 10 cm glass slab,
+// sun along (-0.35, -1, -0.45), seen from (0.6, 1, 2.2) towards (-0.3, 0.2, -0.5)
+// through 40 degrees, so that the wall's top edge is in view with nothing behind it.
+// The wall's four top pixel rows against the reference, in the fitted trace view (the
+// slab reaches past the camera's view) and in the camera's own. Reached: 0.975 and
+// 1.000, the top row 1.07 and 1.10; 1.38 and 1.19 before, the top row 1.76 and 1.41.
+// Bounds: 6 % for the four rows, 15 % for the top one.
+TEST(ScreenSpaceAccuracy, NoLightPastAReceiversEnd)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  renderer->AddActor(reftest::Floor(1.0));
+  vtkNew<vtkPlaneSource> wallPlane;
+  wallPlane->SetOrigin(-1, 0, -1);
+  wallPlane->SetPoint1(1, 0, -1);
+  wallPlane->SetPoint2(-1, 1, -1); // normal +z, towards the camera
+  wallPlane->Update();
+  auto wall = reftest::MakeActor(wallPlane->GetOutput(), "back wall");
+  wall->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  renderer->AddActor(wall);
+  vtkNew<vtkCubeSource> slabBox;
+  slabBox->SetBounds(-2, 2, 1.2, 1.3, -2, 2);
+  vtkNew<vtkTriangleFilter> slabTriangles;
+  slabTriangles->SetInputConnection(slabBox->GetOutputPort());
+  slabTriangles->Update();
+  auto slab = reftest::MakeActor(slabTriangles->GetOutput(), "slab");
+  vtkCausticsMaterial::MakeGlass(slab->GetProperty(), 1.5);
+  renderer->AddActor(slab);
+  renderer->AddLight(reftest::Directional(-0.35, -1.0, -0.45, 1.0));
+  const double eye[3] = { 0.6, 1.0, 2.2 }, focal[3] = { -0.3, 0.2, -0.5 }, up[3] = { 0, 1, 0 };
+  reftest::SetCamera(renderer, eye, focal, up, 40.0);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(256, 256);
+  window->AddRenderer(renderer);
+  auto reference = reftest::MakeReference(renderer, 256, 256, 2000000);
+  ASSERT_TRUE(reference->Update()) << reference->GetLastError();
+  vtkImageData* truth = reference->GetOutput();
+  for (int traceView : { vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC,
+         vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_CAMERA })
+  {
+    vtkNew<vtkCausticsScreenSpacePhotonPass> pass;
+    pass->SetTraceView(traceView);
+    renderer->SetPass(pass);
+    window->Render();
+    vtkNew<vtkImageData> caustic;
+    ASSERT_TRUE(pass->ReadBuffer("CausticIrradiance", caustic));
+    // Per column, the wall's top row is the highest receiver pixel (j from the bottom).
+    double rows[4] = { 0, 0, 0, 0 }, truthRows[4] = { 0, 0, 0, 0 };
+    for (int i = 110; i < 240; ++i)
+    {
+      int top = -1;
+      for (int j = 255; j >= 0 && top < 0; --j)
+      {
+        top = reftest::At(truth, "ReceiverMask", i, j) > 0.5 ? j : -1;
+      }
+      ASSERT_GE(top, 4) << "column " << i << " shows no wall";
+      for (int k = 0; k < 4; ++k)
+      {
+        rows[k] += reftest::At(caustic, "CausticIrradiance", i, top - k);
+        truthRows[k] += reftest::At(truth, "CausticIrradiance", i, top - k);
+      }
+    }
+    const double ratio = (rows[0] + rows[1] + rows[2] + rows[3]) /
+      (truthRows[0] + truthRows[1] + truthRows[2] + truthRows[3]);
+    std::cout << (pass->GetLastTraceViewFitted() ? "fitted" : "camera")
+              << " trace view: the wall's top rows against the reference " << rows[0] / truthRows[0]
+              << " " << rows[1] / truthRows[1] << " " << rows[2] / truthRows[2] << " "
+              << rows[3] / truthRows[3] << ", together " << ratio << "\n";
+    EXPECT_EQ(pass->GetLastTraceViewFitted(),
+      traceView == vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC);
+    EXPECT_NEAR(ratio, 1.0, 0.06);
+    EXPECT_NEAR(rows[0] / truthRows[0], 1.0, 0.15) << "the top row";
+    renderer->SetPass(nullptr);
+    pass->ReleaseGraphicsResources(window);
   }
 }

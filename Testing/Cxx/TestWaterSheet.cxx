@@ -260,8 +260,9 @@ void CheckSheet(const char* technique, std::initializer_list<Bounds> cases)
 // of floor under the 6 m sheet, so the photons go to the part of the sheet whose light
 // it sees (vtkCausticsLightBuffers FOCUS_SEEN). Measured relative L2 (splats,
 // triangles) and the largest flux error: screen-space 6.9 and 0.77 % under a vertical
-// sun, 37.2 and 0.71 % at 60 degrees (flux within 0.15 %), 26.3 and 9.98 % at 30
-// degrees (flux 1.0085: the floor beyond the crests' folds); caustic maps 5.2 and
+// sun, 37.2 and 0.71 % at 60 degrees (flux within 0.15 %), 26.3 and 10.11 % at 30
+// degrees (9.98 % when first measured; flux 1.0078: the floor beyond the crests'
+// folds); caustic maps 5.2 and
 // 0.79 %, 19.3 and 5.3 %, 24.2 and 15.7 % (flux within 0.03 % but for the splats at 60
 // degrees, 1.0027; at 30 degrees the triangles gain less over the splats, 0.65 of
 // their error). The caustic maps' splats were 7.8, 40.3 and 30.0 % (flux within
