@@ -77,30 +77,38 @@ inline vtkSmartPointer<vtkActor> MakeMirror(const double origin[3], const double
   return actor;
 }
 
-/** The sheet over [-SheetHalf, SheetHalf]^2, resolution x resolution quads in triangles. */
-inline vtkSmartPointer<vtkPolyData> MakeSheet(int resolution)
+/**
+ * The sheet over [-SheetHalf, SheetHalf]^2 in triangles: `across` quads along x (across
+ * the crests: the surface's only curvature) by `along` quads along z (default as many).
+ * A facet is flat, so the sheet matches the sine only as well as `across` allows: at 512
+ * the floor's exact irradiance under the facets differs from the smooth surface's by
+ * 2.9 % relative L2 with the sun at 30 degrees, and its fold peaks by up to 5 %; at 2048,
+ * by 0.16 % (scripts/water-sheet-exact.py).
+ */
+inline vtkSmartPointer<vtkPolyData> MakeSheet(int across, int along = 0)
 {
+  along = along > 0 ? along : across;
   vtkNew<vtkPoints> points;
   vtkNew<vtkFloatArray> normals;
   normals->SetNumberOfComponents(3);
   normals->SetName("Normals");
-  for (int j = 0; j <= resolution; ++j)
+  for (int j = 0; j <= along; ++j)
   {
-    const double z = -SheetHalf + 2.0 * SheetHalf * j / resolution;
-    for (int i = 0; i <= resolution; ++i)
+    const double z = -SheetHalf + 2.0 * SheetHalf * j / along;
+    for (int i = 0; i <= across; ++i)
     {
-      const double x = -SheetHalf + 2.0 * SheetHalf * i / resolution;
+      const double x = -SheetHalf + 2.0 * SheetHalf * i / across;
       points->InsertNextPoint(x, Surface(x), z);
       const double length = std::sqrt(1.0 + Slope(x) * Slope(x));
       normals->InsertNextTuple3(-Slope(x) / length, 1.0 / length, 0.0);
     }
   }
   vtkNew<vtkCellArray> triangles;
-  for (int j = 0; j < resolution; ++j)
+  for (int j = 0; j < along; ++j)
   {
-    for (int i = 0; i < resolution; ++i)
+    for (int i = 0; i < across; ++i)
     {
-      const vtkIdType a = j * (resolution + 1) + i, b = a + 1, c = a + resolution + 1, d = c + 1;
+      const vtkIdType a = j * (across + 1) + i, b = a + 1, c = a + across + 1, d = c + 1;
       const vtkIdType t1[3] = { a, c, b }, t2[3] = { b, c, d };
       triangles->InsertNextCell(3, t1);
       triangles->InsertNextCell(3, t2);
