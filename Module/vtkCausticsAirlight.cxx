@@ -139,7 +139,7 @@ void vtkCausticsAirlight::DrawLight(const Inputs& in, int i)
   program->SetUniformf("cosOuter", static_cast<float>(light.cosOuter));
   program->SetUniformf("cosInner", static_cast<float>(light.cosInner));
   program->SetUniformf(
-    "texelWorldSize", static_cast<float>(2.0 * view.halfExtent / in.ShadowMapResolution));
+    "texelWorldSize", static_cast<float>(view.TexelWidth(in.ShadowMapResolution)));
   vtkTextureObject* shadow = in.Shadows->GetGBuffer(i)->GetPositionTexture();
   vtkTextureObject* shadowNormal = in.Shadows->GetGBuffer(i)->GetNormalTexture();
   shadow->Activate();

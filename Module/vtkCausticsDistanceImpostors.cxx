@@ -413,8 +413,7 @@ bool vtkCausticsDistanceImpostors::ShadeMaps(vtkOpenGLRenderWindow* renWin,
           p->SetUniformMatrix4("lightWorldToClip", matrix);
           vtkTextureObject* shadowMap = shadowMaps->GetGBuffer(i)->GetPositionTexture();
           const int resolution = std::max(static_cast<int>(shadowMap->GetWidth()), 1);
-          p->SetUniformf(
-            "texelWorldSize", static_cast<float>(2.0 * view.halfExtent / resolution));
+          p->SetUniformf("texelWorldSize", static_cast<float>(view.TexelWidth(resolution)));
           // Directional lights measure distance along the axis from the view's eye.
           if (light.type == caustics::Light::Type::Directional)
           {

@@ -181,8 +181,8 @@ std::string LayersKey(const caustics::SceneData& scene, const caustics::LightVie
   for (const caustics::LightView* view : { &photonView, &mapView })
   {
     key << " | " << view->light << ' ' << view->perspective << ' ' << view->valid << ' '
-        << view->clamped << ' ' << view->halfExtent << ' ' << view->nearPlane << ' '
-        << view->farPlane;
+        << view->clamped << ' ' << view->halfExtent << ' ' << view->aspect << ' ' << view->nearPlane
+        << ' ' << view->farPlane;
     for (const caustics::Vec3* v : { &view->eye, &view->axis, &view->right, &view->up })
     {
       key << ' ' << (*v)[0] << ' ' << (*v)[1] << ' ' << (*v)[2];

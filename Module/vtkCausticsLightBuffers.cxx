@@ -39,7 +39,8 @@ void SetFluxUniforms(vtkCausticsShaderProgram* program, const caustics::Light& s
   const caustics::LightView& view, int resolution)
 {
   program->SetUniformi("perspective", view.perspective ? 1 : 0);
-  program->SetUniformf("halfExtent", static_cast<float>(view.halfExtent));
+  program->SetUniform2f(
+    "halfExtent", static_cast<float>(view.halfExtent), static_cast<float>(view.HalfExtentUp()));
   program->SetUniform2f(
     "resolution", static_cast<float>(resolution), static_cast<float>(resolution));
   program->SetUniform3f("radiometric", static_cast<float>(source.radiometric[0]),
@@ -85,8 +86,8 @@ std::vector<std::uint64_t> ContentKey(const vtkOpenGLRenderWindow* renWin,
     key.push_back(
       static_cast<std::uint64_t>(v.valid) << 1 | static_cast<std::uint64_t>(v.perspective));
     const double values[] = { v.eye[0], v.eye[1], v.eye[2], v.axis[0], v.axis[1], v.axis[2],
-      v.right[0], v.right[1], v.right[2], v.up[0], v.up[1], v.up[2], v.halfExtent, v.nearPlane,
-      v.farPlane };
+      v.right[0], v.right[1], v.right[2], v.up[0], v.up[1], v.up[2], v.halfExtent, v.aspect,
+      v.nearPlane, v.farPlane };
     caustics::gl::AppendKey(key, values, static_cast<int>(std::size(values)));
     caustics::gl::AppendKey(key, v.worldToClip, 16);
   }
@@ -344,6 +345,7 @@ void vtkCausticsLightBuffers::PrintSelf(ostream& os, vtkIndent indent)
     const auto& view = this->Internal->Lights[i].View;
     os << indent.GetNextIndent() << "light " << i << ": "
        << (view.perspective ? "perspective, tan(half angle) " : "orthographic, half width ")
-       << view.halfExtent << ", near " << view.nearPlane << ", far " << view.farPlane << "\n";
+       << view.halfExtent << ", half height " << view.HalfExtentUp() << ", near " << view.nearPlane
+       << ", far " << view.farPlane << "\n";
   }
 }

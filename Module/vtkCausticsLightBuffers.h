@@ -7,7 +7,10 @@
  *    directional light, perspective from a point or spot light, aimed at the
  *    focus (the specular objects, where photons are useful, narrowed to those whose
  *    light can reach what the camera sees; or the whole scene, for shadow maps) with
- *    a depth range that holds the whole scene;
+ *    a depth range that holds the whole scene; a directional light's frustum
+ *    narrowed to what the camera sees is the rectangle around that focus's outline
+ *    (at most LightView::MaximumAspect times longer than wide), so its texels can be
+ *    longer one way: each texel's measure below is its own area;
  * 2. a vtkCausticsGBuffer renders every role from the light (position, normal,
  *    material, depth: the first surface each light ray meets);
  * 3. a full-screen pass writes the flux each texel carries, from the light's

@@ -39,9 +39,13 @@ void SetViewStruct(vtkCausticsShaderProgram* program, const std::string& name,
 void SetViewUniforms(vtkCausticsShaderProgram* program, const std::string& name,
   const caustics::LightView& view, int width, int height)
 {
-  // Square frusta: one texel width for both axes.
+  // One texel width for both axes: the larger, where a fitted view's texels are
+  // longer along one (LightView::aspect); the shaders use it as a tolerance.
   SetViewStruct(program, name, view.worldToClip, view.clipToWorld, view.eye, view.axis, width,
-    height, 2.0 * view.halfExtent / std::max(width, 1), view.perspective);
+    height,
+    std::max(
+      2.0 * view.halfExtent / std::max(width, 1), 2.0 * view.HalfExtentUp() / std::max(height, 1)),
+    view.perspective);
 }
 
 void SetCameraViewUniforms(

@@ -101,8 +101,7 @@ inline double MaximumTexelFlux(const Light& light, const LightView& view, int re
 {
   const double power = std::max(0.0, light.radiometric[0]) + std::max(0.0, light.radiometric[1]) +
     std::max(0.0, light.radiometric[2]);
-  const double texel = 2.0 * view.halfExtent / std::max(resolution, 1);
-  const double bound = power * texel * texel;
+  const double bound = power * view.TexelArea(resolution);
   return bound > 0.0 ? bound : 1.0;
 }
 }

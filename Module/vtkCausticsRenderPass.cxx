@@ -1447,7 +1447,7 @@ void vtkCausticsRenderPass::SetDirectLightUniforms(int i)
   program->SetUniformf("shadingConeAngle", static_cast<float>(light.shadingConeAngle));
   program->SetUniformi("specularShadows", this->SpecularShadows ? 1 : 0);
   program->SetUniformf(
-    "texelWorldSize", static_cast<float>(2.0 * lightView.halfExtent / this->ShadowMapResolution));
+    "texelWorldSize", static_cast<float>(lightView.TexelWidth(this->ShadowMapResolution)));
 }
 
 void vtkCausticsRenderPass::Composite(bool toFinalTexture)

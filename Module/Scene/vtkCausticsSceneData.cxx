@@ -247,7 +247,7 @@ void SetViewTransforms(LightView& view)
   if (view.perspective)
   {
     projection[0] = 1.0 / e;
-    projection[5] = 1.0 / e;
+    projection[5] = 1.0 / view.HalfExtentUp();
     projection[10] = -(f + n) / (f - n);
     projection[11] = -2.0 * f * n / (f - n);
     projection[14] = -1.0;
@@ -255,7 +255,7 @@ void SetViewTransforms(LightView& view)
   else
   {
     projection[0] = 1.0 / e;
-    projection[5] = 1.0 / e;
+    projection[5] = 1.0 / view.HalfExtentUp();
     projection[10] = -2.0 / (f - n);
     projection[11] = -(f + n) / (f - n);
     projection[15] = 1.0;
@@ -279,7 +279,7 @@ void SetViewTransforms(LightView& view)
 Vec3 LightView::FrustumPower(const Light& light) const
 {
   const double measure =
-    this->perspective ? this->FrustumSolidAngle() : 4.0 * this->halfExtent * this->halfExtent;
+    this->perspective ? this->FrustumSolidAngle() : 4.0 * this->halfExtent * this->HalfExtentUp();
   return { { light.radiometric[0] * measure, light.radiometric[1] * measure,
     light.radiometric[2] * measure } };
 }
@@ -331,10 +331,12 @@ LightView AimLightView(
 namespace
 {
 /**
- * Narrows an orthographic view to the square around the box's outline across it,
+ * Narrows an orthographic view to the rectangle around the box's outline across it,
  * instead of the box's bounding sphere: a sheet seen obliquely fills its frustum.
+ * The rectangle is at most `maximumAspect` times longer than it is wide (1: a
+ * square); its longer side is the outline's, so it never holds less than the square.
  */
-void FitOrthographic(LightView& view, const double box[6])
+void FitOrthographic(LightView& view, const double box[6], double maximumAspect)
 {
   const double infinity = std::numeric_limits<double>::infinity();
   double low[2] = { infinity, infinity };
@@ -350,16 +352,23 @@ void FitOrthographic(LightView& view, const double box[6])
       high[k] = std::max(high[k], across[k]);
     }
   }
-  const double half = 0.5 * std::max(high[0] - low[0], high[1] - low[1]) * 1.0001;
+  const double halfRight = 0.5 * (high[0] - low[0]) * 1.0001;
+  const double halfUp = 0.5 * (high[1] - low[1]) * 1.0001;
+  const double half = std::max(halfRight, halfUp);
   if (!(half > 0.0) || !(half < view.halfExtent))
   {
     return;
   }
+  // Each side at least the outline's and at least 1/maximumAspect of the other.
+  const double aspect = std::max(1.0, std::min(maximumAspect, LightView::MaximumAspect));
+  const double right = std::max(halfRight, halfUp / aspect);
+  const double up = std::max(halfUp, halfRight / aspect);
   for (int i = 0; i < 3; ++i)
   {
     view.eye[i] += 0.5 * (low[0] + high[0]) * view.right[i] + 0.5 * (low[1] + high[1]) * view.up[i];
   }
-  view.halfExtent = half;
+  view.halfExtent = right;
+  view.aspect = up / right;
   SetViewTransforms(view);
 }
 }
@@ -379,7 +388,7 @@ LightView ComputeLightView(const SceneData& scene, int index, LightView::Focus f
     LightView view = AimLightView(scene, scene.Lights[index], index, seen);
     if (narrowed && !view.perspective && view.valid)
     {
-      FitOrthographic(view, seen);
+      FitOrthographic(view, seen, LightView::MaximumAspect);
     }
     return view;
   }
@@ -395,12 +404,13 @@ void OffsetLightView(LightView& view, double u, double v, int resolution)
   {
     return;
   }
-  // One texel: 2 halfExtent / resolution, in metres (orthographic) or in the tangent
-  // of the angle off the axis (perspective).
+  // One texel: 2 halfExtent / resolution (times aspect along up), in metres
+  // (orthographic) or in the tangent of the angle off the axis (perspective).
   const double step = 2.0 * view.halfExtent / resolution;
-  const Vec3 across{ { u * step * view.right[0] + v * step * view.up[0],
-    u * step * view.right[1] + v * step * view.up[1],
-    u * step * view.right[2] + v * step * view.up[2] } };
+  const double stepUp = 2.0 * view.HalfExtentUp() / resolution;
+  const Vec3 across{ { u * step * view.right[0] + v * stepUp * view.up[0],
+    u * step * view.right[1] + v * stepUp * view.up[1],
+    u * step * view.right[2] + v * stepUp * view.up[2] } };
   if (view.perspective)
   {
     view.axis = Normalize(
@@ -884,7 +894,8 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
         fit[2 * k + 1] = std::max(fit[2 * k + 1], own[2 * k + 1]);
       }
     }
-    FitOrthographic(view, fit);
+    // Square: the caustic map's hierarchy and splats take its texels as square.
+    FitOrthographic(view, fit, 1.0);
   }
   return view;
 }

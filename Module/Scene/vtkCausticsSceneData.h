@@ -14,6 +14,7 @@
 #ifndef vtkCausticsSceneData_h
 #define vtkCausticsSceneData_h
 
+#include <algorithm> // For std::max
 #include <array>   // For std::array
 #include <cstdint> // For std::uint32_t
 #include <memory>  // For std::shared_ptr
@@ -164,6 +165,27 @@ struct LightView
   bool clamped = false;     ///< point/spot inside the focus sphere: field of view capped
   Vec3 eye{ { 0, 0, 0 } }, axis{ { 0, 0, -1 } }, right{ { 1, 0, 0 } }, up{ { 0, 1, 0 } };
   double halfExtent = 1.0; ///< orthographic: half width (m); perspective: tan(half angle)
+  /** Orthographic: the half height (along `up`) over halfExtent, in [1/MaximumAspect,
+   * MaximumAspect]. A view fitted to a box's outline (Focus::SeenSpecular) takes the
+   * outline's shape, so a sheet the light meets obliquely gets the texels a square
+   * frustum would spend beside it. Perspective views stay square (1). */
+  double aspect = 1.0;
+  static constexpr double MaximumAspect = 2.0;
+  /** Half height along `up` (m, or tan of the half angle): halfExtent x aspect. */
+  double HalfExtentUp() const { return this->halfExtent * this->aspect; }
+  /** The larger side of one texel of a `resolution`-texel buffer (m; perspective: at
+   * unit depth). */
+  double TexelWidth(int resolution) const
+  {
+    return 2.0 * this->halfExtent * std::max(1.0, this->aspect) / std::max(resolution, 1);
+  }
+  /** Area of one texel of a `resolution`-texel buffer (m^2; perspective: on the unit
+   * image plane). */
+  double TexelArea(int resolution) const
+  {
+    const double texel = 2.0 * this->halfExtent / std::max(resolution, 1);
+    return texel * texel * this->aspect;
+  }
   double nearPlane = 0.01, farPlane = 1.0;
   double worldToClip[16]; ///< row-major, OpenGL clip conventions
   double clipToWorld[16];

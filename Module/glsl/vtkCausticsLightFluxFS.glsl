@@ -3,7 +3,7 @@
 // for directional lights. Summed over the texels, the flux equals the light's
 // power inside the frustum (vtkCausticsLightBuffers tests it within 0.5%).
 uniform int perspective;
-uniform float halfExtent;    // ortho: half width (m); perspective: tan(half angle)
+uniform vec2 halfExtent;     // along right and up: ortho, half width (m); perspective, tan(half angle)
 uniform vec2 resolution;
 uniform vec3 radiometric;    // W/m^2 (directional) or W/sr (point/spot)
 uniform vec3 viewAxis;       // world direction of the frustum's centre
@@ -24,7 +24,7 @@ float SpotFactor(vec3 direction)
 void main()
 {
   vec2 ndc = gl_FragCoord.xy / resolution * 2.0 - 1.0;
-  vec2 texel = vec2(2.0 * halfExtent) / resolution;
+  vec2 texel = 2.0 * halfExtent / resolution;
   float measure;
   float spot = 1.0;
   if (perspective != 0)

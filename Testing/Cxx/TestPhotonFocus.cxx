@@ -74,6 +74,17 @@ struct SheetScene
   }
 };
 
+/** Clip-space x / w and y / w of world point p under a row-major worldToClip. */
+std::array<double, 2> ProjectToClip(const double m[16], const caustics::Vec3& p)
+{
+  double c[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    c[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+  }
+  return { { c[0] / c[3], c[1] / c[3] } };
+}
+
 bool Inside(const double box[6], double x, double y, double z, double tolerance)
 {
   return x >= box[0] - tolerance && x <= box[1] + tolerance && y >= box[2] - tolerance &&
@@ -163,10 +174,36 @@ TEST(PhotonFocus, NarrowsToTheSheetWhoseLightTheCameraSees)
     const caustics::LightView wide =
       caustics::ComputeLightView(scene, 0, caustics::LightView::Focus::Specular);
     ASSERT_TRUE(narrow.valid);
-    EXPECT_LT(narrow.halfExtent, 0.6 * wide.halfExtent) << elevation;
-    std::cout << "  the light's frustum: half width " << narrow.halfExtent << " m against "
-              << wide.halfExtent << " m aimed at the whole sheet ("
-              << std::pow(wide.halfExtent / narrow.halfExtent, 2)
+    EXPECT_LT(std::max(narrow.halfExtent, narrow.HalfExtentUp()), 0.6 * wide.halfExtent)
+      << elevation;
+    // A rectangle around the box's outline across the light: the sheet, met obliquely
+    // by a low sun, is narrower across the light than along the crests, and a square
+    // would spend texels beside it. It holds every corner of the box.
+    EXPECT_GE(narrow.aspect, 1.0 / caustics::LightView::MaximumAspect) << elevation;
+    EXPECT_LE(narrow.aspect, caustics::LightView::MaximumAspect) << elevation;
+    double across[2] = { 0.0, 0.0 };
+    for (int c = 0; c < 8; ++c)
+    {
+      const caustics::Vec3 corner{ { box[c & 1], box[2 + ((c >> 1) & 1)],
+        box[4 + ((c >> 2) & 1)] } };
+      const std::array<double, 2> clip = ProjectToClip(narrow.worldToClip, corner);
+      for (int k = 0; k < 2; ++k)
+      {
+        EXPECT_LE(std::abs(clip[k]), 1.0) << elevation << ", corner " << c;
+        across[k] = std::max(across[k], std::abs(clip[k]));
+      }
+    }
+    // ...and fills it along both of its sides, where its shape allows.
+    EXPECT_GT(std::min(across[0], across[1]),
+      elevation < 45.0 ? 0.99 : 0.99 * std::min(narrow.aspect, 1.0 / narrow.aspect))
+      << elevation;
+    if (elevation < 45.0)
+    {
+      EXPECT_LT(std::min(narrow.aspect, 1.0 / narrow.aspect), 0.75) << elevation;
+    }
+    std::cout << "  the light's frustum: half sides " << narrow.halfExtent << " and "
+              << narrow.HalfExtentUp() << " m against " << wide.halfExtent
+              << " m aimed at the whole sheet (" << wide.TexelArea(256) / narrow.TexelArea(256)
               << " times the photons per m^2)\n";
   }
 }
@@ -388,20 +425,6 @@ TEST(PhotonFocus, KeepsEverySpecularActorWhereItCannotTell)
   }
 }
 
-namespace
-{
-/** Clip-space x / w and y / w of world point p under a row-major worldToClip. */
-std::array<double, 2> ProjectToClip(const double m[16], const caustics::Vec3& p)
-{
-  double c[4];
-  for (int r = 0; r < 4; ++r)
-  {
-    c[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-  }
-  return { { c[0] / c[3], c[1] / c[3] } };
-}
-}
-
 // ProgressiveFrames moves the light's texel grid by a sub-texel offset each frame
 // (caustics::OffsetLightView): the sun's orthographic view slides across the light by
 // that many texels, a spot light's perspective view turns about its eye; both keep
@@ -449,6 +472,33 @@ TEST(LightView, OffsetMovesTheTexelGrid)
     const std::array<double, 2> clip = ProjectToClip(moved.worldToClip, ahead);
     EXPECT_NEAR(clip[0], 0.0, 1e-9);
     EXPECT_NEAR(clip[1], 0.0, 1e-9);
+
+    if (!spot)
+    {
+      // A fitted view whose texels are longer along one side moves by its own texel
+      // along each.
+      SheetScene low(30.0);
+      vtkCamera* camera = low.Renderer->GetActiveCamera();
+      camera->ParallelProjectionOn();
+      camera->SetPosition(0, 5, 0);
+      camera->SetFocalPoint(0, 0, 0);
+      camera->SetViewUp(0, 0, -1);
+      camera->SetParallelScale(1.0);
+      camera->SetClippingRange(1, 10);
+      const caustics::LightView fitted =
+        caustics::ComputeLightView(low.Extract(), 0, caustics::LightView::Focus::SeenSpecular);
+      ASSERT_TRUE(fitted.valid);
+      ASSERT_GT(std::abs(fitted.aspect - 1.0), 0.1);
+      caustics::LightView slid = fitted;
+      caustics::OffsetLightView(slid, 0.5, -0.25, 16);
+      const caustics::Vec3 shift{ { slid.eye[0] - fitted.eye[0], slid.eye[1] - fitted.eye[1],
+        slid.eye[2] - fitted.eye[2] } };
+      auto along = [&shift](const caustics::Vec3& d)
+      { return shift[0] * d[0] + shift[1] * d[1] + shift[2] * d[2]; };
+      EXPECT_NEAR(along(fitted.right), 0.5 * 2.0 * fitted.halfExtent / 16, 1e-12);
+      EXPECT_NEAR(along(fitted.up), -0.25 * 2.0 * fitted.HalfExtentUp() / 16, 1e-12);
+      EXPECT_DOUBLE_EQ(slid.aspect, fitted.aspect);
+    }
 
     for (double bad : { std::nan(""), 0.75, -3.0 })
     {
