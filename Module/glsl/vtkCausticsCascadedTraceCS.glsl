@@ -129,6 +129,41 @@ float Crossing(float r0, float s0, float r1, float s1)
   return clamp(abs(denominator) > 1e-12 ? (s0 - r0) / denominator : 1.0, 0.0, 1.0);
 }
 
+// Takes h as the hit when the texel it falls in shows a surface whose plane holds h
+// (the acceptance of every crossing); false otherwise.
+bool AcceptHit(CausticsView v, sampler2D position, sampler2D normal, vec3 h)
+{
+  vec2 pixel;
+  ViewProject(v, h, pixel);
+  ivec2 at = ViewTexel(v, pixel);
+  vec4 hp = texelFetch(position, at, 0);
+  vec4 hn = texelFetch(normal, at, 0);
+  if (hp.w >= 0.0 && OnSurface(v, h, hp.xyz, hn.xyz) && dot(hn.xyz, hn.xyz) > 0.0)
+  {
+    hitPoint = h;
+    hitNormal = normalize(hn.xyz);
+    hitMaterial = int(hp.w + 0.5);
+    hitRole = int(hn.w + 0.5);
+    return true;
+  }
+  return false;
+}
+
+// Where the ray, in front of surface (p, n) at tPrevious, meets that surface's plane
+// before t: the crossing's parameter, or -1. A surface that ends between two samples
+// (a floor's edge, the next texel empty or farther) is never seen behind the ray, so
+// its crossing is found on the plane of the last texel that showed it.
+float PlaneCrossing(vec3 o, vec3 d, float tPrevious, float t, vec4 p, vec3 n)
+{
+  float facing = dot(n, d);
+  if (p.w < 0.0 || !(abs(facing) > 1e-12) || !(dot(n, n) > 0.0))
+  {
+    return -1.0;
+  }
+  float tc = dot(n, p.xyz - o) / facing;
+  return tc >= tPrevious && tc <= t ? tc : -1.0;
+}
+
 // Marches o + t d, t in [0, tMax], through view v against the surfaces of
 // (position, normal), one pixel per step. With `leaveWhenBehind` a ray that passes
 // behind what the view shows (not on its surface) stops there (MARCH_LEFT); otherwise
@@ -150,6 +185,8 @@ int March(CausticsView v, sampler2D position, sampler2D normal, bool refractors,
   float tPrevious = t0;
   float rPrevious = 0.0, sPrevious = 0.0;
   bool front = true; // the previous sample was in front of the view's surface
+  vec4 surfacePrevious = vec4(0.0, 0.0, 0.0, -1.0); // the surface the previous sample's texel shows
+  ivec2 texelPrevious = ivec2(-1);
   for (int k = 0; k <= steps; ++k)
   {
     float t = StepParameter(v, o, d, t0, t1, float(k) / float(steps));
@@ -180,17 +217,8 @@ int March(CausticsView v, sampler2D position, sampler2D normal, bool refractors,
     else if (k > 0 && behind && front)
     {
       float u = Crossing(rPrevious, sPrevious, r, s);
-      vec3 h = o + mix(tPrevious, t, u) * d;
-      ViewProject(v, h, pixel);
-      ivec2 at = ViewTexel(v, pixel);
-      vec4 hp = texelFetch(position, at, 0);
-      vec4 hn = texelFetch(normal, at, 0);
-      if (hp.w >= 0.0 && OnSurface(v, h, hp.xyz, hn.xyz) && dot(hn.xyz, hn.xyz) > 0.0)
+      if (AcceptHit(v, position, normal, o + mix(tPrevious, t, u) * d))
       {
-        hitPoint = h;
-        hitNormal = normalize(hn.xyz);
-        hitMaterial = int(hp.w + 0.5);
-        hitRole = int(hn.w + 0.5);
         return MARCH_HIT;
       }
       if (leaveWhenBehind && !refractors)
@@ -199,7 +227,20 @@ int March(CausticsView v, sampler2D position, sampler2D normal, bool refractors,
         return MARCH_LEFT;
       }
     }
+    else if (k > 1 && front && texel != texelPrevious &&
+      (surface.w < 0.0 || surface.w != surfacePrevious.w))
+    {
+      // In front of another surface, or of none: did the ray cross the previous one?
+      float tc = PlaneCrossing(
+        o, d, tPrevious, t, surfacePrevious, texelFetch(normal, texelPrevious, 0).xyz);
+      if (tc >= 0.0 && AcceptHit(v, position, normal, o + tc * d))
+      {
+        return MARCH_HIT;
+      }
+    }
     front = !behind;
+    surfacePrevious = surface;
+    texelPrevious = texel;
     tPrevious = t;
     rPrevious = r;
     sPrevious = s;
