@@ -67,6 +67,18 @@ struct SheetScene
     this->Renderer->AddLight(this->Sun);
   }
 
+  /** An orthographic camera straight above, framing the 2 m of floor around the origin. */
+  void LookDownAtTheFloorsMiddle()
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->ParallelProjectionOn();
+    camera->SetPosition(0, 5, 0);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 0, -1);
+    camera->SetParallelScale(1.0);
+    camera->SetClippingRange(1, 10);
+  }
+
   const caustics::SceneData& Extract()
   {
     EXPECT_TRUE(this->Extractor->Update(this->Renderer, 256, 256));
@@ -152,13 +164,7 @@ TEST(PhotonFocus, NarrowsToTheSheetWhoseLightTheCameraSees)
   for (double elevation : { 90.0, 60.0, 30.0 })
   {
     SheetScene s(elevation);
-    vtkCamera* camera = s.Renderer->GetActiveCamera();
-    camera->ParallelProjectionOn();
-    camera->SetPosition(0, 5, 0);
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetViewUp(0, 0, -1);
-    camera->SetParallelScale(1.0);
-    camera->SetClippingRange(1, 10);
+    s.LookDownAtTheFloorsMiddle();
     const caustics::SceneData& scene = s.Extract();
     double box[6];
     ASSERT_TRUE(caustics::PhotonFocusBounds(scene, 0, box)) << elevation;
@@ -478,13 +484,7 @@ TEST(LightView, OffsetMovesTheTexelGrid)
       // A fitted view whose texels are longer along one side moves by its own texel
       // along each.
       SheetScene low(30.0);
-      vtkCamera* camera = low.Renderer->GetActiveCamera();
-      camera->ParallelProjectionOn();
-      camera->SetPosition(0, 5, 0);
-      camera->SetFocalPoint(0, 0, 0);
-      camera->SetViewUp(0, 0, -1);
-      camera->SetParallelScale(1.0);
-      camera->SetClippingRange(1, 10);
+      low.LookDownAtTheFloorsMiddle();
       const caustics::LightView fitted =
         caustics::ComputeLightView(low.Extract(), 0, caustics::LightView::Focus::SeenSpecular);
       ASSERT_TRUE(fitted.valid);
