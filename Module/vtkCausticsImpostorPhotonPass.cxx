@@ -5,12 +5,12 @@
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsImpostorCommon.h"         // Hit() over the cube maps (shared)
-#include "vtkCausticsImpostorPhotonSpreadCS.h" // Kernel radii from the landed grid
 #include "vtkCausticsImpostorPhotonTraceCS.h"  // The trace's compute shader
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsOptics.h" // Surface interaction (shared)
 #include "vtkCausticsPhotonBufferCommon.h" // AllFinite (shared)
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonSpacing.h"
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h" // TextureUnits
@@ -52,7 +52,7 @@ struct vtkCausticsImpostorPhotonPass::Internals
 {
   vtkNew<vtkCausticsPhotonEmitter> Emitter;   // 1. the first specular event (shared)
   vtkNew<vtkCausticsShaderProgram> Program;   // 3. the trace against the maps
-  vtkNew<vtkCausticsShaderProgram> Spread;    //    kernel radii from the landed neighbours
+  vtkNew<vtkCausticsPhotonSpacing> Spacing;   //    kernel radii from the landed neighbours
   vtkNew<vtkCausticsPhotonSplatter> Splatter; // 4. irradiance (shared)
   caustics::gl::PhotonPlanes Landed;          // the trace's output, with kernel radii
   caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
@@ -66,8 +66,6 @@ vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
     vtkCausticsImpostorCommon + vtkCausticsSpecularTrace + vtkCausticsImpostorPhotonTraceCS;
   s.Program->SetComputeSource(source.c_str());
-  s.Spread->SetName("impostor photon spread");
-  s.Spread->SetComputeSource(vtkCausticsImpostorPhotonSpreadCS);
   s.Emitter->SetSplitFresnel(true); // both branches of the first event: no roulette there
   this->SetSpecularShadows(true);   // its photons replace the light the specular actors block
   this->SetRefractionTracing(true); // the base pass's camera view of glass and mirrors
@@ -213,25 +211,12 @@ bool vtkCausticsImpostorPhotonPass::Spread(const FrameInputs& in)
 {
   auto& s = *this->Internal;
   this->BeginStage("impostor spread");
-  if (!s.Spread->Bind(in.Window))
-  {
-    this->EndStage("impostor spread");
-    return false;
-  }
-  glBindImageTexture(0, s.Landed.Records().Position->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY,
-    GL_RGBA32F);
-  s.Landed.BindRadiusImage(3, GL_READ_WRITE);
-  s.Spread->SetUniform2i("photonGrid", s.Grid.Width, s.Grid.Height);
-  s.Spread->SetUniformi("branchRows", std::max(s.Grid.BranchRows, 1));
-  s.Spread->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
-  s.Spread->SetUniformf("stretch", static_cast<float>(this->Settings.SpreadStretch));
-  s.Spread->DispatchCovering2D(s.Grid.Width, s.Grid.Height, 8, 8);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  s.Spread->Unbind(in.Window);
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+  // Whole paths: a neighbour may have taken another branch at a later event.
+  const bool ok = s.Spacing->Widen(in.Window, s.Grid, s.Landed.Records(), s.Landed.KernelRadius(),
+    this->Settings.KernelSpacings, vtkCausticsPhotonSpacing::MEAN_DISTANCE,
+    this->Settings.SpreadStretch);
   this->EndStage("impostor spread");
-  return true;
+  return ok;
 }
 
 bool vtkCausticsImpostorPhotonPass::Splat(const FrameInputs& in)
@@ -249,7 +234,7 @@ void vtkCausticsImpostorPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   auto& s = *this->Internal;
   s.Emitter->ReleaseGraphicsResources(w);
   s.Program->ReleaseGraphicsResources(w);
-  s.Spread->ReleaseGraphicsResources(w);
+  s.Spacing->ReleaseGraphicsResources(w);
   s.Splatter->ReleaseGraphicsResources(w);
   s.Landed.Release(w);
 }

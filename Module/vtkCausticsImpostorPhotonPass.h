@@ -30,8 +30,9 @@
  *    stretch in air; a receiver lit on the side the camera sees ends the photon;
  * 4. reconstruction (§5, "the photon hits are splatted"): each landed photon's kernel
  *    radius grows to the spacing of its landed grid neighbours where the light
- *    spreads out (SpreadStretch; the splats are energy-normalized, so only the
- *    blur changes), then the landed photons, in the shared photon record layout, go to the shared vtkCausticsPhotonSplatter
+ *    spreads out (the shared vtkCausticsPhotonSpacing; the splats are
+ *    energy-normalized, so only the blur changes), then the landed photons, in the
+ *    shared photon record layout, go to the shared vtkCausticsPhotonSplatter
  *    (energy-normalized splats or caustic triangles, GetSplatter()), W/m^2 at the
  *    receivers the camera sees;
  * 5. receivers the camera sees only in a mirror or through glass (E-S-D-S-L paths):
@@ -87,13 +88,16 @@ public:
 
   ///@{
   /**
-   * Kernel radii from the landed photons' grid neighbours: a photon's radius grows to
-   * KernelSpacings times the mean distance to its neighbours that landed within
-   * SpreadStretch unoccluded spacings (where the light spreads out, splats then
-   * touch); never below the unoccluded radius. In [1, 64]; 1 turns it off.
-   * Default 8.
+   * Kernel radii from the landed photons' grid neighbours (vtkCausticsPhotonSpacing,
+   * MEAN_DISTANCE): a photon's radius grows to KernelSpacings times the mean distance to
+   * its neighbours where the light spreads out, never below the unoccluded radius.
+   * Neighbours farther than SpreadStretch unoccluded spacings (another path, a
+   * silhouette) do not count; 0 counts any, 1 turns the widening off. In [0, 1e6].
+   * Default 64. (Until 2026-12-05 it was 8: a low sun through the ball lens spreads
+   * its photons further apart than that past the focus, and the splats printed the
+   * photon grid there as dots and rings, 20 % relative L2.)
    */
-  vtkCausticsSettingClampMacro(Settings, SpreadStretch, double, 1.0, 64.0);
+  vtkCausticsSettingClampMacro(Settings, SpreadStretch, double, 0.0, 1e6);
   ///@}
 
   ///@{

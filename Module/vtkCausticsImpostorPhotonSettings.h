@@ -20,7 +20,7 @@ struct ImpostorPhotonSettings
 {
   int MaximumEvents = 8;       ///< specular events after emission (§4-5), [1, 32]
   double KernelSpacings = 2.0; ///< splat radius in photon spacings on the receiver, [0.5, 16]
-  double SpreadStretch = 8.0;  ///< farthest neighbour (unoccluded spacings) that widens it, [1, 64]
+  double SpreadStretch = 64.0; ///< farthest widening neighbour, unoccluded spacings, [0, 1e6]
 };
 }
 

@@ -7,6 +7,7 @@
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonGrid.h"
+#include "vtkCausticsPhotonSpacing.h"
 #include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneExtractor.h"
 #include "vtkCausticsSceneGeometry.h"
@@ -30,7 +31,6 @@
 #include "vtkCausticsOptics.h"
 #include "vtkCausticsScreenSpaceCommon.h"
 #include "vtkCausticsScreenSpacePhotonPassInitialCS.h"
-#include "vtkCausticsScreenSpacePhotonPassRadiusCS.h"
 #include "vtkCausticsScreenSpacePhotonPassShadowCS.h"
 #include "vtkCausticsScreenSpacePhotonPassTransferCS.h"
 #include "vtkCausticsScreenSpaceVolumeSegmentsCS.h"
@@ -95,7 +95,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   vtkNew<vtkCausticsShaderProgram> InitialProgram;
   vtkNew<vtkCausticsShaderProgram> TransferProgram;
   vtkNew<vtkCausticsShaderProgram> ShadowProgram;
-  vtkNew<vtkCausticsShaderProgram> RadiusProgram;
+  vtkNew<vtkCausticsPhotonSpacing> Spacing;        // radii from the neighbours (shared)
   vtkNew<vtkCausticsShaderProgram> SegmentProgram; // rays -> volume line segments
 
   // Transfer maps (photon lists) and their counters, ping-ponged between bounces.
@@ -150,9 +150,6 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   in.TransferProgram->SetComputeSource(
     (optics + common + vtkCausticsSpecularTrace + vtkCausticsScreenSpacePhotonPassTransferCS)
       .c_str());
-  in.RadiusProgram->SetName("ssp splat radius");
-  in.RadiusProgram->SetComputeSource(vtkCausticsScreenSpacePhotonPassRadiusCS);
-  in.RadiusProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   in.ShadowProgram->SetName("ssp shadow rays");
   in.ShadowProgram->SetComputeSource((common + vtkCausticsScreenSpacePhotonPassShadowCS).c_str());
   in.ShadowProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
@@ -362,26 +359,13 @@ bool vtkCausticsScreenSpacePhotonPass::SplatPhotons(
   const FrameInputs& f = this->GetFrameInputs();
   auto& in = *this->Internal;
   const caustics::PhotonGrid& grid = in.Emitter->GetGrid();
-  // Radii from the neighbours' spacing (see glsl/vtkCausticsScreenSpacePhotonPassRadiusCS.glsl).
-  if (this->Settings.SplatRadius <= 0.0 && this->Settings.SplatRadiusSpacings > 0.0)
+  // Radii from the neighbours' spacing (shared, vtkCausticsPhotonSpacing): this bounce's
+  // landed photons are all the records hold, so neighbours took the same number of events.
+  if (this->Settings.SplatRadius <= 0.0 &&
+    !in.Spacing->Widen(renWin, grid, in.Landed.Records(), in.Landed.KernelRadius(),
+      this->Settings.SplatRadiusSpacings, vtkCausticsPhotonSpacing::AREA))
   {
-    vtkCausticsShaderProgram* p = in.RadiusProgram;
-    if (!p->Bind(renWin))
-    {
-      return false;
-    }
-    in.Landed.BindImages(0, GL_READ_ONLY);
-    in.Landed.BindRadiusImage(3, GL_READ_WRITE);
-    p->SetUniform2i("grid", grid.Width, grid.Height);
-    p->SetUniformi("branchRows", grid.BranchRows);
-    p->SetUniformf("spacings", static_cast<float>(this->Settings.SplatRadiusSpacings));
-    p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    p->Unbind(renWin);
+    return false;
   }
   // The caustic store (shared): this bounce's landed photons, the light's shadow once.
   if (!this->StoreCaustic(f, light, in.Landed.Records(), grid.Width, grid.Height,
@@ -657,7 +641,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   in.InitialProgram->ReleaseGraphicsResources(w);
   in.TransferProgram->ReleaseGraphicsResources(w);
   in.ShadowProgram->ReleaseGraphicsResources(w);
-  in.RadiusProgram->ReleaseGraphicsResources(w);
+  in.Spacing->ReleaseGraphicsResources(w);
   for (int k = 0; k < 2; ++k)
   {
     in.Rays[k].Release();
