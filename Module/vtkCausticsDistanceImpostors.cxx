@@ -7,6 +7,7 @@
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
 #include "vtkCausticsShaderProgram.h"
+#include "vtkCausticsTimings.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
@@ -138,6 +139,26 @@ struct vtkCausticsDistanceImpostors::Internals
   // The shadow maps the radiance was shaded with (compared only; null: none).
   const vtkCausticsLightBuffers* ShadedWith = nullptr;
   bool Shadowed = false;
+
+  vtkCausticsTimings* Timings = nullptr;
+  std::string StagePrefix;
+
+  /** Runs `step`, timed as "<StagePrefix>stage" when there are timings. */
+  template <typename Step>
+  bool Timed(const char* stage, Step step)
+  {
+    const std::string name = this->StagePrefix + stage;
+    if (this->Timings)
+    {
+      this->Timings->StartStage(name.c_str());
+    }
+    const bool ok = step();
+    if (this->Timings)
+    {
+      this->Timings->StopStage(name.c_str());
+    }
+    return ok;
+  }
 };
 
 vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
@@ -202,13 +223,19 @@ bool vtkCausticsDistanceImpostors::Update(vtkOpenGLRenderWindow* renWin,
     glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
   }
   this->CausticUnit = 0.0; // the store was made for other maps
-  bool ok = true;
-  for (int map = 0; map < NUMBER_OF_MAPS && ok; ++map)
-  {
-    ok = !in.Made[map] || this->RenderMap(renWin, geometry, map);
-  }
-  ok = ok && this->ShadeMaps(renWin, geometry, scene, shadowMaps) &&
-    this->MeasureCausticCells(renWin);
+  bool ok = in.Timed("faces",
+    [&]
+    {
+      bool made = true;
+      for (int map = 0; map < NUMBER_OF_MAPS && made; ++map)
+      {
+        made = !in.Made[map] || this->RenderMap(renWin, geometry, map);
+      }
+      return made;
+    });
+  ok = ok &&
+    in.Timed("shading", [&] { return this->ShadeMaps(renWin, geometry, scene, shadowMaps); }) &&
+    in.Timed("caustic cells", [&] { return this->MeasureCausticCells(renWin); });
   ++this->MapRenders;
   if (!ok)
   {
@@ -216,6 +243,12 @@ bool vtkCausticsDistanceImpostors::Update(vtkOpenGLRenderWindow* renWin,
     std::fill(in.Made, in.Made + NUMBER_OF_MAPS, false);
   }
   return ok;
+}
+
+void vtkCausticsDistanceImpostors::SetTimings(vtkCausticsTimings* timings, const char* stagePrefix)
+{
+  this->Internal->Timings = timings;
+  this->Internal->StagePrefix = stagePrefix ? stagePrefix : "";
 }
 
 int vtkCausticsDistanceImpostors::GetNumberOfLayers() const

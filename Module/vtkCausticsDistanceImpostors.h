@@ -66,6 +66,7 @@
 class vtkCausticsLightBuffers;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
+class vtkCausticsTimings;
 class vtkOpenGLRenderWindow;
 class vtkWindow;
 #ifndef __VTK_WRAP__
@@ -96,6 +97,12 @@ public:
     REFLECTOR_SURFACE = 3,
     NUMBER_OF_MAPS = 4
   };
+
+  /**
+   * Timings to report Update()'s steps to ("<stagePrefix>faces", "<stagePrefix>shading"
+   * and "<stagePrefix>caustic cells"), or nullptr. Not owned.
+   */
+  void SetTimings(vtkCausticsTimings* timings, const char* stagePrefix);
 
   ///@{
   /** Texels along a cube face's edge, in [16, 2048]. Default 256. */

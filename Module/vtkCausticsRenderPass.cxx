@@ -644,7 +644,10 @@ bool vtkCausticsRenderPass::UpdateImpostors(const FrameInputs& f)
   // direct irradiance stage's shadow maps (drawn here first; that stage keeps them),
   // so that the caustic store holds the photons' light alone: nothing to cancel.
   in.ShadowBuffers->SetResolution(this->ShadowMapResolution);
+  this->BeginStage("distance impostors shadow maps");
   const bool shadows = in.ShadowBuffers->Render(f.Window, f.Geometry, *f.Scene);
+  this->EndStage("distance impostors shadow maps");
+  in.Impostors->SetTimings(this->GetTimings(), "distance impostors ");
   const bool ok = in.Impostors->Update(
     f.Window, f.Geometry, *f.Scene, shadows ? in.ShadowBuffers.GetPointer() : nullptr);
   this->EndStage("distance impostors");
