@@ -1,5 +1,6 @@
 // The receiver's caustic irradiance must not depend on how the camera frames the
-// scene (issue 13, "camera independence"). A glass ball under a tilted sun (a
+// scene (issue 13, "camera independence"), nor hold only for the suns the other tests
+// have (EverySurfaceTechniqueUnderEverySun). A glass ball under a tilted sun (a
 // scene the other tests do not have) is seen from a sweep of cameras, and every
 // surface technique (screen-space, caustic maps, cascaded, impostors) is compared
 // with the CPU reference of the same view, which
@@ -149,13 +150,18 @@ void PlaceCamera(vtkRenderer* renderer, const View& v)
   }
 }
 
-/** The ball lens under a sun tilted off the vertical (the built-in one is vertical). */
-void TiltTheSun(vtkRenderer* renderer)
+/**
+ * The ball lens under a sun tilted off the vertical (the built-in one is vertical):
+ * travelling along `direction`, or by default along (0.2, -1, 0.133), which moves the
+ * caustic to about (0.6, 0, 0.4).
+ */
+void TiltTheSun(vtkRenderer* renderer, const double* direction = nullptr)
 {
   vtkLight* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
   ASSERT_NE(sun, nullptr);
-  // Travels along (0.2, -1, 0.133): the caustic moves to about (0.6, 0, 0.4).
-  sun->SetPosition(-0.2, 1.0, -0.133);
+  const double tilted[3] = { 0.2, -1.0, 0.133 };
+  const double* d = direction ? direction : tilted;
+  sun->SetPosition(-d[0], -d[1], -d[2]);
   sun->SetFocalPoint(0.0, 0.0, 0.0);
 }
 
@@ -180,11 +186,12 @@ struct Technique
 class ViewComparison
 {
 public:
-  explicit ViewComparison(const View& v)
+  /** `sun`: the direction the sun's light travels; nullptr: TiltTheSun()'s. */
+  explicit ViewComparison(const View& v, const double* sun = nullptr)
   {
     this->Scene->SetSceneName("ball-lens");
     EXPECT_TRUE(this->Scene->Populate(this->Renderer)) << this->Scene->GetLastError();
-    TiltTheSun(this->Renderer);
+    TiltTheSun(this->Renderer, sun);
     PlaceCamera(this->Renderer, v);
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
@@ -240,7 +247,8 @@ private:
 // - caustic maps (traced from the light, framing-independent already): relative
 //   L2 0.023, flux within 0.7 %;
 // - cascaded: 0.105 (zoomed to 8 degrees), flux within 1.7 % (elevation 10);
-// - impostors: 0.110 (straight down, the ball above its caustic), flux within 0.4 %.
+// - impostors: 0.062, flux within 0.4 % (0.110 straight down, the ball above its
+//   caustic, while neighbours beyond 8 unoccluded spacings did not widen a kernel).
 // Bounds: the worst figure plus about 20 % of it for the reference's noise and
 // rasterization differences between GPUs.
 TEST(CameraIndependence, EverySurfaceTechniqueInEveryView)
@@ -249,7 +257,7 @@ TEST(CameraIndependence, EverySurfaceTechniqueInEveryView)
     Technique{ "screen-space", 0.085, 0.01 },
     Technique{ "caustic-maps", 0.03, 0.01 },
     Technique{ "cascaded", 0.126, 0.021 },
-    Technique{ "impostors", 0.132, 0.006 },
+    Technique{ "impostors", 0.075, 0.006 },
   };
   for (const View& v : Sweep())
   {
@@ -260,6 +268,93 @@ TEST(CameraIndependence, EverySurfaceTechniqueInEveryView)
       const Figures f = comparison.Compare(t.Name);
       std::cout << t.Name << ", " << v.Name << ": relative L2 " << f.RelativeL2 << ", flux ratio "
                 << f.FluxRatio << (f.Fitted ? " (fitted trace view)" : "") << "\n";
+      EXPECT_LT(f.RelativeL2, t.RelativeL2Bound) << t.Name;
+      EXPECT_NEAR(f.FluxRatio, 1.0, t.FluxBound) << t.Name;
+      t.WorstL2 = std::max(t.WorstL2, f.RelativeL2);
+      t.WorstFlux = std::max(t.WorstFlux, std::abs(f.FluxRatio - 1.0));
+    }
+  }
+  for (const Technique& t : techniques)
+  {
+    std::cout << t.Name << ": worst relative L2 " << t.WorstL2 << ", worst flux error "
+              << t.WorstFlux << "\n";
+  }
+}
+
+namespace
+{
+/** A sun `elevation` degrees above the horizon, from `azimuth` degrees about +y. */
+struct Sun
+{
+  double Elevation;
+  double Azimuth;
+  double Direction[3]; // the way its light travels
+  View Camera;         // looking across at the ball's foot and the caustic
+};
+
+std::vector<Sun> SunSweep()
+{
+  std::vector<Sun> suns;
+  for (double elevation : { 40.0, 55.0, 70.0 })
+  {
+    for (double azimuth : { 30.0, 120.0, 210.0, 300.0 })
+    {
+      Sun s{ elevation, azimuth, {}, {} };
+      const double e = elevation * Pi / 180.0, a = azimuth * Pi / 180.0;
+      s.Direction[0] = -std::cos(e) * std::sin(a);
+      s.Direction[1] = -std::sin(e);
+      s.Direction[2] = -std::cos(e) * std::cos(a);
+      // The ray through the ball's centre (0, 3, 0) meets the floor at the caustic's
+      // centre; the camera looks at the middle between it and the ball's foot, from
+      // 55 degrees up and 120 degrees round from the sun.
+      const double reach = 3.0 / std::tan(e);
+      const double focal[3] = { -0.5 * reach * std::sin(a), 0.0, -0.5 * reach * std::cos(a) };
+      View v = Orbit(55.0, azimuth + 120.0, 10.0);
+      for (int c = 0; c < 3; ++c)
+      {
+        v.Position[c] += focal[c] - Caustic[c];
+        v.Focal[c] = focal[c];
+      }
+      v.ViewAngle = 45.0;
+      v.Name = "sun at elevation " + std::to_string(static_cast<int>(elevation)) + ", azimuth " +
+        std::to_string(static_cast<int>(azimuth));
+      s.Camera = v;
+      suns.push_back(s);
+    }
+  }
+  return suns;
+}
+}
+
+// The same four techniques under suns the other tests do not have: 40 to 70 degrees
+// up, from four sides, each seen from a camera that frames the ball and its caustic
+// (which moves up to 3.6 m from the ball's foot). Reached at 128^2 pixels, default
+// settings, worst over the 12 suns (each at 40 degrees up):
+// - screen-space: relative L2 0.053, flux within 0.13 %;
+// - caustic maps: 0.036, flux within 0.54 %;
+// - cascaded: 0.062, flux within 0.65 %;
+// - impostors: 0.048, flux within 0.10 % (0.064 while neighbours beyond 8 unoccluded
+//   spacings did not widen a kernel: past the focus its photons printed the grid).
+// Bounds: the worst figure plus about 20 %; the flux, a few tenths of a percent more.
+// The sun the impostors' own test has, 38 degrees up, reads 7.3 % at 256^2 against a
+// sharper reference (technique-distance-impostors.md, "Measured").
+TEST(CameraIndependence, EverySurfaceTechniqueUnderEverySun)
+{
+  std::vector<Technique> techniques = {
+    Technique{ "screen-space", 0.064, 0.005 },
+    Technique{ "caustic-maps", 0.043, 0.008 },
+    Technique{ "cascaded", 0.075, 0.01 },
+    Technique{ "impostors", 0.058, 0.005 },
+  };
+  for (const Sun& sun : SunSweep())
+  {
+    SCOPED_TRACE(sun.Camera.Name);
+    ViewComparison comparison(sun.Camera, sun.Direction);
+    for (Technique& t : techniques)
+    {
+      const Figures f = comparison.Compare(t.Name);
+      std::cout << t.Name << ", " << sun.Camera.Name << ": relative L2 " << f.RelativeL2
+                << ", flux ratio " << f.FluxRatio << "\n";
       EXPECT_LT(f.RelativeL2, t.RelativeL2Bound) << t.Name;
       EXPECT_NEAR(f.FluxRatio, 1.0, t.FluxBound) << t.Name;
       t.WorstL2 = std::max(t.WorstL2, f.RelativeL2);
