@@ -228,12 +228,37 @@ public:
     return figures;
   }
 
+  /** Compares each technique, checks its bounds and keeps its worst figures. */
+  void CheckEach(std::vector<Technique>& techniques, const std::string& view)
+  {
+    for (Technique& t : techniques)
+    {
+      const Figures f = this->Compare(t.Name);
+      std::cout << t.Name << ", " << view << ": relative L2 " << f.RelativeL2 << ", flux ratio "
+                << f.FluxRatio << (f.Fitted ? " (fitted trace view)" : "") << "\n";
+      EXPECT_LT(f.RelativeL2, t.RelativeL2Bound) << t.Name;
+      EXPECT_NEAR(f.FluxRatio, 1.0, t.FluxBound) << t.Name;
+      t.WorstL2 = std::max(t.WorstL2, f.RelativeL2);
+      t.WorstFlux = std::max(t.WorstFlux, std::abs(f.FluxRatio - 1.0));
+    }
+  }
+
 private:
   vtkNew<vtkOpenGLRenderer> Renderer;
   vtkNew<vtkCausticsBuiltinScene> Scene;
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkCausticsReferenceRenderer> Reference;
 };
+
+/** Each technique's worst figures over a sweep. */
+void PrintWorst(const std::vector<Technique>& techniques)
+{
+  for (const Technique& t : techniques)
+  {
+    std::cout << t.Name << ": worst relative L2 " << t.WorstL2 << ", worst flux error "
+              << t.WorstFlux << "\n";
+  }
+}
 }
 
 // Reached at 128^2 pixels, default settings, the reference at 1 M photons (this
@@ -263,22 +288,9 @@ TEST(CameraIndependence, EverySurfaceTechniqueInEveryView)
   {
     SCOPED_TRACE(v.Name);
     ViewComparison comparison(v);
-    for (Technique& t : techniques)
-    {
-      const Figures f = comparison.Compare(t.Name);
-      std::cout << t.Name << ", " << v.Name << ": relative L2 " << f.RelativeL2 << ", flux ratio "
-                << f.FluxRatio << (f.Fitted ? " (fitted trace view)" : "") << "\n";
-      EXPECT_LT(f.RelativeL2, t.RelativeL2Bound) << t.Name;
-      EXPECT_NEAR(f.FluxRatio, 1.0, t.FluxBound) << t.Name;
-      t.WorstL2 = std::max(t.WorstL2, f.RelativeL2);
-      t.WorstFlux = std::max(t.WorstFlux, std::abs(f.FluxRatio - 1.0));
-    }
+    comparison.CheckEach(techniques, v.Name);
   }
-  for (const Technique& t : techniques)
-  {
-    std::cout << t.Name << ": worst relative L2 " << t.WorstL2 << ", worst flux error "
-              << t.WorstFlux << "\n";
-  }
+  PrintWorst(techniques);
 }
 
 namespace
@@ -350,22 +362,9 @@ TEST(CameraIndependence, EverySurfaceTechniqueUnderEverySun)
   {
     SCOPED_TRACE(sun.Camera.Name);
     ViewComparison comparison(sun.Camera, sun.Direction);
-    for (Technique& t : techniques)
-    {
-      const Figures f = comparison.Compare(t.Name);
-      std::cout << t.Name << ", " << sun.Camera.Name << ": relative L2 " << f.RelativeL2
-                << ", flux ratio " << f.FluxRatio << "\n";
-      EXPECT_LT(f.RelativeL2, t.RelativeL2Bound) << t.Name;
-      EXPECT_NEAR(f.FluxRatio, 1.0, t.FluxBound) << t.Name;
-      t.WorstL2 = std::max(t.WorstL2, f.RelativeL2);
-      t.WorstFlux = std::max(t.WorstFlux, std::abs(f.FluxRatio - 1.0));
-    }
+    comparison.CheckEach(techniques, sun.Camera.Name);
   }
-  for (const Technique& t : techniques)
-  {
-    std::cout << t.Name << ": worst relative L2 " << t.WorstL2 << ", worst flux error "
-              << t.WorstFlux << "\n";
-  }
+  PrintWorst(techniques);
 }
 
 namespace
