@@ -140,25 +140,7 @@ struct vtkCausticsDistanceImpostors::Internals
   const vtkCausticsLightBuffers* ShadedWith = nullptr;
   bool Shadowed = false;
 
-  vtkCausticsTimings* Timings = nullptr;
-  std::string StagePrefix;
-
-  /** Runs `step`, timed as "<StagePrefix>stage" when there are timings. */
-  template <typename Step>
-  bool Timed(const char* stage, Step step)
-  {
-    const std::string name = this->StagePrefix + stage;
-    if (this->Timings)
-    {
-      this->Timings->StartStage(name.c_str());
-    }
-    const bool ok = step();
-    if (this->Timings)
-    {
-      this->Timings->StopStage(name.c_str());
-    }
-    return ok;
-  }
+  caustics::StageSteps Steps; // "<prefix>faces", "<prefix>shading", "<prefix>caustic cells"
 };
 
 vtkCausticsDistanceImpostors::vtkCausticsDistanceImpostors()
@@ -223,7 +205,7 @@ bool vtkCausticsDistanceImpostors::Update(vtkOpenGLRenderWindow* renWin,
     glClearTexImage(in.Caustic.Handle, 0, GL_RED_INTEGER, GL_INT, &zero);
   }
   this->CausticUnit = 0.0; // the store was made for other maps
-  bool ok = in.Timed("faces",
+  bool ok = in.Steps.Timed("faces",
     [&]
     {
       bool made = true;
@@ -234,8 +216,9 @@ bool vtkCausticsDistanceImpostors::Update(vtkOpenGLRenderWindow* renWin,
       return made;
     });
   ok = ok &&
-    in.Timed("shading", [&] { return this->ShadeMaps(renWin, geometry, scene, shadowMaps); }) &&
-    in.Timed("caustic cells", [&] { return this->MeasureCausticCells(renWin); });
+    in.Steps.Timed(
+      "shading", [&] { return this->ShadeMaps(renWin, geometry, scene, shadowMaps); }) &&
+    in.Steps.Timed("caustic cells", [&] { return this->MeasureCausticCells(renWin); });
   ++this->MapRenders;
   if (!ok)
   {
@@ -247,8 +230,8 @@ bool vtkCausticsDistanceImpostors::Update(vtkOpenGLRenderWindow* renWin,
 
 void vtkCausticsDistanceImpostors::SetTimings(vtkCausticsTimings* timings, const char* stagePrefix)
 {
-  this->Internal->Timings = timings;
-  this->Internal->StagePrefix = stagePrefix ? stagePrefix : "";
+  this->Internal->Steps.Timings = timings;
+  this->Internal->Steps.Prefix = stagePrefix ? stagePrefix : "";
 }
 
 int vtkCausticsDistanceImpostors::GetNumberOfLayers() const

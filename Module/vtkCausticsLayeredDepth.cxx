@@ -249,23 +249,7 @@ struct vtkCausticsLayeredDepth::Internals
   std::vector<std::uint64_t> Key; // ContentKey() of the layers held; empty: none
   bool Reused = false;            // the last Render() kept the layers held
 
-  vtkCausticsTimings* Timings = nullptr;
-  std::string StagePrefix;
-
-  void Start(const char* stage)
-  {
-    if (this->Timings)
-    {
-      this->Timings->StartStage((this->StagePrefix + stage).c_str());
-    }
-  }
-  void Stop(const char* stage)
-  {
-    if (this->Timings)
-    {
-      this->Timings->StopStage((this->StagePrefix + stage).c_str());
-    }
-  }
+  caustics::StageSteps Steps; // "<prefix>depth complexity", "<prefix>depth peeling"
 
   void UpdateCommands(const ObjectLayout& layout, int layers, const caustics::SceneData& scene);
   void UploadCommands(const ObjectLayout& layout, int layers, const caustics::SceneData& scene);
@@ -552,8 +536,8 @@ vtkCausticsLayeredDepth::~vtkCausticsLayeredDepth()
 
 void vtkCausticsLayeredDepth::SetTimings(vtkCausticsTimings* timings, const char* stagePrefix)
 {
-  this->Internal->Timings = timings;
-  this->Internal->StagePrefix = stagePrefix ? stagePrefix : "";
+  this->Internal->Steps.Timings = timings;
+  this->Internal->Steps.Prefix = stagePrefix ? stagePrefix : "";
 }
 
 bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
@@ -604,17 +588,17 @@ bool vtkCausticsLayeredDepth::Render(vtkOpenGLRenderWindow* renWin,
   state->vtkglDisable(GL_CULL_FACE);
   state->vtkglViewport(0, 0, width, height);
 
-  in.Start("depth complexity");
+  in.Steps.Start("depth complexity");
   bool ok = in.CountFragments(renWin, geometry, worldToClip, this->RoleMask);
   ok = ok && in.ReduceComplexity(renWin);
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   ok = ok && in.GateLayers(renWin);
-  in.Stop("depth complexity");
+  in.Steps.Stop("depth complexity");
 
-  in.Start("depth peeling");
+  in.Steps.Start("depth peeling");
   ok = in.PeelLayers(renWin, geometry, worldToClip, ok);
   state->PopFramebufferBindings();
-  in.Stop("depth peeling");
+  in.Steps.Stop("depth peeling");
   if (!ok)
   {
     vtkErrorMacro(<< "layered depth image: a program failed to build");

@@ -70,22 +70,7 @@ struct vtkCausticsScreenSpaceLineTracer::Internals
   vtkNew<vtkCausticsShaderProgram> ReduceProgram;
   std::uint32_t Stamp = 0;
   int Batches = 0;
-  vtkCausticsTimings* Timings = nullptr;
-
-  void Start(const std::string& stage)
-  {
-    if (this->Timings)
-    {
-      this->Timings->StartStage(stage.c_str());
-    }
-  }
-  void Stop(const std::string& stage)
-  {
-    if (this->Timings)
-    {
-      this->Timings->StopStage(stage.c_str());
-    }
-  }
+  caustics::StageSteps Steps; // named by Trace()'s stage prefix
 
   // Trace() in steps.
   void Allocate(const Batch& batch);
@@ -277,7 +262,7 @@ vtkCausticsScreenSpaceLineTracer::~vtkCausticsScreenSpaceLineTracer()
 
 void vtkCausticsScreenSpaceLineTracer::SetTimings(vtkCausticsTimings* timings)
 {
-  this->Internal->Timings = timings;
+  this->Internal->Steps.Timings = timings;
 }
 
 bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin,
@@ -311,9 +296,9 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin,
   }
 
   // 1. Indirect arguments from the GPU's ray count. 2. Line setup, one thread per ray.
-  in.Start(stagePrefix + "line setup");
+  in.Steps.Start(stagePrefix + "line setup");
   bool ok = in.PrepareArguments(renWin, batch) && in.SetupLines(renWin, batch);
-  in.Stop(stagePrefix + "line setup");
+  in.Steps.Stop(stagePrefix + "line setup");
 
   // 3-4. Per batch: rasterize the rows, then reduce them.
   vtkOpenGLState* state = renWin->GetState();
@@ -333,7 +318,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin,
   batch.NormalUnit = units.Bind(layers->GetNormalTexture());
   batch.RowUnit = units.Bind(0u);
   // One timed stage for both steps: the reductions run between the batches' draws.
-  in.Start(stagePrefix + "line tracing");
+  in.Steps.Start(stagePrefix + "line tracing");
   for (int b = 0; ok && b < batch.Batches; ++b)
   {
     in.NextStamp();
@@ -342,7 +327,7 @@ bool vtkCausticsScreenSpaceLineTracer::Trace(vtkOpenGLRenderWindow* renWin,
     state->vtkglViewport(0, 0, batch.RowWidth, batch.Rows);
     ok = in.RasterizeRows(renWin, batch, b) && in.ReduceRows(renWin, batch, b);
   }
-  in.Stop(stagePrefix + "line tracing");
+  in.Steps.Stop(stagePrefix + "line tracing");
   glBindTextureUnit(batch.RowUnit, 0);
   in.ReduceProgram->Unbind(renWin);
   state->PopFramebufferBindings();

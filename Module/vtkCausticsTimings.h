@@ -152,4 +152,45 @@ private:
   std::unique_ptr<Internals> Internal;
 };
 
+#ifndef __VTK_WRAP__
+namespace caustics
+{
+/**
+ * Where a helper stage (the layered depth image, the line tracer, the distance
+ * impostors) reports its steps: the pass's timings, or none, and a prefix for the
+ * steps' names ("refractor layers " + "depth peeling"). Set by the helper's
+ * SetTimings(); the steps are nested in the pass's own stage.
+ */
+struct StageSteps
+{
+  vtkCausticsTimings* Timings = nullptr;
+  std::string Prefix;
+
+  void Start(const std::string& step) const
+  {
+    if (this->Timings)
+    {
+      this->Timings->StartStage((this->Prefix + step).c_str());
+    }
+  }
+  void Stop(const std::string& step) const
+  {
+    if (this->Timings)
+    {
+      this->Timings->StopStage((this->Prefix + step).c_str());
+    }
+  }
+  /** Runs `work` (returning bool) as the step `step`. */
+  template <typename Work>
+  bool Timed(const std::string& step, Work work) const
+  {
+    this->Start(step);
+    const bool ok = work();
+    this->Stop(step);
+    return ok;
+  }
+};
+}
+#endif
+
 #endif
