@@ -8,15 +8,16 @@
 #include "CausticsCommandLine.h"
 #include "CausticsSceneOptions.h"
 
-#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsBuiltinScene.h"
 #include "vtkCausticsDeviceLimits.h"
-#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsGLTFImporter.h"
+#include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsImageIO.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
+#include "vtkCausticsPhotonGrid.h"
+#include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsSceneExtractor.h"
@@ -324,6 +325,53 @@ void WriteImages(const Options& options, vtkImageData* image,
   }
 }
 
+/**
+ * Where the last frame's photons' light went, for the techniques that count it
+ * (GetLastFramePhotonStatistics): with --timings a line of shares, and always a
+ * warning when the light lost on paths the technique cannot follow may be more than
+ * a tenth of the caustic (caustics::PhotonStatistics::LostShareBound).
+ */
+void ReportPhotonStatistics(
+  const Options& options, vtkCausticsRenderPass* pass, const std::string& technique)
+{
+  caustics::PhotonStatistics photons;
+  if (!pass->GetLastFrameHadCaustics() || !pass->GetLastFramePhotonStatistics(photons) ||
+    !(photons.FluxIn > 0.0))
+  {
+    return;
+  }
+  auto percent = [](double share)
+  {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(1) << 100.0 * share << " %";
+    return text.str();
+  };
+  const double in = photons.FluxIn;
+  if (options.Timings)
+  {
+    std::cout << "caustics-render: photon light (" << photons.Photons << " photons, " << in
+              << " W): " << percent((photons.FluxHits + photons.FluxStored) / in) << " landed, "
+              << percent(photons.FluxEscaped / in) << " left the views, "
+              << percent(photons.FluxLostInside / in) << " lost on paths " << technique
+              << " cannot follow";
+    if (photons.FluxInternalReflection > 0.0)
+    {
+      std::cout << ", " << percent(photons.FluxInternalReflection / in)
+                << " reflected back inside glass at exits and not followed";
+    }
+    std::cout << "\n";
+  }
+  if (photons.LostShareBound() > 0.1)
+  {
+    std::cerr << "caustics-render: warning: " << technique << " lost "
+              << percent(photons.FluxLostInside / in)
+              << " of its photons' light on paths it cannot follow: up to "
+              << percent(photons.LostShareBound())
+              << " of the caustic may be missing (docs/accuracy.md, \"Light a technique "
+                 "cannot follow\")\n";
+  }
+}
+
 void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std::string& how,
   const std::string& technique)
 {
@@ -348,6 +396,7 @@ void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std
     std::cout << "caustics-render: caustic and volume layers are the mean of "
               << pass->GetFramesAveraged() << " frame(s)\n";
   }
+  ReportPhotonStatistics(options, pass, technique);
   std::cout << "wrote " << options.Output << ".png and " << options.Output << ".exr\n";
 }
 

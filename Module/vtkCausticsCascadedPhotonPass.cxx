@@ -1,5 +1,6 @@
 #include "vtkCausticsCascadedPhotonPass.h"
 
+#include "vtkCausticsBindings.h"
 #include "vtkCausticsCascadedTraceCS.h" // The cascade's compute shader
 #include "vtkCausticsGBuffer.h"
 #include "vtkCausticsGLUtilities.h"
@@ -8,13 +9,16 @@
 #include "vtkCausticsPhotonBufferCommon.h"    // CausticsView and its projections (shared)
 #include "vtkCausticsPhotonBufferUtilities.h" // The views' uniforms
 #include "vtkCausticsPhotonEmitter.h"
+#include "vtkCausticsPhotonGrid.h" // caustics::PhotonStatistics
 #include "vtkCausticsPhotonSplatter.h"
+#include "vtkCausticsPhotonStatistics.h" // Where the photons' light went (shared)
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkCausticsTimings.h"
 #include "vtkCausticsVolumeLinesCommon.h" // The volume caustics' segments (shared)
 #include "vtkCausticsVolumeSegmentList.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
@@ -60,6 +64,8 @@ struct vtkCausticsCascadedPhotonPass::Internals
   caustics::gl::PhotonPlanes Landed;              // the cascade's output, with kernel radii
   caustics::PhotonGrid Grid;                      // the landed photons' grid, for the splatter
   caustics::gl::VolumeSegmentList VolumeSegments; // stretches in air -> volume caustics
+  caustics::gl::StorageBuffer Statistics;         // where the photons' light went (STAT_*)
+  double FluxUnit = 1.0;                          // W per unit of its flux counters
 };
 
 vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
@@ -69,7 +75,7 @@ vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
   s.VolumeSegments.SetOwner(this);
   s.Program->SetName("cascaded photon trace");
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
-    vtkCausticsVolumeLinesCommon + vtkCausticsCascadedTraceCS;
+    vtkCausticsVolumeLinesCommon + vtkCausticsPhotonStatistics + vtkCausticsCascadedTraceCS;
   s.Program->SetComputeSource(source.c_str());
   s.Emitter->SetSplitFresnel(true); // both branches: the trace chooses one by roulette
   s.Back->KeepFarthestOn();
@@ -115,6 +121,7 @@ bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& i
   bool ok = true;
   // A scattering medium: the photons' stretches in air become volume caustics.
   this->Internal->VolumeSegments.Begin(in.Window, *in.Scene, in.Width, in.Height);
+  this->ClearStatistics(in);
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
     if (!in.LightBuffers->GetView(light).valid || this->Settings.NumberOfPhotons <= 0)
@@ -130,6 +137,44 @@ bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& i
   }
   ++this->FrameIndex; // the next frame is a fresh, independent estimate
   return ok;
+}
+
+void vtkCausticsCascadedPhotonPass::ClearStatistics(const FrameInputs& in)
+{
+  // One flux unit for every light of the frame (their counters add up): the largest
+  // photon's flux before roulette over 2^20 (caustics::hcm::FluxUnit's rule).
+  auto& s = *this->Internal;
+  const int n = in.LightBuffers->GetResolution();
+  const double texelsPerPhoton =
+    double(n) * double(n) / double(std::max(1, this->Settings.NumberOfPhotons));
+  double largest = 0.0;
+  for (int light = 0; light < in.LightBuffers->GetNumberOfLights(); ++light)
+  {
+    const caustics::LightView& view = in.LightBuffers->GetView(light);
+    if (view.valid)
+    {
+      largest = std::max(
+        largest, caustics::MaximumTexelFlux(in.Scene->Lights[light], view, n) * texelsPerPhoton);
+    }
+  }
+  s.FluxUnit = (largest > 0.0 ? largest : 1.0) / caustics::hcm::UnitsPerTexelFlux;
+  s.Statistics.Allocate(
+    caustics::hcm::StatSize * sizeof(std::uint32_t), caustics::gl::StorageBuffer::Usage::Copy);
+  s.Statistics.Clear();
+}
+
+bool vtkCausticsCascadedPhotonPass::GetLastFramePhotonStatistics(
+  caustics::PhotonStatistics& statistics)
+{
+  statistics = caustics::PhotonStatistics();
+  auto& s = *this->Internal;
+  if (!this->GetLastFrameHadCaustics() || !s.Statistics.Handle() || !this->GetLastWindow())
+  {
+    return false;
+  }
+  this->GetLastWindow()->MakeCurrent();
+  caustics::hcm::ReadPhotonStatistics(s.Statistics, s.FluxUnit, statistics);
+  return statistics.Photons > 0;
 }
 
 bool vtkCausticsCascadedPhotonPass::Emit(const FrameInputs& in, int light)
@@ -230,6 +275,8 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
   s.Program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(in.Scene->Bounds)));
   s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+  s.Program->SetUniformf("fluxUnit", static_cast<float>(s.FluxUnit));
+  s.Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_PHOTON_STATISTICS_BINDING);
   caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
   if (s.VolumeSegments.IsOn())
   {
@@ -306,4 +353,5 @@ void vtkCausticsCascadedPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   s.Splatter->ReleaseGraphicsResources(w);
   s.Landed.Release(w);
   s.VolumeSegments.Release(w);
+  s.Statistics.Release();
 }

@@ -512,6 +512,27 @@ bool vtkCausticsHierarchicalCausticMapPass::GetCounters(int i, Counters& counter
   return true;
 }
 
+bool vtkCausticsHierarchicalCausticMapPass::GetLastFramePhotonStatistics(
+  caustics::PhotonStatistics& statistics)
+{
+  statistics = caustics::PhotonStatistics();
+  bool any = false;
+  for (int i = 0; i < this->GetNumberOfLights(); ++i)
+  {
+    vtkCausticsPhotonBuffer::Statistics light;
+    if (this->GetLightTraced(i) && this->GetLastWindow())
+    {
+      this->GetLastWindow()->MakeCurrent();
+      if (this->Internal->Lights[i]->Photons->GetStatistics(light))
+      {
+        statistics += light;
+        any = true;
+      }
+    }
+  }
+  return any;
+}
+
 vtkIdType vtkCausticsHierarchicalCausticMapPass::GetNumberOfProcessedPhotons(int light)
 {
   Counters counters;

@@ -352,6 +352,13 @@ public:
    * benchmarks, never in a render loop). False if the light ran no photon stage.
    */
   bool GetCounters(int i, Counters& counters);
+
+  /**
+   * The photon buffers' statistics of the lights that ran a photon stage, summed
+   * (stalls). Not followed: photons whose exit from a refractor was not found within
+   * MaximumInternalEvents, and light reflected back inside at exits beyond them.
+   */
+  bool GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics) override;
 #endif
 
   ///@{

@@ -23,6 +23,7 @@
 #include "vtkCausticsPhotonBufferCommon.h"
 #include "vtkCausticsPhotonBufferHierarchyArgumentsCS.h"
 #include "vtkCausticsPhotonBufferTraceCS.h"
+#include "vtkCausticsPhotonStatistics.h"
 #include "vtkCausticsSpecularTrace.h"
 #include "vtkCausticsVolumeLinesCommon.h"
 
@@ -187,7 +188,7 @@ vtkCausticsPhotonBuffer::vtkCausticsPhotonBuffer()
   this->ReflectorLayer->AlbedoOff();
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
     vtkCausticsVolumeLinesCommon + vtkCausticsSpecularTrace + vtkCausticsImpostorCommon +
-    vtkCausticsPhotonBufferTraceCS;
+    vtkCausticsPhotonStatistics + vtkCausticsPhotonBufferTraceCS;
   this->SortProgram->SetName("photon buffer: sort");
   this->SortProgram->SetDefine("PHASE", 0);
   this->SortProgram->SetComputeSource(source.c_str());
@@ -498,24 +499,7 @@ bool vtkCausticsPhotonBuffer::GetStatistics(Statistics& statistics)
     vtkErrorMacro(<< "GetStatistics: no photon buffer was rendered");
     return false;
   }
-  std::vector<std::uint32_t> words(caustics::hcm::StatSize, 0);
-  this->Internal->Statistics.Read(0, words.size() * sizeof(std::uint32_t), words.data());
-  statistics.Photons = words[caustics::hcm::StatPhotons];
-  statistics.Hits = words[caustics::hcm::StatHits];
-  statistics.HiddenHits = words[caustics::hcm::StatHiddenHits];
-  statistics.LostInside = words[caustics::hcm::StatLostInside];
-  statistics.Escaped = words[caustics::hcm::StatEscaped];
-  statistics.Stored = words[caustics::hcm::StatStored];
-  const double unit = this->FluxUnit;
-  using caustics::hcm::FluxFromWords;
-  statistics.FluxIn = FluxFromWords(&words[caustics::hcm::StatFluxIn], unit);
-  statistics.FluxHits = FluxFromWords(&words[caustics::hcm::StatFluxHits], unit);
-  statistics.FluxLostInside = FluxFromWords(&words[caustics::hcm::StatFluxLostInside], unit);
-  statistics.FluxEscaped = FluxFromWords(&words[caustics::hcm::StatFluxEscaped], unit);
-  statistics.FluxStored = FluxFromWords(&words[caustics::hcm::StatFluxStored], unit);
-  statistics.FluxInternalReflection =
-    FluxFromWords(&words[caustics::hcm::StatFluxInternalReflection], unit);
-  statistics.FluxAbsorbed = FluxFromWords(&words[caustics::hcm::StatFluxAbsorbed], unit);
+  caustics::hcm::ReadPhotonStatistics(this->Internal->Statistics, this->FluxUnit, statistics);
   return true;
 }
 

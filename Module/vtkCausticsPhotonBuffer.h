@@ -51,7 +51,8 @@
 #include "vtkObject.h"
 #include "vtkRenderingCausticsModule.h" // For export macro
 
-#include "vtkNew.h" // For vtkNew members
+#include "vtkCausticsPhotonGrid.h" // For caustics::PhotonStatistics
+#include "vtkNew.h"                // For vtkNew members
 
 #include <cstddef> // For std::size_t
 #include <memory>  // For std::unique_ptr
@@ -155,23 +156,12 @@ public:
    */
   void SetCausticStore(vtkCausticsDistanceImpostors* store) { this->CausticStore = store; }
 
-  /** GPU counters of the last Render(); flux in W summed over RGB. */
-  struct Statistics
-  {
-    long long Photons = 0;    ///< photons the emitter made
-    long long Hits = 0;       ///< photons that landed on a receiver (valid photons)
-    long long HiddenHits = 0; ///< of them, on a hidden receiver (SetHiddenReceivers)
-    long long LostInside = 0; ///< exit not found within MaximumInternalEvents
-    long long Escaped = 0;    ///< left the caustic map's view or hit a receiver's back
-    long long Stored = 0;     ///< no receiver layer landed it; the caustic store did
-    double FluxIn = 0.0;
-    double FluxHits = 0.0;
-    double FluxLostInside = 0.0;
-    double FluxEscaped = 0.0;
-    double FluxStored = 0.0;
-    double FluxInternalReflection = 0.0; ///< reflected back inside at exits, not followed
-    double FluxAbsorbed = 0.0;           ///< Beer-Lambert inside refractors
-  };
+  /**
+   * GPU counters of the last Render(); flux in W summed over RGB. Here LostInside
+   * counts photons whose exit was not found within MaximumInternalEvents, Escaped
+   * those that left the caustic map's view or hit a receiver's back.
+   */
+  using Statistics = caustics::PhotonStatistics;
 
   /** Reads the counters of the last Render() (stalls the GPU). False if none. */
   bool GetStatistics(Statistics& statistics);

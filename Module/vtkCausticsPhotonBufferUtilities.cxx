@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace caustics
 {
@@ -71,6 +73,27 @@ void SetCameraViewUniforms(
 double FluxUnit(const caustics::PhotonGrid& grid)
 {
   return grid.MaximumPhotonFlux / UnitsPerTexelFlux;
+}
+
+void ReadPhotonStatistics(
+  const caustics::gl::StorageBuffer& buffer, double unit, caustics::PhotonStatistics& statistics)
+{
+  std::vector<std::uint32_t> words(StatSize, 0);
+  buffer.Read(0, words.size() * sizeof(std::uint32_t), words.data());
+  statistics = caustics::PhotonStatistics();
+  statistics.Photons = words[StatPhotons];
+  statistics.Hits = words[StatHits];
+  statistics.HiddenHits = words[StatHiddenHits];
+  statistics.LostInside = words[StatLostInside];
+  statistics.Escaped = words[StatEscaped];
+  statistics.Stored = words[StatStored];
+  statistics.FluxIn = FluxFromWords(&words[StatFluxIn], unit);
+  statistics.FluxHits = FluxFromWords(&words[StatFluxHits], unit);
+  statistics.FluxLostInside = FluxFromWords(&words[StatFluxLostInside], unit);
+  statistics.FluxEscaped = FluxFromWords(&words[StatFluxEscaped], unit);
+  statistics.FluxStored = FluxFromWords(&words[StatFluxStored], unit);
+  statistics.FluxInternalReflection = FluxFromWords(&words[StatFluxInternalReflection], unit);
+  statistics.FluxAbsorbed = FluxFromWords(&words[StatFluxAbsorbed], unit);
 }
 
 bool ReceiverBoundsCache::Compute(const caustics::SceneData& scene, double bounds[6])

@@ -10,6 +10,7 @@
 #ifndef vtkCausticsPhotonBufferUtilities_h
 #define vtkCausticsPhotonBufferUtilities_h
 
+#include "vtkCausticsPhotonGrid.h" // For caustics::PhotonStatistics
 #include "vtkCausticsSceneData.h" // For caustics::LightView
 
 #include <cstdint> // For std::uint32_t
@@ -20,7 +21,10 @@ class vtkCausticsShaderProgram;
 
 namespace caustics
 {
-struct PhotonGrid;
+namespace gl
+{
+class StorageBuffer;
+}
 
 namespace hcm
 {
@@ -106,6 +110,13 @@ private:
 
 /** Units per maximum photon flux in the statistics (see FluxUnit). */
 constexpr double UnitsPerTexelFlux = 1048576.0;
+
+/**
+ * Reads the statistics words of `buffer` (StatSize words, fluxes in units of `unit`
+ * W) into `statistics`. Stalls the GPU: tests, tools and requested reports only.
+ */
+void ReadPhotonStatistics(
+  const caustics::gl::StorageBuffer& buffer, double unit, caustics::PhotonStatistics& statistics);
 
 /** 64-bit fixed-point flux (two words, low first) in W, given the unit in W. */
 inline double FluxFromWords(const std::uint32_t* words, double unit)

@@ -92,6 +92,58 @@ struct PhotonGrid
 };
 
 /**
+ * Where the light a trace's photons carried went: counts, and flux in W summed over
+ * RGB (GPU counters, glsl/vtkCausticsPhotonStatistics.glsl). The caustic maps' photon
+ * buffer and the cascaded trace keep them; vtkCausticsRenderPass::GetLastFramePhotonStatistics
+ * sums them over the lights.
+ */
+struct PhotonStatistics
+{
+  long long Photons = 0;    ///< photons traced
+  long long Hits = 0;       ///< photons that landed on a receiver (valid photons)
+  long long HiddenHits = 0; ///< of them, on a hidden receiver (caustic maps)
+  long long LostInside = 0; ///< lost: on paths the trace cannot follow to their end
+  long long Escaped = 0;    ///< left the views the trace follows
+  long long Stored = 0;     ///< no receiver layer landed it; the caustic store did
+  double FluxIn = 0.0;      ///< carried by the photons traced
+  double FluxHits = 0.0;
+  double FluxLostInside = 0.0;
+  double FluxEscaped = 0.0;
+  double FluxStored = 0.0;
+  double FluxInternalReflection = 0.0; ///< reflected back inside at exits, not followed
+  double FluxAbsorbed = 0.0;           ///< Beer-Lambert inside refractors
+
+  /**
+   * FluxLostInside over the light that landed or was lost: the most of the caustic
+   * the lost light could have been (part of it would have landed out of sight). 0
+   * when nothing landed or was lost.
+   */
+  double LostShareBound() const
+  {
+    const double reached = this->FluxHits + this->FluxStored + this->FluxLostInside;
+    return reached > 0.0 ? this->FluxLostInside / reached : 0.0;
+  }
+  /** Adds another light's statistics. */
+  PhotonStatistics& operator+=(const PhotonStatistics& other)
+  {
+    this->Photons += other.Photons;
+    this->Hits += other.Hits;
+    this->HiddenHits += other.HiddenHits;
+    this->LostInside += other.LostInside;
+    this->Escaped += other.Escaped;
+    this->Stored += other.Stored;
+    this->FluxIn += other.FluxIn;
+    this->FluxHits += other.FluxHits;
+    this->FluxLostInside += other.FluxLostInside;
+    this->FluxEscaped += other.FluxEscaped;
+    this->FluxStored += other.FluxStored;
+    this->FluxInternalReflection += other.FluxInternalReflection;
+    this->FluxAbsorbed += other.FluxAbsorbed;
+    return *this;
+  }
+};
+
+/**
  * Upper bound of the flux (W, summed over RGB) one texel of a light view of the
  * given resolution carries: directional lights, W/m^2 x the texel's area; point and
  * spot lights, W/sr x the largest texel's solid angle, at the frustum's centre

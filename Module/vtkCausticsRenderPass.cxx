@@ -1,5 +1,7 @@
 #include "vtkCausticsRenderPass.h"
 
+#include "vtkCausticsPhotonGrid.h" // caustics::PhotonStatistics
+
 #include "vtkActor.h"
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
@@ -443,6 +445,12 @@ long long vtkCausticsRenderPass::GetGraphicsBytes()
 bool vtkCausticsRenderPass::GetLastFrameHadCaustics() const
 {
   return this->Result.Caustics;
+}
+
+bool vtkCausticsRenderPass::GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics)
+{
+  statistics = caustics::PhotonStatistics();
+  return false; // the technique keeps no such counters
 }
 
 const vtkCausticsRenderPass::FrameInputs& vtkCausticsRenderPass::GetFrameInputs() const

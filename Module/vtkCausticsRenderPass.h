@@ -96,6 +96,7 @@ namespace caustics
 {
 struct PhotonGrid;
 struct PhotonRecords;
+struct PhotonStatistics;
 struct SceneData;
 namespace gl
 {
@@ -247,6 +248,18 @@ public:
   vtkIdType GetMediumGridBytes() const;
   vtkIdType GetMediumDenseBytes() const;
   ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * Where the light the last frame's photons carried went, summed over the lights
+   * (caustics::PhotonStatistics: landed, left the views the technique follows, on
+   * paths it could not follow). Techniques that count it (caustic maps, cascaded)
+   * return true; the others false. Reads GPU counters, so it stalls: for tests and
+   * tools that report it (caustics-render warns when the share not followed is over
+   * 2 %), never per frame in a render loop.
+   */
+  virtual bool GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics);
+#endif
 
 #ifndef __VTK_WRAP__
   /**

@@ -25,7 +25,14 @@
 //    volume caustics (vtkCausticsVolumeLines), as is the last one of a photon that
 //    leaves the views (to where it leaves the scene);
 // 4. output: landed photons in the photon record layout (vtkCausticsCommon.glsl) and
-//    their kernel radii, for vtkCausticsPhotonSplatter (Eq. 3 by splatting).
+//    their kernel radii, for vtkCausticsPhotonSplatter (Eq. 3 by splatting);
+// 5. where each photon's light went (vtkCausticsPhotonStatistics.glsl): landed
+//    (STAT_HITS), left the views or landed where the camera does not see
+//    (STAT_ESCAPED), or on a path the cascade cannot follow (STAT_LOST_INSIDE: a
+//    march that starts hidden in the camera's view (Fig. 7), an exit from a refractor
+//    not found in the light's view, the light's view left with the camera stage off,
+//    MaximumEvents reached), so that the pass can say how much light its caustic
+//    may lack.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform sampler2D emitPosition;   // xyz, w = 0 none, 1 in air, 2 inside a refractor
@@ -67,6 +74,10 @@ layout(r32f, binding = 3) uniform writeonly image2D outRadius;
 #define MARCH_HIT 1     // a surface: hitPoint, hitNormal, hitMaterial, hitRole
 #define MARCH_LEFT 2    // left the view (or passed behind what it shows): lastPoint
 #define MARCH_BLOCKED 3 // started hidden in the view (Fig. 7, the convex case)
+
+// A photon's end, as the statistics count it (item 5 above).
+#define FATE_NOT_FOLLOWED 0 // STAT_LOST_INSIDE
+#define FATE_LEFT 1         // STAT_ESCAPED
 
 vec3 hitPoint;
 vec3 hitNormal;
@@ -443,6 +454,8 @@ void main()
   vec4 p = e.position;
   float measure = e.direction.w * fluxScale; // the beam one photon stands for
   vec3 flux = e.flux * ((w0 + w1) / (second ? w1 : w0)) * fluxScale;
+  atomicAdd(statistics[STAT_PHOTONS], 1u);
+  AddFlux(STAT_FLUX_IN, Power(flux));
   vec3 d = e.direction.xyz;
   vec3 o = p.xyz;
   bool inside = p.w > 1.5;
@@ -452,6 +465,7 @@ void main()
   flux *= CausticsMediumTransmittance(o, -ViewAway(lightView, o), 0.0, reach);
   float nudge = 1e-5 * airLength;
 
+  int fate = FATE_NOT_FOLLOWED; // also when MaximumEvents ends the path
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
     if (inside && OpenRefractor(o))
@@ -507,6 +521,11 @@ void main()
     }
     if (result != MARCH_HIT)
     {
+      // Left the camera's view, or the light's where the camera stage is off (then
+      // it may land in view: not followed).
+      fate = result == MARCH_BLOCKED || (result == MARCH_LEFT && cameraStage == 0)
+        ? FATE_NOT_FOLLOWED
+        : FATE_LEFT;
       if (result != MARCH_BLOCKED)
       {
         // It leaves the views: its scattering up to where it leaves the scene.
@@ -528,6 +547,8 @@ void main()
     float cosine = dot(-d, facing);
     if (hitRole != ROLE_RECEIVER || !(cosine >= 0.0) || !AllFinite(flux) || !AllFinite(hitPoint))
     {
+      // Light on the receiver's side the camera does not see lands out of sight.
+      fate = hitRole == ROLE_RECEIVER && !(cosine >= 0.0) ? FATE_LEFT : FATE_NOT_FOLLOWED;
       break;
     }
     // 4. The landed record; the radius spans `spacings` photon spacings of the
@@ -538,7 +559,20 @@ void main()
     imageStore(outNormal, g, vec4(hitNormal, abs(dot(hitNormal, d))));
     imageStore(outFlux, g, vec4(flux, measure));
     imageStore(outRadius, g, vec4(radius));
+    atomicAdd(statistics[STAT_HITS], 1u);
+    AddFlux(STAT_FLUX_HITS, Power(flux));
     return;
+  }
+  float power = AllFinite(flux) ? Power(flux) : 0.0;
+  if (fate == FATE_LEFT)
+  {
+    atomicAdd(statistics[STAT_ESCAPED], 1u);
+    AddFlux(STAT_FLUX_ESCAPED, power);
+  }
+  else if (power > 0.0)
+  {
+    atomicAdd(statistics[STAT_LOST_INSIDE], 1u);
+    AddFlux(STAT_FLUX_LOST_INSIDE, power);
   }
   NoPhoton(g);
 }

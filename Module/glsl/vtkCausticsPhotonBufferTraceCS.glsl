@@ -76,7 +76,6 @@ uniform float chordLength; // longest straight path inside the refractors (m)
 uniform float airLength;   // longest straight path through the scene (m)
 uniform vec3 receiverLow;  // the receivers' bounds, slightly enlarged
 uniform vec3 receiverHigh;
-uniform float fluxUnit;    // W per statistics unit
 uniform int exactSpecular; // 1: inside, the glass's triangles (SpecularTrace), not the slab
 
 // The photon buffer, also the hand-over between the two phases (PHASE 0 inside
@@ -88,10 +87,6 @@ layout(rgba32f, binding = 0) uniform image2D outPosition;
 layout(rgba32f, binding = 1) uniform image2D outNormal;
 layout(rgba32f, binding = 2) uniform image2D outFlux;
 
-layout(std430, binding = CAUSTICS_PHOTON_STATISTICS_BINDING) buffer PhotonStatistics
-{
-  uint statistics[];
-};
 // Work lists: control words as the hierarchy's (list lengths at
 // CONTROL_LIST_COUNT + 0 (inside) and + 1 (in air), their dispatch arguments at
 // CONTROL_DISPATCH + 0 and + 3), then the two lists of packed texels.
@@ -413,27 +408,6 @@ bool SlabExit(vec3 o, vec3 d, out float tExit, out int kind, out vec3 normal)
   return true;
 }
 
-float Power(vec3 flux)
-{
-  return flux.r + flux.g + flux.b;
-}
-
-// Adds a flux (W) to a 64-bit fixed-point counter, rounded to the unit.
-void AddFlux(int slot, float watts)
-{
-  float units = floor(watts / fluxUnit + 0.5); // rounded: no bias over many photons
-  if (units > 0.0 && !isinf(units))
-  {
-    uint high = uint(units / 4294967296.0);
-    uint low = uint(units - float(high) * 4294967296.0);
-    uint old = atomicAdd(statistics[slot], low);
-    if (high > 0u || old + low < old)
-    {
-      atomicAdd(statistics[slot + 1], high + (old + low < old ? 1u : 0u));
-    }
-  }
-}
-
 // The emitted photon's flux after the medium between the light (or where its ray
 // enters the medium) and the photon's first specular surface; the loss counts as
 // absorbed. The medium fills the scene's bounds in air (CausticsMediumTransmittance).
@@ -681,11 +655,6 @@ void main()
 // out changes the caustic's flux by less than that share (the ball lens's few
 // grazing photons beyond its map: 2e-4 of it).
 uniform float storeDrawShare;
-
-float CounterFlux(int slot)
-{
-  return float(statistics[slot]) + 4294967296.0 * float(statistics[slot + 1]);
-}
 
 void main()
 {

@@ -256,6 +256,15 @@ TEST(PhotonBuffer, AccountsForEveryWatt)
   // The emitter's photons carry the flux that reached the ball (pi R^2 x 1 W/m^2
   // per channel, three channels): within the texel coverage of the disk's rim.
   EXPECT_NEAR(c.FluxIn / (3.0 * M_PI), 1.0, 5e-3);
+  // The technique-independent reader (vtkCausticsRenderPass) gives the same counts:
+  // one light here.
+  caustics::PhotonStatistics photons;
+  ASSERT_TRUE(f.Pass->GetLastFramePhotonStatistics(photons));
+  EXPECT_EQ(photons.Photons, c.Photons);
+  EXPECT_EQ(photons.FluxIn, c.FluxIn);
+  EXPECT_EQ(photons.FluxLostInside, c.FluxLostInside);
+  EXPECT_EQ(photons.FluxInternalReflection, c.FluxInternalReflection);
+  EXPECT_LT(photons.LostShareBound(), 0.01);
 }
 
 TEST(Hierarchy, ProcessesFewPhotonsBeyondTheValidOnes)
