@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Where a technique's caustic irradiance differs from the reference's, and how much.
 
-    error-map.py REFERENCE.exr IMAGE.exr [--blocks 16] [--output error-map.png]
+    error-map.py REFERENCE.exr IMAGE.exr [--blocks 16] [--blur SIGMA] [--output error-map.png]
 
 REFERENCE.exr: a vtkCausticsReferenceRenderer image, either caustics-bench's cached
 ground truth (`<build>/reference-cache/reference-<hash>.exr`, the hash in the generated
@@ -17,6 +17,11 @@ benchmark's figures come from that class), how much of the squared error is miss
 light (image below the reference) or extra light, and the blocks of the image that
 hold most of it (x, y in pixels from the top-left corner). With --output, a PNG of
 the reference, the image and their signed difference (needs matplotlib).
+
+--blur SIGMA compares both images blurred alike by a Gaussian of SIGMA pixels over
+the receiver pixels (a normalized convolution, so that no light leaks off them): the
+error at features wider than a few pixels, where two estimates with different
+kernels (the reference's, a technique's splats) may disagree at sub-pixel detail.
 
 Reads EXR with OpenImageIO's Python module (Debian: python3-openimageio).
 """
@@ -71,6 +76,25 @@ def reference_layers(path):
     return layers.rgb("caustic"), mask, np.ones(mask.shape)
 
 
+def blur_over(image, mask, sigma):
+    """`image` (H x W x C) blurred by a Gaussian of `sigma` pixels over the pixels of
+    `mask`, each normalized by the mask's own blur; zero off the mask."""
+    radius = max(1, int(np.ceil(3.0 * sigma)))
+    x = np.arange(-radius, radius + 1, dtype=np.float64)
+    kernel = np.exp(-0.5 * (x / sigma) ** 2)
+    kernel /= kernel.sum()
+
+    def separable(a):
+        for axis in (0, 1):
+            a = np.apply_along_axis(lambda line: np.convolve(line, kernel, mode="same"), axis, a)
+        return a
+
+    inside = mask.astype(np.float64)
+    weight = separable(inside)
+    out = np.stack([separable(image[..., c] * inside) for c in range(image.shape[-1])], axis=-1)
+    return np.where(mask[..., None], out / np.maximum(weight, 1e-12)[..., None], 0.0)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("reference")
@@ -78,6 +102,8 @@ def main():
     parser.add_argument("--blocks", type=int, default=16, help="block size in pixels")
     parser.add_argument("--top", type=int, default=5, help="blocks to list")
     parser.add_argument("--output", help="PNG of reference, image and difference")
+    parser.add_argument("--blur", type=float, default=0.0,
+                        help="compare both blurred by a Gaussian of this many pixels")
     args = parser.parse_args()
     for path in (args.reference, args.image):
         if not os.path.isfile(path):
@@ -89,6 +115,11 @@ def main():
         sys.exit("error-map: the images differ in size: %s and %s" %
                  (truth.shape[:2], test.shape[:2]))
 
+    if args.blur < 0.0:
+        sys.exit("error-map: --blur must be at least 0")
+    if args.blur > 0.0:
+        truth = blur_over(truth, mask, args.blur)
+        test = blur_over(test, mask, args.blur)
     weight = np.where(mask, area, 0.0)[..., None]
     difference = test - truth
     squared = (difference ** 2 * weight).sum(axis=-1)
