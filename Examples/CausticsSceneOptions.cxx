@@ -4,6 +4,7 @@
 
 #include "vtkCausticsAirlight.h"
 #include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsCascadedPhotonPass.h"
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLTFImporter.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
@@ -82,6 +83,9 @@ std::string QualityUsage()
   --trace-view MODE          screen-space: view photons are traced in: automatic
                              (default: the camera's unless a reflector or refractor
                              is outside it), camera, fitted
+  --hidden-starts MODE       cascaded: a photon whose camera-view march starts where
+                             the camera does not see: march (default: on behind
+                             what the camera sees) or drop (the paper's Fig. 7)
   --reconstruction MODE      screen-space and caustic-maps: how landed photons
                              become irradiance: splats (default) or triangles
                              (caustic triangles between neighbouring photons;
@@ -280,6 +284,10 @@ void DeclareQualityOptions(Arguments& arguments, SceneOptions& options)
   arguments.Value("--trace-view",
     [&options](const std::string& option, const std::string& value) {
       options.TraceView = ParseChoice(option, value, { "automatic", "camera", "fitted" });
+    });
+  arguments.Value("--hidden-starts",
+    [&options](const std::string& option, const std::string& value) {
+      options.HiddenStarts = ParseChoice(option, value, { "march", "drop" });
     });
   arguments.Value("--reconstruction",
     [&options](const std::string& option, const std::string& value)
@@ -746,6 +754,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))
   {
     maps->SetReconstruction(options.Reconstruction);
+  }
+  if (auto* cascaded = vtkCausticsCascadedPhotonPass::SafeDownCast(pass))
+  {
+    cascaded->SetMarchHiddenStarts(options.HiddenStarts == 0);
   }
   return pass;
 }

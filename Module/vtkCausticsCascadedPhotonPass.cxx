@@ -93,6 +93,7 @@ void vtkCausticsCascadedPhotonPass::PrintSelf(ostream& os, vtkIndent indent)
   const caustics::CascadedSettings& knobs = this->Settings;
   os << indent << "NumberOfPhotons: " << knobs.NumberOfPhotons << "\n";
   os << indent << "CameraStage: " << (knobs.CameraStage ? "on" : "off") << "\n";
+  os << indent << "MarchHiddenStarts: " << (knobs.MarchHiddenStarts ? "on" : "off") << "\n";
   os << indent << "MarchSteps: " << knobs.MarchSteps << "\n";
   os << indent << "MaximumEvents: " << knobs.MaximumEvents << "\n";
   os << indent << "KernelSpacings: " << knobs.KernelSpacings << "\n";
@@ -271,6 +272,7 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.Program->SetUniform3f("lightOrigin", static_cast<float>(source.position[0]),
     static_cast<float>(source.position[1]), static_cast<float>(source.position[2]));
   s.Program->SetUniformi("cameraStage", this->Settings.CameraStage ? 1 : 0);
+  s.Program->SetUniformi("marchHiddenStarts", this->Settings.MarchHiddenStarts ? 1 : 0);
   s.Program->SetUniformi("marchSteps", this->Settings.MarchSteps);
   s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
   s.Program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(in.Scene->Bounds)));

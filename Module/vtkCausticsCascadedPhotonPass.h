@@ -33,6 +33,9 @@
  *    (caustics::gl::VolumeSegmentList, vtkCausticsVolumeLines, 003 §4-5) into the
  *    volume layer (stages "cascaded volume lines" and "cascaded volume blur").
  * CameraStage off keeps step 4 in the light's view (photons leaving it are lost).
+ * Where the camera's march starts at a point the camera does not see, the paper drops
+ * the photon (Fig. 7); here it marches on behind until it comes out in front
+ * (MarchHiddenStarts). GetLastFramePhotonStatistics says how much light was lost.
  * Not done: the paper's roughness and luminance cut-offs (every surface is either
  * perfectly specular or diffuse here, and a luminance cut-off would bias the
  * estimate); camera-view marches see no refractors.
@@ -70,6 +73,19 @@ public:
    */
   vtkCausticsSettingMacro(Settings, CameraStage, bool);
   vtkBooleanMacro(CameraStage, bool);
+  ///@}
+
+  ///@{
+  /**
+   * A photon reprojected into the camera's view at a point the camera does not see
+   * (behind the surface its pixel shows: a mirror's or a wall's far side) marches on
+   * behind that surface until it comes out in front, and may land there. The paper
+   * drops it (§3.2, Fig. 7): off. On, a mirror bunny's caustic keeps the light it
+   * sends from faces the camera does not see (flux 0.73 -> 0.93 of the reference's,
+   * docs/technique-cascaded.md). Default on.
+   */
+  vtkCausticsSettingMacro(Settings, MarchHiddenStarts, bool);
+  vtkBooleanMacro(MarchHiddenStarts, bool);
   ///@}
 
   ///@{

@@ -18,6 +18,7 @@ struct CascadedSettings
 {
   int NumberOfPhotons = 65536; ///< photons sampled per light and frame (§3.1), [0, 16777216]
   bool CameraStage = true;     ///< reproject and march on in the camera view (§3.2, Fig. 5)
+  bool MarchHiddenStarts = true; ///< hidden camera-march starts go on (Fig. 7 drops)
   int MarchSteps = 512;        ///< most pixels one march visits in one view, [8, 8192]
   int MaximumEvents = 8;       ///< specular events after emission, [1, 32]
   double KernelSpacings = 2.0; ///< splat radius in photon spacings on the receiver, [0.5, 16]

@@ -59,6 +59,7 @@ uniform float fluxScale;     // emitter texels per photon: N^2 / photonCount
 uniform int lightType;       // 0 directional, 1 point, 2 spot
 uniform vec3 lightOrigin;
 uniform int cameraStage;     // 0: light view only
+uniform int marchHiddenStarts; // 1: a camera march that starts hidden goes on behind (else Fig. 7)
 uniform int marchSteps;      // most pixels per march
 uniform int maximumEvents;
 uniform float airLength;     // longest straight path through the scene (m)
@@ -73,7 +74,7 @@ layout(r32f, binding = 3) uniform writeonly image2D outRadius;
 #define MARCH_NONE 0    // nothing met within the length
 #define MARCH_HIT 1     // a surface: hitPoint, hitNormal, hitMaterial, hitRole
 #define MARCH_LEFT 2    // left the view (or passed behind what it shows): lastPoint
-#define MARCH_BLOCKED 3 // started hidden in the view (Fig. 7, the convex case)
+#define MARCH_BLOCKED 3 // started hidden in the view (Fig. 7, the convex case; marchHiddenStarts 0)
 
 // A photon's end, as the statistics count it (item 5 above).
 #define FATE_NOT_FOLLOWED 0 // STAT_LOST_INSIDE
@@ -211,13 +212,17 @@ int March(CausticsView v, sampler2D position, sampler2D normal, bool refractors,
     bool behind = r > s;
     if (k == 0 && !refractors)
     {
-      // Hidden at the start: only the camera's view rejects it (§3.2, Fig. 7).
+      // Hidden at the start: the light's view leaves there (below); the camera's
+      // rejects it in the paper (§3.2, Fig. 7), or marches on behind what it shows
+      // until the ray comes out in front (marchHiddenStarts): a mirror's light from
+      // faces the camera does not see reaches the receivers it does see.
       vec3 n = texelFetch(normal, texel, 0).xyz;
-      if (behind && !leaveWhenBehind && !OnSurface(v, x, surface.xyz, n))
+      bool hidden = behind && !leaveWhenBehind && !OnSurface(v, x, surface.xyz, n);
+      if (hidden && marchHiddenStarts == 0)
       {
         return MARCH_BLOCKED;
       }
-      behind = false; // leaving a surface: it does not stop the photon
+      behind = hidden; // leaving a surface it is on does not stop the photon
     }
     else if (k == 0)
     {
