@@ -64,8 +64,7 @@ struct vtkCausticsCascadedPhotonPass::Internals
   caustics::gl::PhotonPlanes Landed;              // the cascade's output, with kernel radii
   caustics::PhotonGrid Grid;                      // the landed photons' grid, for the splatter
   caustics::gl::VolumeSegmentList VolumeSegments; // stretches in air -> volume caustics
-  caustics::gl::StorageBuffer Statistics;         // where the photons' light went (STAT_*)
-  double FluxUnit = 1.0;                          // W per unit of its flux counters
+  caustics::hcm::StatisticsBuffer Statistics;     // where the photons' light went (shared)
 };
 
 vtkCausticsCascadedPhotonPass::vtkCausticsCascadedPhotonPass()
@@ -122,7 +121,11 @@ bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& i
   bool ok = true;
   // A scattering medium: the photons' stretches in air become volume caustics.
   this->Internal->VolumeSegments.Begin(in.Window, *in.Scene, in.Width, in.Height);
-  this->ClearStatistics(in);
+  // Where the photons' light goes, one count for every light: each photon stands
+  // for N^2 / NumberOfPhotons emitter texels.
+  const double n = in.LightBuffers->GetResolution();
+  this->Internal->Statistics.Begin(
+    *in.Scene, in.LightBuffers, n * n / std::max(1, this->Settings.NumberOfPhotons));
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
     if (!in.LightBuffers->GetView(light).valid || this->Settings.NumberOfPhotons <= 0)
@@ -140,42 +143,9 @@ bool vtkCausticsCascadedPhotonPass::RenderCausticIrradiance(const FrameInputs& i
   return ok;
 }
 
-void vtkCausticsCascadedPhotonPass::ClearStatistics(const FrameInputs& in)
+const caustics::hcm::StatisticsBuffer* vtkCausticsCascadedPhotonPass::GetStatisticsBuffer()
 {
-  // One flux unit for every light of the frame (their counters add up): the largest
-  // photon's flux before roulette over 2^20 (caustics::hcm::FluxUnit's rule).
-  auto& s = *this->Internal;
-  const int n = in.LightBuffers->GetResolution();
-  const double texelsPerPhoton =
-    double(n) * double(n) / double(std::max(1, this->Settings.NumberOfPhotons));
-  double largest = 0.0;
-  for (int light = 0; light < in.LightBuffers->GetNumberOfLights(); ++light)
-  {
-    const caustics::LightView& view = in.LightBuffers->GetView(light);
-    if (view.valid)
-    {
-      largest = std::max(
-        largest, caustics::MaximumTexelFlux(in.Scene->Lights[light], view, n) * texelsPerPhoton);
-    }
-  }
-  s.FluxUnit = (largest > 0.0 ? largest : 1.0) / caustics::hcm::UnitsPerTexelFlux;
-  s.Statistics.Allocate(
-    caustics::hcm::StatSize * sizeof(std::uint32_t), caustics::gl::StorageBuffer::Usage::Copy);
-  s.Statistics.Clear();
-}
-
-bool vtkCausticsCascadedPhotonPass::GetLastFramePhotonStatistics(
-  caustics::PhotonStatistics& statistics)
-{
-  statistics = caustics::PhotonStatistics();
-  auto& s = *this->Internal;
-  if (!this->GetLastFrameHadCaustics() || !s.Statistics.Handle() || !this->GetLastWindow())
-  {
-    return false;
-  }
-  this->GetLastWindow()->MakeCurrent();
-  caustics::hcm::ReadPhotonStatistics(s.Statistics, s.FluxUnit, statistics);
-  return statistics.Photons > 0;
+  return &this->Internal->Statistics;
 }
 
 bool vtkCausticsCascadedPhotonPass::Emit(const FrameInputs& in, int light)
@@ -277,8 +247,7 @@ bool vtkCausticsCascadedPhotonPass::Trace(const FrameInputs& in, int light)
   s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
   s.Program->SetUniformf("airLength", static_cast<float>(1.01 * Diagonal(in.Scene->Bounds)));
   s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
-  s.Program->SetUniformf("fluxUnit", static_cast<float>(s.FluxUnit));
-  s.Statistics.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_PHOTON_STATISTICS_BINDING);
+  s.Statistics.Bind(s.Program);
   caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
   if (s.VolumeSegments.IsOn())
   {

@@ -130,17 +130,6 @@ public:
 #ifndef __VTK_WRAP__
   /** Its appended volume segments (capacity, sizing, count; for tests). */
   const caustics::gl::VolumeSegmentList* GetVolumeSegmentList() const override;
-
-  /**
-   * Where the last frame's photons' light went, summed over the lights (stalls):
-   * FluxHits landed; FluxEscaped left the light's and the camera's views, or landed
-   * on a receiver's side the camera does not see; FluxLostInside was on a path the
-   * cascade cannot follow: a march that starts hidden in the camera's view (Fig. 7),
-   * a refractor's exit outside the light's view, the light's view left with
-   * CameraStage off, MaximumEvents reached. FluxIn is after the Fresnel roulette of
-   * emission; FluxAbsorbed is not counted.
-   */
-  bool GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics) override;
 #endif
 
 protected:
@@ -155,6 +144,18 @@ protected:
   bool WritesPhotonVariance() override { return true; } // the shared deposit stages
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
+#ifndef __VTK_WRAP__
+  /**
+   * Where the last frame's photons' light went (GetLastFramePhotonStatistics), summed
+   * over the lights: FluxHits landed; FluxEscaped left the light's and the camera's views, or
+   * landed on a receiver's side the camera does not see; FluxLostInside was on a path the cascade
+   * cannot follow: a march that starts hidden in the camera's view (Fig. 7), a refractor's exit
+   * outside the light's view, the light's view left with CameraStage off, MaximumEvents reached.
+   * FluxIn is after the Fresnel roulette of emission; FluxAbsorbed is not counted.
+   */
+  const caustics::hcm::StatisticsBuffer* GetStatisticsBuffer() override;
+#endif
+
   caustics::CascadedSettings Settings;
   unsigned int FrameIndex = 0;
 
@@ -162,7 +163,6 @@ private:
   vtkCausticsCascadedPhotonPass(const vtkCausticsCascadedPhotonPass&) = delete;
   void operator=(const vtkCausticsCascadedPhotonPass&) = delete;
 
-  void ClearStatistics(const FrameInputs& in); // the frame's counters and their unit
   bool Emit(const FrameInputs& in, int light);
   bool RenderLightLayers(const FrameInputs& in, int light);
   bool Trace(const FrameInputs& in, int light);

@@ -9,9 +9,11 @@
 #include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsOptics.h" // Surface interaction (shared)
 #include "vtkCausticsPhotonBufferCommon.h" // AllFinite (shared)
+#include "vtkCausticsPhotonBufferUtilities.h" // caustics::hcm::StatisticsBuffer
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonSpacing.h"
 #include "vtkCausticsPhotonSplatter.h"
+#include "vtkCausticsPhotonStatistics.h" // Where the photons' light went (shared)
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h" // TextureUnits
 #include "vtkCausticsShaderProgram.h"
@@ -56,6 +58,7 @@ struct vtkCausticsImpostorPhotonPass::Internals
   vtkNew<vtkCausticsPhotonSplatter> Splatter; // 4. irradiance (shared)
   caustics::gl::PhotonPlanes Landed;          // the trace's output, with kernel radii
   caustics::PhotonGrid Grid;                  // the landed photons' grid, for the splatter
+  caustics::hcm::StatisticsBuffer Statistics; // where the photons' light went (shared)
 };
 
 vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
@@ -64,7 +67,8 @@ vtkCausticsImpostorPhotonPass::vtkCausticsImpostorPhotonPass()
   auto& s = *this->Internal;
   s.Program->SetName("impostor photon trace");
   const std::string source = std::string(vtkCausticsOptics) + vtkCausticsPhotonBufferCommon +
-    vtkCausticsImpostorCommon + vtkCausticsSpecularTrace + vtkCausticsImpostorPhotonTraceCS;
+    vtkCausticsImpostorCommon + vtkCausticsSpecularTrace + vtkCausticsPhotonStatistics +
+    vtkCausticsImpostorPhotonTraceCS;
   s.Program->SetComputeSource(source.c_str());
   s.Emitter->SetSplitFresnel(true); // both branches of the first event: no roulette there
   this->SetSpecularShadows(true);   // its photons replace the light the specular actors block
@@ -108,6 +112,7 @@ vtkCausticsRenderPass::PhotonStorage vtkCausticsImpostorPhotonPass::GetPhotonSto
 bool vtkCausticsImpostorPhotonPass::RenderCausticIrradiance(const FrameInputs& in)
 {
   bool ok = this->UpdateMaps(in);
+  this->Internal->Statistics.Begin(*in.Scene, in.LightBuffers, 1.0); // a photon per texel
   for (int light = 0; ok && light < in.LightBuffers->GetNumberOfLights(); ++light)
   {
     if (!in.LightBuffers->GetView(light).valid)
@@ -191,6 +196,7 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
     s.Program->SetUniformf("tolerance", static_cast<float>(1e-5 * in.Scene->Scale()));
     s.Program->SetUniformi("maximumEvents", this->Settings.MaximumEvents);
     s.Program->SetUniformf("spacings", static_cast<float>(this->Settings.KernelSpacings));
+    s.Statistics.Bind(s.Program);
     // Glass and mirrors traced as triangles where the camera view traces them.
     vtkCausticsSpecularHierarchy::BindTraced(this->GetTracedSpecularGeometry(*in.Scene), s.Program);
     caustics::gl::SetMediumUniforms(s.Program, *in.Scene, in.MediumGrid);
@@ -237,4 +243,10 @@ void vtkCausticsImpostorPhotonPass::ReleaseTechniqueResources(vtkWindow* w)
   s.Spacing->ReleaseGraphicsResources(w);
   s.Splatter->ReleaseGraphicsResources(w);
   s.Landed.Release(w);
+  s.Statistics.Release();
+}
+
+const caustics::hcm::StatisticsBuffer* vtkCausticsImpostorPhotonPass::GetStatisticsBuffer()
+{
+  return &this->Internal->Statistics;
 }

@@ -123,6 +123,18 @@ protected:
   bool WritesPhotonVariance() override { return true; } // the shared deposit stages
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
+#ifndef __VTK_WRAP__
+  /**
+   * Where the last frame's photons' light went (GetLastFramePhotonStatistics), summed
+   * over the lights: FluxHits landed; FluxEscaped left the scene (no surface ahead in
+   * the maps or the triangles) or lit a receiver's side the camera does not see;
+   * FluxLostInside was lost: a map texel with no surface, a surface that is neither
+   * glass, mirror nor receiver, MaximumEvents reached. FluxIn is after the emitter's
+   * Fresnel split, before the medium; FluxAbsorbed is not counted.
+   */
+  const caustics::hcm::StatisticsBuffer* GetStatisticsBuffer() override;
+#endif
+
   caustics::ImpostorPhotonSettings Settings;
   unsigned int FrameIndex = 0;
 

@@ -1,9 +1,12 @@
 #include "vtkCausticsPhotonBufferUtilities.h"
 
+#include "vtkCausticsBindings.h" // CAUSTICS_PHOTON_STATISTICS_BINDING
 #include "vtkCausticsGLUtilities.h"
+#include "vtkCausticsLightBuffers.h"
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsShaderProgram.h"
 #include "vtkMath.h"
+#include "vtk_glew.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,6 +76,54 @@ void SetCameraViewUniforms(
 double FluxUnit(const caustics::PhotonGrid& grid)
 {
   return grid.MaximumPhotonFlux / UnitsPerTexelFlux;
+}
+
+double FrameFluxUnit(
+  const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton)
+{
+  const int n = lights->GetResolution();
+  double largest = 0.0;
+  const int count = std::min(lights->GetNumberOfLights(), static_cast<int>(scene.Lights.size()));
+  for (int light = 0; light < count; ++light)
+  {
+    const caustics::LightView& view = lights->GetView(light);
+    if (view.valid)
+    {
+      largest = std::max(
+        largest, caustics::MaximumTexelFlux(scene.Lights[light], view, n) * texelsPerPhoton);
+    }
+  }
+  return (largest > 0.0 ? largest : 1.0) / UnitsPerTexelFlux;
+}
+
+void StatisticsBuffer::Begin(
+  const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton)
+{
+  this->Unit = FrameFluxUnit(scene, lights, texelsPerPhoton);
+  this->Buffer.Allocate(StatSize * sizeof(std::uint32_t), caustics::gl::StorageBuffer::Usage::Copy);
+  this->Buffer.Clear();
+}
+
+void StatisticsBuffer::Bind(vtkCausticsShaderProgram* program) const
+{
+  this->Buffer.BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_PHOTON_STATISTICS_BINDING);
+  program->SetUniformf("fluxUnit", static_cast<float>(this->Unit));
+}
+
+bool StatisticsBuffer::Read(caustics::PhotonStatistics& statistics) const
+{
+  statistics = caustics::PhotonStatistics();
+  if (!this->Buffer.Handle())
+  {
+    return false;
+  }
+  ReadPhotonStatistics(this->Buffer, this->Unit, statistics);
+  return statistics.Photons > 0;
+}
+
+void StatisticsBuffer::Release()
+{
+  this->Buffer.Release();
 }
 
 void ReadPhotonStatistics(

@@ -2,36 +2,36 @@
  * @file   vtkCausticsPhotonBufferUtilities.h
  * @brief  Host-side helpers of the hierarchical caustic map stages (not wrapped).
  *
- * The buffer layouts of glsl/vtkCausticsPhotonBufferCommon.glsl mirrored for the
+ * The buffer layouts of glsl/vtkCausticsPhotonBufferCommon.glsl and
+ * glsl/vtkCausticsPhotonStatistics.glsl mirrored for the
  * host, a light view's shader uniforms, and the flux unit of the GPU statistics.
  * Used by vtkCausticsPhotonBuffer, vtkCausticsPhotonBufferHierarchy,
- * vtkCausticsCausticMap and vtkCausticsHierarchicalCausticMapPass.
+ * vtkCausticsCausticMap and vtkCausticsHierarchicalCausticMapPass; the statistics
+ * also by the cascaded and screen-space passes.
  */
 #ifndef vtkCausticsPhotonBufferUtilities_h
 #define vtkCausticsPhotonBufferUtilities_h
 
-#include "vtkCausticsPhotonGrid.h" // For caustics::PhotonStatistics
+#include "vtkCausticsGLUtilities.h" // For caustics::gl::StorageBuffer
+#include "vtkCausticsPhotonGrid.h"  // For caustics::PhotonStatistics
 #include "vtkCausticsSceneData.h" // For caustics::LightView
 
 #include <cstdint> // For std::uint32_t
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
+class vtkCausticsLightBuffers;
 class vtkCausticsShaderProgram;
 
 namespace caustics
 {
-namespace gl
-{
-class StorageBuffer;
-}
 
 namespace hcm
 {
 // Shader storage binding points: CAUSTICS_PHOTON_STATISTICS_BINDING and
 // CAUSTICS_HIERARCHY_*_BINDING in vtkCausticsBindings.h.
 
-// Photon-buffer statistics words (STAT_*).
+// Photon statistics words (STAT_*, glsl/vtkCausticsPhotonStatistics.glsl).
 constexpr int StatPhotons = 0;
 constexpr int StatHits = 1;
 constexpr int StatLostInside = 2;
@@ -87,6 +87,15 @@ void SetCameraViewUniforms(
 double FluxUnit(const caustics::PhotonGrid& grid);
 
 /**
+ * One flux unit for every light of a frame whose statistics add up in one buffer
+ * (FluxUnit's rule for the largest photon of them all): each valid light's
+ * MaximumTexelFlux at the light buffers' resolution, times `texelsPerPhoton` (the
+ * emitter texels one traced photon stands for), over UnitsPerTexelFlux.
+ */
+double FrameFluxUnit(
+  const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton);
+
+/**
  * Axis-aligned bounds of the meshes whose role is receiver (xmin, xmax, ymin, ...),
  * with a cache of each mesh's bounds keyed by its actor and version, so that an
  * unchanged scene costs no pass over its vertices. False (bounds untouched) when
@@ -117,6 +126,30 @@ constexpr double UnitsPerTexelFlux = 1048576.0;
  */
 void ReadPhotonStatistics(
   const caustics::gl::StorageBuffer& buffer, double unit, caustics::PhotonStatistics& statistics);
+
+/**
+ * A technique's photon statistics of one frame (glsl/vtkCausticsPhotonStatistics.glsl):
+ * one buffer and one flux unit for every light of the frame, so that their counts add
+ * up. Begin() once per frame before the first trace, Bind() before every program
+ * that counts, Read() on request (it stalls; vtkCausticsRenderPass's
+ * GetLastFramePhotonStatistics), Release() with the technique's GL objects.
+ */
+class StatisticsBuffer
+{
+public:
+  /** Clears the counters; each traced photon stands for `texelsPerPhoton` emitter texels. */
+  void Begin(
+    const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton);
+  /** Binds the counters and sets the bound program's `fluxUnit`. */
+  void Bind(vtkCausticsShaderProgram* program) const;
+  /** The counts of the frame begun last; false when none was begun or none traced. */
+  bool Read(caustics::PhotonStatistics& statistics) const;
+  void Release();
+
+private:
+  caustics::gl::StorageBuffer Buffer;
+  double Unit = 1.0; // W per unit of the flux counters
+};
 
 /** 64-bit fixed-point flux (two words, low first) in W, given the unit in W. */
 inline double FluxFromWords(const std::uint32_t* words, double unit)

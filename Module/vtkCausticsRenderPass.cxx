@@ -1,6 +1,7 @@
 #include "vtkCausticsRenderPass.h"
 
-#include "vtkCausticsPhotonGrid.h" // caustics::PhotonStatistics
+#include "vtkCausticsPhotonBufferUtilities.h" // caustics::hcm::StatisticsBuffer
+#include "vtkCausticsPhotonGrid.h"            // caustics::PhotonStatistics
 
 #include "vtkActor.h"
 #include "vtkAssemblyNode.h"
@@ -450,7 +451,13 @@ bool vtkCausticsRenderPass::GetLastFrameHadCaustics() const
 bool vtkCausticsRenderPass::GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics)
 {
   statistics = caustics::PhotonStatistics();
-  return false; // the technique keeps no such counters
+  const caustics::hcm::StatisticsBuffer* buffer = this->GetStatisticsBuffer();
+  if (!buffer || !this->GetLastFrameHadCaustics() || !this->GetLastWindow())
+  {
+    return false; // no such counters, or no frame that traced photons
+  }
+  this->GetLastWindow()->MakeCurrent();
+  return buffer->Read(statistics);
 }
 
 const vtkCausticsRenderPass::FrameInputs& vtkCausticsRenderPass::GetFrameInputs() const

@@ -97,6 +97,10 @@ namespace caustics
 struct PhotonGrid;
 struct PhotonRecords;
 struct PhotonStatistics;
+namespace hcm
+{
+class StatisticsBuffer;
+}
 struct SceneData;
 namespace gl
 {
@@ -253,10 +257,10 @@ public:
   /**
    * Where the light the last frame's photons carried went, summed over the lights
    * (caustics::PhotonStatistics: landed, left the views the technique follows, on
-   * paths it could not follow). Techniques that count it (caustic maps, cascaded)
-   * return true; the others false. Reads GPU counters, so it stalls: for tests and
-   * tools that report it (caustics-render warns when the share not followed is over
-   * 2 %), never per frame in a render loop.
+   * paths it could not follow). Techniques that count it (caustic maps, cascaded,
+   * screen-space, impostors: GetStatisticsBuffer) return true; the others false. Reads GPU
+   * counters, so it stalls: for tests and tools that report it (caustics-render warns when the
+   * share not followed is over 2 %), never per frame in a render loop.
    */
   virtual bool GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics);
 #endif
@@ -565,6 +569,17 @@ protected:
    * its modification time). Default: nothing.
    */
   virtual void AppendProgressiveKey(std::vector<std::uint64_t>& key);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Hook: the technique's photon statistics of the last frame, which
+   * GetLastFramePhotonStatistics reads; null (the default) when it keeps none.
+   */
+  virtual const caustics::hcm::StatisticsBuffer* GetStatisticsBuffer()
+  {
+    return nullptr;
+  }
+#endif
 
   /** Hook: frees the technique's own GL objects (called by ReleaseGraphicsResources). */
   virtual void ReleaseTechniqueResources(vtkWindow* w);

@@ -5,6 +5,7 @@
 #include "vtkCausticsGLUtilities.h"
 #include "vtkCausticsLayeredDepth.h"
 #include "vtkCausticsLightBuffers.h"
+#include "vtkCausticsPhotonBufferUtilities.h" // caustics::hcm::StatisticsBuffer
 #include "vtkCausticsPhotonEmitter.h"
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsPhotonSpacing.h"
@@ -29,6 +30,7 @@
 #include "vtk_glew.h"
 
 #include "vtkCausticsOptics.h"
+#include "vtkCausticsPhotonStatistics.h"
 #include "vtkCausticsScreenSpaceCommon.h"
 #include "vtkCausticsScreenSpacePhotonPassInitialCS.h"
 #include "vtkCausticsScreenSpacePhotonPassShadowCS.h"
@@ -102,6 +104,7 @@ struct vtkCausticsScreenSpacePhotonPass::Internals
   caustics::gl::StorageBuffer Rays[2];
   caustics::gl::StorageBuffer Payloads[2];
   caustics::gl::StorageBuffer Counters[2];
+  caustics::hcm::StatisticsBuffer Statistics; // where the photons' light went (shared)
   caustics::gl::StorageBuffer VolumeSegments; // CausticsVolumeSegment per ray
   caustics::gl::VolumeSegmentCapacity VolumeCapacity; // how many of them the stage holds
   int Current = 0;
@@ -144,12 +147,14 @@ vtkCausticsScreenSpacePhotonPass::vtkCausticsScreenSpacePhotonPass()
   const std::string optics = vtkCausticsOptics;
   const std::string common = vtkCausticsScreenSpaceCommon;
   in.InitialProgram->SetName("ssp first transfer map");
-  in.InitialProgram->SetComputeSource((common + vtkCausticsScreenSpacePhotonPassInitialCS).c_str());
+  const std::string statistics = vtkCausticsPhotonStatistics;
+  in.InitialProgram->SetComputeSource(
+    (common + statistics + vtkCausticsScreenSpacePhotonPassInitialCS).c_str());
   in.InitialProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
   in.TransferProgram->SetName("ssp specular transfer");
-  in.TransferProgram->SetComputeSource(
-    (optics + common + vtkCausticsSpecularTrace + vtkCausticsScreenSpacePhotonPassTransferCS)
-      .c_str());
+  in.TransferProgram->SetComputeSource((optics + common + vtkCausticsSpecularTrace + statistics +
+    vtkCausticsScreenSpacePhotonPassTransferCS)
+                                         .c_str());
   in.ShadowProgram->SetName("ssp shadow rays");
   in.ShadowProgram->SetComputeSource((common + vtkCausticsScreenSpacePhotonPassShadowCS).c_str());
   in.ShadowProgram->SetDefine("CAUSTICS_NO_MATERIALS", 1);
@@ -276,6 +281,7 @@ bool vtkCausticsScreenSpacePhotonPass::EmitPhotons(vtkOpenGLRenderWindow* renWin
   in.Rays[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
   in.Payloads[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
   in.Counters[0].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
+  in.Statistics.Bind(p);
   p->DispatchCovering2D(grid.Width, grid.Height, 16, 16);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   p->Unbind(renWin);
@@ -316,6 +322,7 @@ bool vtkCausticsScreenSpacePhotonPass::TransferPhotons(
   in.Rays[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_RAY_BINDING);
   in.Payloads[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_PAYLOAD_BINDING);
   in.Counters[n].BindBase(GL_SHADER_STORAGE_BUFFER, CAUSTICS_SSP_NEXT_COUNTER_BINDING);
+  in.Statistics.Bind(p);
   f.Geometry->BindMaterials();
   in.Landed.BindImages(0, GL_WRITE_ONLY);
   in.Landed.BindRadiusImage(3, GL_WRITE_ONLY);
@@ -532,7 +539,9 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
     in.VolumeLines->Begin(f.Window, f.Width, f.Height);
   }
 
-  // 2-6. Per light: emit, then trace, transfer and splat bounce after bounce.
+  // 2-6. Per light: emit, then trace, transfer and splat bounce after bounce; where
+  // the photons' light goes is counted in one set of counters for every light.
+  in.Statistics.Begin(scene, f.LightBuffers, 1.0); // one photon per emitter texel
   bool ok = true;
   const int lights = f.LightBuffers->GetNumberOfLights();
   for (int light = 0; ok && light < lights; ++light)
@@ -543,6 +552,11 @@ bool vtkCausticsScreenSpacePhotonPass::RenderCausticIrradiance(const FrameInputs
     }
   }
   return ok;
+}
+
+const caustics::hcm::StatisticsBuffer* vtkCausticsScreenSpacePhotonPass::GetStatisticsBuffer()
+{
+  return &this->Internal->Statistics;
 }
 
 bool vtkCausticsScreenSpacePhotonPass::RenderVolumeRadiance(
@@ -648,6 +662,7 @@ void vtkCausticsScreenSpacePhotonPass::ReleaseTechniqueResources(vtkWindow* w)
     in.Payloads[k].Release();
     in.Counters[k].Release();
   }
+  in.Statistics.Release();
   in.Landed.Release(w);
   in.Capacity = 0;
   in.HasLayers = false;

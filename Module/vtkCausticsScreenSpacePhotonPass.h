@@ -254,6 +254,19 @@ protected:
   double GetViewTolerance(double sceneScale) override;
   void ReleaseTechniqueResources(vtkWindow* w) override;
 
+#ifndef __VTK_WRAP__
+  /**
+   * Where the last frame's photons' light went (GetLastFramePhotonStatistics), summed
+   * over the lights:
+   * FluxHits landed; FluxEscaped left the view the photons are traced in (out of the
+   * scene, or off that view's screen) or lit a receiver's side the camera does not
+   * see; FluxLostInside was lost: MaximumBounces reached on glass or a mirror, the
+   * events of a path through glass traced as triangles used up, or a full transfer
+   * map. FluxIn is counted at emission, before the medium; FluxAbsorbed is not.
+   */
+  const caustics::hcm::StatisticsBuffer* GetStatisticsBuffer() override;
+#endif
+
   // Steps (see the class description).
   void PrepareView(const FrameInputs& in);
   /** The union of the photon frusta's focus boxes (LightView::focus) over the lights

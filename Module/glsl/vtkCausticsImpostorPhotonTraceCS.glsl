@@ -19,6 +19,10 @@
 //    record layout, vtkCausticsCommon.glsl) and its kernel radius, for
 //    vtkCausticsPhotonSplatter (§5: the hits are splatted). The maps hold world
 //    positions, so the receiver need not be in the camera's or the light's view;
+// 5. where each photon's light went (vtkCausticsPhotonStatistics.glsl): landed
+//    (STAT_HITS), out of the scene or on a receiver's side the camera does not see
+//    (STAT_ESCAPED), or lost (STAT_LOST_INSIDE: a map texel with no surface, a
+//    surface that is neither glass, mirror nor receiver, maximumEvents reached).
 // The caustic store is filled from the landed records afterwards by the shared
 // stage of every technique (glsl/vtkCausticsCausticStoreCS.glsl).
 // Where glass and mirrors are traced as triangles (exactSpecular, as the camera view:
@@ -136,12 +140,16 @@ void main()
   bool stratified = true;
   uint rotation = CausticsHash(frameSeed ^ 0x68e31da4u);
   int bounces = 0; // mirror-to-mirror reflections in a row
+  atomicAdd(statistics[STAT_PHOTONS], 1u);
+  AddFlux(STAT_FLUX_IN, Power(flux));
 
+  bool left = false; // out of the scene or out of sight; else lost unless landed
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
     PhotonHit hit;
     if (!NextSurface(o, d, inside, leftRole, bounces, hit))
     {
+      left = true;
       break;
     }
     float t = hit.t;
@@ -204,6 +212,7 @@ void main()
     float cosine = dot(-d, facing);
     if (role != ROLE_RECEIVER || !(cosine >= 0.0) || !AllFinite(flux) || !AllFinite(h))
     {
+      left = role == ROLE_RECEIVER && !(cosine >= 0.0); // lit the side the camera does not see
       break;
     }
     // The landed record; the radius spans `spacings` photon spacings of the
@@ -214,7 +223,20 @@ void main()
     imageStore(outNormal, g, vec4(n, abs(dot(n, d))));
     imageStore(outFlux, g, vec4(flux, measure));
     imageStore(outRadius, g, vec4(radius));
+    atomicAdd(statistics[STAT_HITS], 1u);
+    AddFlux(STAT_FLUX_HITS, Power(flux));
     return;
+  }
+  float power = AllFinite(flux) ? Power(flux) : 0.0;
+  if (left)
+  {
+    atomicAdd(statistics[STAT_ESCAPED], 1u);
+    AddFlux(STAT_FLUX_ESCAPED, power);
+  }
+  else if (power > 0.0)
+  {
+    atomicAdd(statistics[STAT_LOST_INSIDE], 1u);
+    AddFlux(STAT_FLUX_LOST_INSIDE, power);
   }
   NoPhoton(g);
 }

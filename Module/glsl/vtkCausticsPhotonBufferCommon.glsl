@@ -7,23 +7,7 @@
 // Their shader storage binding points: CAUSTICS_PHOTON_STATISTICS_BINDING and
 // CAUSTICS_HIERARCHY_* in vtkCausticsBindings.h.
 
-// Photon-buffer statistics (uint words; flux as 64-bit fixed point, lo then hi).
-#define STAT_PHOTONS 0
-#define STAT_HITS 1
-#define STAT_LOST_INSIDE 2
-#define STAT_ESCAPED 3
-#define STAT_FLUX_IN 4
-#define STAT_FLUX_HITS 6
-#define STAT_FLUX_LOST_INSIDE 8
-#define STAT_FLUX_ESCAPED 10
-#define STAT_FLUX_INTERNAL_REFLECTION 12
-#define STAT_FLUX_ABSORBED 14
-#define STAT_HIDDEN_HITS 16 // of STAT_HITS, on the hidden receivers' layer
-#define STAT_HIDDEN_DRAW 17 // the hidden map's final-render draw: 3, 1 if any such hit, 0, 0
-#define STAT_STORED 21      // photons no receiver layer lands, taken by the caustic store
-#define STAT_FLUX_STORED 22
-#define STAT_STORE_DRAW 24 // the caustic store's final-render draw: 3, 1 if worth it (phase 3), 0, 0
-#define STAT_SIZE 28
+// Photon statistics (STAT_*): vtkCausticsPhotonStatistics.glsl.
 
 // Hierarchy control block (uint words): indirect arguments and counters.
 #define CONTROL_DISPATCH 0           // 3 words per traversal level, 16 levels

@@ -1,7 +1,7 @@
 // The first transfer map (000_54cf099eeccf42d9.txt §2): the photons that
 // vtkCausticsPhotonEmitter left after their first specular interaction, appended
 // to a compact list (only texels holding a photon), with the medium's extinction
-// along the way from the light into the scene.
+// along the way from the light into the scene. It counts the photons and their light.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 SSP_NEXT_RAYS(writeonly);
@@ -33,6 +33,9 @@ void main()
     return;
   }
   vec3 p = position.xyz;
+  // Where its light goes is counted from here (vtkCausticsPhotonStatistics.glsl).
+  atomicAdd(statistics[STAT_PHOTONS], 1u);
+  AddFlux(STAT_FLUX_IN, Power(flux.rgb));
   // The medium's extinction from where the light ray enters it (or from a point
   // light inside it) to the first surface.
   vec3 incoming = lightType == 0 ? lightDirection : normalize(p - lightOrigin);

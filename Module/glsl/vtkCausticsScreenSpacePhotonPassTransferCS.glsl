@@ -18,6 +18,10 @@
 // then goes from interface to interface here, within this bounce (FollowInsideGlass), up
 // to maxPathEvents specular events on its whole path, and the screen traces it on once
 // it leaves.
+// Every photon's end is counted (vtkCausticsPhotonStatistics.glsl): landed
+// (STAT_HITS), left the view it is traced in or lit a receiver's side the camera does
+// not see (STAT_ESCAPED), or lost (STAT_LOST_INSIDE: MaximumBounces reached on glass or
+// a mirror, its path's events inside traced glass used up, the transfer map full).
 layout(local_size_x = 64) in;
 
 SSP_COUNTER(readonly);
@@ -170,6 +174,23 @@ bool FollowInsideGlass(inout vec3 x, inout vec3 d, inout float state, inout int 
   return !(state > 1.5);
 }
 
+// A photon's end, counted with its light.
+void Landed(vec3 flux)
+{
+  atomicAdd(statistics[STAT_HITS], 1u);
+  AddFlux(STAT_FLUX_HITS, Power(flux));
+}
+void LeftTheView(vec3 flux)
+{
+  atomicAdd(statistics[STAT_ESCAPED], 1u);
+  AddFlux(STAT_FLUX_ESCAPED, Power(flux));
+}
+void Lost(vec3 flux)
+{
+  atomicAdd(statistics[STAT_LOST_INSIDE], 1u);
+  AddFlux(STAT_FLUX_LOST_INSIDE, Power(flux));
+}
+
 void main()
 {
   uint i = gl_GlobalInvocationID.x;
@@ -185,11 +206,12 @@ void main()
   vec3 n = hit.normal.xyz;
   int materialIndex = int(hit.normal.w + 0.5);
   TracedHit(ray.origin.xyz, d, t, x, n, materialIndex);
+  SspPayload payload = payloads[i];
   if (!(t >= 0.0))
   {
-    return; // left the scene or the view: lost
+    LeftTheView(payload.flux.rgb); // out of the scene, or off the view it is traced in
+    return;
   }
-  SspPayload payload = payloads[i];
   CausticsMaterial material = causticsMaterials[materialIndex];
   int role = int(material.albedoRole.a + 0.5);
   vec3 flux = payload.flux.rgb;
@@ -208,6 +230,10 @@ void main()
   }
   if (!(dot(n, n) > 0.25) || !(dot(flux, vec3(1.0)) > 0.0))
   {
+    if (dot(flux, vec3(1.0)) > 0.0)
+    {
+      Lost(flux); // no normal there
+    }
     return;
   }
   n = normalize(n);
@@ -218,11 +244,13 @@ void main()
     vec3 toCamera = viewOrigin.w > 0.0 ? viewOrigin.xyz - x : -viewOrigin.xyz;
     if (dot(-d, n) * dot(toCamera, n) <= 0.0)
     {
-      return; // lit the side the camera does not see
+      LeftTheView(flux); // lit the side the camera does not see
+      return;
     }
     float radius = splatRadius > 0.0 ? splatRadius : splatRadiusPixels * sqrt(PixelArea(x, n));
     if (!(radius > 0.0) || isinf(radius))
     {
+      Lost(flux);
       return;
     }
     // At the photon's texel of the emitter grid, where its neighbours are found.
@@ -232,12 +260,14 @@ void main()
     imageStore(splatNormal, texel, vec4(n, abs(dot(n, d))));
     imageStore(splatFlux, texel, vec4(flux, uintBitsToFloat(payload.info.z)));
     imageStore(splatKernelRadius, texel, vec4(radius));
+    Landed(flux);
     return;
   }
 
   // 3. Specular surfaces send it on, up to the bounce limit.
   if ((role != ROLE_REFLECTOR && role != ROLE_REFRACTOR) || events >= maxEvents)
   {
+    Lost(flux);
     return;
   }
   CausticsInteraction s = CausticsSurfaceInteraction(d, n, material, role, 1.0);
@@ -256,6 +286,7 @@ void main()
   if (role == ROLE_REFRACTOR &&
     !FollowInsideGlass(x, direction, state, materialIndex, flux, path, payload.info.x, events))
   {
+    Lost(flux);
     return;
   }
   if (!(dot(flux, vec3(1.0)) > 0.0))
@@ -265,6 +296,7 @@ void main()
   uint index = atomicAdd(nextCount, 1u);
   if (index >= uint(capacity))
   {
+    Lost(flux);
     return;
   }
   nextRays[index].origin = vec4(x, state);
