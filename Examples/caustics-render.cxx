@@ -327,7 +327,7 @@ void WriteImages(const Options& options, vtkImageData* image,
 
 /**
  * Where the last frame's photons' light went, for the techniques that count it
- * (GetLastFramePhotonStatistics): with --timings a line of shares, and always a
+ * (GetLastFramePhotonStatistics), after the timings: with --timings a line of shares, and always a
  * warning when the light lost on paths the technique cannot follow may be more than
  * a tenth of the caustic (caustics::PhotonStatistics::LostShareBound).
  */
@@ -363,6 +363,7 @@ void ReportPhotonStatistics(
   }
   if (photons.LostShareBound() > 0.1)
   {
+    std::cout.flush(); // the warning follows what was printed before it
     std::cerr << "caustics-render: warning: " << technique << " lost "
               << percent(photons.FluxLostInside / in)
               << " of its photons' light on paths it cannot follow: up to "
@@ -396,7 +397,6 @@ void PrintSummary(const Options& options, vtkCausticsRenderPass* pass, const std
     std::cout << "caustics-render: caustic and volume layers are the mean of "
               << pass->GetFramesAveraged() << " frame(s)\n";
   }
-  ReportPhotonStatistics(options, pass, technique);
   std::cout << "wrote " << options.Output << ".png and " << options.Output << ".exr\n";
 }
 
@@ -521,6 +521,7 @@ int Run(const Options& options)
   {
     PrintTimings(options, times);
   }
+  ReportPhotonStatistics(options, pass, chosen.Technique);
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
   if (options.Reference)

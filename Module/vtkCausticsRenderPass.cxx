@@ -448,6 +448,12 @@ bool vtkCausticsRenderPass::GetLastFrameHadCaustics() const
   return this->Result.Caustics;
 }
 
+double vtkCausticsRenderPass::GetLastFrameLostLightBound()
+{
+  caustics::PhotonStatistics statistics;
+  return this->GetLastFramePhotonStatistics(statistics) ? statistics.LostShareBound() : -1.0;
+}
+
 bool vtkCausticsRenderPass::GetLastFramePhotonStatistics(caustics::PhotonStatistics& statistics)
 {
   statistics = caustics::PhotonStatistics();

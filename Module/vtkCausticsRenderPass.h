@@ -253,6 +253,14 @@ public:
   vtkIdType GetMediumDenseBytes() const;
   ///@}
 
+  /**
+   * The most of the last frame's caustic that light lost on paths the technique
+   * cannot follow could be, 0..1 (caustics::PhotonStatistics::LostShareBound of
+   * GetLastFramePhotonStatistics); -1 when the technique keeps no statistics or the
+   * frame traced no photon. Stalls the GPU: for tools and tests, never per frame.
+   */
+  double GetLastFrameLostLightBound();
+
 #ifndef __VTK_WRAP__
   /**
    * Where the light the last frame's photons carried went, summed over the lights

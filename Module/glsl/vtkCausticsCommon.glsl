@@ -130,6 +130,27 @@ float CausticsGridStratified(ivec2 texel, uint rotation)
   return float(fixedPoint >> 8u) * (1.0 / 16777216.0);
 }
 
+// Adds `watts` W to the 64-bit fixed-point counter (low word first) at words[slot] of
+// a uint storage-buffer array, in units of `unit` W, rounded (no bias over many
+// photons): integer atomics, which every GPU has (float atomics are NVIDIA's). A
+// macro, since GLSL cannot hand a buffer's array to a function. The photon statistics
+// (vtkCausticsPhotonStatistics.glsl) and the caustic maps' gather count with it.
+#define CAUSTICS_ADD_FIXED_POINT(words, slot, watts, unit)                                  \
+  {                                                                                         \
+    float causticsUnits = floor((watts) / (unit) + 0.5);                                    \
+    if (causticsUnits > 0.0 && !isinf(causticsUnits))                                       \
+    {                                                                                       \
+      uint causticsHigh = uint(causticsUnits / 4294967296.0);                               \
+      uint causticsLow = uint(causticsUnits - float(causticsHigh) * 4294967296.0);          \
+      uint causticsOld = atomicAdd(words[slot], causticsLow);                               \
+      bool causticsCarry = causticsOld + causticsLow < causticsOld;                         \
+      if (causticsHigh > 0u || causticsCarry)                                               \
+      {                                                                                     \
+        atomicAdd(words[(slot) + 1], causticsHigh + (causticsCarry ? 1u : 0u));             \
+      }                                                                                     \
+    }                                                                                       \
+  }
+
 // The sum of a flux's channels: what Russian roulette weighs paths by.
 float CausticsChannelSum(vec3 c)
 {

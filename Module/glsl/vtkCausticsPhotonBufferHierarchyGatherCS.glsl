@@ -262,17 +262,7 @@ Decision Decide(uint item)
 
 void AddFlux(uint slot, float watts)
 {
-  float units = floor(watts / fluxUnit + 0.5); // rounded: no bias over many photons
-  if (units > 0.0 && !isinf(units))
-  {
-    uint high = uint(units / 4294967296.0);
-    uint low = uint(units - float(high) * 4294967296.0);
-    uint old = atomicAdd(control[slot], low);
-    if (high > 0u || old + low < old)
-    {
-      atomicAdd(control[slot + 1u], high + (old + low < old ? 1u : 0u));
-    }
-  }
+  CAUSTICS_ADD_FIXED_POINT(control, slot, watts, fluxUnit)
 }
 
 void main()

@@ -37,17 +37,7 @@ float Power(vec3 flux)
 // Adds a flux (W) to the 64-bit fixed-point counter at `slot`, rounded to the unit.
 void AddFlux(int slot, float watts)
 {
-  float units = floor(watts / fluxUnit + 0.5); // rounded: no bias over many photons
-  if (units > 0.0 && !isinf(units))
-  {
-    uint high = uint(units / 4294967296.0);
-    uint low = uint(units - float(high) * 4294967296.0);
-    uint old = atomicAdd(statistics[slot], low);
-    if (high > 0u || old + low < old)
-    {
-      atomicAdd(statistics[slot + 1], high + (old + low < old ? 1u : 0u));
-    }
-  }
+  CAUSTICS_ADD_FIXED_POINT(statistics, slot, watts, fluxUnit)
 }
 
 // The counter at `slot` in units (float: for comparisons on the GPU).

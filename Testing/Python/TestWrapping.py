@@ -48,6 +48,8 @@ def main():
         return "peak direct irradiance %g W/m^2, expected 1" % peak
     if vtkcaustics.vtkCausticsMaterial.GetRoleName(3) != "refractor":
         return "role names are wrong"
+    if caustics.GetLastFrameLostLightBound() != -1.0:
+        return "the base pass, which traces no photon, gave a lost-light bound"
     renderer.SetPass(None)
     caustics.ReleaseGraphicsResources(window)
 
@@ -72,6 +74,10 @@ def main():
         peak = max(values.GetComponent(i, 0) for i in range(values.GetNumberOfTuples()))
         if not 0.5 < peak < 10.0:
             return "%s: peak caustic irradiance %g W/m^2, expected 0.5..10" % (name, peak)
+        # The light it lost (docs/accuracy.md): the ball lens loses almost none.
+        lost = pass_.GetLastFrameLostLightBound()
+        if not 0.0 <= lost < 0.05:
+            return "%s: lost-light bound %g on the ball lens, expected 0..0.05" % (name, lost)
         # A still view's mean (ProgressiveFrames) grows a frame at a time; its
         # textures are released with the pass's (the bookkeeping below).
         pass_.SetProgressiveFrames(3)
