@@ -1,0 +1,110 @@
+// Where every photon technique's light goes (caustics::PhotonStatistics,
+// docs/accuracy.md, "Light a technique cannot follow"): the counters of one frame hold
+// the light that reached the glass, add up over the frame's lights (one flux unit for
+// all of them), and the passes that keep none say so.
+#include "vtkCausticsBuiltinScene.h"
+#include "vtkCausticsPhotonGrid.h"
+#include "vtkCausticsProgressivePhotonPass.h"
+#include "vtkCausticsRenderPass.h"
+#include "vtkCausticsTechniques.h"
+
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkRenderWindow.h"
+#include "vtkSmartPointer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+/**
+ * One frame of the ball lens (128^2 pixels, 128^2 light-buffer texels) with its sun
+ * and, when `suns` is 2, a copy twice as bright; the pass's statistics, and its
+ * lost-light bound.
+ */
+bool Render(
+  const std::string& technique, int suns, caustics::PhotonStatistics& photons, double& bound)
+{
+  vtkNew<vtkOpenGLRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> scene;
+  scene->SetSceneName("ball-lens");
+  EXPECT_TRUE(scene->Populate(renderer));
+  vtkLight* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  EXPECT_NE(sun, nullptr);
+  for (int k = 1; sun && k < suns; ++k)
+  {
+    vtkNew<vtkLight> copy;
+    copy->DeepCopy(sun);
+    copy->SetIntensity(2.0 * sun->GetIntensity());
+    renderer->AddLight(copy);
+  }
+  vtkSmartPointer<vtkCausticsRenderPass> pass = technique.empty()
+    ? vtkSmartPointer<vtkCausticsRenderPass>::New()
+    : vtkCausticsTechniques::Create(technique);
+  EXPECT_NE(pass, nullptr);
+  pass->SetLightBufferResolution(128);
+  renderer->SetPass(pass);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(128, 128);
+  window->AddRenderer(renderer);
+  window->Render();
+  const bool counted = pass->GetLastFramePhotonStatistics(photons);
+  bound = pass->GetLastFrameLostLightBound();
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return counted;
+}
+}
+
+// The sun (1 W/m^2 per channel) through the ball's disc (radius 1 m) is 3 pi W:
+// every technique's photons carry it (within the light buffer's coverage of the
+// disc's rim at 128^2 texels; cascaded samples 65536 points of the texels), and a
+// second sun twice as bright triples the light and doubles the photons: one frame's
+// lights share the counters, with one flux unit for all of them.
+TEST(PhotonStatistics, HoldTheLightAndAddUpOverTheLights)
+{
+  for (const char* technique : { "screen-space", "caustic-maps", "cascaded", "impostors" })
+  {
+    caustics::PhotonStatistics one, two;
+    double boundOne = 0.0, boundTwo = 0.0;
+    ASSERT_TRUE(Render(technique, 1, one, boundOne)) << technique;
+    ASSERT_TRUE(Render(technique, 2, two, boundTwo)) << technique;
+    std::cout << technique << ": " << one.Photons << " photons, " << one.FluxIn / (3.0 * Pi)
+              << " of 3 pi W, landed " << one.FluxHits / one.FluxIn << "; two suns: x"
+              << two.FluxIn / one.FluxIn << " light, x" << two.FluxHits / one.FluxHits
+              << " landed\n";
+    EXPECT_NEAR(one.FluxIn / (3.0 * Pi), 1.0, 0.02) << technique;
+    EXPECT_NEAR(two.FluxIn / one.FluxIn, 3.0, 0.01) << technique;
+    EXPECT_NEAR(two.FluxHits / one.FluxHits, 3.0, 0.03) << technique;
+    EXPECT_NEAR(double(two.Photons) / double(one.Photons), 2.0, 0.01) << technique;
+    EXPECT_GT(one.FluxHits / one.FluxIn, 0.7) << technique;
+    EXPECT_NEAR(boundOne, one.LostShareBound(), 1e-12) << technique;
+    EXPECT_LT(boundOne, 0.05) << technique;
+    EXPECT_LT(boundTwo, 0.05) << technique;
+  }
+}
+
+// A pass that traces no photon (the base pass: direct light only) and the CPU
+// technique keep no statistics: false, and a bound of -1.
+TEST(PhotonStatistics, PassesWithoutThemSaySo)
+{
+  vtkCausticsProgressivePhotonPass::RegisterTechnique();
+  for (const char* technique : { "", "cpu-progressive" })
+  {
+    caustics::PhotonStatistics photons;
+    double bound = 0.0;
+    EXPECT_FALSE(Render(technique, 1, photons, bound)) << technique;
+    EXPECT_EQ(bound, -1.0) << technique;
+    EXPECT_EQ(photons.Photons, 0) << technique;
+  }
+}
