@@ -2,22 +2,16 @@
 // docs/accuracy.md, "Light a technique cannot follow"): the counters of one frame hold
 // the light that reached the glass, add up over the frame's lights (one flux unit for
 // all of them), and the passes that keep none say so.
-#include "vtkCausticsBuiltinScene.h"
+#include "TestTechniqueFrame.h"
+
 #include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsProgressivePhotonPass.h"
-#include "vtkCausticsRenderPass.h"
-#include "vtkCausticsTechniques.h"
 
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkNew.h"
-#include "vtkOpenGLRenderer.h"
-#include "vtkRenderWindow.h"
-#include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -33,35 +27,19 @@ const double Pi = 3.14159265358979323846;
 bool Render(
   const std::string& technique, int suns, caustics::PhotonStatistics& photons, double& bound)
 {
-  vtkNew<vtkOpenGLRenderer> renderer;
-  vtkNew<vtkCausticsBuiltinScene> scene;
-  scene->SetSceneName("ball-lens");
-  EXPECT_TRUE(scene->Populate(renderer));
-  vtkLight* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  TechniqueFrame frame(technique, 128, 128);
+  vtkLight* sun = vtkLight::SafeDownCast(frame.Renderer->GetLights()->GetItemAsObject(0));
   EXPECT_NE(sun, nullptr);
   for (int k = 1; sun && k < suns; ++k)
   {
     vtkNew<vtkLight> copy;
     copy->DeepCopy(sun);
     copy->SetIntensity(2.0 * sun->GetIntensity());
-    renderer->AddLight(copy);
+    frame.Renderer->AddLight(copy);
   }
-  vtkSmartPointer<vtkCausticsRenderPass> pass = technique.empty()
-    ? vtkSmartPointer<vtkCausticsRenderPass>::New()
-    : vtkCausticsTechniques::Create(technique);
-  EXPECT_NE(pass, nullptr);
-  pass->SetLightBufferResolution(128);
-  renderer->SetPass(pass);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(128, 128);
-  window->AddRenderer(renderer);
-  window->Render();
-  const bool counted = pass->GetLastFramePhotonStatistics(photons);
-  bound = pass->GetLastFrameLostLightBound();
-  renderer->SetPass(nullptr);
-  pass->ReleaseGraphicsResources(window);
+  frame.Window->Render();
+  const bool counted = frame.Pass->GetLastFramePhotonStatistics(photons);
+  bound = frame.Pass->GetLastFrameLostLightBound();
   return counted;
 }
 }
@@ -94,12 +72,12 @@ TEST(PhotonStatistics, HoldTheLightAndAddUpOverTheLights)
   }
 }
 
-// A pass that traces no photon (the base pass: direct light only) and the CPU
-// technique keep no statistics: false, and a bound of -1.
+// A pass that traces no photon ("none": direct light only) and the CPU technique
+// keep no statistics: false, and a bound of -1.
 TEST(PhotonStatistics, PassesWithoutThemSaySo)
 {
   vtkCausticsProgressivePhotonPass::RegisterTechnique();
-  for (const char* technique : { "", "cpu-progressive" })
+  for (const char* technique : { "none", "cpu-progressive" })
   {
     caustics::PhotonStatistics photons;
     double bound = 0.0;

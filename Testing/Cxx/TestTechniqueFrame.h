@@ -1,6 +1,7 @@
 // A built-in scene rendered off-screen by one registered technique: the window,
 // renderer and pass the small GPU tests share (TestSpecularShadows,
-// TestSceneScale, TestFrameProgress). The pass's resources are released with it.
+// TestSceneScale, TestFrameProgress, TestPhotonStatistics). The pass's resources are released with
+// it.
 #ifndef TestTechniqueFrame_h
 #define TestTechniqueFrame_h
 
