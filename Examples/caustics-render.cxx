@@ -327,9 +327,9 @@ void WriteImages(const Options& options, vtkImageData* image,
 
 /**
  * Where the last frame's photons' light went, for the techniques that count it
- * (GetLastFramePhotonStatistics), after the timings: with --timings a line of shares, and always a
- * warning when the light lost on paths the technique cannot follow may be more than
- * a tenth of the caustic (caustics::PhotonStatistics::LostShareBound).
+ * (GetLastFramePhotonStatistics), after the timings: with --timings a line of shares,
+ * and always a warning when the light lost on paths the technique cannot follow may
+ * be more than a tenth of the caustic (caustics::PhotonStatistics::LostShareBound).
  */
 void ReportPhotonStatistics(
   const Options& options, vtkCausticsRenderPass* pass, const std::string& technique)
