@@ -11,6 +11,7 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
+#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsRenderPass.h"
 #include "vtkCausticsScreenSpacePhotonPass.h"
 #include "vtkCausticsScreenSpaceRefraction.h"
@@ -35,6 +36,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -760,5 +762,43 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
     cascaded->SetMarchHiddenStarts(options.HiddenStarts == 0);
   }
   return pass;
+}
+
+std::string DescribePhotonLight(
+  vtkCausticsRenderPass* pass, const std::string& technique, std::string& warning)
+{
+  warning.clear();
+  caustics::PhotonStatistics photons;
+  if (!pass || !pass->GetLastFrameHadCaustics() || !pass->GetLastFramePhotonStatistics(photons) ||
+    !(photons.FluxIn > 0.0))
+  {
+    return std::string();
+  }
+  auto percent = [](double share)
+  {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(1) << 100.0 * share << " %";
+    return text.str();
+  };
+  const double in = photons.FluxIn;
+  std::ostringstream line;
+  line << "photon light (" << photons.Photons << " photons, " << in
+       << " W): " << percent((photons.FluxHits + photons.FluxStored) / in) << " landed, "
+       << percent(photons.FluxEscaped / in) << " left the views, "
+       << percent(photons.FluxLostInside / in) << " lost on paths " << technique
+       << " cannot follow";
+  if (photons.FluxInternalReflection > 0.0)
+  {
+    line << ", " << percent(photons.FluxInternalReflection / in)
+         << " reflected back inside glass at exits and not followed";
+  }
+  if (photons.LostShareBound() > 0.1)
+  {
+    warning = technique + " lost " + percent(photons.FluxLostInside / in) +
+      " of its photons' light on paths it cannot follow: up to " +
+      percent(photons.LostShareBound()) +
+      " of the caustic may be missing (docs/accuracy.md, \"Light a technique cannot follow\")";
+  }
+  return line.str();
 }
 }

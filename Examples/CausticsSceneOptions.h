@@ -114,6 +114,16 @@ void ApplyOverrides(const SceneOptions& options, vtkRenderer* renderer);
 vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtkRenderer* renderer);
 /** --technique, with "best" resolved for the renderer's scene (vtkCausticsTechniques). */
 std::string TechniqueFor(const SceneOptions& options, vtkRenderer* renderer);
+
+/**
+ * Where the last frame's photons' light went (GetLastFramePhotonStatistics, which
+ * stalls the GPU: on request only): one line of shares, landed / left the views / lost
+ * on paths `technique` cannot follow, or empty when the pass counts none. `warning`
+ * gets a line to warn with when the lost light could be more than a tenth of the
+ * caustic (caustics::PhotonStatistics::LostShareBound), else is emptied.
+ */
+std::string DescribePhotonLight(
+  vtkCausticsRenderPass* pass, const std::string& technique, std::string& warning);
 }
 
 #endif

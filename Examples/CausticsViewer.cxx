@@ -43,6 +43,8 @@ const char* const ViewerKeys = R"(Keys:
                              screen-space)
   c                          caustic layer on / off (off: VTK's own shading)
   o                          overlay on / off
+  l                          where the last frame's photons' light went: landed, left
+                             the views, lost (reads the GPU's counters once)
   h                          this help
   r                          reset the camera
   q                          quit
@@ -238,6 +240,10 @@ bool CausticsViewer::HandleKey(char key)
     case 'H':
       this->PrintKeys();
       return true;
+    case 'l':
+    case 'L':
+      this->ShowPhotonLight();
+      return true;
     default:
       return false;
   }
@@ -314,6 +320,16 @@ void CausticsViewer::ToggleCaustics()
 void CausticsViewer::SetOverlayVisible(bool on)
 {
   this->Overlay->SetVisibility(on);
+  this->Render();
+}
+
+void CausticsViewer::ShowPhotonLight()
+{
+  std::string warning;
+  const std::string line =
+    this->CausticsOn ? DescribePhotonLight(this->Pass, this->Technique, warning) : std::string();
+  this->Report(line.empty() ? this->Technique + " counts no photons' light here"
+                            : line + (warning.empty() ? "" : "; warning: " + warning));
   this->Render();
 }
 

@@ -56,6 +56,7 @@ public:
   void ToggleCaustics();           ///< c: the caustic layer (the pass) on or off
   void SetOverlayVisible(bool on); ///< o: the overlay text on or off
   void PrintKeys();                ///< h: the keys, on stdout
+  void ShowPhotonLight();          ///< l: where the photons' light went (stalls once)
   ///@}
 
   /** Replays a recorded interaction (vtkInteractorEventRecorder's text format). */

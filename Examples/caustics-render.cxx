@@ -16,7 +16,6 @@
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
-#include "vtkCausticsPhotonGrid.h"
 #include "vtkCausticsProgressivePhotonPass.h"
 #include "vtkCausticsReferenceRenderer.h"
 #include "vtkCausticsRenderPass.h"
@@ -326,50 +325,24 @@ void WriteImages(const Options& options, vtkImageData* image,
 }
 
 /**
- * Where the last frame's photons' light went, for the techniques that count it
- * (GetLastFramePhotonStatistics), after the timings: with --timings a line of shares,
- * and always a warning when the light lost on paths the technique cannot follow may
- * be more than a tenth of the caustic (caustics::PhotonStatistics::LostShareBound).
+ * Where the last frame's photons' light went, after the timings
+ * (caustics_cli::DescribePhotonLight): with --timings a line of shares, and always a
+ * warning when the light lost on paths the technique cannot follow may be more than
+ * a tenth of the caustic.
  */
 void ReportPhotonStatistics(
   const Options& options, vtkCausticsRenderPass* pass, const std::string& technique)
 {
-  caustics::PhotonStatistics photons;
-  if (!pass->GetLastFrameHadCaustics() || !pass->GetLastFramePhotonStatistics(photons) ||
-    !(photons.FluxIn > 0.0))
+  std::string warning;
+  const std::string line = caustics_cli::DescribePhotonLight(pass, technique, warning);
+  if (options.Timings && !line.empty())
   {
-    return;
+    std::cout << "caustics-render: " << line << "\n";
   }
-  auto percent = [](double share)
-  {
-    std::ostringstream text;
-    text << std::fixed << std::setprecision(1) << 100.0 * share << " %";
-    return text.str();
-  };
-  const double in = photons.FluxIn;
-  if (options.Timings)
-  {
-    std::cout << "caustics-render: photon light (" << photons.Photons << " photons, " << in
-              << " W): " << percent((photons.FluxHits + photons.FluxStored) / in) << " landed, "
-              << percent(photons.FluxEscaped / in) << " left the views, "
-              << percent(photons.FluxLostInside / in) << " lost on paths " << technique
-              << " cannot follow";
-    if (photons.FluxInternalReflection > 0.0)
-    {
-      std::cout << ", " << percent(photons.FluxInternalReflection / in)
-                << " reflected back inside glass at exits and not followed";
-    }
-    std::cout << "\n";
-  }
-  if (photons.LostShareBound() > 0.1)
+  if (!warning.empty())
   {
     std::cout.flush(); // the warning follows what was printed before it
-    std::cerr << "caustics-render: warning: " << technique << " lost "
-              << percent(photons.FluxLostInside / in)
-              << " of its photons' light on paths it cannot follow: up to "
-              << percent(photons.LostShareBound())
-              << " of the caustic may be missing (docs/accuracy.md, \"Light a technique "
-                 "cannot follow\")\n";
+    std::cerr << "caustics-render: warning: " << warning << "\n";
   }
 }
 

@@ -3,7 +3,8 @@
 // screen-space to caustic-maps. The image after the playback, without the overlay
 // (its times change from run to run), is compared with the baseline
 // TestCausticsViewerPlayback.png (vtkRegressionTestImage: -V BASELINE -T OUTPUT_DIR).
-// The overlay's text must name the new technique and carry no -1 time. With
+// The overlay's text must name the new technique and carry no -1 time; 'l' puts where
+// the photons' light went on its last line. With
 // --progressive a still view refines itself to the mean of its frames, then stops.
 #include "CausticsViewer.h"
 
@@ -71,6 +72,12 @@ int main(int argc, char* argv[])
       overlay.find("photons: 48 x 48") != std::string::npos &&
       overlay.find("-1") == std::string::npos,
     "unexpected overlay:\n" + overlay);
+  // 'l': where the last frame's photons' light went, on the overlay's last line.
+  viewer.HandleKey('l');
+  ok &= Check(viewer.GetStatus().find("photon light (") == 0 &&
+      viewer.GetStatus().find("lost on paths caustic-maps cannot follow") != std::string::npos &&
+      viewer.GetOverlayText().find(viewer.GetStatus()) != std::string::npos,
+    "'l' said: " + viewer.GetStatus());
   viewer.SetOverlayVisible(false); // renders: the compared image has no text
   const int result = vtkRegressionTestImage(viewer.GetRenderWindow());
   ok &= Check(result == vtkTesting::PASSED, "the image differs from the baseline");
