@@ -19,6 +19,25 @@ namespace hcm
 {
 namespace
 {
+/** One flux unit for every light of a frame (FluxUnit's rule for their largest photon). */
+double FrameFluxUnit(
+  const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton)
+{
+  const int n = lights->GetResolution();
+  double largest = 0.0;
+  const int count = std::min(lights->GetNumberOfLights(), static_cast<int>(scene.Lights.size()));
+  for (int light = 0; light < count; ++light)
+  {
+    const caustics::LightView& view = lights->GetView(light);
+    if (view.valid)
+    {
+      largest = std::max(
+        largest, caustics::MaximumTexelFlux(scene.Lights[light], view, n) * texelsPerPhoton);
+    }
+  }
+  return (largest > 0.0 ? largest : 1.0) / UnitsPerTexelFlux;
+}
+
 // Fills the GLSL struct CausticsView `name` (vtkCausticsPhotonBufferCommon.glsl).
 // texel: one texel's width (at unit depth when perspective), both axes.
 void SetViewStruct(vtkCausticsShaderProgram* program, const std::string& name,
@@ -76,24 +95,6 @@ void SetCameraViewUniforms(
 double FluxUnit(const caustics::PhotonGrid& grid)
 {
   return grid.MaximumPhotonFlux / UnitsPerTexelFlux;
-}
-
-double FrameFluxUnit(
-  const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton)
-{
-  const int n = lights->GetResolution();
-  double largest = 0.0;
-  const int count = std::min(lights->GetNumberOfLights(), static_cast<int>(scene.Lights.size()));
-  for (int light = 0; light < count; ++light)
-  {
-    const caustics::LightView& view = lights->GetView(light);
-    if (view.valid)
-    {
-      largest = std::max(
-        largest, caustics::MaximumTexelFlux(scene.Lights[light], view, n) * texelsPerPhoton);
-    }
-  }
-  return (largest > 0.0 ? largest : 1.0) / UnitsPerTexelFlux;
 }
 
 void StatisticsBuffer::Begin(

@@ -87,15 +87,6 @@ void SetCameraViewUniforms(
 double FluxUnit(const caustics::PhotonGrid& grid);
 
 /**
- * One flux unit for every light of a frame whose statistics add up in one buffer
- * (FluxUnit's rule for the largest photon of them all): each valid light's
- * MaximumTexelFlux at the light buffers' resolution, times `texelsPerPhoton` (the
- * emitter texels one traced photon stands for), over UnitsPerTexelFlux.
- */
-double FrameFluxUnit(
-  const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton);
-
-/**
  * Axis-aligned bounds of the meshes whose role is receiver (xmin, xmax, ymin, ...),
  * with a cache of each mesh's bounds keyed by its actor and version, so that an
  * unchanged scene costs no pass over its vertices. False (bounds untouched) when
@@ -137,7 +128,11 @@ void ReadPhotonStatistics(
 class StatisticsBuffer
 {
 public:
-  /** Clears the counters; each traced photon stands for `texelsPerPhoton` emitter texels. */
+  /**
+   * Clears the counters; each traced photon stands for `texelsPerPhoton` emitter
+   * texels. The flux unit is FluxUnit's rule for the largest photon of all the
+   * frame's lights (their MaximumTexelFlux at the light buffers' resolution).
+   */
   void Begin(
     const caustics::SceneData& scene, vtkCausticsLightBuffers* lights, double texelsPerPhoton);
   /** Binds the counters and sets the bound program's `fluxUnit`. */

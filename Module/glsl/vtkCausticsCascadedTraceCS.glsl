@@ -460,7 +460,7 @@ void main()
   float measure = e.direction.w * fluxScale; // the beam one photon stands for
   vec3 flux = e.flux * ((w0 + w1) / (second ? w1 : w0)) * fluxScale;
   atomicAdd(statistics[STAT_PHOTONS], 1u);
-  AddFlux(STAT_FLUX_IN, Power(flux));
+  AddFlux(STAT_FLUX_IN, CausticsChannelSum(flux));
   vec3 d = e.direction.xyz;
   vec3 o = p.xyz;
   bool inside = p.w > 1.5;
@@ -565,10 +565,10 @@ void main()
     imageStore(outFlux, g, vec4(flux, measure));
     imageStore(outRadius, g, vec4(radius));
     atomicAdd(statistics[STAT_HITS], 1u);
-    AddFlux(STAT_FLUX_HITS, Power(flux));
+    AddFlux(STAT_FLUX_HITS, CausticsChannelSum(flux));
     return;
   }
-  float power = AllFinite(flux) ? Power(flux) : 0.0;
+  float power = AllFinite(flux) ? CausticsChannelSum(flux) : 0.0;
   if (fate == FATE_LEFT)
   {
     atomicAdd(statistics[STAT_ESCAPED], 1u);

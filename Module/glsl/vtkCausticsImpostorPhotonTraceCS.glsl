@@ -141,7 +141,7 @@ void main()
   uint rotation = CausticsHash(frameSeed ^ 0x68e31da4u);
   int bounces = 0; // mirror-to-mirror reflections in a row
   atomicAdd(statistics[STAT_PHOTONS], 1u);
-  AddFlux(STAT_FLUX_IN, Power(flux));
+  AddFlux(STAT_FLUX_IN, CausticsChannelSum(flux));
 
   bool left = false; // out of the scene or out of sight; else lost unless landed
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
@@ -224,10 +224,10 @@ void main()
     imageStore(outFlux, g, vec4(flux, measure));
     imageStore(outRadius, g, vec4(radius));
     atomicAdd(statistics[STAT_HITS], 1u);
-    AddFlux(STAT_FLUX_HITS, Power(flux));
+    AddFlux(STAT_FLUX_HITS, CausticsChannelSum(flux));
     return;
   }
-  float power = AllFinite(flux) ? Power(flux) : 0.0;
+  float power = AllFinite(flux) ? CausticsChannelSum(flux) : 0.0;
   if (left)
   {
     atomicAdd(statistics[STAT_ESCAPED], 1u);

@@ -408,6 +408,12 @@ bool SlabExit(vec3 o, vec3 d, out float tExit, out int kind, out vec3 normal)
   return true;
 }
 
+// A flux's power summed over its channels, as the statistics count it.
+float Power(vec3 flux)
+{
+  return CausticsChannelSum(flux);
+}
+
 // The emitted photon's flux after the medium between the light (or where its ray
 // enters the medium) and the photon's first specular surface; the loss counts as
 // absorbed. The medium fills the scene's bounds in air (CausticsMediumTransmittance).

@@ -29,11 +29,6 @@ layout(std430, binding = CAUSTICS_PHOTON_STATISTICS_BINDING) buffer PhotonStatis
   uint statistics[];
 };
 
-float Power(vec3 flux)
-{
-  return flux.r + flux.g + flux.b;
-}
-
 // Adds a flux (W) to the 64-bit fixed-point counter at `slot`, rounded to the unit.
 void AddFlux(int slot, float watts)
 {

@@ -35,7 +35,7 @@ void main()
   vec3 p = position.xyz;
   // Where its light goes is counted from here (vtkCausticsPhotonStatistics.glsl).
   atomicAdd(statistics[STAT_PHOTONS], 1u);
-  AddFlux(STAT_FLUX_IN, Power(flux.rgb));
+  AddFlux(STAT_FLUX_IN, CausticsChannelSum(flux.rgb));
   // The medium's extinction from where the light ray enters it (or from a point
   // light inside it) to the first surface.
   vec3 incoming = lightType == 0 ? lightDirection : normalize(p - lightOrigin);

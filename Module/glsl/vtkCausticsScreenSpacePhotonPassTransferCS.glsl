@@ -178,17 +178,17 @@ bool FollowInsideGlass(inout vec3 x, inout vec3 d, inout float state, inout int 
 void Landed(vec3 flux)
 {
   atomicAdd(statistics[STAT_HITS], 1u);
-  AddFlux(STAT_FLUX_HITS, Power(flux));
+  AddFlux(STAT_FLUX_HITS, CausticsChannelSum(flux));
 }
 void LeftTheView(vec3 flux)
 {
   atomicAdd(statistics[STAT_ESCAPED], 1u);
-  AddFlux(STAT_FLUX_ESCAPED, Power(flux));
+  AddFlux(STAT_FLUX_ESCAPED, CausticsChannelSum(flux));
 }
 void Lost(vec3 flux)
 {
   atomicAdd(statistics[STAT_LOST_INSIDE], 1u);
-  AddFlux(STAT_FLUX_LOST_INSIDE, Power(flux));
+  AddFlux(STAT_FLUX_LOST_INSIDE, CausticsChannelSum(flux));
 }
 
 void main()
