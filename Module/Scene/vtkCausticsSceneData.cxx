@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp> // For glm::make_mat4, glm::value_ptr
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -164,6 +165,10 @@ void AimOrthographic(
   view.farPlane = back + reach;
 }
 
+/** Largest half angle a single frustum covers well (texel solid angles vary by
+ * cos^3; beyond about 75 degrees the texels at the rim become useless). */
+constexpr double MaximumPerspectiveHalfAngle = 75.0 * glm::pi<double>() / 180.0;
+
 /**
  * Point and spot lights: a perspective view from the light subtending the focus
  * sphere, or the spot cone when narrower, at most 75 degrees off axis.
@@ -175,9 +180,6 @@ void AimPerspective(LightView& view, const Light& light, const Vec3& focusCenter
   const Vec3 toFocus{ { focusCenter[0] - view.eye[0], focusCenter[1] - view.eye[1],
     focusCenter[2] - view.eye[2] } };
   const double distance = std::sqrt(Dot(toFocus, toFocus));
-  // Largest half angle a single frustum covers well (texel solid angles vary by
-  // cos^3; beyond ~75 degrees the texels at the rim become useless).
-  const double maxHalfAngle = 75.0 * 3.14159265358979323846 / 180.0;
   double halfAngle;
   const bool inside = !(distance > focusRadius * 1.0001);
   if (!inside)
@@ -210,7 +212,7 @@ void AimPerspective(LightView& view, const Light& light, const Vec3& focusCenter
     {
       view.axis = Vec3{ { 0.0, -1.0, 0.0 } }; // the scene's down (its y axis points up)
     }
-    halfAngle = maxHalfAngle;
+    halfAngle = MaximumPerspectiveHalfAngle;
   }
   if (light.type == Light::Type::Spot)
   {
@@ -222,8 +224,9 @@ void AimPerspective(LightView& view, const Light& light, const Vec3& focusCenter
       halfAngle = outer;
     }
   }
-  view.clamped = halfAngle > maxHalfAngle || (inside && light.type != Light::Type::Spot);
-  halfAngle = std::min(halfAngle, maxHalfAngle);
+  view.clamped =
+    halfAngle > MaximumPerspectiveHalfAngle || (inside && light.type != Light::Type::Spot);
+  halfAngle = std::min(halfAngle, MaximumPerspectiveHalfAngle);
   view.halfExtent = std::tan(halfAngle) * 1.0001;
   const Vec3 eyeToScene{ { sceneCenter[0] - view.eye[0], sceneCenter[1] - view.eye[1],
     sceneCenter[2] - view.eye[2] } };
@@ -370,6 +373,88 @@ void FitOrthographic(LightView& view, const double box[6], double maximumAspect)
   view.halfExtent = right;
   view.aspect = up / right;
   SetViewTransforms(view);
+}
+
+/**
+ * Narrows a perspective view to the square frustum around the box's corners as the
+ * light sees them, when that is narrower than the view (a view subtends its focus's
+ * bounding sphere, or, with the light inside that sphere, the widest frustum: a
+ * lamp above the floor then spreads 512 texels over 75 degrees of it). The axis is
+ * moved to the middle of the corners' extent on the image plane, a few times, since
+ * each move changes the extent. Nothing changes when some corner is not in front of
+ * the light, or the frustum would be wider than the view or 75 degrees off axis.
+ */
+void FitPerspective(LightView& view, const double box[6])
+{
+  std::array<Vec3, 8> toCorners;
+  Vec3 mean{ { 0, 0, 0 } };
+  for (int c = 0; c < 8; ++c)
+  {
+    toCorners[c] = { { box[c & 1] - view.eye[0], box[2 + ((c >> 1) & 1)] - view.eye[1],
+      box[4 + ((c >> 2) & 1)] - view.eye[2] } };
+    const Vec3 unit = Normalize(toCorners[c]);
+    for (int i = 0; i < 3; ++i)
+    {
+      mean[i] += unit[i];
+    }
+  }
+  // The axis moves to the middle of the corners' angles on each side, a few times
+  // (each move changes the extent); the narrowest frustum found is kept.
+  LightView fitted = view;
+  fitted.axis = Normalize(mean);
+  Vec3 bestAxis = fitted.axis;
+  double half = std::numeric_limits<double>::infinity();
+  for (int pass = 0; pass < 8; ++pass)
+  {
+    SetViewTransforms(fitted); // the basis of the current axis
+    double low[2] = { std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity() };
+    double high[2] = { -low[0], -low[1] };
+    bool inFront = true;
+    for (const Vec3& v : toCorners)
+    {
+      const double depth = Dot(v, fitted.axis);
+      inFront = inFront && depth > 1e-9 * std::sqrt(Dot(v, v));
+      const double across[2] = { Dot(v, fitted.right) / depth, Dot(v, fitted.up) / depth };
+      for (int k = 0; k < 2; ++k)
+      {
+        low[k] = std::min(low[k], across[k]);
+        high[k] = std::max(high[k], across[k]);
+      }
+    }
+    if (!inFront)
+    {
+      break; // a corner beside or behind the light from this axis
+    }
+    const double extent = std::max({ high[0], -low[0], high[1], -low[1] });
+    if (extent < half)
+    {
+      half = extent;
+      bestAxis = fitted.axis;
+    }
+    const double middle[2] = { std::tan(0.5 * (std::atan(low[0]) + std::atan(high[0]))),
+      std::tan(0.5 * (std::atan(low[1]) + std::atan(high[1]))) };
+    for (int i = 0; i < 3; ++i)
+    {
+      fitted.axis[i] += middle[0] * fitted.right[i] + middle[1] * fitted.up[i];
+    }
+    fitted.axis = Normalize(fitted.axis);
+  }
+  fitted.axis = bestAxis;
+  const double widest = std::tan(MaximumPerspectiveHalfAngle);
+  half *= 1.0001;
+  if (!(half > 0.0) || !(half < view.halfExtent) || !(half <= widest))
+  {
+    return;
+  }
+  fitted.halfExtent = half;
+  fitted.aspect = 1.0;
+  fitted.clamped = false; // it holds the whole box now
+  SetViewTransforms(fitted);
+  if (fitted.valid)
+  {
+    view = fitted;
+  }
 }
 }
 
@@ -865,35 +950,72 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
     }
   }
   LightView view = AimLightView(scene, light, index, focus);
-  if (fitOutline && !view.perspective && view.valid && !scene.Participating.enabled)
+  if (!view.valid || scene.Participating.enabled)
   {
-    // The map holds the receivers photons land on and the mirrors they meet on the
-    // way (the caustic maps' trace searches both in it): the square around the seen
-    // part and every mirror is enough, and finer than the seen box's sphere. With a
-    // medium the photons' paths are seen beyond where they land: the sphere stays.
-    double fit[6];
-    std::copy(focus, focus + 6, fit);
+    // With a medium the photons' paths are seen beyond where they land: the sphere
+    // stays.
+    return view;
+  }
+  // The map holds the receivers photons land on and the mirrors they meet on the way
+  // (the caustic maps' trace searches both in it).
+  const double inf = std::numeric_limits<double>::infinity();
+  double fit[6];
+  if (view.perspective)
+  {
+    // The receivers the camera sees: the corners of the whole seen box (the glass
+    // over the floor) would widen a lamp's frustum towards 75 degrees.
+    double receivers[6] = { inf, -inf, inf, -inf, inf, -inf };
     for (const Mesh& mesh : scene.Meshes)
     {
-      if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.Materials.size()) ||
-        scene.Materials[mesh.material].role != Role::Reflector)
+      if (MeshRole(scene, mesh) == Role::Receiver)
       {
-        continue;
-      }
-      const double inf = std::numeric_limits<double>::infinity();
-      double own[6] = { inf, -inf, inf, -inf, inf, -inf };
-      GrowBounds(mesh, own);
-      bool meets = true;
-      for (int k = 0; photonFocus && k < 3; ++k)
-      {
-        meets = meets && own[2 * k] <= photonFocus[2 * k + 1] && own[2 * k + 1] >= photonFocus[2 * k];
-      }
-      for (int k = 0; meets && k < 3; ++k)
-      {
-        fit[2 * k] = std::min(fit[2 * k], own[2 * k]);
-        fit[2 * k + 1] = std::max(fit[2 * k + 1], own[2 * k + 1]);
+        GrowBounds(mesh, receivers);
       }
     }
+    for (int k = 0; k < 3; ++k)
+    {
+      fit[2 * k] = std::max(receivers[2 * k], focus[2 * k]);
+      fit[2 * k + 1] = std::min(receivers[2 * k + 1], focus[2 * k + 1]);
+    }
+    if (!(fit[0] <= fit[1] && fit[2] <= fit[3] && fit[4] <= fit[5]))
+    {
+      std::copy(focus, focus + 6, fit); // no receiver in view: what the camera sees
+    }
+  }
+  else
+  {
+    // A directional light's outline of what the camera sees (measured on the water
+    // sheet's caustic triangles: the receivers alone, finer, read 9.0 % against 5.4 %
+    // with the sun at 60 degrees and 4.4 % against 9.5 % at 30).
+    std::copy(focus, focus + 6, fit);
+  }
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    if (MeshRole(scene, mesh) != Role::Reflector)
+    {
+      continue;
+    }
+    double own[6] = { inf, -inf, inf, -inf, inf, -inf };
+    GrowBounds(mesh, own);
+    bool meets = true;
+    for (int k = 0; photonFocus && k < 3; ++k)
+    {
+      meets = meets && own[2 * k] <= photonFocus[2 * k + 1] && own[2 * k + 1] >= photonFocus[2 * k];
+    }
+    for (int k = 0; meets && k < 3; ++k)
+    {
+      fit[2 * k] = std::min(fit[2 * k], own[2 * k]);
+      fit[2 * k + 1] = std::max(fit[2 * k + 1], own[2 * k + 1]);
+    }
+  }
+  if (view.perspective)
+  {
+    // A lamp in the scene (inside the seen box's sphere) would otherwise spread the
+    // map over 75 degrees, most of it beside what the camera sees.
+    FitPerspective(view, fit);
+  }
+  else if (fitOutline)
+  {
     // Square: the caustic map's hierarchy and splats take its texels as square.
     FitOrthographic(view, fit, 1.0);
   }

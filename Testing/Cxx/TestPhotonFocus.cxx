@@ -33,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 namespace
 {
@@ -508,4 +509,74 @@ TEST(LightView, OffsetMovesTheTexelGrid)
       EXPECT_EQ(same.axis, base.axis);
     }
   }
+}
+
+// A caustic map's view of a point light over the ball lens (ComputeReceiverMapView):
+// the lamp is inside the bounding sphere of what the camera sees, which gave the widest
+// frustum a view takes, 75 degrees off axis. It now fits the receivers in view: every
+// corner of their box lies inside it, it is narrower, and where no frustum within 75
+// degrees holds them (a lamp low beside the floor) the view stays as it was.
+TEST(LightView, ALampsCausticMapFitsTheReceiversInView)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  ASSERT_TRUE(builtin->Populate(renderer)); // the ball lens: a floor and the ball
+  vtkNew<vtkLight> lamp;
+  lamp->SetLightTypeToSceneLight();
+  lamp->SetPositional(true);
+  lamp->SetConeAngle(180.0);
+  lamp->SetFocalPoint(0.0, 0.0, 0.0);
+  renderer->RemoveAllLights();
+  renderer->AddLight(lamp);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  const double widest = std::tan(75.0 * M_PI / 180.0);
+  int fitted = 0;
+  for (const std::array<double, 3>& at :
+    std::vector<std::array<double, 3>>{ { 0.5, 6.0, 0.3 }, { -3.0, 5.0, 2.0 }, { 4.0, 8.0, -4.0 },
+      { 0.0, 20.0, 0.0 }, { 1.0, 4.5, -1.0 }, { 5.5, 1.0, 0.0 } })
+  {
+    SCOPED_TRACE(at[0]);
+    lamp->SetPosition(at[0], at[1], at[2]);
+    ASSERT_TRUE(extractor->Update(renderer, 256, 256));
+    const caustics::SceneData& scene = extractor->GetScene();
+    caustics::ReceiverIncidence straight; // not turned towards the floor
+    const caustics::LightView map = caustics::ComputeReceiverMapView(scene, 0, straight, 0.0);
+    ASSERT_TRUE(map.valid);
+    ASSERT_TRUE(map.perspective);
+    EXPECT_LE(map.halfExtent, widest * 1.001);
+    // The receivers the camera sees: the floor cut by the camera's clip volume.
+    double seen[6], floor[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    caustics::VisibleBounds(scene, seen);
+    for (const caustics::Mesh& mesh : scene.Meshes)
+    {
+      if (caustics::MeshRole(scene, mesh) == caustics::Role::Receiver)
+      {
+        caustics::GrowBounds(mesh, floor);
+      }
+    }
+    double box[6];
+    for (int k = 0; k < 3; ++k)
+    {
+      box[2 * k] = std::max(seen[2 * k], floor[2 * k]);
+      box[2 * k + 1] = std::min(seen[2 * k + 1], floor[2 * k + 1]);
+    }
+    if (map.clamped)
+    {
+      // No frustum within 75 degrees holds the floor from beside it.
+      EXPECT_LT(at[1], 2.0);
+      continue;
+    }
+    ++fitted;
+    for (int c = 0; c < 8; ++c)
+    {
+      const caustics::Vec3 corner{ { box[c & 1], box[2 + ((c >> 1) & 1)],
+        box[4 + ((c >> 2) & 1)] } };
+      const std::array<double, 2> clip = ProjectToClip(map.worldToClip, corner);
+      EXPECT_LE(std::abs(clip[0]), 1.0) << c;
+      EXPECT_LE(std::abs(clip[1]), 1.0) << c;
+    }
+    std::cout << "lamp at (" << at[0] << ", " << at[1] << ", " << at[2]
+              << "): the map's half width tan " << map.halfExtent << "\n";
+  }
+  EXPECT_EQ(fitted, 5);
 }
