@@ -459,6 +459,17 @@ void vtkCausticsScreenSpacePhotonPass::PrepareView(const FrameInputs& f)
     static_cast<caustics::TraceViewMode>(this->Settings.TraceView), f.Width, f.Height,
     aimed ? specular : nullptr);
   this->LastTraceViewFitted = in.Traced.Fitted;
+  // The automatic view fits where the camera's misses a specular actor; the paper's
+  // camera view then lets photons pass it unbent. Said once, when it starts.
+  const bool missed = !in.Traced.Fitted && !caustics::FrustumHoldsSpecular(scene);
+  if (missed && !this->LastTraceViewMissedSpecular)
+  {
+    vtkWarningMacro(<< "photons are traced in the camera's view (TraceView camera) and a "
+                       "reflector or refractor lies outside it: light passing it is not "
+                       "bent, so the caustic depends on the framing; TraceView automatic "
+                       "traces in a fitted view there");
+  }
+  this->LastTraceViewMissedSpecular = missed;
   in.View.Layers = in.SceneLayers;
   in.View.WorldToClip = in.Traced.WorldToClip;
   std::copy(scene.Bounds, scene.Bounds + 6, in.View.Bounds);
@@ -680,7 +691,8 @@ void vtkCausticsScreenSpacePhotonPass::PrintSelf(ostream& os, vtkIndent indent)
      << " of the scene's diagonal\n";
   os << indent << "LastTolerance: " << this->LastTolerance << " m\n";
   os << indent << "TraceView: " << this->Settings.TraceView
-     << " (last frame: " << (this->LastTraceViewFitted ? "fitted" : "camera") << ")\n";
+     << " (last frame: " << (this->LastTraceViewFitted ? "fitted" : "camera")
+     << (this->LastTraceViewMissedSpecular ? ", a specular actor outside it" : "") << ")\n";
   os << indent << "MinimumLineLength: " << this->Settings.MinimumLineLength << " fragments\n";
   os << indent << "RowsPerBatch: " << this->Settings.RowsPerBatch << "\n";
   os << indent << "SplatRadius: " << this->Settings.SplatRadius << " m (0: in pixel footprints)\n";

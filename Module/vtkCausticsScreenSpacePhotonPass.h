@@ -198,6 +198,13 @@ public:
   void SetTraceViewToFitted() { this->SetTraceView(TRACE_VIEW_FITTED); }
   /** True when the last frame traced its photons in the fitted view, not the camera's. */
   vtkGetMacro(LastTraceViewFitted, bool);
+  /**
+   * True when the last frame traced its photons in the camera's view (TRACE_VIEW_CAMERA)
+   * while a reflector or refractor lay outside it: photons that pass it were not bent
+   * or reflected, and the caustic depends on the framing. The pass warns once each time
+   * this becomes true; the photon statistics cannot see it (those photons land).
+   */
+  vtkGetMacro(LastTraceViewMissedSpecular, bool);
   ///@}
 
   ///@{
@@ -284,6 +291,7 @@ protected:
   caustics::ScreenSpaceSettings Settings;
   double LastTolerance = 0.0;
   bool LastTraceViewFitted = false;
+  bool LastTraceViewMissedSpecular = false;
 
 private:
   vtkCausticsScreenSpacePhotonPass(const vtkCausticsScreenSpacePhotonPass&) = delete;

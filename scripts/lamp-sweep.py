@@ -8,13 +8,14 @@ behind docs/accuracy.md, "Lamps".
         scripts/lamp-sweep.py --scene ball-lens --at 0.5,6,0.3 \\
         [--techniques screen-space,caustic-maps,cascaded,impostors] [--cone DEGREES] \\
         [--size 256] [--photons 256] [--reference-photons 1.6e7] [--reference-kernel 1] \\
-        [--intensity 50] [--output PREFIX]
+        [--intensity 50] [--array DirectIrradiance] [--output PREFIX]
 
 The reference's kernel decides how sharp a focus it shows: with the default of
 caustics-render (two pixel footprints) a lamp's focus on the floor is half as bright as
 with one. Scenes whose receivers lie under water (the pool) are compared with the
 reference's camera rays passing the refractors, as the caustic buffer's G-buffer does.
-Prints relative L2, flux ratio, the ratio of the brightest pixels and the frame time
+--array compares another buffer the reference also writes (DirectIrradiance: the
+lights' shadowed irradiance). Prints relative L2, flux ratio, the ratio of the brightest pixels and the frame time
 (one frame after a first that compiles). --output PREFIX writes PREFIX-reference.vti
 and PREFIX-TECHNIQUE.vti. Needs the Python wrapping and a display or EGL.
 """
@@ -46,8 +47,8 @@ def write(image, name):
     writer.Write()
 
 
-def peak(image):
-    values = vtk_to_numpy(image.GetPointData().GetArray("CausticIrradiance"))
+def peak(image, array):
+    values = vtk_to_numpy(image.GetPointData().GetArray(array))
     return float(numpy.max(values.reshape(len(values), -1).sum(axis=1)))
 
 
@@ -64,6 +65,7 @@ def main():
     parser.add_argument("--photons", type=int, default=256)
     parser.add_argument("--reference-photons", type=float, default=1.6e7)
     parser.add_argument("--reference-kernel", type=float, default=1.0)
+    parser.add_argument("--array", default="CausticIrradiance")
     parser.add_argument("--output")
     options = parser.parse_args()
 
@@ -110,15 +112,15 @@ def main():
         start = time.perf_counter()
         window.Render()
         image = vtkImageData()
-        if not caustics.ReadBuffer("CausticIrradiance", image):  # waits for the GPU
-            raise SystemExit(technique + ": no caustic buffer")
+        if not caustics.ReadBuffer(options.array, image):  # waits for the GPU
+            raise SystemExit("%s: no %s buffer" % (technique, options.array))
         seconds = time.perf_counter() - start
         renderer.SetPass(None)
         caustics.ReleaseGraphicsResources(window)
         if options.output:
             write(image, "%s-%s.vti" % (options.output, technique))
         metrics = vtkcaustics.vtkCausticsErrorMetrics()
-        metrics.SetArrayName("CausticIrradiance")
+        metrics.SetArrayName(options.array)
         metrics.SetMaskArrayName("ReceiverMask")
         metrics.SetAreaArrayName("PixelArea")
         if not metrics.Compute(image, truth):
@@ -126,7 +128,7 @@ def main():
             continue
         print("| %s | %.1f %% | %.3f | %.2f | %.0f |" % (
             technique, 100.0 * metrics.GetRelativeL2Error(), metrics.GetFluxRatio(),
-            peak(image) / max(peak(truth), 1e-30), 1000.0 * seconds), flush=True)
+            peak(image, options.array) / max(peak(truth, options.array), 1e-30), 1000.0 * seconds), flush=True)
 
 
 if __name__ == "__main__":

@@ -320,6 +320,9 @@ TEST(ScreenSpaceAccuracy, NoLightPastAReceiversEnd)
               << rows[3] / truthRows[3] << ", together " << ratio << "\n";
     EXPECT_EQ(pass->GetLastTraceViewFitted(),
       traceView == vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_AUTOMATIC);
+    // The camera's view, asked for, misses a specular actor here (and warns).
+    EXPECT_EQ(pass->GetLastTraceViewMissedSpecular(),
+      traceView == vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_CAMERA);
     EXPECT_NEAR(ratio, 1.0, 0.06);
     EXPECT_NEAR(rows[0] / truthRows[0], 1.0, 0.15) << "the top row";
     renderer->SetPass(nullptr);
