@@ -172,6 +172,7 @@ bool vtkCausticsImpostorPhotonPass::Trace(const FrameInputs& in, int light)
     s.Program->SetUniformi("emitFlux", units.Bind(emitted.Emitted.Flux));
     vtkCausticsGBuffer* seen = in.LightBuffers->GetGBuffer(light);
     s.Program->SetUniformi("lightNormal", units.Bind(seen->GetNormalTexture()));
+    s.Program->SetUniformi("lightPosition", units.Bind(seen->GetPositionTexture()));
     this->GetDistanceImpostors()->SetUniforms(s.Program, units);
     in.Geometry->BindMaterials();
     s.Landed.BindImages(0, GL_WRITE_ONLY);

@@ -382,9 +382,10 @@ Emitted EmittedAt(vec2 c, int branch)
 // An open refractor (a water surface: one sheet) has no back face behind the entry:
 // the farthest refractor surface the light sees there is the entry itself, facing
 // the light. The photon stays in that medium and goes on to the receivers (as the
-// caustic maps' trace does; no absorption: there is no exit to measure it to).
-bool OpenRefractor(vec3 x)
+// caustic maps' trace does), absorbed by the water on the way (TravelOutside).
+bool OpenRefractor(vec3 x, out int material)
 {
+  material = -1;
   vec2 pixel;
   if (!ViewProject(lightView, x, pixel))
   {
@@ -393,14 +394,17 @@ bool OpenRefractor(vec3 x)
   ivec2 texel = ViewTexel(lightView, pixel);
   vec4 back = texelFetch(backPosition, texel, 0);
   vec3 n = texelFetch(backNormal, texel, 0).xyz;
+  material = int(back.w + 0.5);
   return back.w >= 0.0 && distance(back.xyz, x) <= 2.0 * ViewTexelSize(lightView, x) &&
     dot(n, ViewAway(lightView, x)) < -0.1 * length(n);
 }
 
 // In the water under an open sheet (OpenRefractor): the reference holds no medium
 // there (a photon inside a refractor) unless the medium fills the refractors, so
-// neither extinction nor volume caustic.
+// neither extinction nor volume caustic; the sheet's own absorption, as inside a
+// closed refractor (sheetMaterial: the sheet's material).
 bool underSheet = false;
+int sheetMaterial = -1;
 
 // A straight stretch from a to b, in air (or under an open sheet: underSheet) or
 // inside a closed refractor: the path grows, and where the participating medium
@@ -415,6 +419,19 @@ void Travel(vec3 a, vec3 b, bool insideRefractor, int absorber, inout vec3 flux,
     flux = CausticsMediumStretch(a, (b - a) / length, length, flux, insideRefractor, absorber);
   }
   path += length;
+}
+
+// A stretch outside closed refractors: in air, or in the water under an open sheet,
+// whose Beer-Lambert absorption it then takes (the water has no exit face to measure
+// it to: the photon lands in it).
+void TravelOutside(vec3 a, vec3 b, inout vec3 flux, inout float path)
+{
+  int absorber = underSheet ? sheetMaterial : -1;
+  Travel(a, b, underSheet, absorber, flux, path);
+  if (absorber >= 0)
+  {
+    flux *= CausticsTransmittance(causticsMaterials[absorber].attenuation.rgb, distance(a, b));
+  }
 }
 
 void NoPhoton(ivec2 g)
@@ -473,10 +490,12 @@ void main()
   int fate = FATE_NOT_FOLLOWED; // also when MaximumEvents ends the path
   for (int event = 0; event < maximumEvents && CausticsChannelSum(flux) > 0.0; ++event)
   {
-    if (inside && OpenRefractor(o))
+    int sheet;
+    if (inside && OpenRefractor(o, sheet))
     {
       inside = false; // in the water under a surface sheet: on to the receivers
       underSheet = true;
+      sheetMaterial = sheet; // the sheet it entered by
     }
     if (inside)
     {
@@ -506,8 +525,10 @@ void main()
       if (March(lightView, frontPosition, frontNormal, true, o, d, reach, false) == MARCH_HIT &&
         hitRole == ROLE_REFRACTOR)
       {
-        Travel(o, hitPoint, underSheet, -1, flux, path);
+        TravelOutside(o, hitPoint, flux, path);
         CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFRACTOR, d, flux, inside, rng);
+        // Back out of the water, or into another refractor: its own stretches decide.
+        underSheet = false;
         o = hitPoint + nudge * d;
         continue;
       }
@@ -520,7 +541,7 @@ void main()
     {
       // Reprojection into the camera view (§3.2, Fig. 5): march on from the last
       // position the light's view could vouch for.
-      Travel(o, lastPoint, underSheet, -1, flux, path);
+      TravelOutside(o, lastPoint, flux, path);
       o = lastPoint;
       result = March(cameraView, cameraPosition, cameraNormal, false, o, d, airLength, false);
     }
@@ -535,11 +556,11 @@ void main()
       {
         // It leaves the views: its scattering up to where it leaves the scene.
         CausticsAppendVolumeSegment(
-          CausticsMakeMediumSegment(o, d, airLength, flux, underSheet, -1));
+          CausticsMakeMediumSegment(o, d, airLength, flux, underSheet, underSheet ? sheetMaterial : -1));
       }
       break;
     }
-    Travel(o, hitPoint, underSheet, -1, flux, path);
+    TravelOutside(o, hitPoint, flux, path);
     if (hitRole == ROLE_REFLECTOR)
     {
       CausticsScatterOneBranch(hitNormal, causticsMaterials[hitMaterial], ROLE_REFLECTOR, d, flux, inside, rng);

@@ -35,6 +35,7 @@ uniform sampler2D emitPosition;  // xyz, w = 0 none, 1 in air, 2 inside a refrac
 uniform sampler2D emitDirection; // xyz unit, w = texel measure
 uniform sampler2D emitFlux;      // rgb W
 uniform sampler2D lightNormal;   // the light's G-buffer: w = role of the first surface
+uniform sampler2D lightPosition; // its position: w = material of the first surface
 uniform int emitResolution;      // N: rows of one branch
 uniform ivec2 photonGrid;        // the emitter's grid (= the output grid)
 uniform uint frameSeed;          // seed of the Russian roulette
@@ -128,7 +129,9 @@ void main()
   bool inside = p.w > 1.5;
   // What the photon left: the first surface the light sees there.
   int leftRole = int(texelFetch(lightNormal, lightTexel, 0).w + 0.5);
-  int insideMaterial = -1;
+  // The refractor it is in: from the start, the one the emitter refracted it into (a
+  // water sheet has no exit face, and its floor takes the water's absorption from it).
+  int insideMaterial = inside ? int(texelFetch(lightPosition, lightTexel, 0).w + 0.5) : -1;
   float path = lightType == 0 ? dot(o - lightEye, lightAxis) : length(o - lightOrigin);
   // The participating medium between the light and the first specular surface.
   vec3 towardsLight = lightType == 0 ? -lightAxis : normalize(lightOrigin - o);

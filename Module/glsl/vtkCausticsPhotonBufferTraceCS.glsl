@@ -81,7 +81,8 @@ uniform int exactSpecular; // 1: inside, the glass's triangles (SpecularTrace), 
 // The photon buffer, also the hand-over between the two phases (PHASE 0 inside
 // refractors, PHASE 1 in air; two programs, so that each stays small): after
 // phase 0 a texel holds the photon leaving into air (position, path length;
-// direction, 1 = in air, 2 = in the water under an open sheet; flux, measure), after
+// direction, 1 = in air, 2 + the sheet's material = in the water under an open sheet;
+// flux, measure), after
 // phase 1 its hit.
 layout(rgba32f, binding = 0) uniform image2D outPosition;
 layout(rgba32f, binding = 1) uniform image2D outNormal;
@@ -554,8 +555,8 @@ void main()
   bool underSheet = false;
   // An open refractor (a water surface: one sheet) has no back face behind the
   // entry: the farthest refractor surface the light sees there is the entry itself,
-  // facing the light. The photon stays in that medium and goes on to the receivers
-  // (without absorption on the way: the slab model has no exit to measure it to).
+  // facing the light. The photon stays in that medium and goes on to the receivers,
+  // the water's absorption taken on the way there (phase 1, SheetTransmittance).
   vec3 backSample, backNormalHere;
   float backMaterial;
   if (LayerAt(photonView, backPosition, backNormal, p, backSample, backNormalHere, backMaterial) &&
@@ -650,7 +651,7 @@ void main()
     return;
   }
   imageStore(outPosition, texel, vec4(p, path));
-  imageStore(outNormal, texel, vec4(d, underSheet ? 2.0 : 1.0));
+  imageStore(outNormal, texel, vec4(d, underSheet ? 2.0 + max(round(backMaterial), 0.0) : 1.0));
   imageStore(outFlux, texel, vec4(flux, direction.w));
   Append(1, texel);
 }
@@ -773,6 +774,15 @@ float EscapedReceiver(vec3 p, vec3 d, bool leftMirror)
 }
 #endif
 
+// The Beer-Lambert absorption over t m of the water a photon under an open sheet is
+// in (sheetMaterial; -1: in air, none).
+vec3 SheetTransmittance(int sheetMaterial, float t)
+{
+  return sheetMaterial >= 0
+    ? CausticsTransmittance(causticsMaterials[sheetMaterial].attenuation.rgb, t)
+    : vec3(1.0);
+}
+
 void main()
 {
   ivec2 texel;
@@ -788,8 +798,9 @@ void main()
   float path = start4.w;
   // In the water under an open sheet the reference holds no medium (a photon inside a
   // refractor) unless the medium fills the refractors: neither extinction nor volume
-  // caustic there.
+  // caustic there; the water's own absorption, as inside a closed refractor.
   bool underSheet = leaving.w > 1.5;
+  int sheetMaterial = underSheet ? int(leaving.w - 2.0 + 0.5) : -1;
   bool inMedium = CausticsStretchInMedium(underSheet);
   float t = -1.0;
   vec3 n = vec3(0.0);
@@ -806,7 +817,8 @@ void main()
     }
     landed = false;
     vec3 x = p + mirrorT * d;
-    vec3 kept = CausticsMediumStretch(p, d, mirrorT, flux4.rgb, underSheet, -1);
+    vec3 kept = CausticsMediumStretch(p, d, mirrorT, flux4.rgb, underSheet, sheetMaterial) *
+      SheetTransmittance(sheetMaterial, mirrorT);
     vec3 facing = dot(d, mirrorNormal) < 0.0 ? mirrorNormal : -mirrorNormal;
     CausticsMaterial mirror = causticsMaterials[mirrorMaterial];
     if (reflection < maximumReflections)
@@ -841,12 +853,14 @@ void main()
   {
     // The last piece: to the receiver, or across the scene when it escapes.
     CausticsAppendVolumeSegment(CausticsMakeMediumSegment(
-      p, d, landed ? t : (stored > 0.0 ? stored : airLength), flux4.rgb, underSheet, -1));
+      p, d, landed ? t : (stored > 0.0 ? stored : airLength), flux4.rgb, underSheet,
+      sheetMaterial));
   }
 #ifdef CAUSTICS_STORE_ESCAPED
   if (stored > 0.0)
   {
-    vec3 kept = inMedium ? flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, stored) : flux4.rgb;
+    vec3 kept = (inMedium ? flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, stored) : flux4.rgb) *
+      SheetTransmittance(sheetMaterial, stored);
     AddFlux(STAT_FLUX_ABSORBED, power - Power(kept));
     atomicAdd(statistics[STAT_STORED], 1u);
     AddFlux(STAT_FLUX_STORED, Power(kept));
@@ -869,10 +883,11 @@ void main()
     imageStore(outFlux, texel, vec4(0.0));
     return;
   }
-  if (inMedium)
+  if (inMedium || sheetMaterial >= 0)
   {
-    // The medium between the surface it left and the receiver.
-    vec3 kept = flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, t);
+    // The medium between the surface it left and the receiver, or the water.
+    vec3 kept = (inMedium ? flux4.rgb * CausticsMediumTransmittance(p, d, 0.0, t) : flux4.rgb) *
+      SheetTransmittance(sheetMaterial, t);
     AddFlux(STAT_FLUX_ABSORBED, power - Power(kept));
     flux4.rgb = kept;
     power = Power(kept);

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""Built-in scenes lit by a lamp instead of their own light: each technique's caustic
-irradiance against the CPU reference of the same view. The scene's lights are replaced
-by one point light (or a spot light with --cone) at --at, aimed at --focal; the figures
-behind docs/accuracy.md, "Lamps".
+"""Built-in scenes changed as a user might change them, each technique's caustic
+irradiance against the CPU reference of the same view: the scene's lights replaced by
+one lamp (--lamp X,Y,Z: a point light, or a spot light with --cone, aimed at --focal),
+and its glass or water made to absorb (--attenuation R,G,B, Beer-Lambert in 1/m). The
+figures behind docs/accuracy.md, "Lamps" and "Absorbing glass and water".
 
     PYTHONPATH=build/lib/python3/dist-packages xvfb-run -a /usr/bin/python3 \\
-        scripts/lamp-sweep.py --scene ball-lens --at 0.5,6,0.3 \\
+        scripts/scene-variant.py --scene ball-lens [--lamp 0.5,6,0.3] \\
+        [--attenuation 0.5,0.2,0.05] \\
         [--techniques screen-space,caustic-maps,cascaded,impostors] [--cone DEGREES] \\
         [--size 256] [--photons 256] [--reference-photons 1.6e7] [--reference-kernel 1] \\
         [--intensity 50] [--array DirectIrradiance] [--output PREFIX]
@@ -15,9 +17,10 @@ caustics-render (two pixel footprints) a lamp's focus on the floor is half as br
 with one. Scenes whose receivers lie under water (the pool) are compared with the
 reference's camera rays passing the refractors, as the caustic buffer's G-buffer does.
 --array compares another buffer the reference also writes (DirectIrradiance: the
-lights' shadowed irradiance). Prints relative L2, flux ratio, the ratio of the brightest pixels and the frame time
-(one frame after a first that compiles). --output PREFIX writes PREFIX-reference.vti
-and PREFIX-TECHNIQUE.vti. Needs the Python wrapping and a display or EGL.
+lights' shadowed irradiance). Prints relative L2, flux ratio, the ratio of the
+brightest receiver pixels and the frame time (one frame after a first that compiles).
+--output PREFIX writes PREFIX-reference.vti and PREFIX-TECHNIQUE.vti. Needs the Python
+wrapping and a display or EGL.
 """
 import argparse
 import time
@@ -31,6 +34,7 @@ from vtkmodules.vtkRenderingCore import vtkLight
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
 
 UNDER_WATER = {"pool"}
+REFRACTOR = 3  # vtkCausticsMaterial's role
 
 
 def triple(text):
@@ -47,19 +51,23 @@ def write(image, name):
     writer.Write()
 
 
-def peak(image, array):
+def peak(image, array, truth):
+    """The brightest receiver pixel (the reference's ReceiverMask: what the metrics compare)."""
     values = vtk_to_numpy(image.GetPointData().GetArray(array))
-    return float(numpy.max(values.reshape(len(values), -1).sum(axis=1)))
+    mask = vtk_to_numpy(truth.GetPointData().GetArray("ReceiverMask")).reshape(len(values))
+    return float(numpy.max(values.reshape(len(values), -1).sum(axis=1) * (mask > 0)))
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="ball-lens")
-    parser.add_argument("--at", type=triple, default=[0.5, 6.0, 0.3])
+    parser.add_argument("--lamp", type=triple, help="a point light here replaces the scene's")
     parser.add_argument("--focal", type=triple, default=[0.0, 0.0, 0.0])
     parser.add_argument("--cone", type=float, default=180.0,
                         help="spot cone half angle in degrees (180: a point light)")
-    parser.add_argument("--intensity", type=float, default=50.0)
+    parser.add_argument("--intensity", type=float, default=50.0, help="the lamp's")
+    parser.add_argument("--attenuation", type=triple,
+                        help="Beer-Lambert absorption of the scene's refractors, 1/m per channel")
     parser.add_argument("--techniques", default="screen-space,caustic-maps,cascaded,impostors")
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--photons", type=int, default=256)
@@ -78,15 +86,24 @@ def main():
     scene.SetSceneName(options.scene)
     if not scene.Populate(renderer):
         raise SystemExit(scene.GetLastError())
-    lamp = vtkLight()
-    lamp.SetLightTypeToSceneLight()
-    lamp.SetPositional(True)
-    lamp.SetPosition(*options.at)
-    lamp.SetFocalPoint(*options.focal)
-    lamp.SetConeAngle(options.cone)
-    lamp.SetIntensity(options.intensity)
-    renderer.RemoveAllLights()
-    renderer.AddLight(lamp)
+    if options.lamp:
+        lamp = vtkLight()
+        lamp.SetLightTypeToSceneLight()
+        lamp.SetPositional(True)
+        lamp.SetPosition(*options.lamp)
+        lamp.SetFocalPoint(*options.focal)
+        lamp.SetConeAngle(options.cone)
+        lamp.SetIntensity(options.intensity)
+        renderer.RemoveAllLights()
+        renderer.AddLight(lamp)
+    if options.attenuation:
+        actors = renderer.GetActors()
+        actors.InitTraversal()
+        for _ in range(actors.GetNumberOfItems()):
+            actor = actors.GetNextActor()
+            if vtkcaustics.vtkCausticsMaterial.Classify(actor) == REFRACTOR:
+                vtkcaustics.vtkCausticsMaterial.SetAttenuation(actor.GetProperty(),
+                                                               options.attenuation)
 
     reference = vtkcaustics.vtkCausticsReferenceRenderer()
     reference.SetInputRenderer(renderer)
@@ -100,8 +117,13 @@ def main():
     if options.output:
         write(truth, options.output + "-reference.vti")
 
-    print("| %s, lamp at (%s) | relative L2 | flux / reference | peak / reference's | frame (ms) |"
-          % (options.scene, ", ".join("%g" % v for v in options.at)))
+    changes = []
+    if options.lamp:
+        changes.append("lamp at (%s)" % ", ".join("%g" % v for v in options.lamp))
+    if options.attenuation:
+        changes.append("absorbing (%s) 1/m" % ", ".join("%g" % v for v in options.attenuation))
+    print("| %s | relative L2 | flux / reference | peak / reference's | frame (ms) |"
+          % ", ".join([options.scene] + changes))
     print("|---|--:|--:|--:|--:|")
     for technique in options.techniques.split(","):
         caustics = vtkcaustics.vtkCausticsTechniques.NewPass(technique)
@@ -128,7 +150,7 @@ def main():
             continue
         print("| %s | %.1f %% | %.3f | %.2f | %.0f |" % (
             technique, 100.0 * metrics.GetRelativeL2Error(), metrics.GetFluxRatio(),
-            peak(image, options.array) / max(peak(truth, options.array), 1e-30), 1000.0 * seconds), flush=True)
+            peak(image, options.array, truth) / max(peak(truth, options.array, truth), 1e-30), 1000.0 * seconds), flush=True)
 
 
 if __name__ == "__main__":
