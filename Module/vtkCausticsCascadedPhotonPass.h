@@ -154,6 +154,11 @@ protected:
    * FluxIn is after the Fresnel roulette of emission; FluxAbsorbed is not counted.
    */
   const caustics::hcm::StatisticsBuffer* GetStatisticsBuffer() override;
+  // The light's view holds the refractors' nearest and farthest faces only.
+  bool FollowsLightBetweenRefractors() const override
+  {
+    return false;
+  }
 #endif
 
   caustics::CascadedSettings Settings;

@@ -400,6 +400,11 @@ protected:
    * size (docs/reliability.md, "Far-away actors").
    */
   double GetSceneScaleLimit() override { return SCENE_SCALE_LIMIT; }
+  // A photon that left a refractor meets receivers and mirrors only (the map's).
+  bool FollowsLightBetweenRefractors() const override
+  {
+    return false;
+  }
   /** The photon trace (vtkCausticsPhotonBuffer) attenuates photons by the mean density. */
   vtkCausticsHierarchicalCausticMapPass();
   ~vtkCausticsHierarchicalCausticMapPass() override;

@@ -133,6 +133,11 @@ protected:
    * Fresnel split, before the medium; FluxAbsorbed is not counted.
    */
   const caustics::hcm::StatisticsBuffer* GetStatisticsBuffer() override;
+  // A refractor's environment map holds receivers and mirrors, not other glass.
+  bool FollowsLightBetweenRefractors() const override
+  {
+    return false;
+  }
 #endif
 
   caustics::ImpostorPhotonSettings Settings;

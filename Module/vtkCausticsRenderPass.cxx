@@ -323,6 +323,7 @@ struct vtkCausticsRenderPass::Internals
   std::string ResourceError;         // why the last CheckResources() failed
   std::string ReportedResourceError; // the last one Render() reported (once each)
   std::string ReportedScaleWarning;  // the last scene-scale warning (once each)
+  std::string ReportedRefractorsInLine; // the last refractors-in-line warning (once each)
   // The density grid CheckMediumDensity() last warned about (a new one is a new medium).
   std::weak_ptr<const caustics::DensityGrid> ReportedDensity;
   caustics::gl::MediumBuffer MediumGrid; // the density grid on the GPU, for every stage
@@ -1242,6 +1243,7 @@ void vtkCausticsRenderPass::Render(const vtkRenderState* s)
   if (caustics)
   {
     this->CheckSceneScale();
+    this->CheckRefractorsInLine();
   }
   const bool buffers = caustics || extraOutputs;
   if (!sceneOk || !buffers || !this->SupportsCaustics(this->Frame.Window, buffers))
@@ -1280,6 +1282,35 @@ void vtkCausticsRenderPass::CheckSceneScale()
   {
     this->Internal->ReportedScaleWarning = text.str();
     vtkWarningMacro(<< text.str());
+  }
+}
+
+void vtkCausticsRenderPass::CheckRefractorsInLine()
+{
+  const caustics::SceneData& scene = *this->Frame.Scene;
+  std::string text;
+  for (int i = 0; i < static_cast<int>(scene.Lights.size()) && text.empty() &&
+       !this->FollowsLightBetweenRefractors();
+       ++i)
+  {
+    int first, second;
+    if (caustics::RefractorsInLine(scene, i, first, second))
+    {
+      text = "light " + std::to_string(i) + " may pass through the refractor '" +
+        scene.Meshes[first].name + "' and then '" + scene.Meshes[second].name +
+        "', and this technique follows its photons through one " +
+        "refractor only (the second is not in its light's images): the caustic beyond the " +
+        "second may be missing or misplaced (the reference and cpu-progressive follow both)";
+    }
+  }
+  // Once per state, not every frame.
+  if (text != this->Internal->ReportedRefractorsInLine)
+  {
+    this->Internal->ReportedRefractorsInLine = text;
+    if (!text.empty())
+    {
+      vtkWarningMacro(<< text);
+    }
   }
 }
 

@@ -566,6 +566,19 @@ protected:
   virtual double GetSceneScaleLimit() { return 0.0; }
 
   /**
+   * Hook: whether the technique's photons go on from one refractor into another that
+   * lies beyond it along the light (a lens stack, a glass on a glass shelf), or count
+   * the light they cannot follow there in their photon statistics. Where it returns
+   * false and two refractors lie in line along a light (caustics::RefractorsInLine),
+   * a frame warns once: the caustic beyond the second is missing or misplaced, and
+   * nothing else would say so. Default true.
+   */
+  virtual bool FollowsLightBetweenRefractors() const
+  {
+    return true;
+  }
+
+  /**
    * Hook: whether the technique averages a still scene's frames by itself (its own
    * progressive accumulation); ProgressiveFrames then leaves its frames alone. Default false.
    */
@@ -703,6 +716,7 @@ private:
   bool CheckResourcesFor(vtkOpenGLRenderWindow* renWin, int lights);
   bool FitsTheDevice(); // CheckResources() for this frame's lights, reported once per cause
   void CheckSceneScale(); // warns once when GetLastSceneScaleRatio() passes GetSceneScaleLimit()
+  void CheckRefractorsInLine(); // warns once (FollowsLightBetweenRefractors())
   void CheckMediumDensity(); // uploads the density grid; warns once where a stage takes its mean
   bool RenderDirectIrradiance();
   bool RenderAirlight(); // the medium's single scattering of direct light, into the volume layer

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace caustics
 {
@@ -557,6 +558,98 @@ bool LightReachesSpecular(const Light& light, const double specularBounds[6])
   const double axisAngle = std::acos(std::max(-1.0, std::min(1.0, cosAxis)));
   const double sphereAngle = std::asin(std::min(1.0, std::sqrt(radius2) / distance));
   return axisAngle - sphereAngle < std::acos(std::max(-1.0, std::min(1.0, light.cosOuter)));
+}
+
+bool RefractorsInLine(const SceneData& scene, int index, int& first, int& second)
+{
+  first = second = -1;
+  if (index < 0 || index >= static_cast<int>(scene.Lights.size()))
+  {
+    return false;
+  }
+  const Light& light = scene.Lights[index];
+  if (!(light.radiometric[0] > 0.0 || light.radiometric[1] > 0.0 || light.radiometric[2] > 0.0))
+  {
+    return false;
+  }
+  struct Sphere
+  {
+    int mesh;
+    Vec3 centre;
+    double radius;
+  };
+  std::vector<Sphere> spheres;
+  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  {
+    if (MeshRole(scene, scene.Meshes[m]) != Role::Refractor)
+    {
+      continue;
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    double box[6] = { inf, -inf, inf, -inf, inf, -inf };
+    GrowBounds(scene.Meshes[m], box);
+    if (box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5])
+    {
+      Sphere sphere{ static_cast<int>(m), {}, 0.0 };
+      BoundingSphere(box, sphere.centre, sphere.radius);
+      spheres.push_back(sphere);
+    }
+  }
+  const bool directional = light.type == Light::Type::Directional;
+  const Vec3 along = Normalize(light.direction);
+  // How far along the light's rays: the nearer sphere is met first.
+  auto depth = [&](const Sphere& s)
+  {
+    const Vec3 v{ { s.centre[0] - light.position[0], s.centre[1] - light.position[1],
+      s.centre[2] - light.position[2] } };
+    return directional ? Dot(s.centre, along) : std::sqrt(Dot(v, v));
+  };
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+  {
+    for (std::size_t j = i + 1; j < spheres.size(); ++j)
+    {
+      const Sphere& a = spheres[i];
+      const Sphere& b = spheres[j];
+      bool inLine;
+      if (directional)
+      {
+        Vec3 apart{ { b.centre[0] - a.centre[0], b.centre[1] - a.centre[1],
+          b.centre[2] - a.centre[2] } };
+        const double ahead = Dot(apart, along);
+        for (int k = 0; k < 3; ++k)
+        {
+          apart[k] -= ahead * along[k];
+        }
+        inLine = std::sqrt(Dot(apart, apart)) < a.radius + b.radius;
+      }
+      else
+      {
+        const Vec3 toA{ { a.centre[0] - light.position[0], a.centre[1] - light.position[1],
+          a.centre[2] - light.position[2] } };
+        const Vec3 toB{ { b.centre[0] - light.position[0], b.centre[1] - light.position[1],
+          b.centre[2] - light.position[2] } };
+        const double da = std::sqrt(Dot(toA, toA)), db = std::sqrt(Dot(toB, toB));
+        if (!(da > a.radius) || !(db > b.radius))
+        {
+          inLine = true; // the light is inside one of them
+        }
+        else
+        {
+          const double cosine = Dot(toA, toB) / (da * db);
+          const double apart = std::acos(std::max(-1.0, std::min(1.0, cosine)));
+          inLine = apart < std::asin(a.radius / da) + std::asin(b.radius / db);
+        }
+      }
+      if (inLine)
+      {
+        const bool aFirst = depth(a) <= depth(b);
+        first = aFirst ? a.mesh : b.mesh;
+        second = aFirst ? b.mesh : a.mesh;
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 namespace

@@ -245,6 +245,16 @@ struct SceneData
  */
 bool LightReachesSpecular(const Light& light, const double specularBounds[6]);
 
+/**
+ * Whether light `index` may pass through one refractor mesh and then through another:
+ * two refractor meshes whose bounding spheres overlap as the light sees them (across
+ * a sun's rays, or in angle from a point or spot light; a light inside one sees every
+ * other in line). Conservative: spheres that overlap may hold no such path. `first`
+ * and `second` are the two meshes (indices into scene.Meshes), the first nearer the
+ * light. A light without power sees none.
+ */
+bool RefractorsInLine(const SceneData& scene, int index, int& first, int& second);
+
 /** A mesh's role: its material's, Role::None where the material index is out of range. */
 Role MeshRole(const SceneData& scene, const Mesh& mesh);
 

@@ -17,6 +17,7 @@
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -26,6 +27,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 
 #include <gtest/gtest.h>
 
@@ -33,6 +35,7 @@
 #include <array>
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace
@@ -579,4 +582,59 @@ TEST(LightView, ALampsCausticMapFitsTheReceiversInView)
               << "): the map's half width tan " << map.halfExtent << "\n";
   }
   EXPECT_EQ(fitted, 5);
+}
+
+// caustics::RefractorsInLine: two refractors whose bounding spheres overlap as a light
+// sees them (a ball under the ball lens, a ball aside under a slanting sun, any other
+// glass seen from a lamp inside one), and not when they stand apart across the light.
+TEST(RefractorsInLine, OverlapAsTheLightSeesThem)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCausticsBuiltinScene> builtin;
+  ASSERT_TRUE(builtin->Populate(renderer)); // the ball lens: radius 1 at (0, 3, 0), sun down
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.5);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> second;
+  second->SetMapper(mapper);
+  vtkCausticsMaterial::MakeGlass(second->GetProperty(), 1.5);
+  vtkCausticsMaterial::SetName(second, "second ball");
+  renderer->AddActor(second);
+  vtkNew<vtkCausticsSceneExtractor> extractor;
+  auto inLine = [&](double x, double y, std::string* names = nullptr)
+  {
+    second->SetPosition(x, y, 0.0);
+    EXPECT_TRUE(extractor->Update(renderer, 64, 64));
+    const caustics::SceneData& scene = extractor->GetScene();
+    int first = -1, next = -1;
+    const bool found = caustics::RefractorsInLine(scene, 0, first, next);
+    if (found && names)
+    {
+      *names = scene.Meshes[first].name + " then " + scene.Meshes[next].name;
+    }
+    return found;
+  };
+  std::string names;
+  EXPECT_TRUE(inLine(0.0, 1.2, &names)) << "under the ball lens";
+  EXPECT_EQ(names.find("second ball"), names.size() - std::string("second ball").size())
+    << names << ": the ball lens is met first";
+  EXPECT_FALSE(inLine(3.5, 0.6)) << "aside, under a vertical sun";
+  vtkLight* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  ASSERT_NE(sun, nullptr);
+  sun->SetPosition(-1.0, 1.0, 0.0); // slanting down towards +x
+  sun->SetFocalPoint(0.0, 0.0, 0.0);
+  EXPECT_TRUE(inLine(3.5, 0.6)) << "aside, where the slanting sun's rays through the lens go";
+  EXPECT_FALSE(inLine(-3.5, 0.6)) << "on the other side";
+  sun->SetIntensity(0.0);
+  EXPECT_FALSE(inLine(0.0, 1.2)) << "a light without power";
+  // A lamp inside the ball lens sees every other glass in line.
+  renderer->RemoveAllLights();
+  vtkNew<vtkLight> lamp;
+  lamp->SetLightTypeToSceneLight();
+  lamp->SetPositional(true);
+  lamp->SetConeAngle(180.0);
+  lamp->SetPosition(0.0, 3.0, 0.0);
+  renderer->AddLight(lamp);
+  EXPECT_TRUE(inLine(-3.5, 0.6));
 }
