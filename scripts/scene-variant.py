@@ -25,6 +25,8 @@ be (GetLastFrameLostLightBound; it warns past 10 %) and the frame time (one fram
 wrapping and a display or EGL.
 """
 import argparse
+import importlib.util
+import os
 import time
 
 import numpy
@@ -34,7 +36,12 @@ from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkRenderingCore import vtkActor, vtkLight, vtkPolyDataMapper
-from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLRenderer
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+spec = importlib.util.spec_from_file_location(
+    "sweep", os.path.join(HERE, "reconstruction-sweep.py"))
+sweep = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(sweep)
 
 UNDER_WATER = {"pool"}
 REFRACTOR = 3  # vtkCausticsMaterial's role
@@ -82,15 +89,8 @@ def main():
     parser.add_argument("--output")
     options = parser.parse_args()
 
-    window = vtkcaustics.vtkCausticsWindowFactory().NewWindow(True)
-    window.SetMultiSamples(0)
-    window.SetSize(options.size, options.size)
-    renderer = vtkOpenGLRenderer()
-    window.AddRenderer(renderer)
-    scene = vtkcaustics.vtkCausticsBuiltinScene()
-    scene.SetSceneName(options.scene)
-    if not scene.Populate(renderer):
-        raise SystemExit(scene.GetLastError())
+    frame = sweep.Frame(options.scene, options.size)  # the window and the built-in scene
+    window, renderer = frame.window, frame.renderer
     if options.lamp:
         lamp = vtkLight()
         lamp.SetLightTypeToSceneLight()

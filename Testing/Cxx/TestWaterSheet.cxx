@@ -506,6 +506,21 @@ std::vector<double> FloorBehindTheWall(const char* technique, bool hidden, bool 
   return columns;
 }
 
+/**
+ * The floor's irradiance under clear flat water, the sun (1 W/m^2) 50 degrees up:
+ * sin 50 degrees x T(40 degrees), the unpolarized Fresnel transmittance at 40 degrees
+ * of incidence. `cosRefracted`: the cosine of the refracted ray's angle to the vertical.
+ */
+double UnderFlatWaterAt50Degrees(double& cosRefracted)
+{
+  const double cosI = std::cos(40.0 * M_PI / 180.0);
+  const double cosT = std::sqrt(1.0 - (1.0 - cosI * cosI) / (WaterIndex * WaterIndex));
+  const double rs = std::pow((cosI - WaterIndex * cosT) / (cosI + WaterIndex * cosT), 2);
+  const double rp = std::pow((WaterIndex * cosI - cosT) / (WaterIndex * cosI + cosT), 2);
+  cosRefracted = cosT;
+  return std::sin(50.0 * M_PI / 180.0) * (1.0 - 0.5 * (rs + rp));
+}
+
 /** The mean of `columns` over the floor from `from` to `to` (m behind the wall). */
 double MeanBehindTheWall(const std::vector<double>& columns, double from, double to)
 {
@@ -544,11 +559,8 @@ double MeanBehindTheWall(const std::vector<double>& columns, double from, double
 // into the strip.
 TEST(WaterSheet, FloorHiddenByAWallGetsTheRefractedLight)
 {
-  const double cosI = std::cos(40.0 * M_PI / 180.0);
-  const double cosT = std::sqrt(1.0 - (1.0 - cosI * cosI) / (WaterIndex * WaterIndex));
-  const double rs = std::pow((cosI - WaterIndex * cosT) / (cosI + WaterIndex * cosT), 2);
-  const double rp = std::pow((WaterIndex * cosI - cosT) / (WaterIndex * cosI + cosT), 2);
-  const double exact = std::sin(50.0 * M_PI / 180.0) * (1.0 - 0.5 * (rs + rp));
+  double cosT;
+  const double exact = UnderFlatWaterAt50Degrees(cosT);
   const double edge = 0.441, straight = 0.671, blur = 0.08;
   const auto with = FloorBehindTheWall("caustic-maps", true);
   const auto stored = FloorBehindTheWall("caustic-maps", false);
@@ -593,11 +605,8 @@ TEST(WaterSheet, FloorHiddenByAWallGetsTheRefractedLight)
 // the red channel of the three 1.769, 1.773, 1.770 (exp(sigma L), none absorbed).
 TEST(WaterSheet, AbsorbingWaterDimsTheFloorAsBeerLambert)
 {
-  const double cosI = std::cos(40.0 * M_PI / 180.0);
-  const double cosT = std::sqrt(1.0 - (1.0 - cosI * cosI) / (WaterIndex * WaterIndex));
-  const double rs = std::pow((cosI - WaterIndex * cosT) / (cosI + WaterIndex * cosT), 2);
-  const double rp = std::pow((WaterIndex * cosI - cosT) / (WaterIndex * cosI + cosT), 2);
-  const double clear = std::sin(50.0 * M_PI / 180.0) * (1.0 - 0.5 * (rs + rp));
+  double cosT;
+  const double clear = UnderFlatWaterAt50Degrees(cosT);
   const double sigma[3] = { 0.5, 0.2, 0.05 };
   for (const char* technique : { "screen-space", "caustic-maps", "cascaded", "impostors" })
   {
