@@ -572,6 +572,12 @@ bool RefractorsInLine(const SceneData& scene, int index, int& first, int& second
   {
     return false;
   }
+  const auto refractors = std::count_if(scene.Meshes.begin(), scene.Meshes.end(),
+    [&scene](const Mesh& mesh) { return MeshRole(scene, mesh) == Role::Refractor; });
+  if (refractors < 2)
+  {
+    return false; // a frame's check: no vertex scan for a scene with one piece of glass
+  }
   struct Sphere
   {
     int mesh;
