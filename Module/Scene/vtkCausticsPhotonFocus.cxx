@@ -261,27 +261,6 @@ Box Swept(const Cone& cone, const Box& bounds)
 }
 
 /** The box around every receiver's vertices (empty without receivers). */
-Box ReceiverBounds(const SceneData& scene)
-{
-  Box box = EmptyBox();
-  for (const Mesh& mesh : scene.Meshes)
-  {
-    if (scene.Materials[mesh.material].role != Role::Receiver)
-    {
-      continue;
-    }
-    for (std::size_t v = 0; v + 2 < mesh.positions.size(); v += 3)
-    {
-      const glm::dvec3 x(mesh.positions[v], mesh.positions[v + 1], mesh.positions[v + 2]);
-      if (std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z))
-      {
-        Include(box, x);
-      }
-    }
-  }
-  return box;
-}
-
 Box Intersection(const Box& a, const Box& b)
 {
   Box both;
@@ -510,7 +489,8 @@ bool PhotonFocusBounds(const SceneData& scene, int index, double box[6])
     return false;
   }
   // Caustics are seen on receivers: the receivers inside the camera's clip volume...
-  const Box receivers = ReceiverBounds(scene);
+  Box receivers;
+  caustics::ReceiverBounds(scene, receivers.data());
   Box visible;
   std::copy(seen, seen + 6, visible.begin());
   Box region = Intersection(visible, receivers);

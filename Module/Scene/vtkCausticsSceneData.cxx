@@ -380,10 +380,9 @@ void FitOrthographic(LightView& view, const double box[6], double maximumAspect)
  * Narrows a perspective view to the square frustum around the box's corners as the
  * light sees them, when that is narrower than the view (a view subtends its focus's
  * bounding sphere, or, with the light inside that sphere, the widest frustum: a
- * lamp above the floor then spreads 512 texels over 75 degrees of it). The axis is
- * moved to the middle of the corners' extent on the image plane, a few times, since
- * each move changes the extent. Nothing changes when some corner is not in front of
- * the light, or the frustum would be wider than the view or 75 degrees off axis.
+ * lamp above the floor then spreads 512 texels over 75 degrees of it). Nothing
+ * changes when some corner is not in front of the light, or the frustum would be
+ * wider than the view or 75 degrees off axis.
  */
 void FitPerspective(LightView& view, const double box[6])
 {
@@ -572,9 +571,15 @@ bool RefractorsInLine(const SceneData& scene, int index, int& first, int& second
   {
     return false;
   }
-  const auto refractors = std::count_if(scene.Meshes.begin(), scene.Meshes.end(),
-    [&scene](const Mesh& mesh) { return MeshRole(scene, mesh) == Role::Refractor; });
-  if (refractors < 2)
+  std::vector<int> refractors;
+  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  {
+    if (MeshRole(scene, scene.Meshes[m]) == Role::Refractor)
+    {
+      refractors.push_back(static_cast<int>(m));
+    }
+  }
+  if (refractors.size() < 2)
   {
     return false; // a frame's check: no vertex scan for a scene with one piece of glass
   }
@@ -585,18 +590,14 @@ bool RefractorsInLine(const SceneData& scene, int index, int& first, int& second
     double radius;
   };
   std::vector<Sphere> spheres;
-  for (std::size_t m = 0; m < scene.Meshes.size(); ++m)
+  for (const int m : refractors)
   {
-    if (MeshRole(scene, scene.Meshes[m]) != Role::Refractor)
-    {
-      continue;
-    }
     const double inf = std::numeric_limits<double>::infinity();
     double box[6] = { inf, -inf, inf, -inf, inf, -inf };
     GrowBounds(scene.Meshes[m], box);
     if (box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5])
     {
-      Sphere sphere{ static_cast<int>(m), {}, 0.0 };
+      Sphere sphere{ m, {}, 0.0 };
       BoundingSphere(box, sphere.centre, sphere.radius);
       spheres.push_back(sphere);
     }
@@ -949,6 +950,20 @@ void GrowBounds(const Mesh& mesh, double box[6])
   }
 }
 
+void ReceiverBounds(const SceneData& scene, double box[6])
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  std::fill(box, box + 6, inf);
+  box[1] = box[3] = box[5] = -inf;
+  for (const Mesh& mesh : scene.Meshes)
+  {
+    if (MeshRole(scene, mesh) == Role::Receiver)
+    {
+      GrowBounds(mesh, box);
+    }
+  }
+}
+
 double WindingNumber(const Mesh& mesh, const double point[3])
 {
   const glm::dvec3 x(point[0], point[1], point[2]);
@@ -1063,14 +1078,8 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
   {
     // The receivers the camera sees: the corners of the whole seen box (the glass
     // over the floor) would widen a lamp's frustum towards 75 degrees.
-    double receivers[6] = { inf, -inf, inf, -inf, inf, -inf };
-    for (const Mesh& mesh : scene.Meshes)
-    {
-      if (MeshRole(scene, mesh) == Role::Receiver)
-      {
-        GrowBounds(mesh, receivers);
-      }
-    }
+    double receivers[6];
+    ReceiverBounds(scene, receivers);
     for (int k = 0; k < 3; ++k)
     {
       fit[2 * k] = std::max(receivers[2 * k], focus[2 * k]);

@@ -255,6 +255,12 @@ bool LightReachesSpecular(const Light& light, const double specularBounds[6]);
  */
 bool RefractorsInLine(const SceneData& scene, int index, int& first, int& second);
 
+/**
+ * The box (xmin, xmax, ymin, ymax, zmin, zmax) of every receiver's finite vertices;
+ * empty (min > max) without receivers.
+ */
+void ReceiverBounds(const SceneData& scene, double box[6]);
+
 /** A mesh's role: its material's, Role::None where the material index is out of range. */
 Role MeshRole(const SceneData& scene, const Mesh& mesh);
 
