@@ -8,7 +8,6 @@
 #include "vtkCausticsPhotonBufferHierarchy.h"
 #include "vtkCausticsPhotonBufferUtilities.h"
 #include "vtkCausticsPhotonGrid.h"
-#include "vtkCausticsPhotonSplatter.h"
 #include "vtkCausticsSceneData.h"
 #include "vtkCausticsSceneGeometry.h"
 #include "vtkCausticsScreenSpaceUtilities.h"
@@ -38,9 +37,6 @@ struct vtkCausticsCausticMap::Internals
 {
   caustics::LightView View;
   bool HasView = false;
-  // The finest level holds each texel's exact mean (caustic triangles), not a
-  // kernel estimate at its centre: Apply() averages it over each pixel's footprint.
-  bool TexelMeans = false;
 };
 
 vtkCausticsCausticMap::vtkCausticsCausticMap()
@@ -139,7 +135,6 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
     vtkErrorMacro(<< "Splat needs RenderReceivers() first, a photon buffer and its hierarchy");
     return false;
   }
-  this->Internal->TexelMeans = false;
   vtkOpenGLState* state = renWin->GetState();
   state->PushFramebufferBindings();
   vtkOpenGLState::ScopedglViewport viewport(state);
@@ -193,31 +188,12 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
   return ok;
 }
 
-bool vtkCausticsCausticMap::SplatWith(vtkOpenGLRenderWindow* renWin,
-  vtkCausticsPhotonSplatter* splatter, const caustics::PhotonGrid& grid,
-  const caustics::PhotonRecords& landed, vtkTextureObject* kernelRadius)
+void vtkCausticsCausticMap::ClearIrradiance(vtkOpenGLRenderWindow* renWin)
 {
-  if (!this->Internal->HasView || !splatter)
-  {
-    vtkErrorMacro(<< "SplatWith needs RenderReceivers() first and a reconstruction");
-    return false;
-  }
   vtkOpenGLState* state = renWin->GetState();
   state->PushFramebufferBindings();
-  vtkOpenGLState::ScopedglViewport viewport(state);
-  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_SCISSOR_TEST);
   this->ClearLevels(renWin);
-  this->Framebuffers[0]->Bind();
-  const int size = this->GetLevelResolution(0);
-  state->vtkglViewport(0, 0, size, size);
-  float matrix[16];
-  caustics::gl::ToColumnMajor(this->Internal->View.worldToClip, matrix);
-  const bool ok = splatter->Splat(renWin, grid, landed, kernelRadius, this->Receivers[0], matrix);
   state->PopFramebufferBindings();
-  this->Internal->TexelMeans =
-    splatter->GetReconstruction() == vtkCausticsPhotonSplatter::TRIANGLES;
-  return ok;
 }
 
 void vtkCausticsCausticMap::ClearLevels(vtkOpenGLRenderWindow* renWin)
@@ -383,7 +359,6 @@ bool vtkCausticsCausticMap::DrawFinal(vtkOpenGLRenderWindow* renWin,
   }
   program->SetUniformi("levels", this->NumberOfLevels);
   caustics::hcm::SetCameraViewUniforms(program, "cameraView", view);
-  program->SetUniformi("averageFootprint", this->Internal->TexelMeans ? 1 : 0);
   // Without a front map its samplers still need textures: the map's own stand in.
   vtkCausticsGBuffer* frontReceivers = front ? front->Receivers[0] : this->Receivers[0];
   bind(frontReceivers->GetPositionTexture(), "frontPosition");

@@ -19,8 +19,7 @@
  *    W/m^2 and every splat deposits exactly its flux.
  * 3. Apply: a full-screen pass over the camera's G-buffer adds, at every receiver
  *    pixel the finest level sees, the sum over the levels of their bilinear
- *    irradiance (taps that show another surface are left out); caustic triangles'
- *    finest level is averaged over the pixel's footprint. Eq. 3's (1/4)^i
+ *    irradiance (taps that show another surface are left out). Eq. 3's (1/4)^i
  *    weights renormalize energy counted per texel; per unit area, as stored here,
  *    they are already applied, and the sum of the levels is the irradiance.
  * A second map of the same view holds the receivers hidden from the light by nearer
@@ -47,7 +46,6 @@
 
 class vtkCausticsDistanceImpostors;
 class vtkCausticsGBuffer;
-class vtkCausticsPhotonSplatter;
 class vtkCausticsPhotonBufferHierarchy;
 class vtkCausticsSceneGeometry;
 class vtkCausticsShaderProgram;
@@ -121,11 +119,8 @@ public:
   /**
    * Adds the map's caustic irradiance at the receivers of `camera` (a G-buffer of
    * the opaque roles, drawn with `view`) into the bound framebuffer, additively.
-   * After SplatWith() caustic triangles, whose texels hold the exact mean irradiance
-   * over their area, each pixel gets the finest level's mean over its footprint on
-   * its receiver: map texels finer than the camera's pixels are averaged, not
-   * point-sampled. After Splat() the kernels are at least a pixel footprint wide
-   * (MinimumCameraSplatRadius) and each pixel takes them at its centre. With
+   * The kernels are at least a pixel footprint wide (MinimumCameraSplatRadius) and
+   * each pixel takes them at its centre. With
    * `front` (the hidden receivers' map, rendered behind `front`), only the pixels
    * `front`'s finest level does not see. With `drawArguments`, the draw's arguments
    * are read there on the GPU at `drawOffset` (vtkCausticsPhotonBuffer's hidden
@@ -135,6 +130,13 @@ public:
   bool Apply(vtkOpenGLRenderWindow* renWin, vtkCausticsGBuffer* camera,
     const caustics::Camera& view, vtkCausticsCausticMap* front = nullptr,
     const caustics::gl::StorageBuffer* drawArguments = nullptr, std::size_t drawOffset = 0);
+
+  /**
+   * Clears the levels' irradiance, where nothing is splatted into them (caustic
+   * triangles go to the camera's view) but ApplyStore() still tests what the map
+   * sees through them.
+   */
+  void ClearIrradiance(vtkOpenGLRenderWindow* renWin);
 
   /**
    * Adds, at the receivers of `camera` that neither this map (as Apply() tests it)
@@ -152,15 +154,6 @@ public:
     vtkCausticsDistanceImpostors* store, const caustics::gl::StorageBuffer& drawArguments,
     std::size_t drawOffset);
 #endif
-
-  /**
-   * Instead of Splat(): the landed photons through a shared reconstruction (e.g. caustic
-   * triangles) into the finest level, the others cleared, with the photons' kernel
-   * radii (m) for its splats. Needs RenderReceivers() first.
-   */
-  bool SplatWith(vtkOpenGLRenderWindow* renWin, vtkCausticsPhotonSplatter* splatter,
-    const caustics::PhotonGrid& grid, const caustics::PhotonRecords& landed,
-    vtkTextureObject* kernelRadius);
 
   /** Irradiance (W/m^2, RGBA32F) of level j after Splat(). */
   vtkTextureObject* GetIrradianceTexture(int j);

@@ -54,7 +54,7 @@ struct CausticMapSettings
   int MaximumInternalEvents = 8;          ///< interfaces met inside a refractor, [1, 32]
   int MaximumReflections = 3;             ///< mirrors met in air after emission, [0, 16]
   int Reconstruction = 0; ///< vtkCausticsPhotonSplatter::Reconstructions: 0 hierarchical splats,
-                          ///< 1 caustic triangles into the finest level
+                          ///< 1 caustic triangles into the camera's view
   bool SplitFresnel = true;               ///< emit a refractor's reflected part too
   bool HiddenReceivers = true;            ///< a second map of receivers hidden by nearer ones
   double MinimumMapIncidence = 45.0;      ///< degrees, [0, 90]; the map's view turns to it

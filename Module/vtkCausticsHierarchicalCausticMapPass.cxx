@@ -242,14 +242,8 @@ void vtkCausticsHierarchicalCausticMapPass::PrepareLights(vtkOpenGLRenderWindow*
       light.IncidenceKey = std::move(key);
       light.Incidence = caustics::FindReceiverIncidence(scene, index, focus);
     }
-    // Caustic triangles store each texel's exact mean, so the texels bound their
-    // detail: their map fits the outline of what it must hold. Splats' kernels are
-    // at least MinimumSplatRadius texels, and below the photons' spacing their
-    // lattice shows as a mottle (the ring against the reference: 8.7 % with the
-    // sphere, 13.5 % fitted), so they keep the seen box's sphere.
-    const bool fitOutline = this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES;
     light.MapView = caustics::ComputeReceiverMapView(
-      scene, index, light.Incidence, this->Settings.MinimumMapIncidence, fitOutline, focus);
+      scene, index, light.Incidence, this->Settings.MinimumMapIncidence, focus);
     light.Traced = index < this->GetLightBuffers()->GetNumberOfLights() &&
       this->GetLightBuffers()->GetView(index).valid && light.MapView.valid && scene.HasSpecular &&
       caustics::LightReachesSpecular(scene.Lights[i], scene.SpecularBounds);
@@ -380,13 +374,13 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
     this->BeginStage("hcm splat");
     if (this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES)
     {
-      // The gather gave every photon its Eq. 2 radius: the splats of the flux the
-      // refused triangles leave.
-      vtkCausticsPhotonSplatter* triangles = this->Internal->Triangles;
-      triangles->SetReconstructionToTriangles();
-      light.Traced = gathered &&
-        light.Map->SplatWith(renWin, triangles, grid, light.Photons->GetLanded(),
-          light.Hierarchy->GetSplatRadiusTexture());
+      // The triangles go straight into the camera view at the final render (every
+      // landed photon, hidden receivers' too): no map to splat.
+      light.Traced = gathered;
+      if (light.Store)
+      {
+        light.Map->ClearIrradiance(renWin);
+      }
     }
     else
     {
@@ -396,8 +390,8 @@ bool vtkCausticsHierarchicalCausticMapPass::GatherCausticMaps(vtkOpenGLRenderWin
           this->Settings.HiddenReceivers ? light.HiddenMap.GetPointer() : nullptr);
     }
     // The photons that landed on hidden receivers, and those whose kernel reaches
-    // them, into their own map (splats in either reconstruction).
-    if (this->Settings.HiddenReceivers)
+    // them, into their own map.
+    if (this->Settings.HiddenReceivers && this->Settings.Reconstruction != RECONSTRUCTION_TRIANGLES)
     {
       this->BeginStage("hcm hidden splat");
       light.Traced = light.Traced &&
@@ -417,7 +411,17 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderFinal(vtkOpenGLRenderWindow* r
   bool ok = true;
   for (auto& light : this->Internal->Lights)
   {
-    if (light->Traced)
+    if (light->Traced && this->Settings.Reconstruction == RECONSTRUCTION_TRIANGLES)
+    {
+      // The gather gave every photon its Eq. 2 radius: the splats of the flux the
+      // refused triangles leave.
+      vtkCausticsPhotonSplatter* triangles = this->Internal->Triangles;
+      triangles->SetReconstructionToTriangles();
+      ok = this->SplatInCameraView(this->GetFrameInputs(), triangles, light->Emitter->GetGrid(),
+             light->Photons->GetLanded(), light->Hierarchy->GetSplatRadiusTexture()) &&
+        ok;
+    }
+    else if (light->Traced)
     {
       ok = light->Map->Apply(renWin, this->GetCameraGBuffer(), camera) && ok;
       if (this->Settings.HiddenReceivers)
@@ -430,17 +434,17 @@ bool vtkCausticsHierarchicalCausticMapPass::RenderFinal(vtkOpenGLRenderWindow* r
           ok;
         this->EndStage("hcm hidden final render");
       }
-      if (light->Store)
-      {
-        // The receivers neither map sees: the photons the store took (drawn only then).
-        this->BeginStage("hcm store final render");
-        ok = light->Map->ApplyStore(renWin, this->GetCameraGBuffer(), camera,
-               this->Settings.HiddenReceivers ? light->HiddenMap.GetPointer() : nullptr,
-               light->Store, light->Photons->GetStatisticsBuffer(),
-               vtkCausticsPhotonBuffer::GetStoreDrawOffset()) &&
-          ok;
-        this->EndStage("hcm store final render");
-      }
+    }
+    if (light->Traced && light->Store)
+    {
+      // The receivers neither map sees: the photons the store took (drawn only then).
+      this->BeginStage("hcm store final render");
+      ok =
+        light->Map->ApplyStore(renWin, this->GetCameraGBuffer(), camera,
+          this->Settings.HiddenReceivers ? light->HiddenMap.GetPointer() : nullptr, light->Store,
+          light->Photons->GetStatisticsBuffer(), vtkCausticsPhotonBuffer::GetStoreDrawOffset()) &&
+        ok;
+      this->EndStage("hcm store final render");
     }
   }
   return ok;

@@ -118,10 +118,12 @@ public:
 
   ///@{
   /**
-   * How the landed photons become the map's irradiance: RECONSTRUCTION_SPLATS, the
-   * paper's splats (SplatMode); RECONSTRUCTION_TRIANGLES, the shared reconstruction's
-   * caustic triangles (vtkCausticsPhotonSplatter) into the finest level, with the
-   * Eq. 2 splats for the flux of the triangles refused. Default splats.
+   * How the landed photons become irradiance: RECONSTRUCTION_SPLATS, the paper's
+   * splats (SplatMode) into the map, projected onto the camera's receivers;
+   * RECONSTRUCTION_TRIANGLES, the shared reconstruction's caustic triangles
+   * (vtkCausticsPhotonSplatter) straight into the camera's view, as the other
+   * techniques draw them, with the Eq. 2 radii for the splats of the flux of the
+   * triangles refused: no map texel limits them. Default splats.
    */
   enum
   {

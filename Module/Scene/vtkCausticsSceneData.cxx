@@ -1021,8 +1021,7 @@ double VisibleOverSpecular(const SceneData& scene)
 }
 
 LightView ComputeReceiverMapView(const SceneData& scene, int index,
-  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline,
-  const double* photonFocus)
+  const ReceiverIncidence& incidence, double minimumIncidence, const double* photonFocus)
 {
   if (index < 0 || index >= static_cast<int>(scene.Lights.size()) || scene.Meshes.empty())
   {
@@ -1064,38 +1063,30 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
     }
   }
   LightView view = AimLightView(scene, light, index, focus);
-  if (!view.valid || scene.Participating.enabled)
+  if (!view.valid || !view.perspective || scene.Participating.enabled)
   {
-    // With a medium the photons' paths are seen beyond where they land: the sphere
-    // stays.
+    // A directional light's map keeps the seen box's sphere; with a medium the
+    // photons' paths are seen beyond where they land: the sphere or cone stays.
     return view;
   }
-  // The map holds the receivers photons land on and the mirrors they meet on the way
-  // (the caustic maps' trace searches both in it).
+  // A lamp in the scene (inside the seen box's sphere) would otherwise spread the map
+  // over 75 degrees, most of it beside what the camera sees. The map holds the
+  // receivers photons land on and the mirrors they meet on the way (the caustic
+  // maps' trace searches both in it): the receivers the camera sees (the corners of
+  // the whole seen box, the glass over the floor, would widen the frustum towards
+  // 75 degrees).
   const double inf = std::numeric_limits<double>::infinity();
   double fit[6];
-  if (view.perspective)
+  double receivers[6];
+  ReceiverBounds(scene, receivers);
+  for (int k = 0; k < 3; ++k)
   {
-    // The receivers the camera sees: the corners of the whole seen box (the glass
-    // over the floor) would widen a lamp's frustum towards 75 degrees.
-    double receivers[6];
-    ReceiverBounds(scene, receivers);
-    for (int k = 0; k < 3; ++k)
-    {
-      fit[2 * k] = std::max(receivers[2 * k], focus[2 * k]);
-      fit[2 * k + 1] = std::min(receivers[2 * k + 1], focus[2 * k + 1]);
-    }
-    if (!(fit[0] <= fit[1] && fit[2] <= fit[3] && fit[4] <= fit[5]))
-    {
-      std::copy(focus, focus + 6, fit); // no receiver in view: what the camera sees
-    }
+    fit[2 * k] = std::max(receivers[2 * k], focus[2 * k]);
+    fit[2 * k + 1] = std::min(receivers[2 * k + 1], focus[2 * k + 1]);
   }
-  else
+  if (!(fit[0] <= fit[1] && fit[2] <= fit[3] && fit[4] <= fit[5]))
   {
-    // A directional light's outline of what the camera sees (measured on the water
-    // sheet's caustic triangles: the receivers alone, finer, read 9.0 % against 5.4 %
-    // with the sun at 60 degrees and 4.4 % against 9.5 % at 30).
-    std::copy(focus, focus + 6, fit);
+    std::copy(focus, focus + 6, fit); // no receiver in view: what the camera sees
   }
   for (const Mesh& mesh : scene.Meshes)
   {
@@ -1116,17 +1107,7 @@ LightView ComputeReceiverMapView(const SceneData& scene, int index,
       fit[2 * k + 1] = std::max(fit[2 * k + 1], own[2 * k + 1]);
     }
   }
-  if (view.perspective)
-  {
-    // A lamp in the scene (inside the seen box's sphere) would otherwise spread the
-    // map over 75 degrees, most of it beside what the camera sees.
-    FitPerspective(view, fit);
-  }
-  else if (fitOutline)
-  {
-    // Square: the caustic map's hierarchy and splats take its texels as square.
-    FitOrthographic(view, fit, 1.0);
-  }
+  FitPerspective(view, fit);
   return view;
 }
 

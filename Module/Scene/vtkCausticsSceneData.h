@@ -344,18 +344,14 @@ double WindingNumber(const Mesh& mesh, const double point[3]);
  * in the light's view. A point or spot light's frustum is then narrowed to the
  * corners of the box of the receivers the camera sees and every mirror across the
  * light, when some frustum within 75 degrees holds them: a lamp inside the seen box's
- * bounding sphere otherwise gets the widest frustum. With `fitOutline`, a directional
- * light's square view is narrowed to the outline of the seen box and every mirror
- * across the light (not their bounding sphere): finer texels where the map's texels
- * bound the detail (caustic triangles). With `photonFocus` (the box the light's
+ * bounding sphere otherwise gets the widest frustum. With `photonFocus` (the box the light's
  * photons are aimed at, LightView::focus, which holds every mirror they can meet)
- * only the mirrors that meet it count. Neither fit applies with a participating
+ * only the mirrors that meet it count. The fit does not apply with a participating
  * medium (the photons' paths are seen beyond where they land). The depth range holds
  * the whole scene, as for every light view.
  */
 LightView ComputeReceiverMapView(const SceneData& scene, int index,
-  const ReceiverIncidence& incidence, double minimumIncidence, bool fitOutline = false,
-  const double* photonFocus = nullptr);
+  const ReceiverIncidence& incidence, double minimumIncidence, const double* photonFocus = nullptr);
 }
 
 #endif

@@ -7,14 +7,9 @@
 // caustic light. The levels store irradiance (W/m^2) from energy-normalized
 // kernels; Eq. 3's (1/4)^i renormalizes energy counted per texel, whose area is
 // 4^i times the finest texel's, so in irradiance it is a plain sum.
-// A camera pixel shows the mean irradiance over its footprint on the receiver.
-// Caustic triangles store each texel's exact mean, with no kernel: where the finest
-// level's texels are smaller than the pixel's footprint (an oblique light, a fine
-// map, a far receiver) one bilinear tap at the pixel's centre would alias, a fold
-// narrower than the pixel read as its peak or missed. Their finest level is
-// therefore averaged over the texels under the footprint, each by the area of it it
-// holds (SampleFootprint); where it spans one texel or less, one bilinear tap.
-// Splats need none of it: their kernels are at least a pixel footprint wide.
+// Its kernels are at least a pixel footprint wide (MinimumCameraSplatRadius), so one
+// bilinear tap at the pixel's centre reads the pixel's mean. (Caustic triangles,
+// which have no kernel, go to the camera's view instead: vtkCausticsPhotonSplatter.)
 // With CAUSTICS_STORE (vtkCausticsCausticMap::ApplyStore, glsl/vtkCausticsImpostorCommon.glsl
 // before this file) the pass adds instead, at the receiver pixels neither this map nor
 // the hidden receivers' map (bound as the front map) sees, the distance impostors'
@@ -27,7 +22,6 @@ uniform sampler2D receiverNormal[4];
 uniform CausticsView mapViews[4];
 uniform int levels;
 uniform CausticsView cameraView; // the camera the G-buffer was drawn with
-uniform int averageFootprint;    // 1: the finest level holds texel means (triangles)
 // The hidden receivers' map (vtkCausticsCausticMap::Apply with a front map): a pixel
 // the front map's finest level sees is the front map's, wholly; this map adds only
 // where it does not, so that along the edge between the two layers (coplanar
@@ -35,8 +29,6 @@ uniform int averageFootprint;    // 1: the finest level holds texel means (trian
 uniform bool hasFront;
 uniform sampler2D frontPosition; // the front map's finest receivers (same view and size)
 uniform sampler2D frontNormal;
-
-const int MAXIMUM_FOOTPRINT_TEXELS = 12; // per axis of the pixel's footprint in the map
 
 layout(location = 0) out vec4 outIrradiance;
 
@@ -116,6 +108,7 @@ bool FrontSees(vec3 x, vec3 n)
   return false;
 }
 
+#ifdef CAUSTICS_STORE
 // Where the camera's ray through `pixel` (continuous pixel coordinates) meets the
 // plane (x, n); false where it runs along the plane.
 bool CameraRayOnPlane(vec2 pixel, vec3 x, vec3 n, out vec3 hit)
@@ -130,65 +123,6 @@ bool CameraRayOnPlane(vec2 pixel, vec3 x, vec3 n, out vec3 hit)
   return abs(along) > 1e-6 * length(direction) && AllFinite(hit);
 }
 
-// The finest level's mean over the footprint of camera pixel `pixel` on the plane
-// (x, n). Where the footprint spans more than one texel: each texel under it counts
-// by the area of the footprint it holds (exact for texels that hold exact means),
-// the texels that show another surface left out, up to MAXIMUM_FOOTPRINT_TEXELS per
-// axis. Else, or for a larger footprint (a grazing view), the bilinear tap at the
-// pixel's centre. (Bilinear taps over the footprint instead, one per texel spanned,
-// left 0.7 % of the water sheet's flux to their phase at 60 degrees; two per texel
-// blurred it by a texel's tent: 6.9 % relative L2 against 5.3 % with the areas.)
-vec4 SampleFootprint(ivec2 pixel, vec3 x, vec3 n, out bool seen)
-{
-  vec3 corners[4];
-  vec2 q[4];
-  bool projected = averageFootprint != 0;
-  const vec2 offsets[4] = vec2[4](vec2(0.0), vec2(1.0, 0.0), vec2(1.0), vec2(0.0, 1.0));
-  for (int k = 0; k < 4 && projected; ++k)
-  {
-    projected = CameraRayOnPlane(vec2(pixel) + offsets[k], x, n, corners[k]);
-    vec4 clip = mapViews[0].worldToClip * vec4(corners[k], 1.0);
-    projected = projected && clip.w > 0.0;
-    q[k] = (clip.xy / clip.w * 0.5 + 0.5) * mapViews[0].size;
-  }
-  vec2 low = min(min(q[0], q[1]), min(q[2], q[3]));
-  vec2 high = max(max(q[0], q[1]), max(q[2], q[3]));
-  ivec2 first = ivec2(floor(low)), last = ivec2(floor(high));
-  ivec2 texels = last - first + 1;
-  vec2 diagonal = q[2] - q[0], other = q[3] - q[1];
-  float area = 0.5 * abs(diagonal.x * other.y - other.x * diagonal.y); // texels
-  if (!projected || !(area > 1.0) || any(greaterThan(texels, ivec2(MAXIMUM_FOOTPRINT_TEXELS))))
-  {
-    return SampleLevel(0, x, n, seen);
-  }
-  first = max(first, ivec2(0));
-  last = min(last, ivec2(mapViews[0].size) - 1);
-  float tolerance = 1.5 * ViewTexelSize(mapViews[0], x);
-  vec4 sum = vec4(0.0);
-  float weights = 0.0;
-  for (int j = first.y; j <= last.y; ++j)
-  {
-    for (int i = first.x; i <= last.x; ++i)
-    {
-      ivec2 texel = ivec2(i, j);
-      vec2 square[9];
-      for (int k = 0; k < 4; ++k)
-      {
-        square[k] = q[k] - vec2(texel);
-      }
-      float weight = CausticsAreaInUnitSquare(square, 4);
-      if (weight > 0.0 && TexelShows(0, texel, x, n, tolerance))
-      {
-        sum += weight * texelFetch(irradiance[0], texel, 0);
-        weights += weight;
-      }
-    }
-  }
-  seen = weights > 0.0;
-  return seen ? sum / weights : vec4(0.0);
-}
-
-#ifdef CAUSTICS_STORE
 // The side of camera pixel `pixel`'s footprint on the plane (x, n) (m; 0 where the
 // camera's rays run along it): the store's read window spans at least that.
 float FootprintWidth(ivec2 pixel, vec3 x, vec3 n)
@@ -251,7 +185,7 @@ void main()
   }
 #ifdef CAUSTICS_STORE
   bool mapSees;
-  SampleFootprint(pixel, x, n, mapSees); // as this map's own final render tests it
+  SampleLevel(0, x, n, mapSees); // as this map's own final render tests it
   vec3 stored;
   if (mapSees || !StoreIrradiance(x, FootprintWidth(pixel, x, n), stored))
   {
@@ -261,7 +195,7 @@ void main()
   return;
 #endif
   bool seen;
-  vec4 total = SampleFootprint(pixel, x, n, seen);
+  vec4 total = SampleLevel(0, x, n, seen);
   if (!seen)
   {
     discard; // the caustic map's view does not see this point

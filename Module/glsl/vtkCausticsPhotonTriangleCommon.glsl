@@ -73,7 +73,10 @@ bool LoadCausticTriangle(ivec2 cell, int t, out CausticTriangle tri)
     vec4 position = texelFetch(hitPosition, texel, 0);
     vec4 normal = texelFetch(hitNormal, texel, 0);
     vec4 flux = texelFetch(hitFlux, texel, 0);
-    if (!(position.w > 0.0) || !(flux.a > 0.0))
+    // The measure is negative for a photon on a receiver the caustic maps' light view
+    // hides (vtkCausticsPhotonBuffer): it lands there all the same.
+    float measure = abs(flux.a);
+    if (!(position.w > 0.0) || !(measure > 0.0))
     {
       return false;
     }
@@ -88,7 +91,10 @@ bool LoadCausticTriangle(ivec2 cell, int t, out CausticTriangle tri)
     tri.normal += n[k];
     tri.flux += flux.rgb;
     // Unoccluded footprint: the texel's measure over the beam's cross-section.
-    float measure = hitLightType == 0 ? flux.a : flux.a * position.w * position.w;
+    if (hitLightType != 0)
+    {
+      measure *= position.w * position.w;
+    }
     tri.footprint = max(tri.footprint, measure / max(normal.w, 0.05));
   }
   tri.flux /= 6.0;
