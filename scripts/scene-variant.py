@@ -11,7 +11,8 @@ docs/accuracy.md, "Lamps", "Absorbing glass and water" and "Two pieces of glass"
         [--attenuation 0.5,0.2,0.05] [--add-ball 0,1.2,0,0.5] \\
         [--techniques screen-space,caustic-maps,cascaded,impostors] [--cone DEGREES] \\
         [--size 256] [--photons 256] [--reference-photons 1.6e7] [--reference-kernel 1] \\
-        [--intensity 50] [--array DirectIrradiance] [--output PREFIX]
+        [--intensity 50] [--array DirectIrradiance] [--reconstruction triangles] \\
+        [--output PREFIX]
 
 The reference's kernel decides how sharp a focus it shows: with the default of
 caustics-render (two pixel footprints) a lamp's focus on the floor is half as bright as
@@ -21,8 +22,10 @@ reference's camera rays passing the refractors, as the caustic buffer's G-buffer
 lights' shadowed irradiance). Prints relative L2, flux ratio, the ratio of the
 brightest receiver pixels, the share of the caustic the technique's lost light could
 be (GetLastFrameLostLightBound; it warns past 10 %) and the frame time (one frame after a first that compiles).
---output PREFIX writes PREFIX-reference.vti and PREFIX-TECHNIQUE.vti. Needs the Python
-wrapping and a display or EGL.
+--reconstruction triangles draws screen-space's and the caustic maps' caustic triangles
+instead of their splats (the other techniques have none). --output PREFIX writes
+PREFIX-reference.vti and PREFIX-TECHNIQUE.vti. Needs the Python wrapping and a display
+or EGL.
 """
 import argparse
 import importlib.util
@@ -86,6 +89,8 @@ def main():
     parser.add_argument("--add-ball", type=lambda text: [float(v) for v in text.split(",")],
                         help="X,Y,Z,RADIUS: a glass ball (index 1.5) added to the scene")
     parser.add_argument("--array", default="CausticIrradiance")
+    parser.add_argument("--reconstruction", choices=sorted(sweep.MODES), default="splats",
+                        help="screen-space and caustic-maps: splats or caustic triangles")
     parser.add_argument("--output")
     options = parser.parse_args()
 
@@ -143,6 +148,8 @@ def main():
     if options.add_ball:
         changes.append("a glass ball at (%s), radius %g" % (
             ", ".join("%g" % v for v in options.add_ball[:3]), options.add_ball[3]))
+    if options.reconstruction != "splats":
+        changes.append(options.reconstruction)
     if options.attenuation:
         changes.append("absorbing (%s) 1/m" % ", ".join("%g" % v for v in options.attenuation))
     print("| %s | relative L2 | flux / reference | peak / reference's | lost-light bound | frame (ms) |"
@@ -152,6 +159,8 @@ def main():
         caustics = vtkcaustics.vtkCausticsTechniques.NewPass(technique)
         caustics.KeepBuffersOn()
         caustics.SetLightBufferResolution(options.photons)
+        if hasattr(caustics, "SetReconstruction"):
+            caustics.SetReconstruction(sweep.MODES[options.reconstruction])
         renderer.SetPass(caustics)
         window.Render()  # compiles
         start = time.perf_counter()
