@@ -55,6 +55,18 @@ def blurred_relative_l2(image, truth, radius=2.0):
     return numpy.sqrt(difference / (reference[mask] ** 2).sum())
 
 
+def reference_kernel(text):
+    """A --reference-kernel value: a radius in pixel footprints, or "pixel"."""
+    return text if text == "pixel" else float(text)
+
+
+def set_reference_kernel(reference, kernel):
+    if kernel == "pixel":
+        reference.PixelFootprintEstimateOn()
+    else:
+        reference.SetKernelRadiusPixels(kernel)
+
+
 class Frame:
     def __init__(self, scene, size):
         self.size = size
@@ -90,11 +102,13 @@ class Frame:
         return image, statistics.median(times)
 
     def reference(self, photons, kernel=2.0):
+        """The CPU reference; kernel: radius in pixel footprints, or "pixel" for the
+        flux landing in each pixel's footprint (PixelFootprintEstimate)."""
         reference = vtkcaustics.vtkCausticsReferenceRenderer()
         reference.SetInputRenderer(self.renderer)
         reference.SetImageSize(self.size, self.size)
         reference.SetPhotonsPerLight(int(photons))
-        reference.SetKernelRadiusPixels(kernel)
+        set_reference_kernel(reference, kernel)
         if not reference.Update():
             raise RuntimeError(reference.GetLastError())
         return reference.GetOutput()
@@ -107,9 +121,10 @@ def main():
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--photons", type=int, default=256)
     parser.add_argument("--reference-photons", type=float, default=4e6)
-    parser.add_argument("--reference-kernel", type=float, default=2.0,
+    parser.add_argument("--reference-kernel", type=reference_kernel, default=2.0,
                         help="the reference's kernel radius in pixel footprints (default 2; "
-                        "the blurred column still blurs with 2)")
+                        "the blurred column still blurs with 2), or pixel: the flux in each "
+                        "pixel's footprint")
     parser.add_argument("--repeats", type=int, default=3)
     options = parser.parse_args()
     print("| scene | technique | reconstruction | relative L2 | blurred as the reference | "

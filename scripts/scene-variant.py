@@ -85,7 +85,9 @@ def main():
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--photons", type=int, default=256)
     parser.add_argument("--reference-photons", type=float, default=1.6e7)
-    parser.add_argument("--reference-kernel", type=float, default=1.0)
+    parser.add_argument("--reference-kernel", type=sweep.reference_kernel, default=1.0,
+                        help="radius in pixel footprints, or pixel: the flux in each "
+                        "pixel's footprint over its area")
     parser.add_argument("--add-ball", type=lambda text: [float(v) for v in text.split(",")],
                         help="X,Y,Z,RADIUS: a glass ball (index 1.5) added to the scene")
     parser.add_argument("--array", default="CausticIrradiance")
@@ -134,7 +136,7 @@ def main():
     reference.SetInputRenderer(renderer)
     reference.SetImageSize(options.size, options.size)
     reference.SetPhotonsPerLight(int(options.reference_photons))
-    reference.SetKernelRadiusPixels(options.reference_kernel)
+    sweep.set_reference_kernel(reference, options.reference_kernel)
     reference.SetCameraSeesRefractors(options.scene not in UNDER_WATER)
     if not reference.Update():
         raise SystemExit(reference.GetLastError())

@@ -308,21 +308,69 @@ public:
   glm::dvec3 Estimate(const glm::dvec3& x, const glm::dvec3& n, double r, double normalCosine) const
   {
     glm::dvec3 sum{ 0.0 };
+    this->ForEachWithin(x, r,
+      [&](const Entry& e, double d2)
+      {
+        if (glm::dot(FromFloat(e.normal), n) >= normalCosine)
+        {
+          sum += FromFloat(e.flux) * EpanechnikovKernel2D(d2, r);
+        }
+      });
+    return sum;
+  }
+
+  /**
+   * Flux (W) of the photons whose normal agrees with n, within `tolerance` of the plane
+   * (x, n), that fall in the convex quadrilateral `corners` (in order, on that plane)
+   * when projected onto it; `r` bounds the corners' distance from x.
+   */
+  glm::dvec3 FluxInQuad(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3 corners[4],
+    double r, double tolerance, double normalCosine) const
+  {
+    glm::dvec3 sum{ 0.0 };
+    const double turn =
+      glm::dot(glm::cross(corners[1] - corners[0], corners[2] - corners[1]), n) >= 0.0 ? 1.0 : -1.0;
+    this->ForEachWithin(x, r,
+      [&](const Entry& e, double)
+      {
+        const glm::dvec3 p = FromFloat(e.position);
+        const double height = glm::dot(p - x, n);
+        if (std::abs(height) > tolerance || glm::dot(FromFloat(e.normal), n) < normalCosine)
+        {
+          return;
+        }
+        const glm::dvec3 q = p - height * n;
+        for (int k = 0; k < 4; ++k)
+        {
+          const glm::dvec3& a = corners[k];
+          const glm::dvec3& b = corners[(k + 1) % 4];
+          if (turn * glm::dot(glm::cross(b - a, q - a), n) < 0.0)
+          {
+            return;
+          }
+        }
+        sum += FromFloat(e.flux);
+      });
+    return sum;
+  }
+
+  /** Calls visit(entry, squared distance) for every photon within r of x. */
+  template <typename Visit>
+  void ForEachWithin(const glm::dvec3& x, double r, const Visit& visit) const
+  {
     if (this->Entries.empty() || !(r > 0.0))
     {
-      return sum;
+      return;
     }
     const double r2 = r * r;
     auto accumulate = [&](const Entry& e)
     {
       const glm::dvec3 d = FromFloat(e.position) - x;
       const double d2 = glm::dot(d, d);
-      if (d2 >= r2 || glm::dot(FromFloat(e.normal), n) < normalCosine)
+      if (d2 < r2)
       {
-        return;
+        visit(e, d2);
       }
-      const double k = EpanechnikovKernel2D(d2, r);
-      sum += FromFloat(e.flux) * k;
     };
     const std::int64_t lo[3] = { this->Coord(x.x - r), this->Coord(x.y - r), this->Coord(x.z - r) };
     const std::int64_t hi[3] = { this->Coord(x.x + r), this->Coord(x.y + r), this->Coord(x.z + r) };
@@ -335,7 +383,7 @@ public:
       {
         accumulate(e);
       }
-      return sum;
+      return;
     }
     for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
     {
@@ -357,7 +405,6 @@ public:
         }
       }
     }
-    return sum;
   }
 
 private:
@@ -1867,10 +1914,13 @@ struct ReferenceTracer::Internals
     direction = ToGlm(d);
   }
 
-  /** Receiver area seen by pixel (i, j) around x: its corner rays on the tangent plane. */
-  double PixelArea(int i, int j, const glm::dvec3& x, const glm::dvec3& n, double distance) const
+  /**
+   * Pixel (i, j)'s footprint on the plane (x, n): where its corner rays meet it, in
+   * order around the pixel. False where one misses it (a grazing view).
+   */
+  bool FootprintCorners(
+    int i, int j, const glm::dvec3& x, const glm::dvec3& n, glm::dvec3 corners[4]) const
   {
-    glm::dvec3 corners[4];
     const double offsets[4][2] = { { -0.5, -0.5 }, { 0.5, -0.5 }, { 0.5, 0.5 }, { -0.5, 0.5 } };
     bool valid = true;
     for (int c = 0; c < 4 && valid; ++c)
@@ -1882,6 +1932,14 @@ struct ReferenceTracer::Internals
       valid = std::abs(denominator) > 1e-9 && t > 0.0 && std::isfinite(t);
       corners[c] = o + d * t;
     }
+    return valid;
+  }
+
+  /** Receiver area seen by pixel (i, j) around x: its corner rays on the tangent plane. */
+  double PixelArea(int i, int j, const glm::dvec3& x, const glm::dvec3& n, double distance) const
+  {
+    glm::dvec3 corners[4];
+    const bool valid = this->FootprintCorners(i, j, x, n, corners);
     double area =
       valid ? 0.5 * glm::length(glm::cross(corners[2] - corners[0], corners[3] - corners[1])) : 0.0;
     if (!(area > 0.0) || !std::isfinite(area))
@@ -2195,6 +2253,38 @@ struct ReferenceTracer::Internals
   }
 
   /**
+   * The photons' irradiance averaged over pixel (i, j)'s footprint on the receiver at x
+   * (normal n; its corner rays on the tangent plane): the flux landing in it over its
+   * area, with no kernel (Settings.pixelFootprint). Where a corner ray misses the
+   * plane (a grazing view), the kernel estimate of radius r.
+   */
+  glm::dvec3 FootprintEstimate(
+    const PhotonGrid& grid, int i, int j, const glm::dvec3& x, const glm::dvec3& n, double r) const
+  {
+    glm::dvec3 corners[4];
+    if (!this->FootprintCorners(i, j, x, n, corners))
+    {
+      return this->CausticEstimate(grid, x, n, r);
+    }
+    const double area =
+      0.5 * glm::length(glm::cross(corners[2] - corners[0], corners[3] - corners[1]));
+    double reach = 0.0;
+    for (const glm::dvec3& corner : corners)
+    {
+      reach = std::max(reach, glm::length(corner - x));
+    }
+    if (!(area > 0.0) || !std::isfinite(area) || !std::isfinite(reach))
+    {
+      return this->CausticEstimate(grid, x, n, r);
+    }
+    // Photons on the pixel's own surface: within half the footprint's mean side of its
+    // plane (the kernel estimate's ball allows its whole radius).
+    return grid.FluxInQuad(x, n, corners, 1.0001 * reach, 0.5 * std::sqrt(area),
+             this->Settings.kernelNormalCosine) *
+      (1.0 / area);
+  }
+
+  /**
    * The share of the gather kernel (radius r about x on a receiver with normal n)
    * that lies on receivers the estimate takes photons from, at least 1/4. A kernel
    * across a receiver's end (a floor meeting a wall, a table's edge, the pool's floor
@@ -2289,7 +2379,10 @@ struct ReferenceTracer::Internals
             continue;
           }
           const Hit& hit = hits[id];
-          StoreFloat(this->CausticEstimate(grid, hit.position, hit.geometricNormal, radii[id]),
+          StoreFloat(this->Settings.pixelFootprint
+              ? this->FootprintEstimate(
+                  grid, i, static_cast<int>(row), hit.position, hit.geometricNormal, radii[id])
+              : this->CausticEstimate(grid, hit.position, hit.geometricNormal, radii[id]),
             &image.caustic[3 * id]);
         }
       },

@@ -90,6 +90,7 @@ struct ReferenceSettings
   double kernelRadius = 0.0;             ///< m; > 0 fixes the surface kernel radius
   double kernelRadiusPixels = 2.0;       ///< else radius = this x sqrt(pixel footprint area)
   double kernelNormalCosine = 0.9;       ///< photons count where n_photon . n_pixel >= this
+  bool pixelFootprint = false;           ///< receiver pixels: flux in the footprint / its area
   double rouletteThreshold = 0.1;        ///< branch weight below which Russian roulette is used
   double rayMarchStep = 0.0;             ///< m; 0: scene size / 256
   double volumeKernelRadiusPixels = 1.5; ///< beam kernel radius in pixel footprints

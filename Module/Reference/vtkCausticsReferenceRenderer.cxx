@@ -352,6 +352,7 @@ caustics::ReferenceSettings vtkCausticsReferenceRenderer::GetSettings() const
   settings.kernelRadius = this->KernelRadius;
   settings.kernelRadiusPixels = this->KernelRadiusPixels;
   settings.kernelNormalCosine = this->KernelNormalCosine;
+  settings.pixelFootprint = this->PixelFootprintEstimate;
   settings.rouletteThreshold = this->RouletteThreshold;
   settings.rayMarchStep = this->RayMarchStep;
   settings.volumeKernelRadiusPixels = this->VolumeKernelRadiusPixels;
@@ -383,6 +384,11 @@ std::string vtkCausticsReferenceRenderer::ComputeCacheKey(
   hash.Value(settings.rayMarchStep);
   hash.Value(settings.volumeKernelRadiusPixels);
   hash.Value(settings.cameraSeesRefractors ? 1 : 0);
+  if (settings.pixelFootprint)
+  {
+    // Only then, as below: the kernel's keys stay those of earlier versions.
+    hash.String("pixel footprint");
+  }
   if (settings.specularSamples > 0)
   {
     // Only then: the keys of renders without them stay those of earlier versions.
@@ -741,6 +747,8 @@ void vtkCausticsReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (0 = all cores)\n";
   os << indent << "KernelRadius: " << this->KernelRadius << " m (0 = from pixels)\n";
   os << indent << "KernelRadiusPixels: " << this->KernelRadiusPixels << "\n";
+  os << indent << "PixelFootprintEstimate: " << (this->PixelFootprintEstimate ? "on" : "off")
+     << "\n";
   os << indent << "KernelNormalCosine: " << this->KernelNormalCosine << "\n";
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "RayMarchStep: " << this->RayMarchStep << " m (0 = scene size / 256)\n";

@@ -40,7 +40,8 @@
  *    rasterization) gets its direct irradiance with shadow rays and its caustic
  *    irradiance E = sum flux_p K2(|x - x_p|) with the normalized Epanechnikov kernel
  *    K2 (2 / (pi r^2) (1 - d^2 / r^2)) over photons with a similar normal; r is
- *    KernelRadius, or KernelRadiusPixels x sqrt(PixelArea).
+ *    KernelRadius, or KernelRadiusPixels x sqrt(PixelArea) (or, with
+ *    PixelFootprintEstimate, the flux landing in the pixel's footprint over its area).
  * 5. Along each camera ray in the medium: airlight by ray marching (RayMarchStep,
  *    jittered) with shadow rays, and the volume caustic by the beam radiance
  *    estimate (each beam's 2D kernel integrated exactly along the ray).
@@ -167,6 +168,23 @@ public:
    */
   vtkSetClampMacro(KernelRadiusPixels, double, 0.25, 64.0);
   vtkGetMacro(KernelRadiusPixels, double);
+  ///@}
+
+  ///@{
+  /**
+   * Estimate each receiver pixel's caustic irradiance as the flux of the photons that
+   * land in its footprint (its corner rays on the receiver's tangent plane at the
+   * pixel's point) over the footprint's area, instead of with the kernel: the mean
+   * irradiance over the pixel, with no blur, what a camera pixel shows and what a box
+   * filter of the exact irradiance gives. Needs more photons than the kernel for the
+   * same noise (a kernel of 2 footprints holds about 6 times as many), and pins down
+   * detail finer than a kernel (a line one pixel wide; the kernel's estimate of it
+   * depends on the radius). Glass and mirror pixels' camera paths keep the kernel.
+   * Default off.
+   */
+  vtkSetMacro(PixelFootprintEstimate, bool);
+  vtkGetMacro(PixelFootprintEstimate, bool);
+  vtkBooleanMacro(PixelFootprintEstimate, bool);
   ///@}
 
   ///@{
@@ -314,6 +332,7 @@ protected:
   int NumberOfThreads = 0;
   double KernelRadius = 0.0;
   double KernelRadiusPixels = 2.0;
+  bool PixelFootprintEstimate = false;
   double KernelNormalCosine = 0.9;
   double RouletteThreshold = 0.1;
   double RayMarchStep = 0.0;
