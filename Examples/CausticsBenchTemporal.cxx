@@ -36,7 +36,14 @@ vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(vtkRenderer* rendere
   reference->SetInputRenderer(renderer);
   reference->SetImageSize(size, size);
   reference->SetPhotonsPerLight(static_cast<vtkIdType>(photons));
-  reference->SetKernelRadiusPixels(kernelPixels);
+  if (kernelPixels > 0.0)
+  {
+    reference->SetKernelRadiusPixels(kernelPixels);
+  }
+  else
+  {
+    reference->PixelFootprintEstimateOn(); // --reference-kernel pixel
+  }
   reference->SetSeed(seed);
   reference->SetUseCache(cache);
   // The techniques output the irradiance at each pixel's nearest opaque surface

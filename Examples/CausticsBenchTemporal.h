@@ -24,7 +24,8 @@ namespace caustics_bench
 {
 /**
  * The renderer's scene at size x size, rendered by the reference with `photons` per
- * light, kernel radius `kernelPixels`, `seed`, cached or not; the irradiance at each
+ * light, kernel radius `kernelPixels` (0: the pixel-footprint estimate), `seed`, cached
+ * or not; the irradiance at each
  * pixel's nearest opaque surface, as the techniques output it.
  */
 vtkSmartPointer<vtkCausticsReferenceRenderer> MakeReference(vtkRenderer* renderer, int size,

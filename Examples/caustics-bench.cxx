@@ -354,7 +354,8 @@ Measurement:
   --reference-kernel R       radius of the reference's density-estimation kernel in
                              pixel footprints, ground truth and ladder, in [0.25, 64]
                              (default 1; vtkCausticsReferenceRenderer's own default
-                             is 2)
+                             is 2), or pixel: the flux landing in each pixel's
+                             footprint over its area (PixelFootprintEstimate)
 
 Output:
   --output DIR               output folder, created if needed (default: caustics-bench-results)
@@ -596,10 +597,17 @@ void DeclareMeasurementOptions(
   arguments.Value("--reference-kernel",
     [&options](const std::string& option, const std::string& value)
     {
-      options.ReferenceKernel = ParseNumber(option, value);
+      if (value == "pixel")
+      {
+        options.ReferenceKernel = 0.0; // the pixel-footprint estimate
+        return;
+      }
+      // A number where it is not "pixel": the message names both.
+      const bool number = value.find_first_not_of("0123456789.eE+-") == std::string::npos;
+      options.ReferenceKernel = number ? ParseNumber(option, value) : -1.0;
       if (options.ReferenceKernel < 0.25 || options.ReferenceKernel > 64.0)
       {
-        throw UsageError(option + " expects a radius in [0.25, 64] pixel footprints");
+        throw UsageError(option + " expects a radius in [0.25, 64] pixel footprints, or pixel");
       }
     });
   arguments.Value("--reference-repeats", Count(options.ReferenceRepeats, 1, 20));
@@ -1432,6 +1440,13 @@ std::string Fixed(double value, int precision)
   return text.str();
 }
 
+/** The reference's estimate as the docs' tables name it (`kernel` 0: pixel footprints). */
+std::string KernelText(double kernel)
+{
+  return kernel > 0.0 ? "kernel radius " + Fixed(kernel, 2) + " pixel footprints"
+                      : "the flux in each pixel's footprint";
+}
+
 /**
  * The rows no cheaper row beats in error (relative L2), by rising wall time: the
  * Pareto front of time against error. Rows without a finite positive error are left out.
@@ -1516,8 +1531,8 @@ void WriteDocsHeader(std::ostream& md, const Options& options, const Machine& ma
   for (const auto& truth : truths)
   {
     md << "| ground truth, " << truth.Scene << " | reference, " << truth.Photons
-       << " photons per light, seed 1, kernel radius " << Fixed(options.ReferenceKernel, 2)
-       << " pixel footprints, `" << truth.CacheFile << "` ("
+       << " photons per light, seed 1, " << KernelText(options.ReferenceKernel) << ", `"
+       << truth.CacheFile << "` ("
        << (truth.FromCache ? "from the cache" : "rendered in " + Fixed(truth.Seconds, 0) + " s")
        << ") |\n";
   }
@@ -1941,8 +1956,7 @@ std::string MakeTemporalDocsSection(const Options& options, const Machine& machi
   md << "| frames | " << options.Animate << " per sequence after " << options.Warmup
      << " untimed warm-up frames at frame 0's pose; cut at frame " << options.Animate / 2 << " |\n";
   md << "| reference | every frame, " << static_cast<long long>(options.ReferencePhotons)
-     << " photons per light, seed 1, kernel radius " << Fixed(options.ReferenceKernel, 2)
-     << " pixel footprints, cached |\n";
+     << " photons per light, seed 1, " << KernelText(options.ReferenceKernel) << ", cached |\n";
   for (const auto& truth : truths)
   {
     md << "| reference, " << truth.Sequence << " | " << truth.Rendered << " frames rendered, "

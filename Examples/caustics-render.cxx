@@ -88,7 +88,9 @@ Ground truth:
   --reference-kernel R       radius of its density-estimation kernel in pixel
                              footprints, in [0.25, 64] (default 2, the reference
                              renderer's; caustics-bench's ground truth takes 1: a
-                             radius of 2 halves the peak of a line one pixel wide)
+                             radius of 2 halves the peak of a line one pixel wide),
+                             or pixel: the flux landing in each pixel's footprint
+                             over its area, the pixel's mean with no blur
   --no-reference-cache       render it even when a cached result exists
 )";
 
@@ -140,12 +142,19 @@ void DeclareReferenceOptions(caustics_cli::Arguments& arguments, Options& option
   arguments.Value("--reference-kernel",
     [&options](const std::string& option, const std::string& value)
     {
-      options.ReferenceKernel = ParseNumber(option, value);
+      options.Reference = true;
+      if (value == "pixel")
+      {
+        options.ReferenceKernel = 0.0; // the pixel-footprint estimate
+        return;
+      }
+      // A number where it is not "pixel": the message names both.
+      const bool number = value.find_first_not_of("0123456789.eE+-") == std::string::npos;
+      options.ReferenceKernel = number ? ParseNumber(option, value) : -1.0;
       if (!(options.ReferenceKernel >= 0.25 && options.ReferenceKernel <= 64.0))
       {
-        throw UsageError(option + " expects a radius in [0.25, 64] pixel footprints");
+        throw UsageError(option + " expects a radius in [0.25, 64] pixel footprints, or pixel");
       }
-      options.Reference = true;
     });
   arguments.Flag("--no-reference-cache", [&options] { options.ReferenceCache = false; });
 }
@@ -427,7 +436,14 @@ void RenderReference(const Options& options, vtkRenderer* renderer)
   reference->SetInputRenderer(renderer);
   reference->SetImageSize(options.Width, options.Height);
   reference->SetPhotonsPerLight(static_cast<vtkIdType>(options.ReferencePhotons));
-  reference->SetKernelRadiusPixels(options.ReferenceKernel);
+  if (options.ReferenceKernel > 0.0)
+  {
+    reference->SetKernelRadiusPixels(options.ReferenceKernel);
+  }
+  else
+  {
+    reference->PixelFootprintEstimateOn();
+  }
   reference->SetUseCache(options.ReferenceCache);
   // The technique's layers hold the irradiance at each pixel's nearest opaque
   // surface (the pool's floor under the water): the reference's must be at the
@@ -456,8 +472,15 @@ void RenderReference(const Options& options, vtkRenderer* renderer)
   }
   std::cout << "wrote " << exr << " (reference, "
             << (reference->GetLoadedFromCache() ? "from its cache" : "rendered") << " in "
-            << caustics_cli::FormatSeconds(reference->GetWallTime()) << "; kernel radius "
-            << options.ReferenceKernel << " pixel footprints)\n";
+            << caustics_cli::FormatSeconds(reference->GetWallTime()) << "; ";
+  if (options.ReferenceKernel > 0.0)
+  {
+    std::cout << "kernel radius " << options.ReferenceKernel << " pixel footprints)\n";
+  }
+  else
+  {
+    std::cout << "the flux in each pixel's footprint)\n";
+  }
 }
 
 int Run(const Options& options)
