@@ -177,7 +177,7 @@ public:
    * pixel's point) over the footprint's area, instead of with the kernel: the mean
    * irradiance over the pixel, with no blur, what a camera pixel shows and what a box
    * filter of the exact irradiance gives. Needs more photons than the kernel for the
-   * same noise (a kernel of 2 footprints holds about 6 times as many), and pins down
+   * same noise (about 9 times those of a kernel of 2 footprints), and pins down
    * detail finer than a kernel (a line one pixel wide; the kernel's estimate of it
    * depends on the radius). Glass and mirror pixels' camera paths keep the kernel.
    * Default off.
