@@ -8,6 +8,7 @@
 #include "vtkCausticsDensityGrid.h"
 #include "vtkCausticsGLTFImporter.h"
 #include "vtkCausticsHierarchicalCausticMapPass.h"
+#include "vtkCausticsImpostorPhotonPass.h"
 #include "vtkCausticsMaterial.h"
 #include "vtkCausticsMedium.h"
 #include "vtkCausticsMeshReader.h"
@@ -88,10 +89,10 @@ std::string QualityUsage()
   --hidden-starts MODE       cascaded: a photon whose camera-view march starts where
                              the camera does not see: march (default: on behind
                              what the camera sees) or drop (the paper's Fig. 7)
-  --reconstruction MODE      screen-space and caustic-maps: how landed photons
-                             become irradiance: splats (default) or triangles
-                             (caustic triangles between neighbouring photons;
-                             sharp foci, see docs/accuracy.md)
+  --reconstruction MODE      screen-space, caustic-maps and impostors: how landed
+                             photons become irradiance: splats (default) or
+                             triangles (caustic triangles between neighbouring
+                             photons; sharp foci, see docs/accuracy.md)
   --god-ray-blur PIXELS      screen-space god-rays: standard deviation of their
                              screen-space Gaussian, 0..16 (default 1.5)
   --volume-sub-segments N    screen-space god-rays in a density grid: pieces each
@@ -756,6 +757,10 @@ vtkSmartPointer<vtkCausticsRenderPass> MakePass(const SceneOptions& options, vtk
   if (auto* maps = vtkCausticsHierarchicalCausticMapPass::SafeDownCast(pass))
   {
     maps->SetReconstruction(options.Reconstruction);
+  }
+  if (auto* impostors = vtkCausticsImpostorPhotonPass::SafeDownCast(pass))
+  {
+    impostors->SetReconstruction(options.Reconstruction);
   }
   if (auto* cascaded = vtkCausticsCascadedPhotonPass::SafeDownCast(pass))
   {

@@ -33,7 +33,7 @@ struct SceneOptions
   int Photons = 0;        ///< light-buffer side; 0: the technique's default
   int TraceView = 0;      ///< screen-space: vtkCausticsScreenSpacePhotonPass::TRACE_VIEW_*
   int HiddenStarts = 0;   ///< cascaded: 0 march on (MarchHiddenStarts), 1 drop (Fig. 7)
-  int Reconstruction = 0; ///< screen-space, caustic-maps: their RECONSTRUCTION_* (same values)
+  int Reconstruction = 0; ///< screen-space, caustic-maps, impostors: splats 0, triangles 1
   int VolumeSubSegments = -1; ///< screen-space god-rays' pieces (0: march); -1: the default
   double GodRayBlurPixels = -1.0; ///< screen-space god-rays' Gaussian (pixels); < 0: the default
   int Width = 512, Height = 512;

@@ -291,6 +291,17 @@ std::vector<Configuration> MakeConfigurations()
       Set<vtkCausticsImpostorPhotonPass>(
         [grid](vtkCausticsImpostorPhotonPass* pass) { pass->SetLightBufferResolution(grid); }) });
   }
+  // Their caustic triangles (the shared reconstruction's).
+  for (int grid : { 256, 512 })
+  {
+    table.push_back({ "impostors", "grid=" + std::to_string(grid) + " triangles",
+      Set<vtkCausticsImpostorPhotonPass>(
+        [grid](vtkCausticsImpostorPhotonPass* pass)
+        {
+          pass->SetLightBufferResolution(grid);
+          pass->SetReconstructionToTriangles();
+        }) });
+  }
   // The CPU technique, one independent estimate per frame (its accumulated frames are
   // one estimate from that many times the photons): its cost against its error.
   for (int grid : { 128, 256, 512, 1024 })

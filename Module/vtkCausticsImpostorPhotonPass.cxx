@@ -93,6 +93,20 @@ vtkCausticsPhotonSplatter* vtkCausticsImpostorPhotonPass::GetSplatter()
   return this->Internal->Splatter;
 }
 
+void vtkCausticsImpostorPhotonPass::SetReconstruction(int mode)
+{
+  if (mode != this->Internal->Splatter->GetReconstruction())
+  {
+    this->Internal->Splatter->SetReconstruction(mode);
+    this->Modified();
+  }
+}
+
+int vtkCausticsImpostorPhotonPass::GetReconstruction()
+{
+  return this->Internal->Splatter->GetReconstruction();
+}
+
 vtkCausticsRenderPass::CausticNeeds vtkCausticsImpostorPhotonPass::GetCausticNeeds()
 {
   CausticNeeds needs;

@@ -113,6 +113,21 @@ public:
   /** The shared reconstruction (splats or caustic triangles, its radius limits). */
   vtkCausticsPhotonSplatter* GetSplatter();
 
+  ///@{
+  /**
+   * How the landed photons become irradiance: the shared splatter's Reconstruction,
+   * vtkCausticsPhotonSplatter::SPLATS (0) or TRIANGLES (1, caustic triangles between
+   * neighbouring photons of the light's grid, drawn in the camera's view). Against
+   * each pixel's mean irradiance the triangles are the closer on the ring and the
+   * bunny, the splats on the ball lens (docs/technique-distance-impostors.md).
+   * Default splats.
+   */
+  void SetReconstruction(int mode);
+  int GetReconstruction();
+  void SetReconstructionToSplats() { this->SetReconstruction(0); }
+  void SetReconstructionToTriangles() { this->SetReconstruction(1); }
+  ///@}
+
 protected:
   vtkCausticsImpostorPhotonPass();
   ~vtkCausticsImpostorPhotonPass() override;

@@ -17,13 +17,14 @@ docs/accuracy.md, "Lamps", "Absorbing glass and water" and "Two pieces of glass"
 The reference's kernel decides how sharp a focus it shows: with the default of
 caustics-render (two pixel footprints) a lamp's focus on the floor is half as bright as
 with one. Scenes whose receivers lie under water (the pool) are compared with the
-reference's camera rays passing the refractors, as the caustic buffer's G-buffer does.
+reference's camera rays passing the refractors, as the caustic buffer's G-buffer does
+(--through-glass: every scene).
 --array compares another buffer the reference also writes (DirectIrradiance: the
 lights' shadowed irradiance). Prints relative L2, flux ratio, the ratio of the
 brightest receiver pixels, the share of the caustic the technique's lost light could
 be (GetLastFrameLostLightBound; it warns past 10 %) and the frame time (one frame after a first that compiles).
---reconstruction triangles draws screen-space's and the caustic maps' caustic triangles
-instead of their splats (the other techniques have none). --output PREFIX writes
+--reconstruction triangles draws caustic triangles instead of splats (the techniques'
+SetReconstruction, or their shared splatter's). --output PREFIX writes
 PREFIX-reference.vti and PREFIX-TECHNIQUE.vti. Needs the Python wrapping and a display
 or EGL.
 """
@@ -90,6 +91,10 @@ def main():
                         "pixel's footprint over its area")
     parser.add_argument("--add-ball", type=lambda text: [float(v) for v in text.split(",")],
                         help="X,Y,Z,RADIUS: a glass ball (index 1.5) added to the scene")
+    parser.add_argument("--through-glass", action="store_true",
+                        help="the reference's camera rays pass glass and water unbent, as "
+                        "caustics-bench's ground truth (every scene's receivers, the floor "
+                        "under the bunny too)")
     parser.add_argument("--array", default="CausticIrradiance")
     parser.add_argument("--reconstruction", choices=sorted(sweep.MODES), default="splats",
                         help="screen-space and caustic-maps: splats or caustic triangles")
@@ -137,7 +142,7 @@ def main():
     reference.SetImageSize(options.size, options.size)
     reference.SetPhotonsPerLight(int(options.reference_photons))
     sweep.set_reference_kernel(reference, options.reference_kernel)
-    reference.SetCameraSeesRefractors(options.scene not in UNDER_WATER)
+    reference.SetCameraSeesRefractors(options.scene not in UNDER_WATER and not options.through_glass)
     if not reference.Update():
         raise SystemExit(reference.GetLastError())
     truth = reference.GetOutput()
@@ -163,6 +168,8 @@ def main():
         caustics.SetLightBufferResolution(options.photons)
         if hasattr(caustics, "SetReconstruction"):
             caustics.SetReconstruction(sweep.MODES[options.reconstruction])
+        elif hasattr(caustics, "GetSplatter"):  # the shared reconstruction itself
+            caustics.GetSplatter().SetReconstruction(sweep.MODES[options.reconstruction])
         renderer.SetPass(caustics)
         window.Render()  # compiles
         start = time.perf_counter()
