@@ -316,7 +316,9 @@ TEST(ImpostorPhotonPass, IsRegistered)
 
 TEST(ImpostorPhotonPass, BallLensMatchesReference)
 {
-  // Reached (the pass's mean of 4 frames): flux ratio 0.9995, relative L2 0.0266 (1.0000
+  // Reached (the pass's mean of 4 frames): flux ratio 0.9995, relative L2 0.0205 (0.0266
+  // before the splats' narrow axis was widened to a pixel where the view sees them
+  // obliquely, 2026-12-06; 1.0000
   // and 0.0483 while neighbours beyond 8 unoccluded spacings did not widen a kernel,
   // SpreadStretch; 0.9986 and 0.0486 before the splats kept their flux along the
   // image's border), the
@@ -326,14 +328,14 @@ TEST(ImpostorPhotonPass, BallLensMatchesReference)
   // mean, whose frames move the grid, 0.0715 after 2 and 0.0350 after 8
   // (scripts/impostor-frames.py --progressive). Before: 0.1003 while the exit's
   // roulette drew white noise, 0.244 before the kernel radii followed the landed
-  // neighbours (SpreadStretch). Bounds: 3 %, 0.029.
+  // neighbours (SpreadStretch). Bounds: 3 %, 0.023.
   Impostors c("ball-lens");
   ASSERT_TRUE(c.RenderFrames());
   vtkNew<vtkCausticsErrorMetrics> metrics;
   ASSERT_TRUE(c.Compare("ball lens", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.03);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.029);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.023);
   // Where the last frame's photons' light went (docs/accuracy.md, "Light a technique
   // cannot follow"). Reached: 87.7 % landed, 12.3 % out of the scene, none lost. The
   // roulette divides a photon's flux by its probability: the fates add up to the
@@ -511,8 +513,13 @@ TEST(ImpostorPhotonPass, MirrorCupMatchesReference)
 TEST(ImpostorPhotonPass, BunnyMatchesReference)
 {
   // A glass bunny under a spot light in a Cornell box. The bunny is not a convex solid,
-  // so its triangles are traced (the default): relative L2 0.358, flux ratio 0.995, peak
-  // 8 px off (the pass's mean of 8 frames): the issue's 3 % met, not its 10 %. While
+  // so its triangles are traced (the default): relative L2 0.164, flux ratio 1.003, peak
+  // 1 px off (the pass's mean of 8 frames): the issue's 3 % met, not its 10 % (against
+  // camera rays through the glass, as caustics-bench compares, 3.5 % in one frame; here
+  // the error is spread over the floor in view: in one frame of scripts/scene-variant.py
+  // no pixel holds more than 2.2 % of it). Before the splats' narrow axis was
+  // widened to a pixel where the view sees them obliquely (2026-12-06): 0.358, 0.995,
+  // 8 px, the floor seen at 13 degrees losing its light between pixel rows. While
   // neighbours beyond 8 unoccluded spacings did not widen a kernel (SpreadStretch):
   // 0.360 and 0.974; with the kernels' spacing estimated by area instead of distance
   // (vtkCausticsPhotonSpacing): 0.418 and 0.968. Before
@@ -532,7 +539,7 @@ TEST(ImpostorPhotonPass, BunnyMatchesReference)
   ASSERT_TRUE(c.Compare("bunny", metrics));
   EXPECT_EQ(metrics->GetNumberOfNonFinitePixels(), 0);
   EXPECT_NEAR(metrics->GetFluxRatio(), 1.0, 0.02);
-  EXPECT_LT(metrics->GetRelativeL2Error(), 0.362);
+  EXPECT_LT(metrics->GetRelativeL2Error(), 0.17);
 }
 
 // Caustic triangles (SetReconstructionToTriangles: the shared reconstruction's) against
@@ -540,10 +547,11 @@ TEST(ImpostorPhotonPass, BunnyMatchesReference)
 // docs/reference.md), the pass's mean of 4 frames: the ring at 128^2 pixels (4e6
 // reference photons), the bunny at 256^2 (1.6e7). The ring's nephroid and the bunny's
 // base strip are finer than the splats' kernels, which blur them; the triangles are the
-// photons' own pixel means. Measured: ring triangles 3.62 %, splats 16.3 %; bunny
-// triangles 5.93 %, splats 42.3 %; flux 0.998 and 1.0007 (triangles), 0.9997 and 1.028
-// (splats). (The issue's caustics via impostors on the bunny, 10 %, against this
-// reference; against the kernel of 2 footprints the triangles are charged for its
+// photons' own pixel means. Measured: ring triangles 3.62 %, splats 16.2 %; bunny
+// triangles 6.63 %, splats 39.5 %; flux 0.998 and 0.996 (triangles), 0.9997 and 0.9988
+// (splats). (Before the splats' narrow axis spanned a pixel: bunny triangles 5.93 %,
+// splats 42.3 %, flux 1.0007 and 1.028.) (The issue's caustics via impostors on the bunny, 10 %,
+// against this reference; against the kernel of 2 footprints the triangles are charged for its
 // blur: BunnyMatchesReference.) Bounds just above.
 TEST(ImpostorPhotonPass, TrianglesMatchEachPixelsMean)
 {
