@@ -152,6 +152,25 @@ void AddScreenSpaceConfigurations(std::vector<Configuration>& table)
   }
 }
 
+/**
+ * A technique's caustic triangles (its SetReconstructionToTriangles(), the shared
+ * reconstruction's) at photon grids 256^2 and 512^2, knobs "grid=N triangles".
+ */
+template <typename PassType>
+void AddTriangleRows(std::vector<Configuration>& table, const char* technique)
+{
+  for (int grid : { 256, 512 })
+  {
+    table.push_back({ technique, "grid=" + std::to_string(grid) + " triangles",
+      Set<PassType>(
+        [grid](PassType* pass)
+        {
+          pass->SetLightBufferResolution(grid);
+          pass->SetReconstructionToTriangles();
+        }) });
+  }
+}
+
 using HCM = vtkCausticsHierarchicalCausticMapPass;
 
 /** A variant of the hierarchical caustic map (the paper's Table 3). */
@@ -261,16 +280,7 @@ void AddCausticMapConfigurations(std::vector<Configuration>& table)
   }
   // Caustic triangles in the camera's view instead of the map's splats (docs/accuracy.md,
   // "Caustic triangles against splats").
-  for (int grid : { 256, 512 })
-  {
-    table.push_back({ "caustic-maps", "grid=" + std::to_string(grid) + " triangles",
-      Set<HCM>(
-        [grid](HCM* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetReconstructionToTriangles();
-        }) });
-  }
+  AddTriangleRows<HCM>(table, "caustic-maps");
 }
 
 /**
@@ -292,16 +302,7 @@ std::vector<Configuration> MakeConfigurations()
         [grid](vtkCausticsImpostorPhotonPass* pass) { pass->SetLightBufferResolution(grid); }) });
   }
   // Their caustic triangles (the shared reconstruction's).
-  for (int grid : { 256, 512 })
-  {
-    table.push_back({ "impostors", "grid=" + std::to_string(grid) + " triangles",
-      Set<vtkCausticsImpostorPhotonPass>(
-        [grid](vtkCausticsImpostorPhotonPass* pass)
-        {
-          pass->SetLightBufferResolution(grid);
-          pass->SetReconstructionToTriangles();
-        }) });
-  }
+  AddTriangleRows<vtkCausticsImpostorPhotonPass>(table, "impostors");
   // The CPU technique, one independent estimate per frame (its accumulated frames are
   // one estimate from that many times the photons): its cost against its error.
   for (int grid : { 128, 256, 512, 1024 })
