@@ -23,8 +23,8 @@ reference's camera rays passing the refractors, as the caustic buffer's G-buffer
 lights' shadowed irradiance). Prints relative L2, flux ratio, the ratio of the
 brightest receiver pixels, the share of the caustic the technique's lost light could
 be (GetLastFrameLostLightBound; it warns past 10 %) and the frame time (one frame after a first that compiles).
---reconstruction triangles draws caustic triangles instead of splats (the techniques'
-SetReconstruction, or their shared splatter's). --output PREFIX writes
+--reconstruction triangles draws caustic triangles instead of splats (screen-space, the
+caustic maps and the impostors; cascaded keeps its splats and its row says so). --output PREFIX writes
 PREFIX-reference.vti and PREFIX-TECHNIQUE.vti. Needs the Python wrapping and a display
 or EGL.
 """
@@ -97,7 +97,8 @@ def main():
                         "under the bunny too)")
     parser.add_argument("--array", default="CausticIrradiance")
     parser.add_argument("--reconstruction", choices=sorted(sweep.MODES), default="splats",
-                        help="screen-space and caustic-maps: splats or caustic triangles")
+                        help="splats or caustic triangles (a technique without them, "
+                        "cascaded, is marked and keeps its splats)")
     parser.add_argument("--output")
     options = parser.parse_args()
 
@@ -166,10 +167,11 @@ def main():
         caustics = vtkcaustics.vtkCausticsTechniques.NewPass(technique)
         caustics.KeepBuffersOn()
         caustics.SetLightBufferResolution(options.photons)
+        name = technique
         if hasattr(caustics, "SetReconstruction"):
             caustics.SetReconstruction(sweep.MODES[options.reconstruction])
-        elif hasattr(caustics, "GetSplatter"):  # the shared reconstruction itself
-            caustics.GetSplatter().SetReconstruction(sweep.MODES[options.reconstruction])
+        elif options.reconstruction != "splats":
+            name += " (splats: it has no triangles)"
         renderer.SetPass(caustics)
         window.Render()  # compiles
         start = time.perf_counter()
@@ -188,10 +190,10 @@ def main():
         metrics.SetMaskArrayName("ReceiverMask")
         metrics.SetAreaArrayName("PixelArea")
         if not metrics.Compute(image, truth):
-            print("| %s | no comparison (see the error above) | | | | |" % technique)
+            print("| %s | no comparison (see the error above) | | | | |" % name)
             continue
         print("| %s | %.1f %% | %.3f | %.2f | %s | %.0f |" % (
-            technique, 100.0 * metrics.GetRelativeL2Error(), metrics.GetFluxRatio(),
+            name, 100.0 * metrics.GetRelativeL2Error(), metrics.GetFluxRatio(),
             peak(image, options.array, truth) / max(peak(truth, options.array, truth), 1e-30),
             "%.1f %%" % (100.0 * lost) if lost >= 0.0 else "-", 1000.0 * seconds), flush=True)
 
