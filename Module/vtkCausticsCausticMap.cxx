@@ -190,6 +190,12 @@ bool vtkCausticsCausticMap::Splat(vtkOpenGLRenderWindow* renWin,
 
 void vtkCausticsCausticMap::ClearIrradiance(vtkOpenGLRenderWindow* renWin)
 {
+  vtkTextureObject* finest = this->Irradiance[0];
+  if (finest->GetHandle() != 0 && finest->GetContext() == renWin &&
+    static_cast<int>(finest->GetWidth()) == this->GetLevelResolution(0))
+  {
+    return; // allocated and cleared already; nothing draws into it meanwhile
+  }
   vtkOpenGLState* state = renWin->GetState();
   state->PushFramebufferBindings();
   this->ClearLevels(renWin);

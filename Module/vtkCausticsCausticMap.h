@@ -132,9 +132,9 @@ public:
     const caustics::gl::StorageBuffer* drawArguments = nullptr, std::size_t drawOffset = 0);
 
   /**
-   * Clears the levels' irradiance, where nothing is splatted into them (caustic
-   * triangles go to the camera's view) but ApplyStore() still tests what the map
-   * sees through them.
+   * Allocates the levels' irradiance and clears it, once per size, where nothing is
+   * splatted into them (caustic triangles go to the camera's view) but ApplyStore()
+   * still tests what the map sees through them (it reads the receivers alone).
    */
   void ClearIrradiance(vtkOpenGLRenderWindow* renWin);
 

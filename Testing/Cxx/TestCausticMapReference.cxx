@@ -28,6 +28,14 @@
 
 namespace
 {
+/** Metrics of the caustic irradiance on the reference's receiver pixels, by area. */
+void OnReceivers(vtkCausticsErrorMetrics* metrics)
+{
+  metrics->SetArrayName("CausticIrradiance");
+  metrics->SetMaskArrayName("ReceiverMask");
+  metrics->SetAreaArrayName("PixelArea");
+}
+
 /**
  * Renders `scene` on the GPU and with the reference; returns the metrics. With
  * throughRefractors off, the reference's camera rays pass refractors (the pool's
@@ -63,9 +71,7 @@ bool Compare(const char* scene, vtkCausticsErrorMetrics* metrics, bool throughRe
     std::cerr << reference->GetLastError() << "\n";
     return false;
   }
-  metrics->SetArrayName("CausticIrradiance");
-  metrics->SetMaskArrayName("ReceiverMask");
-  metrics->SetAreaArrayName("PixelArea");
+  OnReceivers(metrics);
   const bool ok = metrics->Compute(caustic, reference->GetOutput());
   std::cout << scene << ": " << metrics->GetSummary() << "\n";
   // The reference's own noise: the same render with another seed.
@@ -160,12 +166,8 @@ TEST(CausticMapReference, RingAtTheDefaultPhotons)
   reference->UseCacheOff();
   ASSERT_TRUE(reference->Update()) << reference->GetLastError();
   vtkNew<vtkCausticsErrorMetrics> metrics, maxDistance;
-  for (vtkCausticsErrorMetrics* m : { metrics.Get(), maxDistance.Get() })
-  {
-    m->SetArrayName("CausticIrradiance");
-    m->SetMaskArrayName("ReceiverMask");
-    m->SetAreaArrayName("PixelArea");
-  }
+  OnReceivers(metrics);
+  OnReceivers(maxDistance);
   ASSERT_TRUE(metrics->Compute(caustic, reference->GetOutput()));
   ASSERT_TRUE(maxDistance->Compute(paper, reference->GetOutput()));
   std::cout << "ring, 256^2 photons: " << metrics->GetSummary()
@@ -202,12 +204,8 @@ TEST(CausticMapReference, RingTrianglesMatchEachPixelsMean)
   reference->UseCacheOff();
   ASSERT_TRUE(reference->Update()) << reference->GetLastError();
   vtkNew<vtkCausticsErrorMetrics> splatMetrics, triangleMetrics;
-  for (vtkCausticsErrorMetrics* m : { splatMetrics.Get(), triangleMetrics.Get() })
-  {
-    m->SetArrayName("CausticIrradiance");
-    m->SetMaskArrayName("ReceiverMask");
-    m->SetAreaArrayName("PixelArea");
-  }
+  OnReceivers(splatMetrics);
+  OnReceivers(triangleMetrics);
   ASSERT_TRUE(splatMetrics->Compute(splats, reference->GetOutput()));
   ASSERT_TRUE(triangleMetrics->Compute(triangles, reference->GetOutput()));
   std::cout << "ring against each pixel's mean: triangles " << triangleMetrics->GetSummary()
@@ -368,9 +366,7 @@ TEST(CausticMapReference, CameraOutsideTheBoxSeesItsWallsUnlit)
     }
   }
   vtkNew<vtkCausticsErrorMetrics> metrics;
-  metrics->SetArrayName("CausticIrradiance");
-  metrics->SetMaskArrayName("ReceiverMask");
-  metrics->SetAreaArrayName("PixelArea");
+  OnReceivers(metrics);
   ASSERT_TRUE(metrics->Compute(caustic, truth));
   std::cout << "bunny's box from outside: " << metrics->GetSummary() << "; " << outside
             << " pixels of the green wall's outside, caustic sum " << lit << "\n";
@@ -451,9 +447,7 @@ TEST(CausticMapReference, ALampAboveTheScene)
   reference->UseCacheOff();
   ASSERT_TRUE(reference->Update()) << reference->GetLastError();
   vtkNew<vtkCausticsErrorMetrics> metrics;
-  metrics->SetArrayName("CausticIrradiance");
-  metrics->SetMaskArrayName("ReceiverMask");
-  metrics->SetAreaArrayName("PixelArea");
+  OnReceivers(metrics);
   ASSERT_TRUE(metrics->Compute(caustic, reference->GetOutput()));
   vtkDataArray* ours = hcmtest::Array(caustic, "CausticIrradiance");
   vtkDataArray* truth = hcmtest::Array(reference->GetOutput(), "CausticIrradiance");
